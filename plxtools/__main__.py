@@ -1,0 +1,5 @@
+import sys
+
+from plxtools.cli import main
+
+sys.exit(main())

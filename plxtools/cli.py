@@ -1,0 +1,192 @@
+"""The `plx` command. Each subcommand imports only what it needs, so `plx fmt` starts fast.
+
+Exit codes: 0 clean, 1 findings (error diagnostics, or files that would change), 2 usage or
+internal error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from plxtools import __version__
+
+OUTPUT_FORMATS = ("text", "json", "github", "sarif")
+
+
+def _add_lint(sub) -> None:
+    p = sub.add_parser(
+        "lint",
+        help="parse and type-check .openplx files against the OpenPLX bundles",
+        description="Parse and type-check OpenPLX files (folders are searched for *.openplx) and "
+        "report coded diagnostics. Exit 0 when there is no error-severity diagnostic, 1 when there "
+        "is, 2 on usage or internal errors.",
+    )
+    p.add_argument("paths", nargs="*", default=["."], metavar="PATH", help="files or folders (default: .)")
+    p.add_argument("--output-format", choices=OUTPUT_FORMATS, default="text",
+                   help="text (default), json, github (workflow annotations) or sarif (SARIF 2.1.0)")
+    p.add_argument("--fix", action="store_true", help="apply safe fixes in place")
+    p.add_argument("--unsafe-fixes", action="store_true", help="with --fix or --diff, also apply unsafe fixes")
+    p.add_argument("--diff", action="store_true", help="print the fixes as a unified diff instead of writing")
+    p.add_argument("--statistics", action="store_true", help="print a count per rule instead of each diagnostic")
+    p.add_argument("--exit-zero", action="store_true", help="exit 0 even when errors are found")
+    p.add_argument("--select", metavar="CODES", help="comma-separated codes or prefixes to enable (overrides config)")
+    p.add_argument("--ignore", metavar="CODES", help="comma-separated codes or prefixes to disable (adds to config)")
+    p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
+                   help="extra folder holding bundles (repeatable); also OPENPLX_BUNDLE_PATH")
+    p.add_argument("--no-cache", action="store_true", help="do not read or write the bundle symbol cache")
+    p.add_argument("-q", "--quiet", action="store_true", help="print diagnostics only, no summary line")
+    p.set_defaults(func=_run_lint)
+
+
+def _add_rule(sub) -> None:
+    p = sub.add_parser("rule", help="show the documentation of a rule, or list all rules",
+                       description="Print a rule's documentation page (by code or name), or list every rule.")
+    p.add_argument("code", nargs="?", help="rule code (e.g. S011) or name (e.g. invalid-syntax)")
+    p.add_argument("--all", action="store_true", help="list every rule with its code, name and severity")
+    p.add_argument("--output-format", choices=("text", "json"), default="text", help="text or json")
+    p.set_defaults(func=_run_rule)
+
+
+def _add_fmt(sub) -> None:
+    p = sub.add_parser("fmt", help="format .openplx files in the one canonical style",
+                       description="Format OpenPLX files in place. Files with syntax errors are refused. "
+                       "Exit 1 with --check when a file would change, 2 on errors.")
+    p.add_argument("paths", nargs="*", default=["."], metavar="PATH",
+                   help="files or folders (default: .); '-' formats stdin to stdout")
+    p.add_argument("--check", action="store_true", help="do not write; exit 1 and list files that would change")
+    p.add_argument("--diff", action="store_true", help="do not write; print a unified diff of the changes")
+    p.add_argument("--stdin-filename", metavar="PATH",
+                   help="the path of the file given on stdin (for config and messages)")
+    p.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
+    p.set_defaults(func=_run_fmt)
+
+
+def _add_check(sub) -> None:
+    p = sub.add_parser("check", help="assemble a scene, check it, and optionally simulate it in MuJoCo",
+                       description="Instantiate the root model of each file, assemble it as OpenPLX's SNAP "
+                       "does, check the assembly, and with --simulate compile it to MuJoCo and run it.")
+    p.add_argument("paths", nargs="+", metavar="PATH", help="files or folders")
+    p.add_argument("--model", metavar="NAME", help="the model to load (default: the last model in the file)")
+    p.add_argument("--simulate", action="store_true", help="compile to MuJoCo and run the scene")
+    p.add_argument("--duration", type=float, default=3.0, metavar="SECONDS",
+                   help="simulated time with --simulate (default 3.0)")
+    p.add_argument("--output-format", choices=OUTPUT_FORMATS, default="text", help="text, json, github or sarif")
+    p.add_argument("--render", metavar="FILE.png", help="save a picture of the assembled scene (offscreen)")
+    p.add_argument("--export-mjcf", metavar="FILE.xml", help="write the compiled MuJoCo model")
+    p.add_argument("--bundle-path", action="append", default=[], metavar="DIR", help="extra bundle folder")
+    p.add_argument("--exit-zero", action="store_true", help="exit 0 even when errors are found")
+    p.set_defaults(func=_run_check)
+
+
+def _add_lsp(sub) -> None:
+    p = sub.add_parser("lsp", help="run the language server over stdio",
+                       description="Run the OpenPLX language server, speaking LSP over stdin/stdout.")
+    p.add_argument("--stdio", action="store_true", help="accepted for editor compatibility (stdio is the default)")
+    p.add_argument("--log-file", metavar="FILE", help="write the server's log to FILE")
+    p.set_defaults(func=_run_lsp)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="plx",
+        description="plxtools: lint, format, check and simulate OpenPLX models, and an editor language server.",
+        epilog="Run 'plx COMMAND --help' for a command's options. Docs: docs/ in the plxtools repository.",
+    )
+    parser.add_argument("--version", action="version", version=f"plx {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    _add_lint(sub)
+    _add_fmt(sub)
+    _add_check(sub)
+    _add_lsp(sub)
+    _add_rule(sub)
+    return parser
+
+
+def _codes(s: str | None) -> list[str]:
+    return [c.strip().upper() for c in s.split(",") if c.strip()] if s else []
+
+
+def _run_lint(args) -> int:
+    from plxtools.lint.cli import run_lint
+
+    return run_lint(args)
+
+
+def _run_rule(args) -> int:
+    import json
+
+    from plxtools.lint.registry import all_rules, get
+
+    if args.all or not args.code:
+        rules = all_rules()
+        if args.output_format == "json":
+            print(json.dumps([{"code": r.code, "name": r.name, "severity": r.severity.value,
+                               "stage": r.stage, "fix": r.fix, "summary": r.summary} for r in rules], indent=2))
+        else:
+            for r in rules:
+                print(f"{r.code:6} {r.name:34} {r.severity.value:8} {r.summary}")
+        return 0
+    r = get(args.code)
+    if r is None:
+        print(f"plx rule: unknown rule '{args.code}' (see 'plx rule --all')", file=sys.stderr)
+        return 2
+    if args.output_format == "json":
+        print(json.dumps({"code": r.code, "name": r.name, "severity": r.severity.value, "page": r.page()}))
+    else:
+        print(r.page())
+    return 0
+
+
+def _run_fmt(args) -> int:
+    try:
+        from plxtools.fmt.cli import run_fmt
+    except ImportError:
+        print("plx fmt: the formatter is not available in this build", file=sys.stderr)
+        return 2
+    return run_fmt(args)
+
+
+def _run_check(args) -> int:
+    try:
+        from plxtools.check.cli import run_check
+    except ImportError:
+        print("plx check: the checker is not available in this build", file=sys.stderr)
+        return 2
+    return run_check(args)
+
+
+def _run_lsp(args) -> int:
+    try:
+        from plxtools.lsp.server import run_server
+    except ImportError as exc:
+        print(f"plx lsp: the language server is not available: {exc}", file=sys.stderr)
+        return 2
+    return run_server(args)
+
+
+def main(argv: list[str] | None = None) -> int:
+    sys.setrecursionlimit(max(sys.getrecursionlimit(), 20000))
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return 0
+    try:
+        return args.func(args)
+    except KeyboardInterrupt:
+        return 130
+    except BrokenPipeError:
+        return 0
+    except Exception as exc:  # an internal error: say so plainly, never a bare traceback
+        import traceback
+
+        print(f"plx {args.command}: internal error: {type(exc).__name__}: {exc}", file=sys.stderr)
+        print("This is a bug in plxtools; please report it with the input that caused it.", file=sys.stderr)
+        if __import__("os").environ.get("PLX_DEBUG"):
+            traceback.print_exc()
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,159 @@
+"""Project configuration: `[tool.plx]` in pyproject.toml or a `plx.toml`; the closest file wins.
+
+Keys (kebab-case): select, ignore, extend-select, per-file-ignores, exclude, extend-exclude,
+bundle-path, fmt.exclude. A `plx.toml` holds the keys at its top level.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import os
+import tomllib
+from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
+
+DEFAULT_EXCLUDE = (".git", ".hg", ".venv", "venv", "node_modules", "__pycache__", ".tox", "build", "dist")
+KNOWN_KEYS = {"select", "ignore", "extend-select", "per-file-ignores", "exclude", "extend-exclude",
+              "bundle-path", "fmt"}
+
+
+class ConfigError(Exception):
+    """A config file that cannot be used; the message names the file and the key."""
+
+
+@dataclass(slots=True)
+class Config:
+    root: Path | None = None  # folder of the config file
+    source: Path | None = None
+    select: list[str] | None = None  # None: all rules
+    ignore: list[str] = field(default_factory=list)
+    extend_select: list[str] = field(default_factory=list)
+    per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
+    exclude: list[str] = field(default_factory=list)
+    bundle_paths: list[Path] = field(default_factory=list)
+    fmt_exclude: list[str] = field(default_factory=list)
+
+    def rule_enabled(self, code: str, path: str | None = None) -> bool:
+        if code.startswith("S"):
+            return True  # syntax errors cannot be turned off
+        selected = self.select is None or _matches(code, self.select) or _matches(code, self.extend_select)
+        if not selected:
+            return False
+        if _matches(code, self.ignore):
+            # a more specific select wins over a broader ignore, as in ruff
+            best_ignore = max((len(p) for p in self.ignore if code.startswith(p)), default=-1)
+            best_select = max((len(p) for p in (self.select or []) + self.extend_select
+                               if code.startswith(p)), default=-1)
+            if best_ignore >= best_select:
+                return False
+        if path is not None and self.per_file_ignores:
+            rel = self.relative(path)
+            for pattern, codes in self.per_file_ignores.items():
+                if _glob(rel, pattern) and _matches(code, codes):
+                    return False
+        return True
+
+    def relative(self, path: str) -> str:
+        p = Path(path).resolve()
+        if self.root is not None:
+            try:
+                return p.relative_to(self.root.resolve()).as_posix()
+            except ValueError:
+                pass
+        return p.as_posix()
+
+    def is_excluded(self, path: Path, patterns: list[str] | None = None) -> bool:
+        pats = self.exclude if patterns is None else patterns
+        if not pats:
+            return False
+        rel = self.relative(str(path))
+        return any(_glob(rel, p) for p in pats)
+
+
+def _matches(code: str, prefixes: list[str]) -> bool:
+    return any(p == "ALL" or code.startswith(p) for p in prefixes)
+
+
+def _glob(rel: str, pattern: str) -> bool:
+    pattern = pattern.rstrip("/")
+    if fnmatch.fnmatch(rel, pattern) or fnmatch.fnmatch(rel, pattern + "/*"):
+        return True
+    # a bare name matches any path component
+    if "/" not in pattern:
+        return any(fnmatch.fnmatch(part, pattern) for part in rel.split("/"))
+    return False
+
+
+def find_config_file(start: Path) -> tuple[Path, dict] | None:
+    """Closest plx.toml or pyproject.toml with a [tool.plx] table, walking up from `start`."""
+    folder = start if start.is_dir() else start.parent
+    folder = folder.resolve()
+    for d in (folder, *folder.parents):
+        plx = d / "plx.toml"
+        if plx.is_file():
+            return plx, _read_toml(plx)
+        pyproject = d / "pyproject.toml"
+        if pyproject.is_file():
+            data = _read_toml(pyproject)
+            tool = data.get("tool", {}).get("plx")
+            if tool is not None:
+                return pyproject, tool
+    return None
+
+
+def _read_toml(path: Path) -> dict:
+    try:
+        with open(path, "rb") as fh:
+            return tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{path}: invalid TOML: {exc}") from None
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot read: {exc.strerror}") from None
+
+
+def _str_list(path: Path, key: str, value) -> list[str]:
+    if isinstance(value, str):
+        return [value]
+    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+        raise ConfigError(f"{path}: '{key}' must be a list of strings")
+    return list(value)
+
+
+def parse_config(path: Path, table: dict) -> Config:
+    unknown = set(table) - KNOWN_KEYS
+    if unknown:
+        raise ConfigError(f"{path}: unknown key(s) {', '.join(sorted(unknown))}; "
+                          f"known keys: {', '.join(sorted(KNOWN_KEYS))}")
+    cfg = Config(root=path.parent.resolve(), source=path)
+    if "select" in table:
+        cfg.select = _str_list(path, "select", table["select"])
+    cfg.ignore = _str_list(path, "ignore", table.get("ignore", []))
+    cfg.extend_select = _str_list(path, "extend-select", table.get("extend-select", []))
+    pfi = table.get("per-file-ignores", {})
+    if not isinstance(pfi, dict):
+        raise ConfigError(f"{path}: 'per-file-ignores' must be a table of glob = [codes]")
+    cfg.per_file_ignores = {k: _str_list(path, f"per-file-ignores.{k}", v) for k, v in pfi.items()}
+    cfg.exclude = _str_list(path, "exclude", table.get("exclude", [])) + _str_list(
+        path, "extend-exclude", table.get("extend-exclude", []))
+    bp = table.get("bundle-path", [])
+    cfg.bundle_paths = [(path.parent / p).resolve() for p in _str_list(path, "bundle-path", bp)]
+    fmt = table.get("fmt", {})
+    if not isinstance(fmt, dict):
+        raise ConfigError(f"{path}: 'fmt' must be a table")
+    cfg.fmt_exclude = _str_list(path, "fmt.exclude", fmt.get("exclude", []))
+    return cfg
+
+
+@lru_cache(maxsize=256)
+def _config_for_dir(folder: str) -> Config:
+    found = find_config_file(Path(folder))
+    if found is None:
+        return Config()
+    return parse_config(*found)
+
+
+def config_for(path: str | Path) -> Config:
+    p = Path(path)
+    folder = p if p.is_dir() else p.parent
+    return _config_for_dir(str(folder.resolve()) if str(folder) else os.getcwd())

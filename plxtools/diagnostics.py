@@ -1,0 +1,98 @@
+"""Diagnostics shared by every layer: one shape for syntax, lint, check and the language server.
+
+Positions inside the tool are 0-based (line, column in code points, offset in code points); the CLI
+adds one when printing and the LSP layer converts columns to the client's encoding.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+
+
+class Severity(str, Enum):
+    ERROR = "error"
+    WARNING = "warning"
+    INFO = "info"
+
+    @property
+    def rank(self) -> int:
+        return {"error": 2, "warning": 1, "info": 0}[self.value]
+
+
+@dataclass(frozen=True, slots=True)
+class Pos:
+    offset: int
+    line: int
+    column: int
+
+
+@dataclass(frozen=True, slots=True)
+class Span:
+    start: Pos
+    end: Pos
+
+    def contains(self, offset: int) -> bool:
+        return self.start.offset <= offset <= self.end.offset
+
+    def cover(self, other: "Span") -> "Span":
+        start = self.start if self.start.offset <= other.start.offset else other.start
+        end = self.end if self.end.offset >= other.end.offset else other.end
+        return Span(start, end)
+
+
+ZERO = Pos(0, 0, 0)
+EMPTY_SPAN = Span(ZERO, ZERO)
+
+
+@dataclass(frozen=True, slots=True)
+class Edit:
+    """Replace the text between two offsets of the file."""
+
+    start: int
+    end: int
+    text: str
+
+
+@dataclass(frozen=True, slots=True)
+class Fix:
+    message: str
+    edits: tuple[Edit, ...]
+    safe: bool = True
+
+
+@dataclass(slots=True)
+class Diagnostic:
+    code: str
+    message: str
+    span: Span
+    severity: Severity = Severity.ERROR
+    file: str = ""
+    help: str | None = None
+    fix: Fix | None = None
+    related: list[tuple[str, Span, str]] = field(default_factory=list)
+
+    def sort_key(self) -> tuple:
+        return (self.file, self.span.start.offset, self.code)
+
+    def to_json(self) -> dict:
+        """The JSON shape of design.md: 1-based lines and columns."""
+        out = {
+            "file": self.file,
+            "code": self.code,
+            "severity": self.severity.value,
+            "message": self.message,
+            "range": {
+                "start": {"line": self.span.start.line + 1, "column": self.span.start.column + 1},
+                "end": {"line": self.span.end.line + 1, "column": self.span.end.column + 1},
+            },
+        }
+        if self.help:
+            out["help"] = self.help
+        if self.fix is not None:
+            out["fix"] = {
+                "message": self.fix.message,
+                "applicability": "safe" if self.fix.safe else "unsafe",
+                "edits": [{"start": e.start, "end": e.end, "content": e.text} for e in self.fix.edits],
+            }
+        return out

@@ -1,0 +1,83 @@
+"""Inline suppression comments: `# plx: ignore[CODE, ...]` and `# plx: ignore-file[CODE, ...]`.
+
+A trailing comment applies to its own line; a comment alone on a line applies to the next line
+that holds code. Without a code list every code is suppressed. Suppressions that suppress nothing
+are reported (C002) so they do not outlive the problem they hid.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.syntax import ast
+
+_RE = re.compile(r"#\s*plx:\s*(ignore-file|ignore)\b(?:\[([^\]]*)\])?")
+
+
+@dataclass(slots=True)
+class Suppression:
+    comment: ast.Comment
+    line: int | None  # None for the whole file
+    codes: list[str] | None  # None: all codes
+    used: set[str] = field(default_factory=set)
+    used_any: bool = False
+
+    def covers(self, d: Diagnostic) -> bool:
+        if self.line is not None and d.span.start.line != self.line:
+            return False
+        return self.codes is None or any(d.code.startswith(c) for c in self.codes)
+
+
+def collect(tree: ast.File) -> list[Suppression]:
+    out: list[Suppression] = []
+    code_lines: list[int] | None = None
+    for c in tree.comments:
+        m = _RE.search(c.text)
+        if not m:
+            continue
+        codes = None
+        if m.group(2) is not None:
+            codes = [x.strip().upper() for x in m.group(2).split(",") if x.strip()]
+        if m.group(1) == "ignore-file":
+            out.append(Suppression(c, None, codes))
+            continue
+        line = c.span.start.line
+        if c.own_line:
+            if code_lines is None:
+                code_lines = sorted({s.header.start.line for s in ast.walk_statements(tree.statements)})
+            line = next((ln for ln in code_lines if ln > line), -1)
+        out.append(Suppression(c, line, codes))
+    return out
+
+
+def apply(tree: ast.File, diags: list[Diagnostic], report_unused: bool = True) -> list[Diagnostic]:
+    sups = collect(tree)
+    if not sups:
+        return diags
+    kept = []
+    for d in diags:
+        hit = False
+        if not d.code.startswith("S"):  # syntax errors are never hidden
+            for s in sups:
+                if s.covers(d):
+                    s.used_any = True
+                    s.used.add(d.code)
+                    hit = True
+        if not hit:
+            kept.append(d)
+    if report_unused:
+        for s in sups:
+            unused = []
+            if s.codes is None:
+                if not s.used_any:
+                    unused = ["(all)"]
+            else:
+                unused = [c for c in s.codes if not any(u.startswith(c) for u in s.used)]
+            if unused:
+                what = "this suppression" if unused == ["(all)"] else "suppressed code(s) " + ", ".join(unused)
+                kept.append(Diagnostic("C002", f"unused suppression: {what} matched no diagnostic",
+                                       s.comment.span, Severity.WARNING, file=tree.path,
+                                       help="remove it, or the code it names"))
+    return kept

@@ -1,0 +1,413 @@
+"""Tokens and logical lines.
+
+OpenPLX statements end at a newline unless a bracket is open, and blocks are given by indentation.
+This pass turns the text into logical lines (indentation + tokens) and comments; the grammar then
+parses one logical line at a time, so a broken line costs one diagnostic and nothing else.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from lark import Token
+
+from plxtools.diagnostics import Diagnostic, Pos, Severity, Span
+
+KEYWORDS = {
+    "is": "IS",
+    "becomes": "BECOMES",
+    "with": "WITH",
+    "trait": "TRAIT",
+    "const": "CONST",
+    "fn": "FN",
+    "static": "STATIC",
+    "operator": "OPERATOR",
+    "optional": "OPTIONAL",
+    "reference": "REFERENCE",
+    "this": "THIS",
+    "or": "OR",
+    "import": "IMPORT",
+    "as": "AS",
+    "true": "TRUE",
+    "false": "FALSE",
+}
+
+PUNCT = {
+    ":": "COLON",
+    ".": "DOT",
+    ",": "COMMA",
+    "(": "LPAR",
+    ")": "RPAR",
+    "[": "LSQB",
+    "]": "RSQB",
+    "{": "LBRACE",
+    "}": "RBRACE",
+    "+": "PLUS",
+    "-": "MINUS",
+    "*": "STAR",
+    "/": "SLASH",
+}
+OPENERS = {"(": ")", "[": "]", "{": "}"}
+CLOSERS = {")", "]", "}"}
+MAX_BRACKET_DEPTH = 200
+
+_TOKEN_RE = re.compile(
+    r"""
+    (?P<ws>(?:[ \t\f]|\r(?!\n))+)
+  | (?P<nl>\r?\n)
+  | (?P<comment>\#[^\r\n]*)
+  | (?P<number>\d+(?:\.\d+)?(?:[eE][+-]?\d+)?)
+  | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<str>\"\"\"|[@$]?\")
+  | (?P<tick>`[^`\r\n]*`)
+  | (?P<arrow>->)
+  | (?P<punct>[:.,()\[\]{}+\-*/])
+  | (?P<bad>.)
+    """,
+    re.VERBOSE | re.DOTALL,
+)
+_IDENT_CHAR = re.compile(r"[A-Za-z0-9_.]")
+
+
+@dataclass(slots=True)
+class LogicalLine:
+    indent: int
+    tokens: list[Token]
+    error: Diagnostic | None = None
+
+    @property
+    def start(self) -> int:
+        return self.tokens[0].start_pos
+
+    @property
+    def end(self) -> int:
+        return self.tokens[-1].end_pos
+
+    @property
+    def opens_block(self) -> bool:
+        return self.tokens[-1].type == "COLON"
+
+
+@dataclass(slots=True)
+class LexResult:
+    lines: list[LogicalLine]
+    comments: list[tuple[int, int, int, int, str, bool]]  # start, line, col, end, text, own_line
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+
+
+def _describe(ch: str) -> str:
+    if ch == "\t":
+        return "a tab"
+    if ch.isprintable():
+        return f"'{ch}'"
+    return f"character U+{ord(ch):04X}"
+
+
+class Lexer:
+    def __init__(self, text: str):
+        self.text = text
+        self.pos = 0
+        self.line = 0
+        self.line_start = 0
+
+    def _p(self, offset: int) -> Pos:
+        return Pos(offset, self.line, offset - self.line_start)
+
+    def _newline(self, end: int) -> None:
+        self.line += 1
+        self.line_start = end
+
+    def run(self) -> LexResult:  # noqa: C901 - one pass over the text, kept in one place
+        text = self.text
+        n = len(text)
+        lines: list[LogicalLine] = []
+        comments: list[tuple[int, int, int, int, str, bool]] = []
+        diagnostics: list[Diagnostic] = []
+
+        tokens: list[Token] = []
+        line_error: Diagnostic | None = None
+        indent = 0
+        at_line_start = True
+        brackets: list[Token] = []
+        match = _TOKEN_RE.match
+
+        def finish() -> None:
+            nonlocal tokens, line_error, brackets
+            if tokens:
+                lines.append(LogicalLine(indent, tokens, line_error))
+            elif line_error is not None:
+                diagnostics.append(line_error)
+            tokens = []
+            line_error = None
+            brackets = []
+
+        def fail(diag: Diagnostic) -> None:
+            nonlocal line_error
+            if line_error is None:
+                line_error = diag
+
+        while self.pos < n:
+            if at_line_start:
+                # measure indentation of the next non-blank line
+                i = self.pos
+                col = 0
+                tab_at = -1
+                while i < n and text[i] in " \t\f":
+                    if text[i] == "\t":
+                        if tab_at < 0:
+                            tab_at = i
+                        col = (col // 4 + 1) * 4
+                    else:
+                        col += 1
+                    i += 1
+                if i >= n or text[i] in "\n#" or text.startswith("\r\n", i):
+                    self.pos = i
+                    if i < n and text[i] == "#":
+                        m = match(text, i)
+                        end = m.end()
+                        comments.append((i, self.line, i - self.line_start, end, m.group(), True))
+                        self.pos = end
+                    if self.pos < n:
+                        m = match(text, self.pos)
+                        self._newline(m.end())
+                        self.pos = m.end()
+                    continue
+                if tab_at >= 0:
+                    p = self._p(tab_at)
+                    diagnostics.append(
+                        Diagnostic(
+                            "S003",
+                            "tab character in indentation; OpenPLX indents with spaces",
+                            Span(p, Pos(tab_at + 1, p.line, p.column + 1)),
+                            Severity.WARNING,
+                            help="indent with 4 spaces per level (`plx fmt` does this)",
+                        )
+                    )
+                indent = col
+                self.pos = i
+                at_line_start = False
+                continue
+
+            m = match(text, self.pos)
+            kind = m.lastgroup
+            start = self.pos
+            end = m.end()
+            if kind == "ws":
+                self.pos = end
+                continue
+            if kind == "nl":
+                self._newline(end)
+                self.pos = end
+                if brackets:
+                    if self._continuation_ends(indent):
+                        opener = brackets[-1]
+                        fail(
+                            Diagnostic(
+                                "S004",
+                                f"'{opener.value}' was never closed",
+                                _tok_span(opener),
+                                Severity.ERROR,
+                                help=f"add the closing '{OPENERS[opener.value]}'",
+                            )
+                        )
+                        finish()
+                        at_line_start = True
+                    continue
+                finish()
+                at_line_start = True
+                continue
+            if kind == "comment":
+                own = not (tokens and tokens[-1].end_line == self.line)
+                comments.append((start, self.line, start - self.line_start, end, m.group(), own))
+                self.pos = end
+                continue
+            if kind == "str":
+                tok = self._string(m.group(), start, fail, diagnostics)
+                tokens.append(tok)
+                continue
+
+            p0 = self._p(start)
+            p1 = self._p(end)
+            if kind == "number":
+                tok = Token("NUMBER", m.group(), start, p0.line, p0.column, p1.line, p1.column, end)
+                if end < n and _IDENT_CHAR.match(text, end):
+                    bad_end = end + 1
+                    while bad_end < n and _IDENT_CHAR.match(text, bad_end):
+                        bad_end += 1
+                    word = text[start:bad_end]
+                    msg = (
+                        f"invalid number '{word}': a number needs digits after the '.'"
+                        if text[end] == "."
+                        else f"invalid number '{word}'"
+                    )
+                    fail(Diagnostic("S005", msg, Span(p0, self._p(bad_end)), Severity.ERROR))
+            elif kind == "name":
+                word = m.group()
+                tok = Token(KEYWORDS.get(word, "NAME"), word, start, p0.line, p0.column, p1.line, p1.column, end)
+            elif kind == "tick":
+                tok = Token("TICKNAME", m.group()[1:-1], start, p0.line, p0.column, p1.line, p1.column, end)
+                if len(m.group()) == 2:
+                    fail(Diagnostic("S006", "empty backtick name", Span(p0, p1), Severity.ERROR))
+            elif kind == "arrow":
+                tok = Token("ARROW", "->", start, p0.line, p0.column, p1.line, p1.column, end)
+            elif kind == "punct":
+                ch = m.group()
+                tok = Token(PUNCT[ch], ch, start, p0.line, p0.column, p1.line, p1.column, end)
+                if ch in OPENERS:
+                    brackets.append(tok)
+                    if len(brackets) > MAX_BRACKET_DEPTH:
+                        fail(
+                            Diagnostic(
+                                "S007",
+                                f"brackets nested more than {MAX_BRACKET_DEPTH} levels deep",
+                                _tok_span(tok),
+                                Severity.ERROR,
+                            )
+                        )
+                elif ch in CLOSERS:
+                    if not brackets:
+                        fail(Diagnostic("S004", f"unmatched '{ch}'", _tok_span(tok), Severity.ERROR))
+                    elif OPENERS[brackets[-1].value] != ch:
+                        opener = brackets.pop()
+                        fail(
+                            Diagnostic(
+                                "S004",
+                                f"'{ch}' does not match '{opener.value}' opened at line {opener.line + 1}",
+                                _tok_span(tok),
+                                Severity.ERROR,
+                            )
+                        )
+                    else:
+                        brackets.pop()
+            else:  # bad character
+                ch = m.group()
+                fail(
+                    Diagnostic(
+                        "S008",
+                        f"unexpected {_describe(ch)}",
+                        Span(p0, p1),
+                        Severity.ERROR,
+                        help=_bad_char_help(ch),
+                    )
+                )
+                self.pos = end
+                continue
+            tokens.append(tok)
+            self.pos = end
+
+        if brackets:
+            opener = brackets[-1]
+            fail(
+                Diagnostic(
+                    "S004",
+                    f"'{opener.value}' was never closed",
+                    _tok_span(opener),
+                    Severity.ERROR,
+                    help=f"add the closing '{OPENERS[opener.value]}'",
+                )
+            )
+        finish()
+        return LexResult(lines, comments, diagnostics)
+
+    def _continuation_ends(self, indent: int) -> bool:
+        """Inside brackets at a newline: does the next line look like a new statement instead?"""
+        text = self.text
+        i = self.pos
+        n = len(text)
+        while True:
+            col = 0
+            while i < n and text[i] in " \t\f":
+                col += 1
+                i += 1
+            if i >= n:
+                return False
+            if text[i] in "\r\n#":
+                j = text.find("\n", i)
+                if j < 0:
+                    return False
+                i = j + 1
+                continue
+            break
+        if col > indent or text[i] in ")]},":
+            return False
+        rest = text[i : text.find("\n", i) if text.find("\n", i) >= 0 else n]
+        return bool(_STATEMENT_START.match(rest))
+
+    def _string(self, opener: str, start: int, fail, diagnostics) -> Token:
+        text = self.text
+        p0 = self._p(start)
+        if opener == '"""':
+            close = text.find('"""', start + 3)
+            if close < 0:
+                end = len(text)
+                fail(
+                    Diagnostic(
+                        "S009",
+                        'unterminated """ string: it runs to the end of the file',
+                        Span(p0, Pos(start + 3, p0.line, p0.column + 3)),
+                        Severity.ERROR,
+                        help='close the string with """',
+                    )
+                )
+            else:
+                end = close + 3
+            body = text[start:end]
+            nl = body.count("\n")
+            if nl:
+                self.line += nl
+                self.line_start = start + body.rfind("\n") + 1
+            self.pos = end
+            p1 = self._p(end)
+            return Token("STRING", body, start, p0.line, p0.column, p1.line, p1.column, end)
+        # one-line string, maybe prefixed with @ or $
+        i = start + len(opener)
+        n = len(text)
+        while i < n and text[i] not in '"\r\n':
+            i += 1
+        if i < n and text[i] == '"':
+            end = i + 1
+        else:
+            end = i
+            fail(
+                Diagnostic(
+                    "S009",
+                    "unterminated string: a \"...\" string must close on the same line",
+                    Span(p0, self._p(end)),
+                    Severity.ERROR,
+                    help='add the closing " (use """...""" for text over several lines)',
+                )
+            )
+        self.pos = end
+        p1 = self._p(end)
+        return Token("STRING", text[start:end], start, p0.line, p0.column, p1.line, p1.column, end)
+
+
+_STATEMENT_START = re.compile(
+    r"(?:(?:const|optional|static|trait|fn|operator|with|import)\b"
+    r"|\.[A-Za-z_]\w*\s*:"
+    r"|[A-Za-z_`][\w.`]*\s*(?::|is\b|becomes\b))"
+)
+
+
+def _bad_char_help(ch: str) -> str | None:
+    if ch in "=<>!&|%^":
+        return "OpenPLX expressions only use + - * / and unary -; values are given with ':'"
+    if ch == "'":
+        return 'strings use double quotes: "text"'
+    if ch == "\\":
+        return "there is no line continuation; open a bracket to continue an expression"
+    if ch == "@" or ch == "$":
+        return f'{ch} starts a path or interpolated string only right before a quote: {ch}"..."'
+    return None
+
+
+def _tok_span(tok: Token) -> Span:
+    return Span(
+        Pos(tok.start_pos, tok.line, tok.column),
+        Pos(tok.end_pos, tok.end_line, tok.end_column),
+    )
+
+
+def lex(text: str) -> LexResult:
+    return Lexer(text).run()
