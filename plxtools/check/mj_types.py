@@ -1,0 +1,68 @@
+"""Plain result types of the MuJoCo compile step (shared by compile, simulate and render)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from plxtools.check.mj_notes import BackendNote, NameMap
+from plxtools.check.scene import Scene
+
+VISUAL_GROUP = 2  # MuJoCo geom group of Visuals.Geometries (rendered, no contacts, no mass)
+
+
+@dataclass(slots=True)
+class MateMonitor:
+    """What ``simulate`` needs to measure how well a mate holds (local frames of both sides)."""
+
+    path: str
+    kind: str
+    body0: str  # MuJoCo body name ("world" for world connectors)
+    pos0: np.ndarray
+    axis0: np.ndarray
+    normal0: np.ndarray
+    body1: str
+    pos1: np.ndarray
+    axis1: np.ndarray
+    normal1: np.ndarray
+    target_distance: float = 0.0
+    role: str = "tree"  # tree | loop | distance | open
+
+
+@dataclass(slots=True)
+class ActuatorInfo:
+    path: str  # controller path
+    name: str  # MuJoCo actuator name
+    kind: str
+    mate: str
+    joint: str
+    gear: float
+    ctrl: float
+    kv: float | None = None
+    target_speed: float | None = None
+
+
+@dataclass(slots=True)
+class CompiledScene:
+    scene: Scene
+    spec: Any = None  # mujoco.MjSpec
+    model: Any = None  # mujoco.MjModel, None when compilation failed
+    notes: list[BackendNote] = field(default_factory=list)
+    names: NameMap = field(default_factory=NameMap)
+    joints: dict[str, list[str]] = field(default_factory=dict)  # mate path -> MuJoCo joint names
+    joint_sign: dict[str, int] = field(default_factory=dict)  # mate path -> +1 / -1
+    tree_mates: list[str] = field(default_factory=list)
+    loop_mates: list[str] = field(default_factory=list)
+    free_roots: list[str] = field(default_factory=list)  # body paths given a free joint
+    actuators: list[ActuatorInfo] = field(default_factory=list)
+    monitors: list[MateMonitor] = field(default_factory=list)
+    compile_ms: float = 0.0
+
+    @property
+    def ok(self) -> bool:
+        return self.model is not None
+
+    def body_name(self, path: str) -> str | None:
+        return self.names.name("body", path)

@@ -1,0 +1,136 @@
+"""Finding bundles and reading their `config.openplx` (name, version, dependencies).
+
+A bundle is a folder with a `config.openplx` at its root; its subfolders are namespaces. Official
+bundles come from the `openplx-bundles` package, `OPENPLX_BUNDLE_PATH` or configured folders.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity, Span
+from plxtools.syntax import ast
+
+DEP_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:(==|@)(\d+(?:\.\d+)*))?$")
+
+
+@dataclass(slots=True)
+class Bundle:
+    name: str
+    root: Path
+    official: bool
+    version: str | None = None
+    dependencies: list[str] = field(default_factory=list)
+    config_tree: ast.File | None = None
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    dep_spans: dict[str, Span] = field(default_factory=dict)
+
+    def files(self) -> list[Path]:
+        out = []
+        for dirpath, dirnames, filenames in os.walk(self.root):
+            dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d != "__pycache__")
+            for n in sorted(filenames):
+                if n.endswith(".openplx") and not (n == "config.openplx" and Path(dirpath) == self.root):
+                    out.append(Path(dirpath) / n)
+        return out
+
+    def namespace_of(self, path: Path) -> tuple[str, ...]:
+        rel = path.resolve().parent.relative_to(self.root.resolve())
+        return (self.name, *[p for p in rel.parts if p not in ("", ".")])
+
+
+def official_bundle_root(extra: list[Path] | None = None) -> Path | None:
+    """The folder that holds Math/, Physics/, ...: config, then OPENPLX_BUNDLE_PATH, then the package."""
+    for p in extra or []:
+        if (p / "Math" / "config.openplx").is_file():
+            return p
+    env = os.environ.get("OPENPLX_BUNDLE_PATH")
+    if env:
+        for part in env.split(os.pathsep):
+            if part and (Path(part) / "Math" / "config.openplx").is_file():
+                return Path(part)
+    try:
+        import openplxbundles
+
+        root = Path(openplxbundles.package_dir())
+        if (root / "Math" / "config.openplx").is_file():
+            return root
+    except ImportError:
+        pass
+    return None
+
+
+def read_config(bundle: Bundle, tree: ast.File) -> None:
+    """Fill name/version/dependencies from a parsed config.openplx, reporting B-rule problems."""
+    bundle.config_tree = tree
+    cfg = next((s for s in tree.statements if isinstance(s, ast.Declaration) and s.path.text == "config"), None)
+
+    def diag(code: str, msg: str, span: Span, help_: str | None = None) -> None:
+        bundle.diagnostics.append(Diagnostic(code, msg, span, Severity.ERROR, file=tree.path, help=help_))
+
+    if cfg is None or cfg.body is None:
+        diag("B001", "config.openplx must declare 'config is BundleConfig:' with a name",
+             tree.statements[0].header if tree.statements else EMPTY_SPAN)
+        return
+    name_set = False
+    for s in cfg.body:
+        if not isinstance(s, ast.Assignment) or s.value is None:
+            continue
+        key = s.path.text
+        if key == "name" and isinstance(s.value, ast.String):
+            bundle.name = s.value.value
+            name_set = True
+        elif key == "version" and isinstance(s.value, ast.String):
+            bundle.version = s.value.value
+        elif key == "dependencies":
+            if not isinstance(s.value, ast.Array):
+                diag("B002", "'dependencies' must be an array of strings", s.value.span)
+                continue
+            for item in s.value.items:
+                if not isinstance(item, ast.String):
+                    diag("B002", "a dependency must be a string like \"Physics==0.19.0\"", item.span)
+                    continue
+                m = DEP_RE.match(item.value)
+                if not m:
+                    diag("B002", f"malformed dependency '{item.value}'", item.span,
+                         "write 'Name', 'Name==1.2.3' or 'Name@1.2.3'")
+                    continue
+                bundle.dependencies.append(m.group(1))
+                bundle.dep_spans[m.group(1)] = item.span
+    if not name_set:
+        diag("B001", "the bundle config has no 'name'", cfg.header, 'add name: "MyBundle"')
+
+
+def find_user_bundle_root(path: Path, stop_at: set[Path]) -> Path | None:
+    """The nearest folder at or above `path` holding a config.openplx, if any."""
+    folder = path.resolve().parent
+    for d in (folder, *folder.parents):
+        if d in stop_at:
+            return None
+        if (d / "config.openplx").is_file():
+            return d
+    return None
+
+
+def dependency_closure(bundles: dict[str, Bundle], name: str) -> tuple[set[str], list[str] | None]:
+    """Transitive dependencies of a bundle (itself included), and a cycle if there is one."""
+    seen: set[str] = set()
+    cycle: list[str] | None = None
+    stack: list[tuple[str, list[str]]] = [(name, [name])]
+    while stack:
+        cur, trail = stack.pop()
+        if cur in seen:
+            continue
+        seen.add(cur)
+        b = bundles.get(cur)
+        if b is None:
+            continue
+        for dep in b.dependencies:
+            if dep in trail and cycle is None:
+                cycle = trail[trail.index(dep):] + [dep]
+            if dep not in seen:
+                stack.append((dep, trail + [dep]))
+    return seen, cycle

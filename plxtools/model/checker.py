@@ -1,0 +1,762 @@
+"""Checking one file against the program: names, attributes, types, inheritance, completeness.
+
+The checker also records every name it resolves (`occurrences`), which is what hover,
+go-to-definition, references and rename use in the language server.
+"""
+
+from __future__ import annotations
+
+import difflib
+from dataclasses import dataclass
+
+from plxtools.diagnostics import Diagnostic, Severity, Span
+from plxtools.model.program import Program
+from plxtools.model.symbols import (
+    BOOL,
+    INT,
+    NUMERIC,
+    REAL,
+    STRING,
+    UNKNOWN,
+    FileUnit,
+    GlobalSym,
+    MemberSym,
+    MethodSym,
+    ModelSym,
+    Namespace,
+    Ty,
+)
+from plxtools.syntax import ast
+
+E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
+
+
+@dataclass(frozen=True, slots=True)
+class TypeObj:
+    """A type named in an expression (for static calls), not a value."""
+
+    sym: object
+
+
+@dataclass(frozen=True, slots=True)
+class NsRef:
+    ns: Namespace
+
+
+@dataclass(frozen=True, slots=True)
+class MethodRef:
+    method: MethodSym
+    on_type: bool
+
+
+@dataclass(slots=True)
+class Occurrence:
+    span: Span
+    target: object  # ModelSym | MemberSym | GlobalSym | MethodSym | Namespace
+    kind: str  # "type" | "attribute" | "name" | "definition"
+
+
+class Checker:
+    def __init__(self, program: Program, unit: FileUnit, known_annotations: set[str] | None = None):
+        self.p = program
+        self.unit = unit
+        self.diags: list[Diagnostic] = []
+        self.occurrences: list[Occurrence] = []
+        self.known_annotations = known_annotations
+        self.outer: ModelSym | None = None
+        self.in_trait = False
+
+    # ------------------------------------------------------------------ reporting
+
+    def report(self, code: str, msg: str, span: Span, sev: Severity = E, help: str | None = None) -> None:
+        self.diags.append(Diagnostic(code, msg, span, sev, file=self.unit.path, help=help))
+
+    def occ(self, span: Span, target, kind: str) -> None:
+        self.occurrences.append(Occurrence(span, target, kind))
+
+    @staticmethod
+    def _suggest(name: str, options) -> str | None:
+        close = difflib.get_close_matches(name, list(options), n=1, cutoff=0.7)
+        return f"did you mean '{close[0]}'?" if close else None
+
+    # ------------------------------------------------------------------ entry
+
+    def run(self) -> None:
+        self._duplicates()
+        for stmt in self.unit.tree.statements:
+            try:
+                self._top(stmt)
+            except RecursionError:
+                self.report("M005", "this definition nests or refers to itself too deeply to check", stmt.header)
+
+    def _duplicates(self) -> None:
+        for unit, stmt, first in self.p.duplicates:
+            if unit is not self.unit:
+                continue
+            if isinstance(stmt, ast.Declaration) and len(stmt.path.parts) == 1 and isinstance(first, MemberSym):
+                self.report("M004", f"'{first.name}' is declared twice in {first.owner.qname}", stmt.path.span,
+                            help=f"the first declaration is at line {first.stmt.header.start.line + 1}")
+            else:
+                where = getattr(first, "unit", None)
+                loc = ""
+                if where is not None:
+                    line = first.stmt.header.start.line + 1
+                    loc = f" (first defined in {where.path}:{line})" if where is not self.unit else f" (first defined at line {line})"
+                name = stmt.name.name if isinstance(stmt, ast.TraitDef) else stmt.path.text
+                self.report("M004", f"'{name}' is already defined in this namespace{loc}",
+                            stmt.name.span if isinstance(stmt, ast.TraitDef) else stmt.path.span)
+
+    def _symbol_for(self, stmt: ast.Stmt) -> ModelSym | GlobalSym | None:
+        name = stmt.name.name if isinstance(stmt, ast.TraitDef) else stmt.path.parts[0].name
+        table = self.unit.locals if self.unit.bundle is None else self.unit.namespace.symbols
+        sym = table.get(name)
+        if sym is not None and sym.stmt is stmt:
+            return sym
+        return None
+
+    def _top(self, stmt: ast.Stmt) -> None:
+        if isinstance(stmt, ast.Declaration) and stmt.keyword != "becomes" and len(stmt.path.parts) == 1:
+            sym = self._symbol_for(stmt)
+            if isinstance(sym, GlobalSym):
+                self.occ(stmt.path.span, sym, "definition")
+                self.outer = None
+                ty = self._type_expr(stmt.type)
+                self._value(stmt.value, ty)
+            elif isinstance(sym, ModelSym):
+                self._model(sym)
+        elif isinstance(stmt, ast.TraitDef):
+            sym = self._symbol_for(stmt)
+            if isinstance(sym, ModelSym):
+                self._model(sym)
+        elif isinstance(stmt, ast.OperatorDecl):
+            for prm in stmt.params:
+                self._type_ref(prm.type)
+            if stmt.returns is not None:
+                self._type_ref(stmt.returns)
+            n = len(stmt.params)
+            if stmt.op == "-" and n not in (1, 2) or stmt.op != "-" and n != 2:
+                self.report("T004", f"operator {stmt.op} takes {'1 or 2' if stmt.op == '-' else '2'} parameters, "
+                            f"not {n}", stmt.header)
+        elif isinstance(stmt, ast.ErrorStmt) and stmt.body:
+            self.outer = None
+            self._block(stmt.body, UNKNOWN, (), None)
+
+    # ------------------------------------------------------------------ types
+
+    def _type_ref(self, ref: ast.TypeRef, want: str | None = None) -> Ty:
+        parts = [p.name for p in ref.name.parts]
+        found = self.p.lookup(parts, self.unit)
+        if found is None:
+            outside = self.p.lookup_outside_visibility(parts) if self.unit.bundle else None
+            if isinstance(outside, ModelSym) and outside.namespace is not None:
+                self.report("B005", f"'{ref.name.text}' is in bundle '{outside.namespace.qname[0]}', which "
+                            f"bundle '{self.unit.bundle}' does not depend on", ref.name.span,
+                            help=f"add \"{outside.namespace.qname[0]}\" to the dependencies in config.openplx")
+                return UNKNOWN
+            self.report("N001", f"unknown type '{ref.name.text}'", ref.name.span,
+                        help=self._type_suggestion(parts))
+            return UNKNOWN
+        if isinstance(found, Namespace):
+            self.occ(ref.name.span, found, "type")
+            self.report("N001", f"'{ref.name.text}' is a namespace, not a type", ref.name.span,
+                        help=self._type_suggestion(parts + [""]))
+            return UNKNOWN
+        if isinstance(found, GlobalSym):
+            self.report("N001", f"'{ref.name.text}' is a global value, not a type", ref.name.span)
+            return UNKNOWN
+        if isinstance(found, ModelSym):
+            self.occ(ref.name.span, found, "type")
+            if want == "trait" and not found.is_trait:
+                self.report("N005", f"'{found.qname}' is a model, not a trait", ref.name.span,
+                            help="only traits can be applied with 'with'")
+            elif want == "model" and found.is_trait:
+                self.report("N005", f"'{found.qname}' is a trait; a model cannot inherit from it with 'is'",
+                            ref.name.span, help=f"inherit from a model and apply the trait with 'with {ref.name.text}'")
+            return Ty(found, ref.array)
+        return Ty(found, ref.array)
+
+    def _type_suggestion(self, parts: list[str]) -> str | None:
+        """Suggest the closest name in the namespace the prefix names."""
+        if len(parts) >= 2:
+            ns = self.p.lookup(parts[:-1], self.unit)
+            if isinstance(ns, Namespace):
+                options = list(ns.symbols) + list(ns.children)
+                s = self._suggest(parts[-1], options)
+                if s and parts[-1]:
+                    return s.replace("'", f"'{'.'.join(parts[:-1])}.", 1)
+                if not parts[-1] or True:
+                    names = sorted(ns.symbols)[:8]
+                    if names:
+                        return f"{ns.dotted} has: " + ", ".join(names) + (" ..." if len(ns.symbols) > 8 else "")
+        return None
+
+    def _type_expr(self, texpr: ast.TypeExpr | None, want: str | None = None) -> Ty:
+        if texpr is None:
+            return UNKNOWN
+        alts = [self._type_ref(r, want) for r in texpr.alternatives]
+        traits = []
+        for q in texpr.traits:
+            t = self._type_ref(ast.TypeRef(q.span, q), "trait")
+            if t.model is not None and t.model.is_trait:
+                traits.append(t.model)
+        if len(alts) == 1:
+            return Ty(alts[0].sym, alts[0].array, tuple(traits)) if not alts[0].unknown else UNKNOWN
+        if any(a.unknown for a in alts):
+            return UNKNOWN
+        return Ty(alts=tuple(alts))
+
+    # ------------------------------------------------------------------ models
+
+    def _model(self, m: ModelSym) -> None:
+        self.outer = m
+        self.in_trait = m.is_trait
+        stmt = m.stmt
+        name_span = stmt.name.span if isinstance(stmt, ast.TraitDef) else stmt.path.span
+        self.occ(name_span, m, "definition")
+        if m.base_ref is not None:
+            self._type_expr(m.base_ref, "trait" if m.is_trait else "model")
+            cycle = self.p.has_cycle(m)
+            if cycle:
+                names = " -> ".join(c.qname for c in cycle)
+                self.report("M005", f"inheritance cycle: {names}", m.base_ref.span)
+        for q in m.trait_refs:
+            self._type_ref(ast.TypeRef(q.span, q), "trait")
+        body = getattr(stmt, "body", None)
+        if body:
+            self._block(body, Ty(m), (), m)
+        if not m.is_trait:
+            self._default_cycles(m)
+        self.in_trait = False
+
+    def _inherited(self, model: ModelSym) -> dict[str, MemberSym]:
+        out: dict[str, MemberSym] = {}
+        base = self.p.base_of(model)
+        if base is not None and base.model is not None:
+            out.update(self.p.all_members(base.model))
+            for t in base.traits:
+                out.update(self.p.all_members(t))
+        for t in self.p.traits_of(model):
+            for k, v in self.p.all_members(t).items():
+                out.setdefault(k, v)
+        return out
+
+    def _member_for(self, model_def: ModelSym | None, stmt: ast.Declaration) -> MemberSym | None:
+        if model_def is None:
+            return None
+        name = stmt.path.parts[-1].name
+        if len(stmt.path.parts) == 1:
+            mem = model_def.members.get(name)
+        else:
+            mem = model_def.path_members.get(tuple(p.name for p in stmt.path.parts[:-1]), {}).get(name)
+        return mem if mem is not None and mem.stmt is stmt else None
+
+    def _block(self, body: list[ast.Stmt], target: Ty, prefix: tuple[str, ...], model_def: ModelSym | None) -> None:
+        for s in body:
+            if isinstance(s, ast.Declaration):
+                self._declaration(s, target, prefix, model_def)
+            elif isinstance(s, ast.Assignment):
+                ty, _mem = self._path(s.path.parts, target, prefix, model_def)
+                if s.value is not None:
+                    self._value(s.value, ty)
+                if s.body is not None:
+                    self._block(s.body, ty, prefix + tuple(p.name for p in s.path.parts), None)
+            elif isinstance(s, ast.WithStmt):
+                for q in s.traits:
+                    self._type_ref(ast.TypeRef(q.span, q), "trait")
+            elif isinstance(s, ast.Annotation):
+                self._annotation(s)
+            elif isinstance(s, ast.Method):
+                for prm in s.params:
+                    self._type_ref(prm.type)
+                if s.returns is not None:
+                    self._type_ref(s.returns)
+                if model_def is not None and s.name.name in model_def.methods:
+                    self.occ(s.name.span, model_def.methods[s.name.name], "definition")
+            elif isinstance(s, ast.ErrorStmt) and s.body:
+                self._block(s.body, UNKNOWN, prefix, None)
+
+    def _declaration(self, s: ast.Declaration, target: Ty, prefix: tuple[str, ...], model_def: ModelSym | None) -> None:
+        parts = s.path.parts
+        name = parts[-1].name
+        mem = self._member_for(model_def, s)
+        owner_ty = target
+        if len(parts) > 1:
+            owner_ty, _ = self._path(parts[:-1], target, prefix, model_def)
+        if mem is not None:
+            self.occ(parts[-1].span, mem, "definition")
+        if s.keyword == "is":
+            ty = self._type_expr(s.type)
+            if len(parts) == 1 and model_def is not None:
+                inherited = self._inherited(model_def)
+                if name in inherited and inherited[name].stmt is not s:
+                    old = inherited[name]
+                    self.report("M001", f"'{name}' is already declared in {old.owner.qname}; use 'becomes' to "
+                                f"specialise it or ':' to give it a value", parts[-1].span,
+                                help=f"'{name} becomes {s.type.alternatives[0].name.text}'" if s.type else None)
+            elif len(parts) == 1 and model_def is None and not target.unknown:
+                existing = self.p.members_of(target)
+                if name in existing:
+                    self.report("M001", f"'{name}' already exists in {target.display()}; use ':' to give it "
+                                f"a value or 'becomes' to specialise it", parts[-1].span)
+        else:  # becomes
+            ty = self._type_expr(s.type)
+            if model_def is not None and len(parts) == 1:
+                candidates = self._inherited(model_def)
+            else:
+                candidates = self.p.members_of(owner_ty) if not owner_ty.unknown else None
+            old = candidates.get(name) if candidates is not None else None
+            if old is not None and old.stmt is s:
+                old = None
+            if old is None:
+                if candidates is not None and not self.in_trait and not self._opaque(owner_ty):
+                    where = model_def.qname if model_def is not None else owner_ty.display()
+                    self.report("M002", f"'{name}' is not inherited by {where}, so it cannot 'become' "
+                                f"another type", parts[-1].span,
+                                help=self._suggest(name, candidates) or f"declare it with '{name} is ...'")
+            else:
+                self.occ(parts[-1].span, old, "attribute")
+                old_ty = self.p.member_type(old)
+                if not ty.unknown and not old_ty.unknown and self.p.assignable(ty, old_ty) != "ok":
+                    self.report("M003", f"'{name}' cannot become {ty.display()}: it is declared as "
+                                f"{old_ty.display()} in {old.owner.qname}", s.type.span,
+                                help="the new type must be a subtype of the declared type or one of its alternatives")
+        if s.value is not None:
+            self._value(s.value, ty)
+        if s.body is not None:
+            if s.reference:
+                self.report("M009", f"'{name}' is a reference; a block would create a new object",
+                            s.header, help="give it an existing object with ':' instead")
+            block_ty = Ty(mem.anon) if mem is not None and mem.anon is not None else ty
+            self._block(s.body, block_ty, prefix + tuple(p.name for p in parts),
+                        mem.anon if mem is not None else None)
+        if mem is not None:
+            self._deprecated_check(mem, parts[-1].span)
+
+    def _opaque(self, ty: Ty) -> bool:
+        return ty.model is not None and ty.model.kind == "import"
+
+    # ------------------------------------------------------------------ paths
+
+    def _extras(self, prefix: tuple[str, ...]) -> dict[str, MemberSym]:
+        out: dict[str, MemberSym] = {}
+        if self.outer is not None:
+            for m in self.p.ancestors(self.outer):
+                out.update(m.path_members.get(prefix, {}))
+        return out
+
+    def _path(self, parts: list[ast.Ident], target: Ty, prefix: tuple[str, ...], model_def) -> tuple[Ty, MemberSym | None]:
+        cur = target
+        mem: MemberSym | None = None
+        path = prefix
+        for i, part in enumerate(parts):
+            if cur.unknown or self._opaque(cur):
+                return UNKNOWN, None
+            if cur.array or cur.alts or cur.primitive is not None:
+                self.report("N002", f"'{part.name}' cannot be set on a value of type {cur.display()}", part.span)
+                return UNKNOWN, None
+            mems = self.p.members_of(cur)
+            extra = self._extras(path)
+            found = mems.get(part.name) or extra.get(part.name)
+            if found is None:
+                if self.in_trait and i == 0 and not prefix:
+                    return UNKNOWN, None  # a host attribute the trait does not declare
+                where = self.p.concrete(cur.model).qname if cur.model is not None else cur.display()
+                self.report("N002", f"'{part.name}' is not an attribute of {where}", part.span,
+                            help=self._suggest(part.name, list(mems) + list(extra)))
+                return UNKNOWN, None
+            mem = found
+            self.occ(part.span, mem, "attribute")
+            self._deprecated_check(mem, part.span)
+            cur = self.p.member_type(mem)
+            path = path + (part.name,)
+        return cur, mem
+
+    def _deprecated_check(self, mem: MemberSym, span: Span) -> None:
+        for owner in (mem.owner,):
+            note = owner.deprecated.get(mem.name)
+            if note and owner.unit is not self.unit:
+                self.report("C004", f"'{mem.name}' is deprecated: {note}", span, W)
+
+    # ------------------------------------------------------------------ annotations
+
+    def _annotation(self, s: ast.Annotation) -> None:
+        name = s.name.name
+        if self.known_annotations is None or name in self.known_annotations or name.startswith("agx_"):
+            return
+        self.report("C005", f"unknown annotation '.{name}'", s.name.span, I,
+                    help="annotations are free-form metadata; this one is not used by the official bundles")
+
+    # ------------------------------------------------------------------ expressions
+
+    def _value(self, expr: ast.Expr | None, expected: Ty) -> None:
+        if expr is None:
+            return
+        got = self._expr(expr, expected)
+        if not isinstance(got, Ty):
+            what = self._describe_nonvalue(got)
+            self.report("T001", f"{what} is not a value", expr.span)
+            return
+        verdict = self.p.assignable(got, expected)
+        if verdict == "no":
+            self.report("T001", f"expected {expected.display()}, found {got.display()}", expr.span,
+                        help=self._mismatch_help(got, expected))
+        elif verdict == "warn":
+            self.report("T002", f"a Real is given where {expected.display()} (an Int) is expected", expr.span, W,
+                        help="write a whole number, or use Math.Functions.round/floor/ceil")
+
+    def _mismatch_help(self, got: Ty, expected: Ty) -> str | None:
+        if expected.primitive == "Bool" and got.primitive in NUMERIC:
+            return "use true or false"
+        if expected.primitive in NUMERIC and got.primitive == "String":
+            return "remove the quotes"
+        return None
+
+    def _describe_nonvalue(self, v) -> str:
+        if isinstance(v, TypeObj):
+            return f"'{getattr(v.sym, 'qname', v.sym)}' is a type and"
+        if isinstance(v, NsRef):
+            return f"'{v.ns.dotted}' is a namespace and"
+        if isinstance(v, MethodRef):
+            return f"method '{v.method.name}' must be called: it"
+        return "this"
+
+    def _as_ty(self, v, span: Span) -> Ty:
+        if isinstance(v, Ty):
+            return v
+        self.report("T001", f"{self._describe_nonvalue(v)} is not a value", span)
+        return UNKNOWN
+
+    def _expr(self, e, expected: Ty = UNKNOWN):  # noqa: C901 - one dispatch over the expression kinds
+        if isinstance(e, ast.Number):
+            return INT if e.is_int else REAL
+        if isinstance(e, ast.String):
+            return STRING
+        if isinstance(e, ast.Bool):
+            return BOOL
+        if isinstance(e, ast.This):
+            # inside a trait, `this` is whatever host the trait is applied to
+            return Ty(self.outer) if self.outer is not None and not self.in_trait else UNKNOWN
+        if isinstance(e, ast.Paren):
+            return self._expr(e.inner, expected)
+        if isinstance(e, ast.Name):
+            return self._name(e.ident)
+        if isinstance(e, ast.Member):
+            return self._member(e)
+        if isinstance(e, ast.Call):
+            return self._call(e)
+        if isinstance(e, ast.Index):
+            obj = self._as_ty(self._expr(e.obj), e.obj.span)
+            idx = self._as_ty(self._expr(e.index), e.index.span)
+            if idx.primitive is not None and idx.primitive != "Int":
+                self.report("T009", f"an index must be an Int, not {idx.display()}", e.index.span)
+            if obj.unknown:
+                return UNKNOWN
+            if not obj.array:
+                self.report("T009", f"a value of type {obj.display()} cannot be indexed", e.span)
+                return UNKNOWN
+            return obj.element()
+        if isinstance(e, ast.Unary):
+            operand = self._as_ty(self._expr(e.operand, expected), e.operand.span)
+            return self._operator("-", [operand], e)
+        if isinstance(e, ast.Binary):
+            left = self._as_ty(self._expr(e.left), e.left.span)
+            right = self._as_ty(self._expr(e.right), e.right.span)
+            return self._operator(e.op, [left, right], e)
+        if isinstance(e, ast.Brace):
+            return self._brace(e, expected)
+        if isinstance(e, ast.Array):
+            elem = expected.element() if expected.array else UNKNOWN
+            if not expected.unknown and not expected.array and not expected.alts:
+                for item in e.items:
+                    self._expr(item)
+                return Ty("Array", True)  # reported by the caller as a mismatch
+            got_elem = UNKNOWN
+            for item in e.items:
+                if elem.unknown:
+                    t = self._expr(item)
+                    if isinstance(t, Ty) and got_elem.unknown:
+                        got_elem = t
+                else:
+                    self._value(item, elem)
+            return expected if expected.array else (Ty(got_elem.sym, True, got_elem.traits) if not got_elem.unknown else UNKNOWN)
+        return UNKNOWN
+
+    def _brace(self, e: ast.Brace, expected: Ty):
+        target = expected
+        if target.alts:
+            target = next((a for a in target.alts if a.model is not None and
+                           self.p.positional_fields(a.model) and len(self.p.positional_fields(a.model)) == len(e.items)),
+                          UNKNOWN)
+        if target.unknown or target.array:
+            for item in e.items:
+                self._expr(item)
+            return UNKNOWN if target.unknown else Ty("Brace")
+        if target.primitive is not None:
+            if target.primitive == "Blob":
+                return target
+            for item in e.items:
+                self._expr(item)
+            self.report("T001", f"a {{...}} literal cannot be a {target.primitive}", e.span)
+            return UNKNOWN
+        fields = self.p.positional_fields(target.model)
+        if fields is None:
+            for item in e.items:
+                self._expr(item)
+            return target
+        if len(e.items) != len(fields):
+            names = ", ".join(f.name for f in fields)
+            self.report("T003", f"{self.p.concrete(target.model).qname} takes {len(fields)} values ({names}), "
+                        f"this literal has {len(e.items)}", e.span)
+        for item, f in zip(e.items, fields):
+            self._value(item, self.p.member_type(f))
+        return target
+
+    def _name(self, ident: ast.Ident):
+        name = ident.name
+        if self.outer is not None:
+            mems = self.p.members_of(Ty(self.outer))
+            mem = mems.get(name)
+            if mem is not None:
+                self.occ(ident.span, mem, "attribute")
+                return self.p.member_type(mem)
+        found = self.p.lookup([name], self.unit)
+        v = self._global_value(found, ident)
+        if v is not None:
+            return v
+        if self.in_trait:
+            return UNKNOWN
+        options = list(self.p.members_of(Ty(self.outer))) if self.outer is not None else []
+        options += list(self.unit.locals) + list(self.unit.namespace.symbols)
+        self.report("N003", f"unknown name '{name}'", ident.span, help=self._suggest(name, options))
+        return UNKNOWN
+
+    def _global_value(self, found, ident: ast.Ident):
+        if found is None:
+            return None
+        if isinstance(found, Namespace):
+            self.occ(ident.span, found, "name")
+            return NsRef(found)
+        if isinstance(found, GlobalSym):
+            self.occ(ident.span, found, "name")
+            if found.ty is None:
+                found.ty = self.p.resolve_type_expr(found.stmt.type, found.unit)
+            return found.ty
+        if isinstance(found, ModelSym):
+            self.occ(ident.span, found, "name")
+            if found.const:
+                return Ty(found)
+            return TypeObj(found)
+        if isinstance(found, str):
+            return TypeObj(found)
+        return None
+
+    def _member(self, e: ast.Member):
+        base = self._expr(e.obj)
+        name = e.name.name
+        if isinstance(base, NsRef):
+            found = self.p._walk(base.ns, [name])
+            v = self._global_value(found, e.name)
+            if v is None:
+                self.report("N003", f"'{name}' is not in namespace {base.ns.dotted}", e.name.span,
+                            help=self._suggest(name, list(base.ns.symbols) + list(base.ns.children)))
+                return UNKNOWN
+            return v
+        if isinstance(base, TypeObj):
+            sym = base.sym
+            if isinstance(sym, ModelSym):
+                meth = self.p.all_methods(sym).get(name)
+                if meth is not None:
+                    self.occ(e.name.span, meth, "name")
+                    return MethodRef(meth, True)
+                self.report("N004", f"{sym.qname} has no static function '{name}'", e.name.span,
+                            help=self._suggest(name, self.p.all_methods(sym)))
+            return UNKNOWN
+        if isinstance(base, MethodRef):
+            self.report("T008", f"method '{base.method.name}' must be called before '.{name}'", e.span)
+            return UNKNOWN
+        ty: Ty = base
+        if ty.unknown or self._opaque(ty):
+            return UNKNOWN
+        if ty.array or ty.alts or ty.primitive is not None:
+            self.report("N004", f"a value of type {ty.display()} has no member '{name}'", e.name.span)
+            return UNKNOWN
+        mems = self.p.members_of(ty)
+        mem = mems.get(name)
+        if mem is not None:
+            self.occ(e.name.span, mem, "attribute")
+            self._deprecated_check(mem, e.name.span)
+            return self.p.member_type(mem)
+        meths = self.p.methods_of(ty)
+        meth = meths.get(name)
+        if meth is not None:
+            self.occ(e.name.span, meth, "name")
+            # a const model is its own single instance: Math.Functions.sin(x) is the normal call
+            return MethodRef(meth, bool(ty.model.const and meth.static))
+        self.report("N004", f"{self.p.concrete(ty.model).qname} has no attribute or method '{name}'", e.name.span,
+                    help=self._suggest(name, list(mems) + list(meths)))
+        return UNKNOWN
+
+    def _method_types(self, meth: MethodSym) -> tuple[list[Ty], Ty | None]:
+        unit = meth.owner.unit
+        params = [self.p.resolve_type_ref(prm.type, unit) for prm in meth.stmt.params]
+        ret = self.p.resolve_type_ref(meth.stmt.returns, unit) if meth.stmt.returns is not None else None
+        return params, ret
+
+    def _call(self, e: ast.Call):
+        f = self._expr(e.func)
+        arg_types = [self._expr(a) for a in e.args]
+        if isinstance(f, Ty) and f.unknown:
+            return UNKNOWN
+        if not isinstance(f, MethodRef):
+            what = self._describe_nonvalue(f) if not isinstance(f, Ty) else f"a value of type {f.display()}"
+            self.report("T008", f"{what} cannot be called", e.func.span)
+            return UNKNOWN
+        meth = f.method
+        if f.on_type and not meth.static:
+            self.report("T008", f"'{meth.name}' is an instance method of {meth.owner.qname}; call it on an "
+                        f"instance, not on the type", e.func.span)
+        elif not f.on_type and meth.static:
+            self.report("T008", f"'{meth.name}' is a static function; call it on the type, "
+                        f"{meth.owner.qname}.{meth.name}(...)", e.func.span, W)
+        params, ret = self._method_types(meth)
+        if len(params) != len(e.args):
+            self.report("T004", f"{meth.owner.qname}.{meth.name} takes {len(params)} argument"
+                        f"{'s' if len(params) != 1 else ''}, {len(e.args)} given", e.span,
+                        help="signature: " + _signature(meth))
+        else:
+            for arg, got, want in zip(e.args, arg_types, params):
+                if not isinstance(got, Ty):
+                    self.report("T005", f"{self._describe_nonvalue(got)} is not a value", arg.span)
+                    continue
+                if isinstance(arg, ast.Brace):
+                    got = self._brace(arg, want)
+                if self.p.assignable(got, want) == "no":
+                    self.report("T005", f"argument of {meth.name}: expected {want.display()}, found {got.display()}",
+                                arg.span, help="signature: " + _signature(meth))
+        if ret is None:
+            self.report("T007", f"{meth.owner.qname}.{meth.name} returns nothing and cannot be used in an expression",
+                        e.span)
+            return UNKNOWN
+        return ret
+
+    def _operator(self, op: str, operands: list[Ty], e) -> Ty:
+        if any(o.unknown for o in operands):
+            return UNKNOWN
+        prims = [o.primitive for o in operands]
+        if all(p in NUMERIC for p in prims) and not any(o.array for o in operands):
+            if op == "/" or "Real" in prims:
+                return REAL
+            return INT
+        cands = [o for o in self.p.operators.get(op, []) if len(o.stmt.params) == len(operands)]
+        for cand in cands:
+            ptys = [self.p.resolve_type_ref(prm.type, cand.unit) for prm in cand.stmt.params]
+            if all(self.p.assignable(a, p) == "ok" for a, p in zip(operands, ptys)):
+                if cand.stmt.returns is None:
+                    return UNKNOWN
+                return self.p.resolve_type_ref(cand.stmt.returns, cand.unit)
+        shown = f"{op}{operands[0].display()}" if len(operands) == 1 else \
+            f"{operands[0].display()} {op} {operands[1].display()}"
+        help_ = None
+        if op == "*" and len(operands) == 2 and operands[0].model and operands[0].model.name == "Quat":
+            help_ = "rotate a vector with q.rotate(v)"
+        self.report("T006", f"no operator for {shown}", e.span, help=help_)
+        return UNKNOWN
+
+    # ------------------------------------------------------------------ default cycles
+
+    def _default_cycles(self, m: ModelSym) -> None:
+        """Defaults that depend on each other in a ring can never be evaluated (M006)."""
+        edges: dict[str, list[tuple[str, Span]]] = {}
+        spans: dict[str, Span] = {}
+
+        def refs(expr) -> list[tuple[str, Span]]:
+            out = []
+            stack = [expr]
+            while stack:
+                x = stack.pop()
+                if isinstance(x, ast.Member) or isinstance(x, ast.Name):
+                    chain = []
+                    cur = x
+                    while isinstance(cur, ast.Member):
+                        chain.append(cur.name.name)
+                        cur = cur.obj
+                    if isinstance(cur, ast.Name):
+                        chain.append(cur.ident.name)
+                        out.append((".".join(reversed(chain)), x.span))
+                        continue
+                    stack.append(cur)
+                elif isinstance(x, ast.Call):
+                    stack.append(x.func)
+                    stack.extend(x.args)
+                elif isinstance(x, (ast.Binary,)):
+                    stack.extend([x.left, x.right])
+                elif isinstance(x, ast.Unary):
+                    stack.append(x.operand)
+                elif isinstance(x, ast.Paren):
+                    stack.append(x.inner)
+                elif isinstance(x, (ast.Brace, ast.Array)):
+                    stack.extend(x.items)
+                elif isinstance(x, ast.Index):
+                    stack.extend([x.obj, x.index])
+            return out
+
+        def visit(body, prefix: str) -> None:
+            for s in body:
+                if isinstance(s, (ast.Declaration, ast.Assignment)):
+                    key = prefix + s.path.text
+                    if getattr(s, "value", None) is not None:
+                        edges.setdefault(key, []).extend(refs(s.value))
+                        spans.setdefault(key, s.path.span)
+                    if getattr(s, "body", None):
+                        visit(s.body, key + ".")
+
+        body = getattr(m.stmt, "body", None)
+        if not body:
+            return
+        visit(body, "")
+        if not edges:
+            return
+        keys = list(edges)
+
+        def deps(key: str) -> list[str]:
+            out = []
+            for r, _ in edges.get(key, []):
+                for k in keys:
+                    # a reference to a whole object ('source: logic') is not a value dependency
+                    if k == r or r.startswith(k + "."):
+                        out.append(k)
+            return out
+
+        color: dict[str, int] = {}
+        reported: set[str] = set()
+        for start in keys:
+            if color.get(start):
+                continue
+            stack = [(start, iter(deps(start)))]
+            trail = [start]
+            color[start] = 1
+            while stack:
+                node, it = stack[-1]
+                nxt = next(it, None)
+                if nxt is None:
+                    color[node] = 2
+                    stack.pop()
+                    trail.pop()
+                    continue
+                if color.get(nxt) == 1:
+                    ring = trail[trail.index(nxt):] + [nxt]
+                    if nxt not in reported:
+                        reported.update(ring)
+                        self.report("M006", "these values depend on each other in a cycle: " + " -> ".join(ring),
+                                    spans.get(nxt, m.stmt.header),
+                                    help="give one of them a value that does not depend on the others")
+                elif not color.get(nxt):
+                    color[nxt] = 1
+                    trail.append(nxt)
+                    stack.append((nxt, iter(deps(nxt))))
+
+
+def _signature(meth: MethodSym) -> str:
+    params = ", ".join(f"{p.name.name}: {p.type.name.text}{'[]' if p.type.array else ''}" for p in meth.stmt.params)
+    ret = f" -> {meth.stmt.returns.name.text}" if meth.stmt.returns is not None else ""
+    return f"{'static ' if meth.static else ''}fn {meth.name}({params}){ret}"

@@ -1,0 +1,434 @@
+"""The program: every loaded file's symbols in one namespace tree, and the lookups over it.
+
+Name lookup follows the spec's rule (C.2): inside namespace N1.N2.N3 a dotted name A.B is tried as
+N1.N2.N3.A.B, N1.N2.A.B, N1.A.B, then A.B from the root; the first full match wins.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Iterable
+
+from plxtools.model.symbols import (
+    NUMERIC,
+    PRIMITIVES,
+    UNKNOWN,
+    FileUnit,
+    GlobalSym,
+    MemberSym,
+    MethodSym,
+    ModelSym,
+    Namespace,
+    OperatorSym,
+    Ty,
+    doc_of,
+)
+from plxtools.syntax import ast
+
+_DEPRECATED_DOC = re.compile(r"^\s*(\w+)\s*[-:]\s*(.*deprecated.*)$", re.I | re.M)
+
+
+class Program:
+    def __init__(self) -> None:
+        self.root = Namespace("", ())
+        self.units: dict[str, FileUnit] = {}
+        self.operators: dict[str, list[OperatorSym]] = {}
+        self.visibility: dict[str, set[str]] = {}  # bundle -> visible bundle names
+        self.official_bundles: set[str] = set()
+        self.duplicates: list[tuple[FileUnit, ast.Stmt, object]] = []  # (unit, stmt, first symbol)
+
+    # ------------------------------------------------------------------ building
+
+    def namespace(self, qname: tuple[str, ...], bundle: str | None) -> Namespace:
+        ns = self.root
+        for part in qname:
+            ns = ns.child(part, bundle)
+        return ns
+
+    def add_unit(self, unit: FileUnit) -> None:
+        self.units[unit.path] = unit
+        for stmt in unit.tree.statements:
+            self._add_top(unit, stmt)
+
+    def remove_unit(self, path: str) -> None:
+        """Forget a file's symbols (the language server replaces a file on every edit)."""
+        unit = self.units.pop(path, None)
+        if unit is None:
+            return
+        targets = [unit.namespace.symbols, unit.locals]
+        for table in targets:
+            for name in [n for n, s in table.items() if getattr(s, "unit", None) is unit]:
+                del table[name]
+        for op, lst in self.operators.items():
+            self.operators[op] = [o for o in lst if o.unit is not unit]
+        self.duplicates = [d for d in self.duplicates if d[0] is not unit]
+        self.invalidate()
+
+    def invalidate(self) -> None:
+        """Drop cached member tables and resolved types (after files changed)."""
+        for ns in self._all_namespaces():
+            for sym in ns.symbols.values():
+                self._reset(sym)
+        for unit in self.units.values():
+            for sym in unit.locals.values():
+                self._reset(sym)
+
+    def _reset(self, sym) -> None:
+        if isinstance(sym, ModelSym):
+            stack = [sym]
+            while stack:
+                m = stack.pop()
+                m._all = None
+                m.base = None
+                m.traits = None
+                for mem in m.members.values():
+                    mem.ty = None
+                    if mem.anon is not None:
+                        stack.append(mem.anon)
+                for extra in m.path_members.values():
+                    for mem in extra.values():
+                        mem.ty = None
+                        if mem.anon is not None:
+                            stack.append(mem.anon)
+        elif isinstance(sym, GlobalSym):
+            sym.ty = None
+
+    def _all_namespaces(self) -> Iterable[Namespace]:
+        stack = [self.root]
+        while stack:
+            ns = stack.pop()
+            yield ns
+            stack.extend(ns.children.values())
+
+    def _register(self, unit: FileUnit, name: str, sym, stmt: ast.Stmt) -> None:
+        table = unit.locals if unit.bundle is None else unit.namespace.symbols
+        if name in table:
+            self.duplicates.append((unit, stmt, table[name]))
+            return
+        table[name] = sym
+
+    def _add_top(self, unit: FileUnit, stmt: ast.Stmt) -> None:
+        ns = unit.namespace
+        if isinstance(stmt, ast.Declaration) and stmt.keyword != "becomes" and len(stmt.path.parts) == 1:
+            name = stmt.path.parts[0].name
+            if unit.path.endswith("config.openplx") and name == "config":
+                return
+            is_global = stmt.keyword == "is" and stmt.value is not None and stmt.body is None
+            qname = f"{ns.dotted}.{name}" if ns.dotted else name
+            if is_global:
+                self._register(unit, name, GlobalSym(name, qname, stmt, unit, ns), stmt)
+                return
+            model = ModelSym(name, qname, "model", stmt, unit, ns, const=stmt.const, base_ref=stmt.type)
+            self._fill_model(model, stmt.body, unit)
+            self._register(unit, name, model, stmt)
+        elif isinstance(stmt, ast.TraitDef):
+            name = stmt.name.name
+            qname = f"{ns.dotted}.{name}" if ns.dotted else name
+            trait = ModelSym(name, qname, "trait", stmt, unit, ns)
+            if stmt.base is not None:
+                trait.base_ref = ast.TypeExpr(stmt.base.span, [ast.TypeRef(stmt.base.span, stmt.base)])
+            self._fill_model(trait, stmt.body, unit)
+            self._register(unit, name, trait, stmt)
+        elif isinstance(stmt, ast.OperatorDecl):
+            self.operators.setdefault(stmt.op, []).append(OperatorSym(stmt.op, stmt, unit))
+
+    def _fill_model(self, model: ModelSym, body: list[ast.Stmt] | None, unit: FileUnit) -> None:
+        if not body:
+            return
+        model.doc = doc_of(body)
+        if model.doc:
+            for m in _DEPRECATED_DOC.finditer(model.doc):
+                model.deprecated[m.group(1)] = m.group(2).strip()
+        comments_above = _comment_lines(unit.tree)
+        for s in body:
+            if isinstance(s, ast.Declaration) and s.keyword in ("is", "becomes"):
+                mem = MemberSym(s.path.parts[-1].name, model, s, s.keyword, s.optional, s.reference, s.value)
+                mem.doc = doc_of(s.body)
+                note = comments_above.get(s.header.start.line - 1)
+                if note and "deprecated" in note.lower() and mem.name in note:
+                    model.deprecated.setdefault(mem.name, note.lstrip("# ").strip())
+                if s.body is not None and len(s.type.alternatives) == 1 and not s.reference:
+                    mem.anon = self._anon(model, s, unit)
+                if len(s.path.parts) == 1:
+                    if mem.name in model.members:
+                        self.duplicates.append((unit, s, model.members[mem.name]))
+                    else:
+                        model.members[mem.name] = mem
+                else:
+                    key = tuple(p.name for p in s.path.parts[:-1])
+                    model.path_members.setdefault(key, {})[mem.name] = mem
+            elif isinstance(s, ast.Assignment):
+                model.assignments.append(s)
+            elif isinstance(s, ast.WithStmt):
+                model.trait_refs.extend(s.traits)
+            elif isinstance(s, ast.Method):
+                model.methods[s.name.name] = MethodSym(s.name.name, model, s, s.static)
+            elif isinstance(s, ast.Annotation):
+                model.annotations.append(s)
+
+    def _anon(self, owner: ModelSym, decl: ast.Declaration, unit: FileUnit) -> ModelSym:
+        name = decl.path.text
+        anon = ModelSym(name, f"{owner.qname}.{name}", "model", decl, unit, owner.namespace, anonymous=True,
+                        base_ref=ast.TypeExpr(decl.type.span, decl.type.alternatives[:1], decl.type.traits))
+        self._fill_model(anon, decl.body, unit)
+        return anon
+
+    # ------------------------------------------------------------------ lookup
+
+    def visible(self, unit: FileUnit) -> set[str] | None:
+        """Bundle names a file may name; None means all of them (loose files see every bundle)."""
+        if unit.bundle is None:
+            return None
+        return self.visibility.get(unit.bundle)
+
+    def lookup(self, parts: list[str], unit: FileUnit, namespace: Namespace | None = None):
+        """Resolve a dotted name to a symbol, namespace or primitive name; None if nothing matches."""
+        if len(parts) == 1 and parts[0] in PRIMITIVES:
+            return parts[0]
+        if unit.bundle is None and parts[0] in unit.locals:
+            return self._walk(unit.locals[parts[0]], parts[1:])
+        ns = namespace or unit.namespace
+        chain: list[Namespace] = []
+        while ns is not None and ns is not self.root:
+            chain.append(ns)
+            ns = ns.parent
+        for start in chain:
+            found = self._walk(start, parts)
+            if found is not None:
+                return found
+        visible = self.visible(unit)
+        if visible is not None and parts[0] in self.root.children and parts[0] not in visible:
+            return None
+        return self._walk(self.root, parts)
+
+    def lookup_outside_visibility(self, parts: list[str]):
+        return self._walk(self.root, parts)
+
+    def _walk(self, start, parts: list[str]):
+        cur = start
+        for i, part in enumerate(parts):
+            if isinstance(cur, Namespace):
+                last = i == len(parts) - 1
+                child = cur.children.get(part)
+                sym = cur.symbols.get(part)
+                if not last and child is not None:
+                    cur = child
+                elif sym is not None:
+                    cur = sym
+                elif child is not None:
+                    cur = child
+                else:
+                    return None
+            else:
+                return None
+        return cur
+
+    # ------------------------------------------------------------------ types
+
+    def resolve_type_ref(self, ref: ast.TypeRef, unit: FileUnit) -> Ty:
+        found = self.lookup([p.name for p in ref.name.parts], unit)
+        if isinstance(found, str):
+            return Ty(found, ref.array)
+        if isinstance(found, ModelSym):
+            return Ty(found, ref.array)
+        return UNKNOWN
+
+    def resolve_type_expr(self, texpr: ast.TypeExpr | None, unit: FileUnit) -> Ty:
+        if texpr is None:
+            return UNKNOWN
+        alts = [self.resolve_type_ref(r, unit) for r in texpr.alternatives]
+        traits = []
+        for q in texpr.traits:
+            t = self.lookup([p.name for p in q.parts], unit)
+            if isinstance(t, ModelSym):
+                traits.append(t)
+        if len(alts) == 1:
+            a = alts[0]
+            return Ty(a.sym, a.array, tuple(traits)) if not a.unknown else UNKNOWN
+        if any(a.unknown for a in alts):
+            return UNKNOWN
+        return Ty(alts=tuple(alts))
+
+    def base_of(self, model: ModelSym) -> Ty | None:
+        if model.base is None:
+            if model.base_ref is None or model.unit is None:
+                model.base = UNKNOWN
+            else:
+                model.base = self.resolve_type_expr(model.base_ref, model.unit)
+        return model.base if not model.base.unknown else None
+
+    def traits_of(self, model: ModelSym) -> list[ModelSym]:
+        if model.traits is None:
+            out = []
+            if model.unit is not None:
+                for q in model.trait_refs:
+                    t = self.lookup([p.name for p in q.parts], model.unit)
+                    if isinstance(t, ModelSym) and t.is_trait:
+                        out.append(t)
+            base = model.base_ref
+            if model.unit is not None and base is not None and base.traits:
+                for q in base.traits:
+                    t = self.lookup([p.name for p in q.parts], model.unit)
+                    if isinstance(t, ModelSym) and t.is_trait and t not in out:
+                        out.append(t)
+            model.traits = out
+        return model.traits
+
+    def ancestors(self, model: ModelSym) -> list[ModelSym]:
+        """The model, its bases and all traits applied anywhere in that chain (no duplicates)."""
+        out: list[ModelSym] = []
+        seen: set[int] = set()
+        stack = [model]
+        while stack:
+            m = stack.pop()
+            if id(m) in seen:
+                continue
+            seen.add(id(m))
+            out.append(m)
+            base = self.base_of(m)
+            if base is not None and base.model is not None:
+                stack.append(base.model)
+            for t in base.traits if base is not None else ():
+                stack.append(t)
+            stack.extend(self.traits_of(m))
+        return out
+
+    def has_cycle(self, model: ModelSym) -> list[ModelSym] | None:
+        trail: list[ModelSym] = []
+        cur: ModelSym | None = model
+        while cur is not None:
+            if cur in trail:
+                return trail[trail.index(cur):] + [cur]
+            trail.append(cur)
+            base = self.base_of(cur)
+            cur = base.model if base is not None else None
+        return None
+
+    def all_members(self, model: ModelSym) -> dict[str, MemberSym]:
+        """Every attribute of a model: inherited, from traits, then its own (later wins)."""
+        if model._all is not None:
+            return model._all
+        if model._resolving:  # a cycle: the checker reports it
+            return {}
+        model._resolving = True
+        try:
+            out: dict[str, MemberSym] = {}
+            base = self.base_of(model)
+            if base is not None and base.model is not None:
+                out.update(self.all_members(base.model))
+                for t in base.traits:
+                    out.update(self.all_members(t))
+            for t in self.traits_of(model):
+                for name, mem in self.all_members(t).items():
+                    if name not in out or mem.keyword == "becomes" or out[name].keyword != "becomes":
+                        out[name] = mem
+            out.update(model.members)
+            model._all = out
+            return out
+        finally:
+            model._resolving = False
+
+    def all_methods(self, model: ModelSym) -> dict[str, MethodSym]:
+        out: dict[str, MethodSym] = {}
+        for m in reversed(self.ancestors(model)):
+            out.update(m.methods)
+        for m in self.ancestors(model):
+            for name, meth in m.methods.items():
+                out.setdefault(name, meth)
+        # own methods win
+        out.update(model.methods)
+        return out
+
+    def member_type(self, mem: MemberSym) -> Ty:
+        if mem.ty is None:
+            if mem.anon is not None:
+                mem.ty = Ty(mem.anon, False)
+            elif mem.owner.unit is None:
+                mem.ty = UNKNOWN
+            else:
+                mem.ty = self.resolve_type_expr(mem.stmt.type, mem.owner.unit)
+        return mem.ty
+
+    def members_of(self, ty: Ty) -> dict[str, MemberSym]:
+        if ty.array or ty.alts or ty.model is None:
+            return {}
+        out = dict(self.all_members(ty.model))
+        for t in ty.traits:
+            for k, v in self.all_members(t).items():
+                out.setdefault(k, v)
+        return out
+
+    def methods_of(self, ty: Ty) -> dict[str, MethodSym]:
+        if ty.array or ty.alts or ty.model is None:
+            return {}
+        out = self.all_methods(ty.model)
+        for t in ty.traits:
+            for k, v in self.all_methods(t).items():
+                out.setdefault(k, v)
+        return out
+
+    def concrete(self, model: ModelSym) -> ModelSym:
+        """Anonymous instance subtypes stand for their declared base where a name is needed."""
+        seen = 0
+        while model.anonymous and seen < 100:
+            base = self.base_of(model)
+            if base is None or base.model is None:
+                break
+            model = base.model
+            seen += 1
+        return model
+
+    def is_subtype(self, sub: ModelSym, sup: ModelSym, extra_traits: tuple = ()) -> bool:
+        if sub is sup:
+            return True
+        chain = self.ancestors(sub)
+        for t in extra_traits:
+            chain.extend(self.ancestors(t))
+        return any(m is sup for m in chain)
+
+    def assignable(self, actual: Ty, expected: Ty) -> str:
+        """'ok', 'warn' (Real into Int) or 'no'. Unknown types are always 'ok' (no cascades)."""
+        if actual.unknown or expected.unknown:
+            return "ok"
+        if expected.alts:
+            results = [self.assignable(actual, a) for a in expected.alts]
+            return "ok" if "ok" in results else ("warn" if "warn" in results else "no")
+        if actual.alts:
+            results = [self.assignable(a, expected) for a in actual.alts]
+            return "ok" if all(r == "ok" for r in results) else "no"
+        if actual.array != expected.array:
+            return "no"
+        ep, ap = expected.primitive, actual.primitive
+        if ep is not None or ap is not None:
+            if ep == ap:
+                return "ok"
+            if ep == "Real" and ap == "Int":
+                return "ok"
+            if ep == "Int" and ap == "Real":
+                return "warn"
+            return "no"
+        em, am = expected.model, actual.model
+        if em is None or am is None:
+            return "ok"
+        em = self.concrete(em)  # an instance block's anonymous subtype accepts its declared type
+        if not self.is_subtype(am, em, actual.traits):
+            return "no"
+        for t in expected.traits:
+            if not self.is_subtype(am, t, actual.traits):
+                return "no"
+        return "ok"
+
+    def positional_fields(self, model: ModelSym) -> list[MemberSym] | None:
+        """The attributes a `{...}` literal fills, when all of them are numbers (Vec3, Quat, ...)."""
+        mems = list(self.all_members(model).values())
+        if not mems:
+            return None
+        for m in mems:
+            t = self.member_type(m)
+            if t.primitive not in NUMERIC or t.array:
+                return None
+        return mems
+
+
+def _comment_lines(tree: ast.File) -> dict[int, str]:
+    return {c.span.start.line: c.text for c in tree.comments if c.own_line}

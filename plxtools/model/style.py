@@ -1,0 +1,77 @@
+"""Style and hygiene rules over the tree and the resolved names (C001, C003, C006, C007)."""
+
+from __future__ import annotations
+
+import re
+
+from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.model.completeness import root_model
+from plxtools.model.program import Program
+from plxtools.model.symbols import ModelSym
+from plxtools.syntax import ast
+
+PASCAL = re.compile(r"^[A-Z][A-Za-z0-9]*$")
+SNAKE = re.compile(r"^[a-z_][a-z0-9_]*$")
+UPPER = re.compile(r"^[A-Z][A-Z0-9_]*$")
+
+
+def style_diagnostics(program: Program, unit, checker) -> list[Diagnostic]:
+    out: list[Diagnostic] = []
+    tree = unit.tree
+
+    def add(code, msg, span, sev, help_=None):
+        out.append(Diagnostic(code, msg, span, sev, file=unit.path, help=help_))
+
+    # C006: siblings whose indentation differs (official files do it; fmt aligns them)
+    stack = [tree.statements]
+    while stack:
+        body = stack.pop()
+        if body:
+            col = body[0].header.start.column
+            for s in body[1:]:
+                if s.header.start.column != col:
+                    add("C006", f"this line is indented {s.header.start.column} spaces but the block's first "
+                        f"line is indented {col}", s.header, Severity.INFO,
+                        "align it with the lines above; a missing ':' on the line above would also cause this "
+                        "(`plx fmt` aligns siblings)")
+            for s in body:
+                b = ast.body_of(s)
+                if b:
+                    stack.append(b)
+
+    # C001: naming conventions of definitions made in this file
+    for s in tree.statements:
+        if isinstance(s, ast.TraitDef) and not PASCAL.match(s.name.name):
+            add("C001", f"trait name '{s.name.name}' should be PascalCase", s.name.span, Severity.INFO)
+        elif isinstance(s, ast.Declaration) and len(s.path.parts) == 1:
+            name = s.path.parts[0].name
+            is_global = s.keyword == "is" and s.value is not None and s.body is None
+            if is_global:
+                if not (SNAKE.match(name) or UPPER.match(name)):
+                    add("C001", f"global '{name}' should be snake_case or UPPER_CASE", s.path.span, Severity.INFO)
+            elif not s.const and not PASCAL.match(name):
+                add("C001", f"model name '{name}' should be PascalCase", s.path.span, Severity.INFO)
+            for m in s.body or []:
+                if isinstance(m, ast.Declaration) and m.keyword == "is" and len(m.path.parts) == 1:
+                    n = m.path.parts[0].name
+                    if not m.path.parts[0].backtick and not SNAKE.match(n):
+                        add("C001", f"attribute name '{n}' should be snake_case", m.path.span, Severity.INFO)
+
+    if unit.bundle is not None:
+        return out
+
+    # C003: models defined in a loose file that nothing uses; C007: root that is not a System
+    root = root_model(program, unit)
+    used = {id(o.target) for o in checker.occurrences if o.kind != "definition"}
+    for name, sym in unit.locals.items():
+        if isinstance(sym, ModelSym) and sym is not root and id(sym) not in used:
+            span = sym.stmt.name.span if isinstance(sym.stmt, ast.TraitDef) else sym.stmt.path.span
+            add("C003", f"{'trait' if sym.is_trait else 'model'} '{name}' is defined but never used in this file",
+                span, Severity.WARNING, "use it, move it into a bundle, or remove it")
+    if root is not None:
+        system = program.lookup(["Physics3D", "System"], unit)
+        if isinstance(system, ModelSym) and not program.is_subtype(root, system):
+            add("C007", f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System",
+                root.stmt.path.span, Severity.WARNING,
+                "a scene is loaded from the last model; make it a Physics3D.System or move the scene last")
+    return out

@@ -1,0 +1,255 @@
+"""The workspace: official bundles, user bundles and loose files loaded into one Program.
+
+This is the semantic model's front door for lint, the language server and check. Parsed bundle
+trees are cached on disk (keyed by every bundle file's path, size and mtime and the plxtools
+version), so a one-file lint does not re-parse 465 bundle files.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import pickle
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from plxtools import __version__
+from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity
+from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, official_bundle_root, read_config
+from plxtools.model.checker import Checker, Occurrence
+from plxtools.model.program import Program
+from plxtools.model.symbols import FileUnit, Namespace
+from plxtools.syntax import ast, parse_bytes, parse_file
+
+
+class WorkspaceError(ValueError):
+    """A bundle setup that cannot be used (missing bundle folder, folder without config)."""
+
+
+@dataclass(slots=True)
+class FileAnalysis:
+    unit: FileUnit
+    diagnostics: list[Diagnostic]
+    occurrences: list[Occurrence]
+
+
+def _cache_dir() -> Path:
+    base = os.environ.get("PLX_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "plxtools"
+
+
+def _parse_many(paths: list[Path], use_cache: bool) -> dict[str, ast.File]:
+    """Parse files, reusing a pickled copy when none of them changed."""
+    key = None
+    if use_cache:
+        h = hashlib.sha256(__version__.encode())
+        for p in paths:
+            try:
+                st = p.stat()
+            except OSError:
+                continue
+            h.update(f"{p}\0{st.st_size}\0{st.st_mtime_ns}\n".encode())
+        key = h.hexdigest()[:32]
+        cached = _cache_dir() / f"bundles-{key}.pickle"
+        if cached.is_file():
+            try:
+                with open(cached, "rb") as fh:
+                    data = pickle.load(fh)
+                if isinstance(data, dict) and len(data) == len(paths):
+                    return data
+            except Exception:  # a broken cache is rebuilt, never trusted
+                pass
+    trees = {str(p): parse_file(p) for p in paths}
+    if use_cache and key is not None:
+        try:
+            folder = _cache_dir()
+            folder.mkdir(parents=True, exist_ok=True)
+            tmp = folder / f".bundles-{key}.{os.getpid()}.tmp"
+            with open(tmp, "wb") as fh:
+                pickle.dump(trees, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            os.replace(tmp, folder / f"bundles-{key}.pickle")
+            for old in folder.glob("bundles-*.pickle"):
+                if old.name != f"bundles-{key}.pickle":
+                    old.unlink(missing_ok=True)
+        except OSError:
+            pass
+    return trees
+
+
+class Workspace:
+    def __init__(self, bundle_paths: list[Path] | None = None, use_cache: bool = True):
+        self.program = Program()
+        self.bundles: dict[str, Bundle] = {}
+        self.use_cache = use_cache
+        self.errors: list[str] = []
+        self.known_annotations: set[str] = set()
+        self._loose_ns: dict[str, Namespace] = {}
+        extra = [Path(p) for p in bundle_paths or []]
+        root = official_bundle_root(extra)
+        if root is None:
+            raise WorkspaceError("cannot find the OpenPLX bundles: install openplx-bundles, set "
+                                 "OPENPLX_BUNDLE_PATH, or pass --bundle-path")
+        self.official_root = root.resolve()
+        self._load_official(self.official_root)
+        for p in extra:
+            if p.resolve() == self.official_root:
+                continue
+            self.add_bundle_folder(p)
+        self._compute_visibility()
+
+    # ------------------------------------------------------------------ loading
+
+    def _load_official(self, root: Path) -> None:
+        folders = sorted(d for d in root.iterdir() if (d / "config.openplx").is_file())
+        bundles = [Bundle(d.name, d, official=True) for d in folders]
+        files: list[Path] = []
+        for b in bundles:
+            files.append(b.root / "config.openplx")
+            files.extend(b.files())
+        trees = _parse_many(files, self.use_cache)
+        for b in bundles:
+            read_config(b, trees[str(b.root / "config.openplx")])
+            self.bundles[b.name] = b
+            self.program.official_bundles.add(b.name)
+            for f in b.files():
+                self._add_bundle_file(b, f, trees[str(f)])
+        for tree in trees.values():
+            for s in ast.walk_statements(tree.statements):
+                if isinstance(s, ast.Annotation):
+                    self.known_annotations.add(s.name.name)
+
+    def add_bundle_folder(self, folder: Path) -> None:
+        """A configured bundle folder: a bundle itself, or a folder of bundles."""
+        if not folder.is_dir():
+            raise WorkspaceError(f"bundle path {folder} is not a folder")
+        if (folder / "config.openplx").is_file():
+            self._load_user_bundle(folder)
+            return
+        subs = [d for d in sorted(folder.iterdir()) if (d / "config.openplx").is_file()]
+        if not subs:
+            raise WorkspaceError(f"bundle path {folder} has no config.openplx (a bundle needs one at its root)")
+        for d in subs:
+            self._load_user_bundle(d)
+
+    def _load_user_bundle(self, root: Path) -> Bundle:
+        root = root.resolve()
+        for b in self.bundles.values():
+            if b.root.resolve() == root:
+                return b
+        b = Bundle(root.name, root, official=False)
+        read_config(b, parse_file(root / "config.openplx"))
+        if b.name in self.bundles and self.bundles[b.name].root.resolve() != root:
+            b.diagnostics.append(Diagnostic("B003", f"a bundle named '{b.name}' is already loaded from "
+                                            f"{self.bundles[b.name].root}", EMPTY_SPAN, Severity.ERROR,
+                                            file=str(root / "config.openplx")))
+            return b
+        self.bundles[b.name] = b
+        for f in b.files():
+            self._add_bundle_file(b, f, parse_file(f))
+        self._compute_visibility()
+        return b
+
+    def _add_bundle_file(self, b: Bundle, path: Path, tree: ast.File) -> FileUnit:
+        ns = self.program.namespace(b.namespace_of(path), b.name)
+        unit = FileUnit(str(path), tree, ns, b.name, official=b.official)
+        self.program.add_unit(unit)
+        return unit
+
+    def _compute_visibility(self) -> None:
+        for name in self.bundles:
+            closure, _cycle = dependency_closure(self.bundles, name)
+            self.program.visibility[name] = closure
+
+    # ------------------------------------------------------------------ files
+
+    def bundle_of(self, path: Path) -> Bundle | None:
+        rp = path.resolve()
+        for b in self.bundles.values():
+            try:
+                rp.relative_to(b.root.resolve())
+                return b
+            except ValueError:
+                continue
+        user_root = find_user_bundle_root(path, {self.official_root})
+        if user_root is not None:
+            return self._load_user_bundle(user_root)
+        return None
+
+    def unit_for(self, tree: ast.File) -> FileUnit:
+        """Register (or replace) a file's symbols and return its unit."""
+        path = tree.path or "<stdin>"
+        key = str(Path(path).resolve()) if tree.path else path
+        existing = self.program.units.get(path) or self.program.units.get(key)
+        if existing is not None and existing.tree.text == tree.text:
+            return existing
+        bundle = self.bundle_of(Path(path)) if tree.path else None
+        if existing is not None:
+            self.program.remove_unit(existing.path)
+        if bundle is not None and Path(path).name == "config.openplx" and Path(path).resolve().parent == bundle.root.resolve():
+            unit = FileUnit(existing.path if existing else path, tree, self.program.namespace((bundle.name,), bundle.name),
+                            bundle.name, official=bundle.official)
+            self.program.units[unit.path] = unit
+            return unit
+        if bundle is not None:
+            ns = self.program.namespace(bundle.namespace_of(Path(path)), bundle.name)
+            unit = FileUnit(existing.path if existing else path, tree, ns, bundle.name, official=bundle.official)
+        else:
+            ns = self._loose_ns.setdefault(path, Namespace("", ()))
+            unit = FileUnit(path, tree, ns, None)
+        self.program.add_unit(unit)
+        if existing is not None or bundle is None:
+            self.program.invalidate()
+        return unit
+
+    def analyse(self, tree: ast.File) -> FileAnalysis:
+        unit = self.unit_for(tree)
+        checker = Checker(self.program, unit, self.known_annotations)
+        checker.run()
+        diags = checker.diags + self._bundle_config_diagnostics(tree)
+        from plxtools.model.completeness import completeness_diagnostics
+        from plxtools.model.style import style_diagnostics
+
+        diags += completeness_diagnostics(self.program, unit, checker)
+        diags += style_diagnostics(self.program, unit, checker)
+        for d in diags:
+            d.file = tree.path
+        return FileAnalysis(unit, diags, checker.occurrences)
+
+    def _bundle_config_diagnostics(self, tree: ast.File) -> list[Diagnostic]:
+        if not tree.path or Path(tree.path).name != "config.openplx":
+            return []
+        folder = Path(tree.path).resolve().parent
+        b = next((b for b in self.bundles.values() if b.root.resolve() == folder), None)
+        if b is None:
+            return []
+        out = list(b.diagnostics)
+        for dep in b.dependencies:
+            if dep not in self.bundles:
+                out.append(Diagnostic("B003", f"unknown dependency '{dep}': no bundle with that name is loaded",
+                                      b.dep_spans.get(dep, EMPTY_SPAN), Severity.ERROR,
+                                      help="add its folder with --bundle-path or bundle-path in the config"))
+        _closure, cycle = dependency_closure(self.bundles, b.name)
+        if cycle:
+            out.append(Diagnostic("B004", "dependency cycle: " + " -> ".join(cycle),
+                                  b.dep_spans.get(cycle[1], EMPTY_SPAN) if len(cycle) > 1 else EMPTY_SPAN,
+                                  Severity.ERROR))
+        return out
+
+
+_CLI_WORKSPACES: dict[tuple, Workspace] = {}
+
+
+def workspace_for_cli(bundle_paths: list[str], files: list[Path], use_cache: bool = True) -> Workspace:
+    """One workspace for a CLI run: official bundles plus configured and command-line bundle paths."""
+    from plxtools.config import config_for
+
+    paths: list[Path] = [Path(p) for p in bundle_paths]
+    for f in files[:1] or [Path(".")]:
+        paths.extend(config_for(f).bundle_paths)
+    for p in paths:
+        if not p.exists():
+            raise WorkspaceError(f"bundle path {p} does not exist")
+    key = (tuple(str(p) for p in paths), use_cache)
+    if key not in _CLI_WORKSPACES:
+        _CLI_WORKSPACES[key] = Workspace(paths, use_cache=use_cache)
+    return _CLI_WORKSPACES[key]
