@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity
 from plxtools.syntax import ast
 
 _RE = re.compile(r"#\s*plx:\s*(ignore-file|ignore)\b(?:\[([^\]]*)\])?")
@@ -77,7 +77,14 @@ def apply(tree: ast.File, diags: list[Diagnostic], report_unused: bool = True) -
                 unused = [c for c in s.codes if not any(u.startswith(c) for u in s.used)]
             if unused:
                 what = "this suppression" if unused == ["(all)"] else "suppressed code(s) " + ", ".join(unused)
+                fix = None
+                if s.codes is None or len(unused) == len(s.codes):
+                    start, end = s.comment.span.start.offset, s.comment.span.end.offset
+                    if not s.comment.own_line:
+                        while start > 0 and tree.text[start - 1] in " \t":
+                            start -= 1
+                    fix = Fix("remove the unused suppression", (Edit(start, end, ""),), safe=True)
                 kept.append(Diagnostic("C002", f"unused suppression: {what} matched no diagnostic",
                                        s.comment.span, Severity.WARNING, file=tree.path,
-                                       help="remove it, or the code it names"))
+                                       help="remove it, or the code it names", fix=fix))
     return kept

@@ -9,7 +9,7 @@ from __future__ import annotations
 import difflib
 from dataclasses import dataclass
 
-from plxtools.diagnostics import Diagnostic, Severity, Span
+from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity, Span
 from plxtools.model.program import Program
 from plxtools.model.symbols import (
     BOOL,
@@ -68,8 +68,12 @@ class Checker:
 
     # ------------------------------------------------------------------ reporting
 
-    def report(self, code: str, msg: str, span: Span, sev: Severity = E, help: str | None = None) -> None:
-        self.diags.append(Diagnostic(code, msg, span, sev, file=self.unit.path, help=help))
+    def report(self, code: str, msg: str, span: Span, sev: Severity = E, help: str | None = None,
+               fix: Fix | None = None) -> None:
+        if fix is None and help and help.startswith("did you mean '") and code in ("N001", "N002", "N003", "N004"):
+            word = help[len("did you mean '"):-2]
+            fix = Fix(f"replace with '{word}'", (Edit(span.start.offset, span.end.offset, word),), safe=False)
+        self.diags.append(Diagnostic(code, msg, span, sev, file=self.unit.path, help=help, fix=fix))
 
     def occ(self, span: Span, target, kind: str) -> None:
         self.occurrences.append(Occurrence(span, target, kind))
@@ -219,8 +223,6 @@ class Checker:
             if cycle:
                 names = " -> ".join(c.qname for c in cycle)
                 self.report("M005", f"inheritance cycle: {names}", m.base_ref.span)
-        for q in m.trait_refs:
-            self._type_ref(ast.TypeRef(q.span, q), "trait")
         body = getattr(stmt, "body", None)
         if body:
             self._block(body, Ty(m), (), m)
@@ -333,7 +335,7 @@ class Checker:
             self._deprecated_check(mem, parts[-1].span)
 
     def _opaque(self, ty: Ty) -> bool:
-        return ty.model is not None and ty.model.kind == "import"
+        return ty.model is not None and self.p.is_open(ty.model)
 
     # ------------------------------------------------------------------ paths
 
@@ -401,7 +403,7 @@ class Checker:
             self.report("T001", f"expected {expected.display()}, found {got.display()}", expr.span,
                         help=self._mismatch_help(got, expected))
         elif verdict == "warn":
-            self.report("T002", f"a Real is given where {expected.display()} (an Int) is expected", expr.span, W,
+            self.report("T002", "a Real is given where an Int is expected", expr.span, W,
                         help="write a whole number, or use Math.Functions.round/floor/ceil")
 
     def _mismatch_help(self, got: Ty, expected: Ty) -> str | None:

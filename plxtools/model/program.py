@@ -293,6 +293,15 @@ class Program:
             stack.extend(self.traits_of(m))
         return out
 
+    def is_open(self, model: ModelSym) -> bool:
+        """True when some base in the chain does not resolve: its attributes are unknown, not absent."""
+        for m in self.ancestors(model):
+            if m.base_ref is not None and self.base_of(m) is None:
+                return True
+            if m.kind == "import":
+                return True
+        return False
+
     def has_cycle(self, model: ModelSym) -> list[ModelSym] | None:
         trail: list[ModelSym] = []
         cur: ModelSym | None = model
