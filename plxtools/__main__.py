@@ -1,5 +1,3 @@
-import sys
+from plxtools.cli import entry
 
-from plxtools.cli import main
-
-sys.exit(main())
+entry()

@@ -81,7 +81,17 @@ def lint_file(path: Path, cfg: Config | None = None, workspace=None) -> FileResu
 
         d = Diagnostic("E001", f"cannot read file: {exc.strerror}", EMPTY_SPAN, Severity.ERROR, file=str(path))
         return FileResult(path, None, [d])
-    tree = parse_bytes(data, str(path))
+    tree = None
+    if workspace is not None:  # a bundle file the workspace already parsed: reuse its tree
+        unit = workspace.program.units.get(str(path))
+        if unit is not None and not data.startswith(b"\xef\xbb\xbf"):
+            try:
+                if unit.tree.text == data.decode("utf-8"):
+                    tree = unit.tree
+            except UnicodeDecodeError:
+                pass
+    if tree is None:
+        tree = parse_bytes(data, str(path))
     return FileResult(path, tree, analyse_tree(tree, cfg, workspace))
 
 

@@ -38,7 +38,10 @@ class Bundle:
         return out
 
     def namespace_of(self, path: Path) -> tuple[str, ...]:
-        rel = path.resolve().parent.relative_to(self.root.resolve())
+        try:
+            rel = path.parent.relative_to(self.root)  # files listed from the root: no resolve needed
+        except ValueError:
+            rel = path.resolve().parent.relative_to(self.root.resolve())
         return (self.name, *[p for p in rel.parts if p not in ("", ".")])
 
 

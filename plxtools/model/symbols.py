@@ -182,3 +182,23 @@ def doc_of(body: list[ast.Stmt] | None) -> str | None:
         if isinstance(s, ast.Annotation) and s.name.name == "doc" and isinstance(s.value, ast.String):
             return s.value.value.strip("\n")
     return None
+
+
+def _fast_pickling(cls) -> None:
+    from dataclasses import fields
+
+    names = tuple(f.name for f in fields(cls))
+
+    def getstate(self):
+        return tuple(getattr(self, n) for n in names)
+
+    def setstate(self, state):
+        for n, v in zip(names, state):
+            object.__setattr__(self, n, v)
+
+    cls.__getstate__ = getstate
+    cls.__setstate__ = setstate
+
+
+for _cls in (FileUnit, Namespace, ModelSym, MemberSym, GlobalSym, MethodSym, OperatorSym, Ty):
+    _fast_pickling(_cls)

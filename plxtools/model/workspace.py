@@ -7,9 +7,10 @@ version), so a one-file lint does not re-parse 465 bundle files.
 
 from __future__ import annotations
 
-import hashlib
+import zlib
 import os
 import pickle
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -20,6 +21,9 @@ from plxtools.model.checker import Checker, Occurrence
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
 from plxtools.syntax import ast, parse_bytes, parse_file
+
+
+_URI_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]+:")  # a scheme of 2+ letters: not a drive letter
 
 
 class WorkspaceError(ValueError):
@@ -38,42 +42,52 @@ def _cache_dir() -> Path:
     return Path(base) / "plxtools"
 
 
-def _parse_many(paths: list[Path], use_cache: bool) -> dict[str, ast.File]:
-    """Parse files, reusing a pickled copy when none of them changed."""
-    key = None
-    if use_cache:
-        h = hashlib.sha256(__version__.encode())
-        for p in paths:
-            try:
-                st = p.stat()
-            except OSError:
-                continue
-            h.update(f"{p}\0{st.st_size}\0{st.st_mtime_ns}\n".encode())
-        key = h.hexdigest()[:32]
-        cached = _cache_dir() / f"bundles-{key}.pickle"
-        if cached.is_file():
-            try:
-                with open(cached, "rb") as fh:
-                    data = pickle.load(fh)
-                if isinstance(data, dict) and len(data) == len(paths):
-                    return data
-            except Exception:  # a broken cache is rebuilt, never trusted
-                pass
-    trees = {str(p): parse_file(p) for p in paths}
-    if use_cache and key is not None:
+def _cache_key(paths: list[Path]) -> str:
+    h = zlib.crc32(__version__.encode())
+    n = 0
+    for p in paths:
         try:
-            folder = _cache_dir()
-            folder.mkdir(parents=True, exist_ok=True)
-            tmp = folder / f".bundles-{key}.{os.getpid()}.tmp"
-            with open(tmp, "wb") as fh:
-                pickle.dump(trees, fh, protocol=pickle.HIGHEST_PROTOCOL)
-            os.replace(tmp, folder / f"bundles-{key}.pickle")
-            for old in folder.glob("bundles-*.pickle"):
-                if old.name != f"bundles-{key}.pickle":
-                    old.unlink(missing_ok=True)
+            st = p.stat()
         except OSError:
-            pass
-    return trees
+            continue
+        h = zlib.crc32(f"{p}\0{st.st_size}\0{st.st_mtime_ns}\n".encode(), h)
+        n += 1
+    return f"{h:08x}-{n}"
+
+
+def _load_cached(name: str):
+    path = _cache_dir() / name
+    if not path.is_file():
+        return None
+    import gc
+
+    enabled = gc.isenabled()
+    gc.disable()  # ~50k acyclic nodes: collection passes during the load are pure cost
+    try:
+        with open(path, "rb") as fh:
+            value = pickle.load(fh)
+        gc.freeze()  # long-lived: keep the collector from rescanning them on every later pass
+        return value
+    except Exception:  # a broken cache is rebuilt, never trusted
+        return None
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _store_cached(name: str, value, prefix: str) -> None:
+    try:
+        folder = _cache_dir()
+        folder.mkdir(parents=True, exist_ok=True)
+        tmp = folder / f".{name}.{os.getpid()}.tmp"
+        with open(tmp, "wb") as fh:
+            pickle.dump(value, fh, protocol=pickle.HIGHEST_PROTOCOL)
+        os.replace(tmp, folder / name)
+        for old in folder.glob(f"{prefix}*.pickle"):
+            if old.name != name:
+                old.unlink(missing_ok=True)
+    except (OSError, pickle.PicklingError, RecursionError):
+        pass
 
 
 class Workspace:
@@ -100,13 +114,22 @@ class Workspace:
     # ------------------------------------------------------------------ loading
 
     def _load_official(self, root: Path) -> None:
+        """Parse the official bundles and build their symbols, or load both from the disk cache."""
         folders = sorted(d for d in root.iterdir() if (d / "config.openplx").is_file())
-        bundles = [Bundle(d.name, d, official=True) for d in folders]
+        bundles = [Bundle(d.name, d.resolve(), official=True) for d in folders]
         files: list[Path] = []
         for b in bundles:
             files.append(b.root / "config.openplx")
             files.extend(b.files())
-        trees = _parse_many(files, self.use_cache)
+        name = f"official-{_cache_key(files)}.pickle"
+        if self.use_cache:
+            state = _load_cached(name)
+            if isinstance(state, dict) and state.get("files") == len(files):
+                self.program = state["program"]
+                self.bundles = state["bundles"]
+                self.known_annotations = state["annotations"]
+                return
+        trees = {str(p): parse_file(p) for p in files}
         for b in bundles:
             read_config(b, trees[str(b.root / "config.openplx")])
             self.bundles[b.name] = b
@@ -117,6 +140,16 @@ class Workspace:
             for s in ast.walk_statements(tree.statements):
                 if isinstance(s, ast.Annotation):
                     self.known_annotations.add(s.name.name)
+        if self.use_cache:
+            import sys
+
+            limit = sys.getrecursionlimit()
+            sys.setrecursionlimit(max(limit, 20000))  # the namespace tree links parents and children
+            try:
+                _store_cached(name, {"files": len(files), "program": self.program, "bundles": self.bundles,
+                                     "annotations": self.known_annotations}, "official-")
+            finally:
+                sys.setrecursionlimit(limit)
 
     def add_bundle_folder(self, folder: Path) -> None:
         """A configured bundle folder: a bundle itself, or a folder of bundles."""
@@ -132,7 +165,7 @@ class Workspace:
             self._load_user_bundle(d)
 
     def _load_user_bundle(self, root: Path) -> Bundle:
-        root = root.resolve()
+        root = root.resolve()  # bundle roots are kept resolved, so containment is a parents check
         for b in self.bundles.values():
             if b.root.resolve() == root:
                 return b
@@ -165,11 +198,8 @@ class Workspace:
     def bundle_of(self, path: Path) -> Bundle | None:
         rp = path.resolve()
         for b in self.bundles.values():
-            try:
-                rp.relative_to(b.root.resolve())
+            if b.root in rp.parents:
                 return b
-            except ValueError:
-                continue
         user_root = find_user_bundle_root(path, {self.official_root})
         if user_root is not None:
             return self._load_user_bundle(user_root)
@@ -178,11 +208,15 @@ class Workspace:
     def unit_for(self, tree: ast.File) -> FileUnit:
         """Register (or replace) a file's symbols and return its unit."""
         path = tree.path or "<stdin>"
-        key = str(Path(path).resolve()) if tree.path else path
-        existing = self.program.units.get(path) or self.program.units.get(key)
+        existing = self.program.units.get(path)
+        if existing is not None and existing.tree is tree:
+            return existing
+        if existing is None and tree.path:
+            existing = self.program.units.get(str(Path(path).resolve()))
         if existing is not None and existing.tree.text == tree.text:
             return existing
-        bundle = self.bundle_of(Path(path)) if tree.path else None
+        # an editor buffer named by a URI (`untitled:Untitled-1`) is no file: it belongs to no bundle
+        bundle = self.bundle_of(Path(path)) if tree.path and not _URI_NAME.match(path) else None
         if existing is not None:
             self.program.remove_unit(existing.path)
         if bundle is not None and Path(path).name == "config.openplx" and Path(path).resolve().parent == bundle.root.resolve():

@@ -274,3 +274,28 @@ def structure(node: object) -> object:
             out.append(structure(value))
         return tuple(out)
     return node
+
+
+def _fast_pickling(cls) -> None:
+    """Slotted dataclasses unpickle slowly (a fields() call per object); bundle caches hold ~50k nodes."""
+    names = tuple(f.name for f in fields(cls))
+
+    def getstate(self):
+        return tuple(getattr(self, n) for n in names)
+
+    def setstate(self, state):
+        for n, v in zip(names, state):
+            object.__setattr__(self, n, v)
+
+    cls.__getstate__ = getstate
+    cls.__setstate__ = setstate
+
+
+def _all_subclasses(cls):
+    for sub in cls.__subclasses__():
+        yield sub
+        yield from _all_subclasses(sub)
+
+
+for _cls in (Node, *_all_subclasses(Node)):
+    _fast_pickling(_cls)

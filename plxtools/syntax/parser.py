@@ -202,6 +202,18 @@ class _PassThrough(LarkLexer):
         return iter(data)
 
 
+def _lark_cache_file() -> str | bool:
+    import os
+
+    base = os.environ.get("PLX_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache")
+    folder = os.path.join(base, "plxtools")
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError:
+        return False
+    return os.path.join(folder, "grammar.lark-cache")
+
+
 _parser_lock = threading.Lock()
 _PARSER: Lark | None = None
 
@@ -212,13 +224,11 @@ def _get_parser() -> Lark:
         with _parser_lock:
             if _PARSER is None:
                 grammar = Path(__file__).with_name("openplx.lark").read_text(encoding="utf-8")
-                _PARSER = Lark(
-                    grammar,
-                    parser="lalr",
-                    lexer=_PassThrough,
-                    transformer=_Build(),
-                    maybe_placeholders=True,
-                )
+                options = dict(parser="lalr", lexer=_PassThrough, transformer=_Build(), maybe_placeholders=True)
+                try:  # lark caches its grammar analysis, keyed by the grammar and options
+                    _PARSER = Lark(grammar, cache=_lark_cache_file(), **options)
+                except Exception:  # an unwritable or stale cache must never stop parsing
+                    _PARSER = Lark(grammar, **options)
     return _PARSER
 
 
