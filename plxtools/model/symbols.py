@@ -8,6 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Union
 
+from plxtools.pickling import fast_pickling
 from plxtools.syntax import ast
 
 PRIMITIVES = frozenset({"Real", "Int", "Bool", "String", "Blob", "BundleConfig"})
@@ -184,21 +185,5 @@ def doc_of(body: list[ast.Stmt] | None) -> str | None:
     return None
 
 
-def _fast_pickling(cls) -> None:
-    from dataclasses import fields
-
-    names = tuple(f.name for f in fields(cls))
-
-    def getstate(self):
-        return tuple(getattr(self, n) for n in names)
-
-    def setstate(self, state):
-        for n, v in zip(names, state):
-            object.__setattr__(self, n, v)
-
-    cls.__getstate__ = getstate
-    cls.__setstate__ = setstate
-
-
 for _cls in (FileUnit, Namespace, ModelSym, MemberSym, GlobalSym, MethodSym, OperatorSym, Ty):
-    _fast_pickling(_cls)
+    fast_pickling(_cls)

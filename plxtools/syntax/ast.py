@@ -9,6 +9,7 @@ from dataclasses import dataclass, field, fields, is_dataclass
 from typing import Iterator, Union
 
 from plxtools.diagnostics import Diagnostic, Span
+from plxtools.pickling import fast_pickling
 from plxtools.syntax.source import LineIndex
 
 
@@ -276,21 +277,6 @@ def structure(node: object) -> object:
     return node
 
 
-def _fast_pickling(cls) -> None:
-    """Slotted dataclasses unpickle slowly (a fields() call per object); bundle caches hold ~50k nodes."""
-    names = tuple(f.name for f in fields(cls))
-
-    def getstate(self):
-        return tuple(getattr(self, n) for n in names)
-
-    def setstate(self, state):
-        for n, v in zip(names, state):
-            object.__setattr__(self, n, v)
-
-    cls.__getstate__ = getstate
-    cls.__setstate__ = setstate
-
-
 def _all_subclasses(cls):
     for sub in cls.__subclasses__():
         yield sub
@@ -298,4 +284,4 @@ def _all_subclasses(cls):
 
 
 for _cls in (Node, *_all_subclasses(Node)):
-    _fast_pickling(_cls)
+    fast_pickling(_cls)

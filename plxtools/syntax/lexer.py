@@ -201,16 +201,7 @@ class Lexer:
                 self.pos = end
                 if brackets:
                     if self._continuation_ends(indent):
-                        opener = brackets[-1]
-                        fail(
-                            Diagnostic(
-                                "S004",
-                                f"'{opener.value}' was never closed",
-                                _tok_span(opener),
-                                Severity.ERROR,
-                                help=f"add the closing '{OPENERS[opener.value]}'",
-                            )
-                        )
+                        fail(_never_closed(brackets[-1]))
                         finish()
                         at_line_start = True
                     continue
@@ -297,16 +288,7 @@ class Lexer:
             self.pos = end
 
         if brackets:
-            opener = brackets[-1]
-            fail(
-                Diagnostic(
-                    "S004",
-                    f"'{opener.value}' was never closed",
-                    _tok_span(opener),
-                    Severity.ERROR,
-                    help=f"add the closing '{OPENERS[opener.value]}'",
-                )
-            )
+            fail(_never_closed(brackets[-1]))
         finish()
         return LexResult(lines, comments, diagnostics)
 
@@ -400,6 +382,11 @@ def _bad_char_help(ch: str) -> str | None:
     if ch == "@" or ch == "$":
         return f'{ch} starts a path or interpolated string only right before a quote: {ch}"..."'
     return None
+
+
+def _never_closed(opener: Token) -> Diagnostic:
+    return Diagnostic("S004", f"'{opener.value}' was never closed", _tok_span(opener), Severity.ERROR,
+                      help=f"add the closing '{OPENERS[opener.value]}'")
 
 
 def _tok_span(tok: Token) -> Span:
