@@ -1,0 +1,368 @@
+import * as assert from 'node:assert/strict';
+import * as fs from 'node:fs';
+import * as os from 'node:os';
+import * as path from 'node:path';
+import {
+  type DiscoveryInput,
+  type DiscoveryResult,
+  discoverPlx,
+  findOnPath,
+  getEnv,
+  probePlxtoolsModule,
+  resolveSettingPath,
+  scriptCandidates,
+} from '../../src/serverDiscovery';
+
+const posixOnly = process.platform === 'win32' ? describe.skip : describe;
+
+let tmp: string;
+
+function file(rel: string, content = '#!/bin/sh\nexit 0\n', mode = 0o755): string {
+  const p = path.join(tmp, rel);
+  fs.mkdirSync(path.dirname(p), { recursive: true });
+  fs.writeFileSync(p, content);
+  fs.chmodSync(p, mode);
+  return p;
+}
+
+/** A fake virtual environment: `<name>/bin/python` and, optionally, `<name>/bin/plx`. */
+function venv(name: string, withPlx: boolean): { python: string; plx: string } {
+  const python = file(`${name}/bin/python`);
+  const plx = path.join(tmp, name, 'bin', 'plx');
+  if (withPlx) {
+    file(`${name}/bin/plx`);
+  }
+  return { python, plx };
+}
+
+const never = async (): Promise<boolean> => {
+  throw new Error('the module probe should not run here');
+};
+
+function input(overrides: Partial<DiscoveryInput>): DiscoveryInput {
+  return { env: { PATH: '' }, platform: 'linux', hasPlxtoolsModule: async () => false, ...overrides };
+}
+
+function expectFound(result: DiscoveryResult): Extract<DiscoveryResult, { found: true }> {
+  assert.ok(result.found, `expected plx to be found, got: ${result.found ? '' : result.message}`);
+  return result;
+}
+
+function expectNotFound(result: DiscoveryResult): Extract<DiscoveryResult, { found: false }> {
+  assert.ok(!result.found, `expected no plx, got ${result.found ? result.invocation.description : ''}`);
+  return result;
+}
+
+beforeEach(() => {
+  tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'plx-discovery-'));
+});
+
+afterEach(() => {
+  fs.rmSync(tmp, { recursive: true, force: true });
+});
+
+posixOnly('discoverPlx: openplx.server.path', () => {
+  it('uses an executable given by path', async () => {
+    const plx = file('tools/plx');
+    const r = expectFound(await discoverPlx(input({ serverPath: plx })));
+    assert.equal(r.invocation.command, plx);
+    assert.deepEqual(r.invocation.prefixArgs, []);
+    assert.equal(r.invocation.source, 'server.path');
+    assert.match(r.invocation.description, /openplx\.server\.path/);
+  });
+
+  it('resolves ${workspaceFolder} and relative paths against the workspace folder', async () => {
+    const plx = file('ws/.venv/bin/plx');
+    const ws = path.join(tmp, 'ws');
+    let r = expectFound(await discoverPlx(input({ serverPath: '${workspaceFolder}/.venv/bin/plx', workspaceFolder: ws })));
+    assert.equal(r.invocation.command, plx);
+    r = expectFound(await discoverPlx(input({ serverPath: './.venv/bin/plx', workspaceFolder: ws })));
+    assert.equal(r.invocation.command, plx);
+  });
+
+  it('expands ${env:NAME}', async () => {
+    const plx = file('opt/plx');
+    const r = expectFound(await discoverPlx(input({ serverPath: '${env:PLX_HOME}/plx', env: { PATH: '', PLX_HOME: path.join(tmp, 'opt') } })));
+    assert.equal(r.invocation.command, plx);
+  });
+
+  it('looks a bare command name up on PATH', async () => {
+    const plx = file('bin/plx-dev');
+    const r = expectFound(await discoverPlx(input({ serverPath: 'plx-dev', env: { PATH: path.join(tmp, 'bin') } })));
+    assert.equal(r.invocation.command, plx);
+  });
+
+  it('reports a missing file and does not fall back to other places', async () => {
+    const onPath = file('bin/plx');
+    const missing = path.join(tmp, 'nowhere', 'plx');
+    const r = expectNotFound(
+      await discoverPlx(
+        input({
+          serverPath: missing,
+          env: { PATH: path.dirname(onPath) },
+          pythonExtensionInterpreter: async () => {
+            throw new Error('the Python extension should not be asked');
+          },
+        }),
+      ),
+    );
+    assert.equal(r.attempts.length, 1);
+    assert.equal(r.attempts[0].candidate, missing);
+    assert.equal(r.attempts[0].outcome, 'does not exist');
+    assert.ok(r.message.includes(missing), r.message);
+    assert.ok(r.message.includes('pip install plxtools'), r.message);
+  });
+
+  it('reports a file that is not executable', async () => {
+    const plx = file('tools/plx', 'not a program', 0o644);
+    const r = expectNotFound(await discoverPlx(input({ serverPath: plx })));
+    assert.match(r.attempts[0].outcome, /not executable/);
+  });
+
+  it('reports a directory', async () => {
+    fs.mkdirSync(path.join(tmp, 'plxdir'));
+    const r = expectNotFound(await discoverPlx(input({ serverPath: path.join(tmp, 'plxdir') })));
+    assert.equal(r.attempts[0].outcome, 'not a file');
+  });
+});
+
+posixOnly('discoverPlx: openplx.interpreter', () => {
+  it('uses plx next to the interpreter (venv/bin/plx)', async () => {
+    const { python, plx } = venv('venv', true);
+    const r = expectFound(await discoverPlx(input({ interpreter: python, hasPlxtoolsModule: never })));
+    assert.equal(r.invocation.command, plx);
+    assert.deepEqual(r.invocation.prefixArgs, []);
+    assert.equal(r.invocation.source, 'interpreter');
+  });
+
+  it('does not follow the interpreter symlink out of the venv', async () => {
+    const base = file('base/bin/python3');
+    fs.mkdirSync(path.join(tmp, 'venv', 'bin'), { recursive: true });
+    const python = path.join(tmp, 'venv', 'bin', 'python');
+    fs.symlinkSync(base, python);
+    const plx = file('venv/bin/plx');
+    const r = expectFound(await discoverPlx(input({ interpreter: python })));
+    assert.equal(r.invocation.command, plx);
+  });
+
+  it('falls back to `python -m plxtools` when plxtools is importable', async () => {
+    const { python } = venv('venv', false);
+    const probed: string[] = [];
+    const r = expectFound(
+      await discoverPlx(
+        input({
+          interpreter: python,
+          hasPlxtoolsModule: async (p) => {
+            probed.push(p);
+            return true;
+          },
+        }),
+      ),
+    );
+    assert.deepEqual(probed, [python]);
+    assert.equal(r.invocation.command, python);
+    assert.deepEqual(r.invocation.prefixArgs, ['-m', 'plxtools']);
+    assert.match(r.invocation.description, /-m plxtools/);
+  });
+
+  it('fails without falling back to PATH when plxtools is not installed there', async () => {
+    const { python } = venv('venv', false);
+    const onPath = file('bin/plx');
+    const r = expectNotFound(await discoverPlx(input({ interpreter: python, env: { PATH: path.dirname(onPath) } })));
+    assert.ok(r.message.includes(`${python} -m pip install plxtools`), r.message);
+    assert.ok(r.message.includes('plxtools is not installed in this interpreter'), r.message);
+    assert.ok(!r.attempts.some((a) => a.source === 'PATH'));
+  });
+
+  it('reports an interpreter that does not exist', async () => {
+    const python = path.join(tmp, 'gone', 'bin', 'python');
+    const r = expectNotFound(await discoverPlx(input({ interpreter: python, hasPlxtoolsModule: never })));
+    assert.ok(r.attempts.some((a) => a.candidate === python && /interpreter does not exist/.test(a.outcome)), r.message);
+  });
+
+  it('wins over the Python extension, which is not even asked', async () => {
+    const { python, plx } = venv('chosen', true);
+    let asked = false;
+    const r = expectFound(
+      await discoverPlx(
+        input({
+          interpreter: python,
+          pythonExtensionInterpreter: async () => {
+            asked = true;
+            return venv('other', true).python;
+          },
+        }),
+      ),
+    );
+    assert.equal(r.invocation.command, plx);
+    assert.equal(asked, false);
+  });
+
+  it('is ignored when openplx.server.path is set', async () => {
+    const plx = file('tools/plx');
+    const { python } = venv('venv', true);
+    const r = expectFound(await discoverPlx(input({ serverPath: plx, interpreter: python })));
+    assert.equal(r.invocation.command, plx);
+  });
+});
+
+posixOnly('discoverPlx: the Python extension interpreter', () => {
+  it('uses plx from the active interpreter (given as a function)', async () => {
+    const { python, plx } = venv('active', true);
+    const r = expectFound(await discoverPlx(input({ pythonExtensionInterpreter: async () => python })));
+    assert.equal(r.invocation.command, plx);
+    assert.equal(r.invocation.source, 'python-extension');
+  });
+
+  it('accepts a plain string', async () => {
+    const { python, plx } = venv('active', true);
+    const r = expectFound(await discoverPlx(input({ pythonExtensionInterpreter: python })));
+    assert.equal(r.invocation.command, plx);
+  });
+
+  it('uses `python -m plxtools` from the active interpreter', async () => {
+    const { python } = venv('active', false);
+    const r = expectFound(await discoverPlx(input({ pythonExtensionInterpreter: python, hasPlxtoolsModule: async () => true })));
+    assert.equal(r.invocation.command, python);
+    assert.deepEqual(r.invocation.prefixArgs, ['-m', 'plxtools']);
+    assert.equal(r.invocation.source, 'python-extension');
+  });
+
+  it('falls through to PATH when the active interpreter has no plxtools', async () => {
+    const { python } = venv('active', false);
+    const onPath = file('bin/plx');
+    const r = expectFound(await discoverPlx(input({ pythonExtensionInterpreter: python, env: { PATH: path.dirname(onPath) } })));
+    assert.equal(r.invocation.command, onPath);
+    assert.equal(r.invocation.source, 'PATH');
+    assert.ok(r.attempts.some((a) => a.source === 'python-extension' && a.outcome !== 'found'));
+  });
+
+  it('falls through to PATH when reading the interpreter fails', async () => {
+    const onPath = file('bin/plx');
+    const r = expectFound(
+      await discoverPlx(
+        input({
+          env: { PATH: path.dirname(onPath) },
+          pythonExtensionInterpreter: async () => {
+            throw new Error('API changed');
+          },
+        }),
+      ),
+    );
+    assert.equal(r.invocation.command, onPath);
+    assert.match(r.attempts[0].outcome, /could not be read.*API changed/);
+  });
+
+  it('skips an empty answer', async () => {
+    const onPath = file('bin/plx');
+    const r = expectFound(await discoverPlx(input({ env: { PATH: path.dirname(onPath) }, pythonExtensionInterpreter: async () => '  ' })));
+    assert.equal(r.invocation.source, 'PATH');
+    assert.equal(r.attempts.length, 1);
+  });
+});
+
+posixOnly('discoverPlx: PATH and the not-found message', () => {
+  it('takes the first executable plx on PATH, skipping non-executable files', async () => {
+    file('a/plx', 'data', 0o644);
+    const good = file('b/plx');
+    file('c/plx');
+    const PATH = ['', path.join(tmp, 'missing'), path.join(tmp, 'a'), path.join(tmp, 'b'), path.join(tmp, 'c')].join(':');
+    const r = expectFound(await discoverPlx(input({ env: { PATH } })));
+    assert.equal(r.invocation.command, good);
+    assert.match(r.invocation.description, /from PATH/);
+  });
+
+  it('says what was tried and how to install when nothing is found', async () => {
+    const { python } = venv('active', false);
+    const r = expectNotFound(await discoverPlx(input({ pythonExtensionInterpreter: python, env: { PATH: path.join(tmp, 'empty') } })));
+    assert.deepEqual(
+      r.attempts.map((a) => a.source),
+      ['python-extension', 'python-extension', 'PATH'],
+    );
+    assert.match(r.message, /^The OpenPLX language server \(plx\) was not found\. Tried: /);
+    assert.ok(r.message.includes(path.join(tmp, 'active', 'bin', 'plx')), r.message);
+    assert.ok(r.message.includes('plx on PATH [PATH]: not found'), r.message);
+    assert.ok(r.message.includes(`${python} -m pip install plxtools`), r.message);
+    assert.ok(r.message.includes('openplx.server.path'), r.message);
+    assert.ok(r.message.includes('OpenPLX: Restart server'), r.message);
+  });
+
+  it('suggests plain `pip install plxtools` when no interpreter is known', async () => {
+    const r = expectNotFound(await discoverPlx(input({})));
+    assert.ok(r.message.includes('`pip install plxtools`'), r.message);
+  });
+});
+
+describe('discoverPlx: Windows file layout (simulated)', () => {
+  const win = (overrides: Partial<DiscoveryInput>): DiscoveryInput => input({ platform: 'win32', ...overrides });
+
+  it('finds Scripts\\plx.exe next to a venv interpreter', async () => {
+    const python = file('venv/Scripts/python.exe', '', 0o644);
+    const plx = file('venv/Scripts/plx.exe', '', 0o644);
+    const r = expectFound(await discoverPlx(win({ interpreter: python })));
+    assert.equal(r.invocation.command, plx);
+  });
+
+  it('finds Scripts\\plx.exe below a base interpreter', async () => {
+    const python = file('Python311/python.exe', '', 0o644);
+    const plx = file('Python311/Scripts/plx.exe', '', 0o644);
+    const r = expectFound(await discoverPlx(win({ interpreter: python })));
+    assert.equal(r.invocation.command, plx);
+  });
+
+  it('searches PATH with ; and PATHEXT, with any casing of the variable names', async () => {
+    file('tools/plx', '', 0o644); // no extension: not a Windows program
+    const plx = file('tools/plx.exe', '', 0o644);
+    const env = { Path: `${path.join(tmp, 'none')};${path.join(tmp, 'tools')}`, PathExt: '.COM;.EXE;.BAT' };
+    const r = expectFound(await discoverPlx(win({ env })));
+    assert.equal(r.invocation.command, plx);
+  });
+
+  it('lists Windows candidates for an interpreter', () => {
+    const dir = path.join('C:', 'venv', 'Scripts');
+    assert.deepEqual(scriptCandidates(path.join(dir, 'python.exe'), 'win32'), [
+      path.join(dir, 'plx.exe'),
+      path.join(dir, 'Scripts', 'plx.exe'),
+    ]);
+  });
+});
+
+describe('helpers', () => {
+  it('resolveSettingPath expands ~ and ${userHome}, keeps bare names', () => {
+    const opts = { env: {}, platform: 'linux' as const, command: true };
+    assert.equal(resolveSettingPath('~/venv/bin/plx', opts), path.join(os.homedir(), 'venv/bin/plx'));
+    assert.equal(resolveSettingPath('${userHome}/x/plx', opts), path.join(os.homedir(), 'x/plx'));
+    assert.equal(resolveSettingPath('  plx  ', opts), 'plx');
+    // Not a command: a bare name is a relative path.
+    assert.equal(resolveSettingPath('bundles', { ...opts, command: false, workspaceFolder: '/ws' }), path.resolve('/ws', 'bundles'));
+  });
+
+  it('getEnv is case-insensitive on Windows only', () => {
+    assert.equal(getEnv({ Path: 'a' }, 'PATH', 'win32'), 'a');
+    assert.equal(getEnv({ Path: 'a' }, 'PATH', 'linux'), undefined);
+  });
+
+  posixOnly('on POSIX', () => {
+    it('findOnPath ignores empty and quoted entries', () => {
+      const plx = file('q/plx');
+      assert.equal(findOnPath('plx', { PATH: `::"${path.join(tmp, 'q')}"` }, 'linux'), plx);
+    });
+
+    it('probePlxtoolsModule asks the interpreter (exit 0 = installed)', async () => {
+      const yes = file('yes/python', '#!/bin/sh\nexit 0\n');
+      const no = file('no/python', '#!/bin/sh\nexit 3\n');
+      assert.equal(await probePlxtoolsModule(yes, process.env), true);
+      assert.equal(await probePlxtoolsModule(no, process.env), false);
+      assert.equal(await probePlxtoolsModule(path.join(tmp, 'missing'), process.env), false);
+    });
+
+    it('probePlxtoolsModule works with a real Python when one is on PATH', async function () {
+      const python = findOnPath('python3', process.env, process.platform);
+      if (!python) {
+        this.skip();
+      }
+      // The stdlib module `json` is always there; plxtools may or may not be.
+      assert.equal(typeof (await probePlxtoolsModule(python, process.env)), 'boolean');
+    });
+  });
+});
