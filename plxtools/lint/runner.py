@@ -62,11 +62,16 @@ def analyse_tree(tree: ast.File, cfg: Config, workspace=None) -> list[Diagnostic
             semantic_diagnostics = None
         if semantic_diagnostics is not None:
             diags.extend(semantic_diagnostics(tree, cfg, workspace))
+    return finalize(tree, diags, cfg)
+
+
+def finalize(tree: ast.File, diags: list[Diagnostic], cfg: Config) -> list[Diagnostic]:
+    """Config selection, inline suppressions and ordering: shared by lint, check and the server."""
+    from plxtools.lint.suppress import apply
+
     for d in diags:
         d.file = tree.path
     diags = [d for d in diags if cfg.rule_enabled(d.code, tree.path)]
-    from plxtools.lint.suppress import apply
-
     diags = apply(tree, diags, report_unused=cfg.rule_enabled("C002", tree.path))
     diags.sort(key=Diagnostic.sort_key)
     return diags

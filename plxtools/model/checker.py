@@ -290,7 +290,9 @@ class Checker:
             ty = self._type_expr(s.type)
             if len(parts) == 1 and model_def is not None:
                 inherited = self._inherited(model_def)
-                if name in inherited and inherited[name].stmt is not s:
+                # a trait may `becomes` an attribute its host declares (spec C.3/C.4): not a redeclaration
+                if name in inherited and inherited[name].stmt is not s and not (
+                        inherited[name].keyword == "becomes" and inherited[name].owner.is_trait):
                     old = inherited[name]
                     self.report("M001", f"'{name}' is already declared in {old.owner.qname}; use 'becomes' to "
                                 f"specialise it or ':' to give it a value", parts[-1].span,

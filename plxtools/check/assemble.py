@@ -1,0 +1,651 @@
+"""SNAP: compute the initial world pose of every system and body from declared transforms and mates.
+
+Decisions (spec D.5, D.6):
+
+* **Nodes** are the owned systems (``Physics3D.System``) and rigid bodies below the root.  A node's
+  pose is relative to the nearest enclosing node.  The root is at the world origin.
+* **Declared transform**: a node whose ``local_transform`` (systems) or
+  ``kinematics.local_transform`` (bodies) has any value routed into it from outside its own type:
+  an assignment to the transform or to any part of it (``kinematics.local_transform.position.z:
+  1.1``), anywhere in the chain of models and blocks that configure the node.  Such nodes are never
+  moved by SNAP.
+* **Connector frame**: z = main_axis normalised; x = normal with its main_axis component removed,
+  normalised; y = z x x.  A connector belongs to the nearest enclosing node; a const connector
+  (``Physics3D.Interactions.World``) or one on the root is fixed to the world.
+* **Mates** are taken in declaration order (depth first over the owned tree).  Each sweep places,
+  for the first mate that can fire, the *highest* undeclared node on the path from the mate's
+  closest common ancestor system down to the owner of its unplaced connector, so that
+  ``F(connectors[1]) = F(connectors[0]) * Offset`` with ``Offset = Rz(initial_angle) *
+  Tz(initial_position)`` (hinge / prismatic / cylindrical; ``Tz(initial_distance)`` for a Distance).
+  A sweep first fires only mates with exactly one unplaced node on that path; then mates that need
+  lower unplaced nodes on the path (those keep identity); then, when nothing can fire, it forces
+  the common system's ``reference_body`` (or else the nodes above ``connectors[0]``) to identity.
+  ``enable_snap: false`` and disabled mates take no part.
+* Nodes still unplaced at the end keep identity in their parent.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from plxtools.check.evaluate import Evaluator, Unavailable
+from plxtools.check.frames import IDENTITY, Pose, angle_between, compose, from_transform, inverse, rot_z, rotation_angle
+from plxtools.check.instance import Obj, walk_owned
+from plxtools.check.report import Reporter
+from plxtools.model.program import Program
+
+SYSTEM = "Physics3D.System"
+RIGID_BODY = "Physics3D.Bodies.RigidBody"
+BODY3D = "Physics3D.Bodies.Body"
+MATE = "Physics3D.Interactions.Mate"
+CONNECTOR = "Physics3D.Interactions.MateConnector"
+REDIRECTED = "Physics3D.Interactions.RedirectedMateConnector"
+ADAPTIVE = "Physics3D.Interactions.AdaptiveMateConnector"
+I1DOF = "Physics.Interactions.Interaction1DOF"
+INTERACTION = "Physics.Interactions.Interaction"
+
+MATE_KINDS = {
+    "Physics3D.Interactions.Hinge": "hinge",
+    "Physics3D.Interactions.Prismatic": "prismatic",
+    "Physics3D.Interactions.Cylindrical": "cylindrical",
+    "Physics3D.Interactions.Ball": "ball",
+    "Physics3D.Interactions.Lock": "lock",
+    "Physics3D.Interactions.Distance": "distance",
+}
+# type -> (scene kind, dof)
+CONTROLLER_KINDS = {
+    "Physics3D.Interactions.RotationalVelocityMotor": ("velocity_motor", "rotational"),
+    "Physics3D.Interactions.LinearVelocityMotor": ("velocity_motor", "linear"),
+    "Physics3D.Interactions.TorqueMotor": ("torque_motor", "rotational"),
+    "Physics3D.Interactions.ForceMotor": ("force_motor", "linear"),
+    "Physics3D.Interactions.RotationalRange": ("range", "rotational"),
+    "Physics3D.Interactions.LinearRange": ("range", "linear"),
+    "Physics3D.Interactions.TorsionSpring": ("spring", "rotational"),
+    "Physics3D.Interactions.LinearSpring": ("spring", "linear"),
+}
+DOF_OF_MATE = {
+    "hinge": {"rotational"},
+    "prismatic": {"linear"},
+    "cylindrical": {"rotational", "linear"},
+    "ball": set(),
+    "lock": set(),
+    "distance": set(),
+}
+POS_TOL = 1e-4  # m
+ANGLE_TOL = 1e-3  # rad
+
+
+class Kinds:
+    """Subtype tests against bundle types by qualified name, cached."""
+
+    def __init__(self, program: Program):
+        self.p = program
+        self._syms: dict[str, Any] = {}
+        self._cache: dict[tuple, bool] = {}
+
+    def sym(self, qname: str):
+        if qname not in self._syms:
+            self._syms[qname] = self.p.lookup_outside_visibility(qname.split("."))
+        return self._syms[qname]
+
+    def isa(self, obj: Obj, qname: str) -> bool:
+        key = (id(obj.model), qname) if not obj.traits else (id(obj.model), tuple(id(t) for t in obj.traits), qname)
+        hit = self._cache.get(key)
+        if hit is None:
+            sym = self.sym(qname)
+            hit = sym is not None and self.p.is_subtype(obj.model, sym, tuple(obj.traits))
+            self._cache[key] = hit
+        return hit
+
+    def first(self, obj: Obj, table: dict) -> Any:
+        """The value of the first qualified name in ``table`` that ``obj`` is a subtype of, most
+        derived first (tables list leaf types)."""
+        for qn, v in table.items():
+            if self.isa(obj, qn):
+                return v
+        return None
+
+    def root_namespace(self, obj: Obj) -> str:
+        m = self.p.concrete(obj.model)
+        return m.qname.split(".")[0]
+
+
+@dataclass(eq=False)
+class Node:
+    obj: Obj
+    kind: str  # "system" | "body"
+    parent: "Node | None"
+    index: int
+    local: Pose | None = None
+    explicit: bool = False
+    explicit_where: tuple = (None, None)  # (stmt, unit) of the declaring statement
+    placed_by: str = ""
+    world: Pose | None = None
+    is_dynamic: bool = True
+
+    @property
+    def path(self) -> str:
+        return self.obj.display
+
+
+@dataclass(eq=False)
+class Conn:
+    obj: Obj
+    node: Node  # the node whose frame the connector is given in
+    frame: Pose  # connector frame in the node's frame
+    main_axis: np.ndarray  # as given (owner frame)
+    normal: np.ndarray  # as used (orthogonalised, unit)
+    ok: bool = True
+    redirected_parent: Obj | None = None
+
+
+@dataclass(eq=False)
+class MateRec:
+    obj: Obj
+    kind: str  # scene kind or "unknown"
+    conns: list  # list[Conn | None]
+    enabled: bool = True
+    snap: bool = True
+    initial_angle: float = 0.0
+    initial_position: float = 0.0
+    initial_distance: float = 0.0
+    usable: bool = True  # two distinct, valid connectors on different owners
+    placed: str = ""  # which node this mate placed (SNAP), if any
+    separation: float = 0.0
+    misalignment: float = 0.0
+
+    @property
+    def path(self) -> str:
+        return self.obj.display
+
+    def offset(self) -> Pose:
+        r = rot_z(self.initial_angle) if self.kind in ("hinge", "cylindrical") else np.eye(3)
+        dz = 0.0
+        if self.kind in ("prismatic", "cylindrical"):
+            dz = self.initial_position
+        elif self.kind == "distance":
+            dz = self.initial_distance
+        return r, np.array([0.0, 0.0, dz])
+
+
+@dataclass(eq=False)
+class CtrlRec:
+    obj: Obj
+    kind: str
+    dof: str
+    conns: list
+    mate: MateRec | None = None
+    reversed: bool = False
+
+    @property
+    def path(self) -> str:
+        return self.obj.display
+
+
+@dataclass(eq=False)
+class Assembly:
+    root: Obj
+    root_node: Node
+    nodes: list[Node] = field(default_factory=list)
+    by_obj: dict[int, Node] = field(default_factory=dict)
+    mates: list[MateRec] = field(default_factory=list)
+    controllers: list[CtrlRec] = field(default_factory=list)
+    conns: dict[int, Conn] = field(default_factory=dict)
+    owned: list[Obj] = field(default_factory=list)
+    other_interactions: list[Obj] = field(default_factory=list)
+
+    def node_of(self, obj: Obj) -> Node | None:
+        return self.by_obj.get(id(obj))
+
+    def conn_world(self, c: Conn) -> Pose:
+        return compose(c.node.world, c.frame)
+
+    @property
+    def bodies(self) -> list[Node]:
+        return [n for n in self.nodes if n.kind == "body"]
+
+
+def _where_text(rep: Reporter, node_unit: tuple) -> str:
+    stmt, unit = node_unit
+    if stmt is not None and unit is rep.unit:
+        return f" at line {stmt.header.start.line + 1}"
+    return ""
+
+
+class Assembler:
+    def __init__(self, program: Program, ev: Evaluator, rep: Reporter, kinds: Kinds):
+        self.p = program
+        self.ev = ev
+        self.rep = rep
+        self.k = kinds
+
+    # ------------------------------------------------------------------ helpers
+
+    def get(self, obj: Obj, path: str, default: Any = None) -> Any:
+        try:
+            return self.ev.get(obj, path, default)
+        except Unavailable:
+            return default
+        except KeyError:
+            return default
+
+    def real(self, obj: Obj, path: str, default: float) -> float:
+        v = self.get(obj, path, default)
+        try:
+            return float(v)
+        except (TypeError, ValueError):
+            return default
+
+    # ------------------------------------------------------------------ build
+
+    def run(self, root: Obj) -> Assembly:
+        owned = list(walk_owned(root))
+        root_kind = "body" if self.k.isa(root, RIGID_BODY) else "system"
+        root_node = Node(root, root_kind, None, 0, IDENTITY, True, (None, None), "root (world origin)")
+        asm = Assembly(root, root_node, owned=owned)
+        asm.nodes.append(root_node)
+        asm.by_obj[id(root)] = root_node
+        mates: list[Obj] = []
+        ctrls: list[Obj] = []
+        for obj in owned[1:]:
+            kind = None
+            if self.k.isa(obj, SYSTEM):
+                kind = "system"
+            elif self.k.isa(obj, RIGID_BODY):
+                kind = "body"
+            if kind is not None:
+                parent = self._parent_node(asm, obj)
+                node = Node(obj, kind, parent, len(asm.nodes))
+                asm.nodes.append(node)
+                asm.by_obj[id(obj)] = node
+                if kind == "body" and parent is not None and parent.kind != "system":
+                    self.rep.add("A039", f"rigid body {obj.display} is owned by {obj.owner.display}, which is not "
+                                 f"a Physics3D.System; bodies must sit directly in a system", obj=obj,
+                                 help="move the body into the system and join it with a mate (Lock)")
+                elif kind == "body" and obj.owner is not None and asm.node_of(obj.owner) is None \
+                        and obj.owner is not root:
+                    self.rep.add("A039", f"rigid body {obj.display} is owned by {obj.owner.display}, which is not "
+                                 f"a Physics3D.System; bodies must sit directly in a system", obj=obj)
+                continue
+            if self.k.isa(obj, MATE):
+                mates.append(obj)
+            elif self.k.isa(obj, I1DOF) and self.k.first(obj, {k: True for k in CONTROLLER_KINDS}):
+                ctrls.append(obj)
+            elif self.k.isa(obj, INTERACTION):
+                asm.other_interactions.append(obj)
+        for node in asm.nodes[1:]:
+            self._declared(node)
+        for m in mates:
+            asm.mates.append(self._mate(asm, m))
+        for c in ctrls:
+            asm.controllers.append(self._controller(asm, c))
+        self._snap(asm)
+        self._world(asm)
+        self._violations(asm)
+        return asm
+
+    def _parent_node(self, asm: Assembly, obj: Obj) -> Node | None:
+        cur = obj.owner
+        while cur is not None:
+            n = asm.node_of(cur)
+            if n is not None:
+                return n
+            cur = cur.owner
+        return asm.root_node
+
+    def _declared(self, node: Node) -> None:
+        obj = node.obj
+        path = "local_transform" if node.kind == "system" else "kinematics.local_transform"
+        lt = self.ev.child(obj, path)
+        if node.kind == "body":
+            node.is_dynamic = bool(self.get(obj, "is_dynamic", True))
+        if isinstance(lt, Obj) and lt.struct is not None and lt.explicit:
+            node.explicit = True
+            node.explicit_where = self.ev.where(obj, path)
+            try:
+                t = self.ev.get(obj, path)
+                node.local = from_transform(t)
+            except (Unavailable, KeyError, AttributeError):
+                node.local = IDENTITY
+            node.placed_by = "declared transform" + _where_text(self.rep, node.explicit_where)
+            if not np.all(np.isfinite(node.local[1])):
+                node.local = IDENTITY
+
+    # ------------------------------------------------------------------ connectors, mates
+
+    def connector(self, asm: Assembly, obj: Obj) -> Conn | None:
+        c = asm.conns.get(id(obj))
+        if c is not None:
+            return c
+        if not self.k.isa(obj, CONNECTOR):
+            self.rep.add("A013", f"{obj.display} is not a Physics3D.Interactions.MateConnector", obj=obj)
+            return None
+        node = self._parent_node(asm, obj) if obj.owner is not None else asm.root_node
+        if node is None:
+            node = asm.root_node
+        pos = self._vec(obj, "position", np.zeros(3))
+        axis = self._vec(obj, "main_axis", np.array([0.0, 0.0, 1.0]))
+        normal = self._vec(obj, "normal", None)
+        ok = True
+        n_axis = float(np.linalg.norm(axis))
+        if n_axis < 1e-9:
+            node_, unit_ = self.ev.where(obj, "main_axis")
+            self.rep.add("A010", f"connector {obj.display} has a zero main_axis", node=node_, unit=unit_, obj=obj,
+                         help="give the axis the joint turns about or slides along, e.g. main_axis: {0, 0, 1}")
+            z = np.array([0.0, 0.0, 1.0])
+            ok = False
+        else:
+            z = axis / n_axis
+        x = None
+        if normal is not None and ok:
+            nn = float(np.linalg.norm(normal))
+            perp = normal - float(np.dot(normal, z)) * z
+            np_ = float(np.linalg.norm(perp))
+            if nn < 1e-9 or np_ < 1e-6 * max(nn, 1.0):
+                node_, unit_ = self.ev.where(obj, "normal")
+                what = "zero" if nn < 1e-9 else ("parallel" if float(np.dot(normal, z)) > 0 else "antiparallel") \
+                    + " to its main_axis"
+                self.rep.add("A011", f"connector {obj.display}: normal {_v(normal)} is {what}, so the frame "
+                             f"about the main axis is undefined", node=node_, unit=unit_, obj=obj,
+                             help="give a normal orthogonal to main_axis")
+                ok = False
+            else:
+                x = perp / np_
+                if abs(float(np.dot(normal / nn, z))) > 1e-6:
+                    node_, unit_ = self.ev.where(obj, "normal")
+                    self.rep.add("A012", f"connector {obj.display}: normal {_v(normal)} is not orthogonal to "
+                                 f"main_axis {_v(axis)}; only its orthogonal part {_v(x)} counts",
+                                 node=node_, unit=unit_, obj=obj)
+        if x is None:
+            from plxtools.check.scene import default_normal
+
+            x = np.array(default_normal(tuple(float(v) for v in z)))
+        y = np.cross(z, x)
+        frame = (np.column_stack([x, y, z]), pos)
+        redirected = None
+        if self.k.isa(obj, REDIRECTED):
+            rp = self.get(obj, "redirected_parent", None)
+            if isinstance(rp, Obj):
+                redirected = rp
+        c = Conn(obj, node, frame, axis, x, ok, redirected)
+        asm.conns[id(obj)] = c
+        return c
+
+    def _vec(self, obj: Obj, path: str, default):
+        try:
+            v = self.ev.get(obj, path)
+        except (Unavailable, KeyError):
+            return default
+        try:
+            arr = np.asarray(v, dtype=float)
+        except (TypeError, ValueError):
+            return default
+        if arr.shape != (3,) or not np.all(np.isfinite(arr)):
+            return default
+        return arr
+
+    def _connector_list(self, asm: Assembly, obj: Obj, what: str) -> list | None:
+        try:
+            lst = self.ev.get(obj, "connectors")
+        except Unavailable:
+            return None
+        except KeyError:
+            lst = None
+        if not isinstance(lst, list):
+            return None
+        if len(lst) != 2:
+            node_, unit_ = self.ev.where(obj, "connectors")
+            self.rep.add("A013", f"{what} {obj.display} has {len(lst)} connector{'s' if len(lst) != 1 else ''}; "
+                         f"it needs exactly 2", node=node_, unit=unit_, obj=obj,
+                         help="connectors: [a.connector, b.connector]")
+            return None
+        out = []
+        for item in lst:
+            if not isinstance(item, Obj):
+                node_, unit_ = self.ev.where(obj, "connectors")
+                self.rep.add("A013", f"{what} {obj.display}: a connector is not an object", node=node_, unit=unit_,
+                             obj=obj)
+                return None
+            out.append(self.connector(asm, item))
+        return out
+
+    def _mate(self, asm: Assembly, obj: Obj) -> MateRec:
+        kind = self.k.first(obj, MATE_KINDS) or "unknown"
+        rec = MateRec(obj, kind, [])
+        rec.enabled = bool(self.get(obj, "enabled", True))
+        rec.snap = bool(self.get(obj, "enable_snap", True))
+        if kind in ("hinge", "cylindrical"):
+            rec.initial_angle = self.real(obj, "initial_angle", 0.0)
+        if kind in ("prismatic", "cylindrical"):
+            rec.initial_position = self.real(obj, "initial_position", 0.0)
+        if kind == "distance":
+            rec.initial_distance = self.real(obj, "initial_distance", 0.0)
+        conns = self._connector_list(asm, obj, "mate")
+        if conns is None or any(c is None for c in conns):
+            rec.usable = False
+            rec.conns = conns or []
+            return rec
+        rec.conns = conns
+        c0, c1 = conns
+        node_, unit_ = self.ev.where(obj, "connectors")
+        if c0.obj is c1.obj:
+            self.rep.add("A014", f"mate {obj.display} joins connector {c0.obj.display} to itself",
+                         node=node_, unit=unit_, obj=obj, help="list the two connectors of the two parts it joins")
+            rec.usable = False
+        elif c0.node is c1.node and (c0.node.kind == "body" or c0.node is asm.root_node or
+                                     (c0.redirected_parent is None and c1.redirected_parent is None)):
+            where = c0.node.path if c0.node.kind == "body" else "the world (no body)"
+            self.rep.add("A015", f"mate {obj.display}: both connectors belong to {where}, so it joins nothing",
+                         node=node_, unit=unit_, obj=obj,
+                         help="one connector must belong to each of the two bodies the mate joins")
+            rec.usable = False
+        if not c0.ok or not c1.ok:
+            rec.usable = rec.usable and True  # degenerate frames are reported; SNAP uses a fallback frame
+        return rec
+
+    def _controller(self, asm: Assembly, obj: Obj) -> CtrlRec:
+        kind, dof = self.k.first(obj, CONTROLLER_KINDS)
+        conns = self._connector_list(asm, obj, "controller")
+        rec = CtrlRec(obj, kind, dof, conns or [])
+        if not conns or any(c is None for c in conns):
+            return rec
+        a, b = conns[0].obj, conns[1].obj
+        for m in asm.mates:
+            if len(m.conns) == 2 and m.conns[0] is not None and m.conns[1] is not None:
+                if m.conns[0].obj is a and m.conns[1].obj is b:
+                    rec.mate = m
+                    break
+                if m.conns[0].obj is b and m.conns[1].obj is a:
+                    rec.mate, rec.reversed = m, True
+                    break
+        return rec
+
+    # ------------------------------------------------------------------ SNAP
+
+    @staticmethod
+    def _chain(node: Node, top: Node) -> list[Node] | None:
+        """Nodes from below ``top`` down to ``node`` (top excluded), or None if top is not above."""
+        out = []
+        cur: Node | None = node
+        while cur is not top:
+            if cur is None:
+                return None
+            out.append(cur)
+            cur = cur.parent
+        out.reverse()
+        return out
+
+    @staticmethod
+    def _rel(chain: list[Node]) -> Pose | None:
+        pose = IDENTITY
+        for n in chain:
+            if n.local is None:
+                return None
+            pose = compose(pose, n.local)
+        return pose
+
+    @staticmethod
+    def _common_system(a: Node, b: Node) -> Node:
+        seen = set()
+        cur: Node | None = a
+        while cur is not None:
+            seen.add(id(cur))
+            cur = cur.parent
+        cur = b
+        while cur is not None and id(cur) not in seen:
+            cur = cur.parent
+        lca = cur
+        while lca is not None and lca.kind != "system" and lca.parent is not None:
+            lca = lca.parent
+        return lca
+
+    def _snap(self, asm: Assembly) -> None:
+        todo = [m for m in asm.mates if m.usable and m.enabled and m.snap and m.kind != "unknown"]
+        info: dict[int, tuple] = {}
+        for m in todo:
+            c0, c1 = m.conns
+            top = self._common_system(c0.node, c1.node)
+            if top is None:
+                continue
+            info[id(m)] = (top, self._chain(c0.node, top), self._chain(c1.node, top))
+        done: set[int] = set()
+        guard = 0
+        while guard < 10 * (len(todo) + len(asm.nodes)) + 10:
+            guard += 1
+            fired = False
+            for strict in (True, False):
+                for m in todo:
+                    if id(m) in done or id(m) not in info:
+                        continue
+                    top, ch0, ch1 = info[id(m)]
+                    r0, r1 = self._rel(ch0), self._rel(ch1)
+                    if r0 is not None and r1 is not None:
+                        done.add(id(m))
+                        continue
+                    if r0 is None and r1 is None:
+                        continue
+                    k = 0 if r0 is not None else 1
+                    u_chain = ch1 if k == 0 else ch0
+                    free = [n for n in u_chain if n.local is None]
+                    if strict and len(free) > 1:
+                        continue
+                    self._place(m, k, top, ch0, ch1, free)
+                    done.add(id(m))
+                    fired = True
+                    break
+                if fired:
+                    break
+            if fired:
+                continue
+            forced = self._force(asm, todo, done, info)
+            if not forced:
+                break
+        for n in asm.nodes:
+            if n.local is None:
+                n.local = IDENTITY
+                n.placed_by = "not placed: no declared transform and no mate fixes it (identity)"
+
+    def _place(self, m: MateRec, k: int, top: Node, ch0: list, ch1: list, free: list) -> None:
+        c_known, c_unknown = m.conns[k], m.conns[1 - k]
+        ch_known, ch_unknown = (ch0, ch1) if k == 0 else (ch1, ch0)
+        movable = free[0]
+        for n in free[1:]:
+            n.local = IDENTITY
+            n.placed_by = f"identity, moved with {movable.path} (placed by {m.path})"
+        f_known = compose(self._rel(ch_known), c_known.frame)
+        off = m.offset()
+        f_target = compose(f_known, off) if k == 0 else compose(f_known, inverse(off))
+        i = ch_unknown.index(movable)
+        x_parent = self._rel(ch_unknown[:i])
+        below = self._rel(ch_unknown[i + 1:])
+        y = compose(below, c_unknown.frame)
+        movable.local = compose(compose(inverse(x_parent), f_target), inverse(y))
+        movable.placed_by = f"SNAP, by mate {m.path}"
+        m.placed = movable.path
+
+    def _force(self, asm: Assembly, todo: list, done: set, info: dict) -> bool:
+        for m in todo:
+            if id(m) in done or id(m) not in info:
+                continue
+            top, ch0, ch1 = info[id(m)]
+            if self._rel(ch0) is not None or self._rel(ch1) is not None:
+                continue
+            ref = None
+            if top.kind == "system":
+                rb = self.get(top.obj, "reference_body", None)
+                if isinstance(rb, Obj):
+                    ref = asm.node_of(rb)
+            if ref is not None and ref.local is None:
+                chain = self._chain(ref, top) or [ref]
+                for n in chain:
+                    if n.local is None:
+                        n.local = IDENTITY
+                        n.placed_by = f"identity: reference_body of {top.path}, placed first"
+                return True
+            for ch in (ch0, ch1):
+                free = [n for n in ch if n.local is None]
+                if free:
+                    for n in free:
+                        n.local = IDENTITY
+                        n.placed_by = f"identity: forced so that SNAP can go on from mate {m.path}"
+                    return True
+        return False
+
+    def _world(self, asm: Assembly) -> None:
+        for n in asm.nodes:  # parents come before children (walk order)
+            if n.parent is None:
+                n.world = n.local if n.local is not None else IDENTITY
+            else:
+                pw = n.parent.world if n.parent.world is not None else IDENTITY
+                n.world = compose(pw, n.local if n.local is not None else IDENTITY)
+
+    # ------------------------------------------------------------------ checks after SNAP
+
+    def _violations(self, asm: Assembly) -> None:
+        for m in asm.mates:
+            if not m.usable or not m.enabled or m.kind == "unknown":
+                continue
+            c0, c1 = m.conns
+            f0 = compose(asm.conn_world(c0), m.offset())
+            f1 = asm.conn_world(c1)
+            d = f1[1] - f0[1]
+            z0 = f0[0][:, 2]
+            if m.kind in ("prismatic", "cylindrical"):
+                d = d - float(np.dot(d, z0)) * z0
+            sep = float(np.linalg.norm(d))
+            if m.kind == "distance":
+                sep = abs(float(np.linalg.norm(f1[1] - asm.conn_world(c0)[1])) - m.initial_distance)
+            ang = 0.0
+            if m.kind in ("hinge", "cylindrical"):
+                ang = angle_between(z0, f1[0][:, 2])
+            elif m.kind in ("prismatic", "lock"):
+                ang = rotation_angle(f0[0].T @ f1[0])
+            m.separation, m.misalignment = sep, ang
+            if sep <= POS_TOL and ang <= ANGLE_TOL:
+                continue
+            parts = []
+            if sep > POS_TOL:
+                parts.append(f"{sep:.4g} m apart")
+            if ang > ANGLE_TOL:
+                parts.append(f"main axes {math.degrees(ang):.3g} deg apart" if m.kind in ("hinge", "cylindrical")
+                             else f"frames turned {math.degrees(ang):.3g} deg")
+            sides = []
+            for c in (c0, c1):
+                n = c.node
+                if n is asm.root_node:
+                    sides.append(f"{c.obj.display}: fixed to the world")
+                else:
+                    sides.append(f"{n.path}: {n.placed_by}")
+            why = "; ".join(sides)
+            self.rep.add("A016", f"mate {m.path}: its connectors do not coincide after assembly ({', '.join(parts)}); "
+                         f"{why}", obj=m.obj,
+                         help="SNAP moves only bodies and systems without a declared transform; remove the "
+                         "explicit local_transform of one side, or fix the connector positions and axes")
+
+
+def _v(a) -> str:
+    return "{" + ", ".join(f"{float(x):.4g}" for x in a) + "}"

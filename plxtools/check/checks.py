@@ -1,0 +1,415 @@
+"""Static assembly checks (codes A0xx, stage "check"), run on the assembled object tree.
+
+Each finding is placed on the line that causes it: the assignment that gives the bad value when it
+is written in the checked file, otherwise the declaration (in that file) of the object involved.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from itertools import combinations
+
+import numpy as np
+
+from plxtools.check.assemble import DOF_OF_MATE, Assembler, Assembly, CtrlRec, Kinds, MateRec, Node
+from plxtools.check.convert import Collector, GeomRec
+from plxtools.check.frames import angle_between, compose
+from plxtools.check.instance import Obj
+from plxtools.check.report import Reporter
+from plxtools.syntax import ast
+
+TWO_PI = 2.0 * math.pi
+UNSUPPORTED_BUNDLES = {
+    "Physics1D": "Physics1D (1D shafts and interactions)",
+    "DriveTrain": "DriveTrain (engines, gears, clutches, actuators)",
+    "Terrain": "Terrain (deformable terrain)",
+    "Sensors": "Sensors",
+    "Vehicles": "Vehicles (tracks, suspensions, tyres)",
+    "Robotics": "Robotics",
+}
+SIGNAL_NAMESPACES = ("Physics.Signals", "Physics3D.Signals")
+DRY_MODELS = ("dry", "dry_cone", "dry_box", "dry_scale_box", "dry_constant_normal_force",
+              "dry_depth_scaled_constant_normal_force")
+_INTERP = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
+
+
+class StaticChecks:
+    def __init__(self, asm: Assembly, asmb: Assembler, col: Collector, kinds: Kinds, rep: Reporter):
+        self.asm = asm
+        self.a = asmb
+        self.ev = asmb.ev
+        self.col = col
+        self.k = kinds
+        self.rep = rep
+
+    def run(self) -> None:
+        self.unsupported()
+        self.masses()
+        self.contacts()
+        self.mates()
+        self.controllers()
+        self.hinge_axes()
+        self.mirrored_motors()
+        self.overlaps()
+
+    # ------------------------------------------------------------------ helpers
+
+    def where(self, obj: Obj, path: str) -> tuple:
+        return self.ev.where(obj, path)
+
+    def add_at(self, code: str, message: str, obj: Obj, attr: str | None = None, **kw) -> None:
+        node, unit = self.where(obj, attr) if attr else (None, None)
+        self.rep.add(code, message, node=node, unit=unit, obj=obj, **kw)
+
+    # ------------------------------------------------------------------ unsupported features
+
+    def unsupported(self) -> None:
+        p = self.a.p
+        reported: set[int] = set()
+        for obj in self.asm.owned[1:]:
+            if any(id(o) in reported for o in _owners(obj)):
+                continue
+            qn = p.concrete(obj.model).qname
+            ns = qn.split(".")[0]
+            msg = None
+            if ns in UNSUPPORTED_BUNDLES:
+                msg = f"{obj.display} ({qn}): {UNSUPPORTED_BUNDLES[ns]} is not supported by the MuJoCo backend; " \
+                      f"it is not simulated"
+            elif qn.startswith(SIGNAL_NAMESPACES) and obj.decl is not None and obj.decl[0].unit is self.rep.unit:
+                msg = f"{obj.display} ({qn}): signals are not simulated by the MuJoCo backend"
+            elif qn == "Physics.KinematicLock":
+                msg = f"{obj.display}: Physics.KinematicLock is not supported by the MuJoCo backend (the bodies " \
+                      f"move independently)"
+            elif self.k.isa(obj, "Physics3D.Interactions.AdaptiveMateConnector"):
+                msg = f"{obj.display}: AdaptiveMateConnector is treated as a plain MateConnector"
+            elif qn == "Physics3D.Interactions.StructuralPlanarConnector" or qn.startswith("Physics3D.Structural"):
+                msg = None
+            if msg is not None:
+                reported.add(id(obj))
+                self.rep.add("A040", msg, obj=obj)
+                self.col.unsupported.append((qn, obj, msg))
+        for obj in self.asm.other_interactions:
+            if id(obj) in reported or any(id(o) in reported for o in _owners(obj)):
+                continue
+            qn = p.concrete(obj.model).qname
+            if qn.split(".")[0] in UNSUPPORTED_BUNDLES:
+                continue
+            msg = f"{obj.display} ({qn}): this interaction has no MuJoCo mapping and is not simulated"
+            self.rep.add("A040", msg, obj=obj)
+            self.col.unsupported.append((qn, obj, msg))
+        for m in self.asm.mates:
+            if m.kind == "unknown":
+                qn = p.concrete(m.obj.model).qname
+                msg = f"{m.path} ({qn}): this mate type has no MuJoCo mapping and is not simulated"
+                self.rep.add("A040", msg, obj=m.obj)
+                self.col.unsupported.append((qn, m.obj, msg))
+        for c in self.col.contacts:
+            if c.enabled and c.restitution is not None and c.restitution > 0:
+                self.add_at("A040", f"{c.obj.display}: normal_restitution {c.restitution:g} is not supported by "
+                            f"MuJoCo (contacts are inelastic); it is ignored", c.obj, "normal_restitution",
+                            path=c.obj.display)
+            if c.enabled and c.friction_model not in DRY_MODELS:
+                self.add_at("A040", f"{c.obj.display}: friction model {c.friction_model} is not dry friction; "
+                            f"MuJoCo uses its default friction for this pair", c.obj, "friction", path=c.obj.display)
+        root = self.asm.root
+        if self.k.isa(root, "Simulation.Environment"):
+            g = self.ev.child(root, "gravity")
+            if isinstance(g, Obj) and self.k.isa(g, "Simulation.PointGravitationalField"):
+                msg = f"{g.display}: PointGravitationalField is not supported by MuJoCo; uniform gravity " \
+                      f"{{0, 0, -9.80665}} is used"
+                self.rep.add("A040", msg, obj=g)
+                self.col.unsupported.append(("Simulation.PointGravitationalField", g, msg))
+
+    # ------------------------------------------------------------------ mass
+
+    def masses(self) -> None:
+        geoms: dict[int, list[GeomRec]] = {}
+        for g in self.col.geoms:
+            geoms.setdefault(id(g.node), []).append(g)
+            if not g.visual and g.include_in_mass and g.valid and g.density <= 0 and g.material_obj is not None:
+                self.add_at("A038", f"material {g.material_obj.display} of {g.path} has density {g.density:g}; "
+                            f"it must be > 0 for the geometry to give mass", g.material_obj, "density",
+                            path=g.path)
+        for n in self.asm.bodies:
+            obj = n.obj
+            mass = self.a.real(obj, "inertia.mass", 0.0)
+            if mass < 0:
+                self.add_at("A032", f"{n.path} has negative mass {mass:g}", obj, "inertia.mass",
+                            help="a mass of 0 means: compute it from the geometries")
+            elif mass == 0 and n.is_dynamic:
+                contributing = [g for g in geoms.get(id(n), []) if not g.visual and g.valid and g.include_in_mass
+                                and g.density > 0 and g.volume() > 0]
+                # a geometry that failed to evaluate or was rejected (A030, A031) is reported already
+                failed = any(g.failed or not g.valid for g in geoms.get(id(n), []) if not g.visual)
+                if not contributing and not failed:
+                    self.add_at("A033", f"dynamic body {n.path} has mass 0 and no geometry that gives it mass",
+                                obj, "inertia.mass",
+                                help="give inertia.mass a value, or a contact geometry with a size and a material "
+                                "density")
+            t = self.a.get(obj, "inertia.tensor", None)
+            if isinstance(t, np.ndarray) and t.shape == (3, 3) and np.any(np.diag(t) != 0):
+                problem = _tensor_problem(t)
+                if problem:
+                    self.add_at("A034", f"{n.path}: inertia tensor {problem}", obj, "inertia.tensor",
+                                help="use Physics3D.Bodies.Inertia.symmetric_tensor(diag, e01, e02, e12) with "
+                                "positive principal moments")
+
+    # ------------------------------------------------------------------ contact models
+
+    def contacts(self) -> None:
+        seen: dict[tuple, object] = {}
+        for c in self.col.contacts:
+            if c.key1 is None or c.key2 is None:
+                continue
+            key = tuple(sorted((c.key1, c.key2)))
+            first = seen.get(key)
+            if first is not None:
+                line = self.rep.anchor(first.obj).start.line + 1
+                self.rep.add("A035", f"{c.obj.display} is a second SurfaceContact.Model for the material pair "
+                             f"{key[0]} / {key[1]} (the first is {first.obj.display}, line {line})", obj=c.obj,
+                             help="keep one contact model per pair of materials")
+            else:
+                seen[key] = c
+            if c.friction is not None and c.friction < 0:
+                fr = self.ev.child(c.obj, "friction")
+                self.add_at("A036", f"{c.obj.display}: friction coefficient {c.friction:g} is negative",
+                            fr if isinstance(fr, Obj) else c.obj, "coefficient" if isinstance(fr, Obj) else None,
+                            path=c.obj.display)
+            pairs = (("normal_restitution", c.restitution), ("tangential_restitution", c.tangential_restitution))
+            for attr, v in pairs:
+                if v is not None and not 0.0 <= v <= 1.0:
+                    self.add_at("A036", f"{c.obj.display}: {attr} {v:g} is outside [0, 1]", c.obj, attr,
+                                path=c.obj.display)
+
+    # ------------------------------------------------------------------ mates
+
+    def mates(self) -> None:
+        for m in self.asm.mates:
+            if not m.usable or not m.enabled:
+                continue
+            if m.kind in ("hinge", "cylindrical") and abs(m.initial_angle) > TWO_PI:
+                self.add_at("A022", f"{m.path}: initial_angle {m.initial_angle:g} is more than 2 pi: is it in "
+                            f"degrees? Angles are radians", m.obj, "initial_angle",
+                            help=f"Math.Functions.deg_to_rad({m.initial_angle:g})")
+            dyn = [c.node.kind == "body" and c.node.is_dynamic for c in m.conns]
+            if not any(dyn):
+                self.rep.add("A017", f"mate {m.path} joins two parts that do not move (static bodies or the "
+                             f"world); it has no effect", obj=m.obj)
+
+    # ------------------------------------------------------------------ controllers
+
+    def controllers(self) -> None:
+        for c in self.asm.controllers:
+            obj = c.obj
+            if len(c.conns) != 2 or any(x is None for x in c.conns):
+                continue
+            if c.mate is None:
+                names = ", ".join(x.obj.display for x in c.conns)
+                self.add_at("A020", f"{c.path}: its connectors [{names}] are not the connectors of any mate, so "
+                            f"it drives nothing", obj, "connectors",
+                            help="use the connectors of the mate it drives, e.g. connectors: hinge.connectors")
+            else:
+                free = DOF_OF_MATE.get(c.mate.kind, set())
+                if c.dof not in free:
+                    what = "rotation" if c.dof == "rotational" else "translation"
+                    self.add_at("A021", f"{c.path} ({self.a.p.concrete(obj.model).name}) drives a {what}, but its "
+                                f"mate {c.mate.path} is a {c.mate.kind.capitalize()}, which has no free {what}",
+                                obj, "connectors")
+            if c.kind == "velocity_motor" and c.dof == "rotational":
+                v = self.a.real(obj, "target_speed", 0.0)
+                if abs(v) > TWO_PI:
+                    self.add_at("A022", f"{c.path}: target_speed {v:g} rad/s is more than 2 pi: is it in degrees "
+                                f"per second?", obj, "target_speed",
+                                help=f"Math.Functions.deg_to_rad({v:g}) if it is")
+            if c.kind == "range":
+                start = self.a.real(obj, "start", math.nan)
+                end = self.a.real(obj, "end", math.nan)
+                if math.isfinite(start) and math.isfinite(end) and start > end:
+                    self.add_at("A024", f"{c.path}: range start {start:g} is greater than end {end:g}", obj, "start")
+                if c.dof == "rotational" and any(math.isfinite(x) and abs(x) > TWO_PI for x in (start, end)):
+                    self.add_at("A022", f"{c.path}: range [{start:g}, {end:g}] goes beyond 2 pi: is it in degrees?",
+                                obj, "start")
+            lo = self.a.real(obj, "min_effort", -math.inf)
+            hi = self.a.real(obj, "max_effort", math.inf)
+            if lo > hi:
+                self.add_at("A024", f"{c.path}: min_effort {lo:g} is greater than max_effort {hi:g}", obj,
+                            "min_effort")
+
+    # ------------------------------------------------------------------ hinge axis vs cylinder axis
+
+    def hinge_axes(self) -> None:
+        by_node: dict[int, list[GeomRec]] = {}
+        for g in self.col.geoms:
+            if not g.visual and g.valid and g.kind in ("cylinder", "capsule"):
+                by_node.setdefault(id(g.node), []).append(g)
+        for m in self.asm.mates:
+            if not m.usable or m.kind not in ("hinge", "cylindrical"):
+                continue
+            axis_w = self.asm.conn_world(m.conns[0])[0][:, 2]
+            for c in m.conns:
+                n = c.node
+                for g in by_node.get(id(n), []):
+                    gw = compose(n.world, g.pose)
+                    cyl_axis = gw[0][:, 1]
+                    p = self.asm.conn_world(c)[1]
+                    if float(np.linalg.norm(p - gw[1])) > max(g.radius, g.height / 2.0) + 1e-9:
+                        continue  # the hinge does not pass through this cylinder
+                    ang = angle_between(axis_w, cyl_axis)
+                    ang = min(ang, math.pi - ang)
+                    if ang > math.radians(1.0):
+                        node, unit = self.where(c.obj, "main_axis")
+                        local_axis = c.main_axis
+                        self.rep.add("A018", f"{m.path} turns {n.path} about an axis {math.degrees(ang):.3g} deg "
+                                     f"away from the axis of its {g.kind} {g.path} (the {g.kind}'s local Y): the "
+                                     f"{g.kind} would tumble instead of rolling", node=node, unit=unit, obj=c.obj,
+                                     path=m.path,
+                                     help=f"the connector's main_axis {_v(local_axis)} should lie along the "
+                                     f"{g.kind} axis, e.g. main_axis: {{0, -1, 0}}")
+                        break
+
+    # ------------------------------------------------------------------ the BoxTruck trap
+
+    def mirrored_motors(self) -> None:
+        motors = [c for c in self.asm.controllers if c.kind == "velocity_motor" and c.dof == "rotational"
+                  and c.mate is not None and c.mate.kind in ("hinge", "cylindrical")]
+        for x, y in combinations(motors, 2):
+            vx = self.a.real(x.obj, "target_speed", 0.0) * (-1 if x.reversed else 1)
+            vy = self.a.real(y.obj, "target_speed", 0.0) * (-1 if y.reversed else 1)
+            if vx == 0 or abs(vx - vy) > 1e-9 * max(1.0, abs(vx)):
+                continue
+            fx = self.asm.conn_world(x.mate.conns[0])
+            fy = self.asm.conn_world(y.mate.conns[0])
+            ax, ay = fx[0][:, 2], fy[0][:, 2]
+            if float(np.dot(ax, ay)) > -0.99:
+                continue
+            # mirrored hubs: on opposite sides along the axis, on the same parent
+            if x.mate.conns[0].node is not y.mate.conns[0].node:
+                continue
+            d = fy[1] - fx[1]
+            if float(np.dot(d, ay)) <= 0:
+                continue
+            self.add_at("A023", f"{x.path} and {y.path} have the same target_speed ({vx:g}) on hinges whose axes "
+                        f"point opposite ways ({_v(ax)} and {_v(ay)}): the two sides turn in opposite directions, "
+                        f"so a vehicle yaws on the spot instead of driving straight", y.obj, "target_speed",
+                        help=f"if it should drive straight, give {y.obj.name} target_speed: {-vy:g}")
+
+    # ------------------------------------------------------------------ overlaps at the origin
+
+    def overlaps(self) -> None:
+        placed_by_snap = {id(n) for n in self.asm.nodes if n.placed_by.startswith(("SNAP", "identity"))}
+        mated: set[tuple[int, int]] = set()
+        for m in self.asm.mates:
+            if len(m.conns) == 2 and all(c is not None for c in m.conns):
+                a, b = m.conns[0].node, m.conns[1].node
+                mated.add((id(a), id(b)))
+                mated.add((id(b), id(a)))
+        excluded = {(id(x), id(y)) for x, y, _ in self.col.exclude_pairs()}
+        excluded |= {(b, a) for a, b in excluded}
+        boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        for g in self.col.geoms:
+            if g.visual or not g.valid or not g.enable_collisions:
+                continue
+            he = g.half_extents()
+            if he is None:
+                continue
+            w = compose(g.node.world, g.pose)
+            half = np.abs(w[0]) @ he
+            lo, hi = w[1] - half, w[1] + half
+            cur = boxes.get(id(g.node))
+            boxes[id(g.node)] = (lo, hi) if cur is None else (np.minimum(cur[0], lo), np.maximum(cur[1], hi))
+        nodes = {id(n): n for n in self.asm.nodes}
+        reported: set[int] = set()
+        for n in self.asm.bodies:
+            if n.explicit or id(n) in placed_by_snap or not n.placed_by.startswith("not placed"):
+                continue
+            if id(n) not in boxes:
+                continue
+            lo, hi = boxes[id(n)]
+            for other_id, (olo, ohi) in boxes.items():
+                if other_id == id(n) or (id(n), other_id) in excluded or (id(n), other_id) in mated:
+                    continue
+                other = nodes[other_id]
+                if not (n.is_dynamic or (other.kind == "body" and other.is_dynamic)):
+                    continue
+                depth = np.minimum(hi, ohi) - np.maximum(lo, olo)
+                if np.all(depth > 0.01) and id(n) not in reported:
+                    reported.add(id(n))
+                    self.rep.add("A037", f"{n.path} has no declared transform and no mate places it, so it stays "
+                                 f"at {_v(n.world[1])}, where it overlaps {other.path} "
+                                 f"(by {float(np.min(depth)):.3g} m)", obj=n.obj,
+                                 help="give it kinematics.local_transform.position, or join it to the scene "
+                                 "with a mate")
+
+
+def scan_strings(tree: ast.File, rep: Reporter) -> None:
+    """``@"..."`` files that do not exist, and ``$"{VAR}"`` variables that are not set (A031, A007)."""
+    base = os.path.dirname(os.path.abspath(tree.path)) if tree.path else os.getcwd()
+    stack: list = list(tree.statements)
+    while stack:
+        node = stack.pop()
+        if isinstance(node, ast.String):
+            _check_string(node, base, rep)
+            continue
+        if isinstance(node, list):
+            stack.extend(node)
+            continue
+        if not isinstance(node, ast.Node):
+            continue
+        for name in getattr(node, "__slots__", ()):
+            if name in ("span", "header"):
+                continue
+            v = getattr(node, name, None)
+            if isinstance(v, (ast.Node, list)):
+                stack.append(v)
+
+
+def _check_string(s: ast.String, base: str, rep: Reporter) -> None:
+    if s.kind == "path":
+        p = s.value
+        full = p if os.path.isabs(p) else os.path.normpath(os.path.join(base, p))
+        if p and not os.path.exists(full):
+            rep.add("A031", f"file {p!r} does not exist (looked for {full})", span=s.span,
+                    help="paths in @\"...\" are relative to the folder of the .openplx file")
+    elif s.kind == "interp":
+        unset = [v for v in _INTERP.findall(s.value) if os.environ.get(v) is None]
+        for v in dict.fromkeys(unset):
+            rep.add("A007", f"environment variable {v} in {s.raw} is not set; the path cannot be resolved here",
+                    span=s.span, help=f"set {v} (for AGX_DATA_DIR: install AGX), or use @\"...\" with a relative path")
+        if not unset:
+            val = _INTERP.sub(lambda m: os.environ.get(m.group(1), ""), s.value)
+            looks_like_file = "/" in val or os.sep in val or re.search(r"\.[A-Za-z0-9]{2,4}$", val)
+            if looks_like_file and not os.path.exists(val if os.path.isabs(val) else os.path.join(base, val)):
+                rep.add("A031", f"file {val!r} (from {s.raw}) does not exist", span=s.span, severity="warning")
+
+
+def _owners(obj: Obj):
+    cur = obj.owner
+    while cur is not None:
+        yield cur
+        cur = cur.owner
+
+
+def _tensor_problem(t: np.ndarray) -> str | None:
+    if not np.all(np.isfinite(t)):
+        return "has non-finite entries"
+    if float(np.max(np.abs(t - t.T))) > 1e-9 * max(1.0, float(np.max(np.abs(t)))):
+        return "is not symmetric"
+    try:
+        ev = np.linalg.eigvalsh(t)
+    except np.linalg.LinAlgError:
+        return "cannot be diagonalised"
+    if float(np.min(ev)) <= 0:
+        return f"is not positive definite (principal moments {', '.join(f'{x:.4g}' for x in ev)})"
+    a, b, c = sorted(float(x) for x in ev)
+    if a + b < c * (1 - 1e-9):
+        return f"breaks the triangle inequality (principal moments {a:.4g} + {b:.4g} < {c:.4g})"
+    return None
+
+
+def _v(a) -> str:
+    return "{" + ", ".join(f"{float(x):.4g}" for x in a) + "}"
+
+
+__all__ = ["StaticChecks", "scan_strings", "MateRec", "CtrlRec", "Node"]

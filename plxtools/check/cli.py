@@ -1,0 +1,142 @@
+"""The `plx check` command body: files -> pipeline -> report.
+
+Exit codes: 0 no error diagnostics; 1 error diagnostics (unless --exit-zero); 2 usage errors, a
+requested artefact (--render / --export-mjcf) that could not be written, or an internal error.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import traceback
+from pathlib import Path
+
+from plxtools.diagnostics import Severity
+
+
+def _artefact_path(template: str, index: int, count: int) -> Path:
+    p = Path(template)
+    if count <= 1:
+        return p
+    return p.with_name(f"{p.stem}-{index + 1}{p.suffix}")
+
+
+def run_check(args) -> int:
+    from plxtools.check.pipeline import analyse, blocking_reason, run_backend
+    from plxtools.config import ConfigError, config_for
+    from plxtools.lint.runner import UsageError, discover
+
+    if args.duration is not None and not (args.duration > 0):
+        print("plx check: --duration must be a positive number of seconds", file=sys.stderr)
+        return 2
+    want_backend = bool(args.simulate or args.render or args.export_mjcf)
+    try:
+        files = discover(args.paths)
+    except (UsageError, ConfigError) as exc:
+        print(f"plx check: {exc}", file=sys.stderr)
+        return 2
+    try:
+        from plxtools.model.workspace import workspace_for_cli
+
+        workspace = workspace_for_cli(args.bundle_path, files)
+    except (UsageError, ConfigError, ValueError) as exc:
+        print(f"plx check: {exc}", file=sys.stderr)
+        return 2
+    results = []
+    status = 0
+    for f in files:
+        try:
+            cfg = config_for(f)
+        except ConfigError as exc:
+            print(f"plx check: {exc}", file=sys.stderr)
+            return 2
+        try:
+            fc = analyse(f, workspace, cfg, model=args.model)
+            if want_backend and fc.scene is not None:
+                reason = blocking_reason(fc)
+                sim = bool(args.simulate) and reason is None
+                if sim or args.render or args.export_mjcf:
+                    run_backend(fc, simulate=sim, duration=args.duration)
+                if args.simulate and reason is not None:
+                    fc.skipped = reason
+        except Exception as exc:  # a bug in plxtools: say so, go on with the other files
+            print(f"plx check: internal error while checking {f}: {type(exc).__name__}: {exc}", file=sys.stderr)
+            if os.environ.get("PLX_DEBUG"):
+                traceback.print_exc()
+            from plxtools.check.pipeline import FileCheck
+
+            fc = FileCheck(str(f), skipped="internal error", internal_error=str(exc))
+            status = 2
+        results.append(fc)
+    status = max(status, _artefacts(args, results))
+    diags = [d for fc in results for d in fc.diagnostics]
+    fmt = args.output_format
+    if fmt == "json":
+        from plxtools.check.output import document
+
+        json.dump(document(results, diags, bool(args.simulate)), sys.stdout, indent=2, allow_nan=False,
+                  default=_json_default)
+        sys.stdout.write("\n")
+    elif fmt in ("github", "sarif"):
+        from plxtools.lint.reporters import render
+
+        render(diags, fmt, sys.stdout, files_checked=len(results))
+    else:
+        from plxtools.check.output import render_text
+
+        render_text(results, diags, sys.stdout, simulate=bool(args.simulate))
+    if status:
+        return status
+    has_error = any(d.severity == Severity.ERROR for d in diags)
+    return 0 if (args.exit_zero or not has_error) else 1
+
+
+def _json_default(o):
+    try:
+        import numpy as np
+
+        if isinstance(o, np.generic):
+            return o.item()
+        if isinstance(o, np.ndarray):
+            return o.tolist()
+    except ImportError:  # pragma: no cover
+        pass
+    return str(o)
+
+
+def _artefacts(args, results) -> int:
+    status = 0
+    targets = [fc for fc in results if fc.scene is not None]
+    for kind, template in (("render", args.render), ("export", args.export_mjcf)):
+        if not template:
+            continue
+        if not targets:
+            print(f"plx check: nothing to {'render' if kind == 'render' else 'export'}: no file was assembled",
+                  file=sys.stderr)
+            status = 2
+            continue
+        for i, fc in enumerate(targets):
+            out = _artefact_path(template, i, len(targets))
+            if fc.compiled is None or not fc.compiled.ok:
+                print(f"plx check: {fc.path}: cannot write {out}: the scene did not compile to MuJoCo",
+                      file=sys.stderr)
+                status = 2
+                continue
+            try:
+                if kind == "export":
+                    from plxtools.check.mujoco_backend import export_mjcf
+
+                    export_mjcf(fc.compiled, str(out))
+                else:
+                    from plxtools.check.mujoco_backend import RenderUnavailable, render_png
+
+                    try:
+                        render_png(fc.compiled, str(out))
+                    except RenderUnavailable as exc:
+                        print(f"plx check: cannot render {out}: {exc}", file=sys.stderr)
+                        status = 2
+            except OSError as exc:
+                print(f"plx check: cannot write {out}: {exc.strerror or exc}", file=sys.stderr)
+                status = 2
+    return status

@@ -1,0 +1,497 @@
+"""From an assembled object tree to the plain scene IR (:mod:`plxtools.check.scene`).
+
+Geometry, mass, controller and contact parameters are read here (once) into small records that the
+static checks use too; :func:`to_scene` then builds the IR the MuJoCo backend compiles.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from plxtools.check import scene as S
+from plxtools.check.assemble import Assembler, Assembly, Conn, CtrlRec, Kinds, MateRec, Node
+from plxtools.check.evaluate import Unavailable
+from plxtools.check.frames import IDENTITY, Pose, compose, from_transform, inverse, mat_to_quat_wxyz
+from plxtools.check.instance import Obj
+from plxtools.check.report import Reporter, span_of
+
+CONTACT_GEOM = "Physics3D.Geometries.ContactGeometry"
+VISUAL_GEOM = "Visuals.Geometries.Geometry"
+GEOM_KINDS = {
+    "Physics3D.Geometries.Box": "box",
+    "Physics3D.Geometries.Sphere": "sphere",
+    "Physics3D.Geometries.Cylinder": "cylinder",
+    "Physics3D.Geometries.Capsule": "capsule",
+    "Physics3D.Geometries.ConvexMesh": "convex_mesh",
+    "Physics3D.Geometries.TriMesh": "trimesh",
+    "Physics3D.Geometries.ExternalTriMeshGeometry": "external_mesh",
+    "Visuals.Geometries.Box": "box",
+    "Visuals.Geometries.Sphere": "sphere",
+    "Visuals.Geometries.Cylinder": "cylinder",
+    "Visuals.Geometries.ConvexMesh": "convex_mesh",
+    "Visuals.Geometries.ExternalTriMeshGeometry": "external_mesh",
+}
+SURFACE_MODEL = "Physics.Interactions.SurfaceContact.Model"
+FRICTION_MODELS = {
+    "Physics.Interactions.Dissipation.DryDepthScaledConstantNormalForceFriction":
+        "dry_depth_scaled_constant_normal_force",
+    "Physics.Interactions.Dissipation.DryConstantNormalForceFriction": "dry_constant_normal_force",
+    "Physics.Interactions.Dissipation.DryScaleBoxFriction": "dry_scale_box",
+    "Physics.Interactions.Dissipation.DryBoxFriction": "dry_box",
+    "Physics.Interactions.Dissipation.DryConeFriction": "dry_cone",
+    "Physics.Interactions.Dissipation.DefaultDryFriction": "dry",
+}
+COLLISION_GROUP = "Simulation.CollisionGroup"
+DISABLE_PAIR = "Simulation.DisableCollisionPair"
+ENVIRONMENT = "Simulation.Environment"
+UNIFORM_GRAVITY = "Simulation.UniformGravitationalField"
+POINT_GRAVITY = "Simulation.PointGravitationalField"
+LINEAR_ELASTIC = "Physics.Interactions.Flexibility.LinearElastic"
+MECH_DAMPING = "Physics.Interactions.Dissipation.MechanicalDamping"
+
+
+@dataclass(eq=False)
+class GeomRec:
+    obj: Obj
+    node: Node  # the body (or system, for static geometry) it belongs to
+    kind: str  # box | sphere | cylinder | capsule | convex_mesh | trimesh | external_mesh
+    visual: bool
+    pose: Pose = IDENTITY  # in the node frame
+    size: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    radius: float = 0.0
+    height: float = 0.0
+    material_key: str | None = None
+    material_obj: Obj | None = None
+    density: float = 1000.0
+    enable_collisions: bool = True
+    include_in_mass: bool = True
+    mesh_file: str | None = None
+    mesh_scale: np.ndarray = field(default_factory=lambda: np.ones(3))
+    vertices: list | None = None
+    indices: list | None = None
+    valid: bool = True
+    failed: bool = False  # a value could not be evaluated (already reported)
+
+    @property
+    def path(self) -> str:
+        return self.obj.display
+
+    def volume(self) -> float:
+        if not self.valid:
+            return 0.0
+        if self.kind == "box":
+            return float(np.prod(self.size))
+        if self.kind == "sphere":
+            return 4.0 / 3.0 * math.pi * self.radius ** 3
+        if self.kind == "cylinder":
+            return math.pi * self.radius ** 2 * self.height
+        if self.kind == "capsule":
+            return math.pi * self.radius ** 2 * self.height + 4.0 / 3.0 * math.pi * self.radius ** 3
+        return 1.0 if self.kind in ("convex_mesh", "trimesh", "external_mesh") else 0.0
+
+    def half_extents(self) -> np.ndarray | None:
+        """Half extents of the geometry's axis-aligned box in its own frame (None for meshes)."""
+        if not self.valid:
+            return None
+        if self.kind == "box":
+            return self.size / 2.0
+        if self.kind == "sphere":
+            return np.full(3, self.radius)
+        if self.kind == "cylinder":
+            return np.array([self.radius, self.height / 2.0, self.radius])
+        if self.kind == "capsule":
+            return np.array([self.radius, self.height / 2.0 + self.radius, self.radius])
+        if self.vertices:
+            v = np.asarray(self.vertices, dtype=float) * self.mesh_scale
+            return np.max(np.abs(v), axis=0)
+        return None
+
+
+@dataclass(eq=False)
+class ContactRec:
+    obj: Obj
+    m1: Obj | None
+    m2: Obj | None
+    key1: str | None
+    key2: str | None
+    enabled: bool = True
+    friction: float | None = None
+    friction_model: str = "dry"
+    restitution: float | None = None
+    tangential_restitution: float | None = None
+
+
+def material_key(ev_get, mat: Obj) -> str:
+    name = ev_get(mat, "unique_name", "")
+    if isinstance(name, str) and name:
+        return name
+    return mat.display
+
+
+class Collector:
+    """Reads geometry, mass, controller and contact parameters from the object tree."""
+
+    def __init__(self, asm: Assembly, asmb: Assembler, kinds: Kinds, rep: Reporter):
+        self.asm = asm
+        self.a = asmb
+        self.ev = asmb.ev
+        self.k = kinds
+        self.rep = rep
+        self.geoms: list[GeomRec] = []
+        self.contacts: list[ContactRec] = []
+        self.groups: list[Obj] = []
+        self.pairs: list[Obj] = []
+        self.unsupported: list[tuple[str, Obj, str]] = []
+
+    def get(self, obj: Obj, path: str, default: Any = None) -> Any:
+        return self.a.get(obj, path, default)
+
+    def real(self, obj: Obj, path: str, default: float) -> float:
+        return self.a.real(obj, path, default)
+
+    def run(self) -> None:
+        for obj in self.asm.owned:
+            if self.asm.node_of(obj) is not None:
+                continue
+            if self.k.isa(obj, CONTACT_GEOM) or self.k.isa(obj, VISUAL_GEOM):
+                self._geom(obj)
+            elif self.k.isa(obj, SURFACE_MODEL):
+                self._contact(obj)
+            elif self.k.isa(obj, COLLISION_GROUP):
+                self.groups.append(obj)
+            elif self.k.isa(obj, DISABLE_PAIR):
+                self.pairs.append(obj)
+
+    # ------------------------------------------------------------------ geometry
+
+    def _geom(self, obj: Obj) -> None:
+        visual = not self.k.isa(obj, CONTACT_GEOM)
+        kind = self.k.first(obj, GEOM_KINDS)
+        node = self.a._parent_node(self.asm, obj)
+        if kind is None or node is None:
+            if not visual:
+                self.unsupported.append((self.a.p.concrete(obj.model).qname, obj,
+                                         f"geometry {obj.display} ({self.a.p.concrete(obj.model).qname}) has no "
+                                         f"MuJoCo mapping and is ignored"))
+            return
+        g = GeomRec(obj, node, kind, visual)
+        t = self.get(obj, "local_transform", None)
+        if t is not None and hasattr(t, "rotation"):
+            g.pose = from_transform(t)
+        if kind == "box":
+            size = self.a._vec(obj, "size", None)
+            if size is None:
+                g.valid, g.failed = False, True
+            else:
+                g.size = size
+                bad = [f"{a}={v:g}" for a, v in zip("xyz", size) if v <= 0]
+                if bad:
+                    self._bad_size(g, "size", f"box {obj.display} has size {{{', '.join(f'{v:g}' for v in size)}}}: "
+                                   f"{', '.join(bad)} must be > 0",
+                                   "a Box's size has no default and is 0, 0, 0 unless assigned; "
+                                   "give the full edge lengths, e.g. size: {1, 1, 1}")
+        elif kind in ("sphere", "cylinder", "capsule"):
+            r = self._num(obj, "radius")
+            if r is None:
+                g.valid, g.failed = False, True
+            else:
+                g.radius = r
+                if r <= 0:
+                    self._bad_size(g, "radius", f"{kind} {obj.display} has radius {r:g}; it must be > 0")
+            if kind != "sphere":
+                h = self._num(obj, "height")
+                if h is None:
+                    g.valid, g.failed = False, True
+                else:
+                    g.height = h
+                    if (kind == "cylinder" and h <= 0) or (kind == "capsule" and h < 0):
+                        need = "> 0" if kind == "cylinder" else ">= 0"
+                        self._bad_size(g, "height", f"{kind} {obj.display} has height {h:g}; it must be {need}")
+        else:
+            if kind == "external_mesh":
+                p = self.get(obj, "path", None)
+                if isinstance(p, str) and p:
+                    stmt, unit = self.ev.where(obj, "path")
+                    base = os.path.dirname(os.path.abspath(unit.path)) if unit is not None else os.getcwd()
+                    full = p if os.path.isabs(p) else os.path.normpath(os.path.join(base, p))
+                    g.mesh_file = full
+                    if not os.path.isfile(full) and unit is not self.rep.unit:
+                        self.rep.add("A031", f"mesh file {p!r} of {obj.display} does not exist ({full})", obj=obj,
+                                     severity="warning" if visual else None)
+                    if not os.path.isfile(full):
+                        g.valid = False
+                else:
+                    g.valid = False
+            else:
+                verts = self.get(obj, "vertices", None)
+                if isinstance(verts, list) and verts:
+                    try:
+                        g.vertices = [tuple(float(c) for c in np.asarray(v, dtype=float)) for v in verts]
+                    except (TypeError, ValueError):
+                        g.valid = False
+                else:
+                    g.valid = False
+                    self.rep.add("A030", f"mesh {obj.display} has no vertices", obj=obj)
+                if kind == "trimesh":
+                    idx = self.get(obj, "indices", None)
+                    g.indices = [int(i) for i in idx] if isinstance(idx, list) else None
+            scale = self.a._vec(obj, "scale", None) if kind == "external_mesh" else None
+            if scale is not None:
+                g.mesh_scale = scale
+                if np.any(scale <= 0):
+                    self._bad_size(g, "scale", f"mesh {obj.display} has scale {{{', '.join(f'{v:g}' for v in scale)}}};"
+                                   f" every component must be > 0")
+        if not visual:
+            g.enable_collisions = bool(self.get(obj, "enable_collisions", True))
+            g.include_in_mass = bool(self.get(obj, "include_in_mass_properties", True))
+            mat = self.get(obj, "material", None)
+            if isinstance(mat, Obj):
+                g.material_obj = mat
+                g.material_key = material_key(self.get, mat)
+                g.density = self.real(mat, "density", 1000.0)
+        self.geoms.append(g)
+
+    def _num(self, obj: Obj, path: str) -> float | None:
+        try:
+            v = self.ev.get(obj, path)
+        except (Unavailable, KeyError):
+            return None
+        try:
+            f = float(v)
+        except (TypeError, ValueError):
+            return None
+        return f if math.isfinite(f) else None
+
+    def _bad_size(self, g: GeomRec, attr: str, message: str, help: str | None = None) -> None:
+        g.valid = False
+        node, unit = self.ev.where(g.obj, attr)
+        self.rep.add("A030", message, node=node, unit=unit, obj=g.obj, help=help)
+
+    # ------------------------------------------------------------------ contacts
+
+    def _contact(self, obj: Obj) -> None:
+        m1 = self.get(obj, "material_1", None)
+        m2 = self.get(obj, "material_2", None)
+        rec = ContactRec(obj, m1 if isinstance(m1, Obj) else None, m2 if isinstance(m2, Obj) else None,
+                         material_key(self.get, m1) if isinstance(m1, Obj) else None,
+                         material_key(self.get, m2) if isinstance(m2, Obj) else None)
+        rec.enabled = bool(self.get(obj, "enabled", True))
+        fr = self.ev.child(obj, "friction")
+        if isinstance(fr, Obj):
+            model = self.k.first(fr, FRICTION_MODELS)
+            if model is not None:
+                rec.friction_model = model
+                c = self.get(fr, "coefficient", None)
+                rec.friction = float(c) if isinstance(c, (int, float)) else None
+            elif self.a.p.concrete(fr.model).qname != "Physics.Interactions.Dissipation.DefaultFriction":
+                rec.friction_model = self.a.p.concrete(fr.model).qname
+        for attr, name in (("normal_restitution", "restitution"), ("tangential_restitution", "tangential_restitution")):
+            v = self.get(obj, attr, None)
+            if isinstance(v, (int, float)) and not isinstance(v, bool):
+                setattr(rec, name, float(v))
+        self.contacts.append(rec)
+
+    # ------------------------------------------------------------------ collision groups
+
+    def group_bodies(self, group: Obj) -> list[Node]:
+        out: list[Node] = []
+
+        def add(n: Node | None) -> None:
+            if n is not None and n.kind == "body" and n not in out:
+                out.append(n)
+
+        for item in self.get(group, "bodies", []) or []:
+            if isinstance(item, Obj):
+                add(self.asm.node_of(item))
+        for item in self.get(group, "systems", []) or []:
+            if isinstance(item, Obj):
+                top = self.asm.node_of(item)
+                for n in self.asm.nodes:
+                    cur = n
+                    while cur is not None and cur is not top:
+                        cur = cur.parent
+                    if cur is top and top is not None:
+                        add(n)
+        for item in self.get(group, "geometries", []) or []:
+            if isinstance(item, Obj):
+                add(self.a._parent_node(self.asm, item))
+        return out
+
+    def exclude_pairs(self) -> list[tuple[Node, Node, Obj]]:
+        out = []
+        for pair in self.pairs:
+            g1, g2 = self.get(pair, "group1", None), self.get(pair, "group2", None)
+            if not isinstance(g1, Obj) or not isinstance(g2, Obj):
+                continue
+            b1, b2 = self.group_bodies(g1), self.group_bodies(g2)
+            for x in b1:
+                for y in b2:
+                    out.append((x, y, pair))
+        return out
+
+
+# ---------------------------------------------------------------------- scene IR
+
+
+def _source(rep: Reporter, obj: Obj | None, node: Any = None, unit: Any = None) -> S.Source:
+    sp = rep.locate(node, unit, obj)
+    return S.Source(rep.file, sp.start.line + 1, sp.start.column + 1, sp.end.line + 1, sp.end.column + 1)
+
+
+def _t3(v) -> tuple[float, float, float]:
+    return (float(v[0]), float(v[1]), float(v[2]))
+
+
+def to_scene(asm: Assembly, col: Collector, rep: Reporter, base_dir: str | None) -> S.Scene:
+    a, ev, k = col.a, col.ev, col.k
+    scene = S.Scene(asm.root.model.name, base_dir=base_dir, source=_source(rep, asm.root))
+    by_node: dict[int, list[GeomRec]] = {}
+    for g in col.geoms:
+        by_node.setdefault(id(g.node), []).append(g)
+
+    def geoms_of(n: Node) -> list[S.Geom]:
+        out = []
+        for g in by_node.get(id(n), []):
+            if not g.valid:
+                continue
+            sg = S.Geom(g.path, "mesh" if g.kind.endswith("mesh") else g.kind, pos=_t3(g.pose[1]),
+                        quat=mat_to_quat_wxyz(g.pose[0]), visual_only=g.visual, source=_source(rep, g.obj))
+            if g.kind == "box":
+                sg.size = _t3(g.size)
+            elif g.kind in ("sphere", "cylinder", "capsule"):
+                sg.radius, sg.height = g.radius, g.height
+            else:
+                sg.mesh_file = g.mesh_file
+                sg.mesh_scale = _t3(g.mesh_scale)
+                sg.mesh_vertices = tuple(g.vertices) if g.vertices else None
+                sg.mesh_indices = tuple(g.indices) if g.indices else None
+                sg.convex = g.kind == "convex_mesh"
+            if not g.visual:
+                sg.material = g.material_key
+                sg.density = g.density
+                sg.enable_collisions = g.enable_collisions
+                sg.include_in_mass = g.include_in_mass
+            out.append(sg)
+        return out
+
+    parent_world: dict[int, Pose] = {}
+    for n in asm.nodes:
+        if n.kind == "body":
+            obj = n.obj
+            mass = a.real(obj, "inertia.mass", 0.0)
+            tensor = None
+            t = a.get(obj, "inertia.tensor", None)
+            if isinstance(t, np.ndarray) and t.shape == (3, 3) and np.all(np.isfinite(t)) and np.any(np.diag(t) != 0):
+                tensor = tuple(tuple(float(x) for x in row) for row in t)
+            cm = None
+            cmo = ev.child(obj, "kinematics.local_cm_transform")
+            if isinstance(cmo, Obj) and cmo.explicit:
+                tr = a.get(obj, "kinematics.local_cm_transform", None)
+                if tr is not None and hasattr(tr, "position"):
+                    cm = _t3(tr.position)
+            pw = n.parent.world if n.parent is not None else IDENTITY
+            lv = a._vec(obj, "kinematics.initial_local_linear_velocity", np.zeros(3))
+            av = a._vec(obj, "kinematics.initial_local_angular_velocity", np.zeros(3))
+            body = S.Body(n.path, _t3(n.world[1]), mat_to_quat_wxyz(n.world[0]), mass=mass,
+                          inertia_tensor=tensor, cm_pos=cm, is_dynamic=n.is_dynamic, geoms=geoms_of(n),
+                          lin_vel=_t3(pw[0] @ lv), ang_vel=_t3(pw[0] @ av), source=_source(rep, obj))
+            scene.bodies.append(body)
+        else:
+            gs = geoms_of(n)
+            if gs:
+                scene.bodies.append(S.Body(n.path, _t3(n.world[1]), mat_to_quat_wxyz(n.world[0]), is_dynamic=False,
+                                           geoms=gs, source=_source(rep, n.obj)))
+        parent_world[id(n)] = n.world
+    body_paths = {b.path for b in scene.bodies}
+
+    conns: dict[int, S.Connector] = {}
+
+    def conn(c: Conn) -> S.Connector:
+        sc = conns.get(id(c.obj))
+        if sc is not None:
+            return sc
+        src = _source(rep, c.obj)
+        owner: Node = c.node
+        attach = None
+        if c.redirected_parent is not None:
+            attach = asm.node_of(c.redirected_parent)
+        if attach is None:
+            attach = owner if owner.kind == "body" else None
+        frame_world = compose(owner.world, c.frame)
+        if attach is None or attach.path not in body_paths:
+            sc = S.Connector(c.obj.display, None, _t3(frame_world[1]), _t3(frame_world[0][:, 2]),
+                             _t3(frame_world[0][:, 0]), src)
+        else:
+            local = compose(inverse(attach.world), frame_world)
+            sc = S.Connector(c.obj.display, attach.path, _t3(local[1]), _t3(local[0][:, 2]), _t3(local[0][:, 0]),
+                             src)
+        conns[id(c.obj)] = sc
+        return sc
+
+    for m in asm.mates:
+        if not m.usable or m.kind == "unknown":
+            continue
+        scene.mates.append(S.Mate(m.path, m.kind, (conn(m.conns[0]), conn(m.conns[1])), m.initial_angle,
+                                  m.initial_position, m.initial_distance, m.enabled, _source(rep, m.obj)))
+    for c in asm.controllers:
+        if len(c.conns) != 2 or any(x is None for x in c.conns):
+            continue
+        if c.mate is None or not c.mate.usable:
+            continue
+        obj = c.obj
+        sc = S.Controller(c.path, c.kind, c.dof, (conn(c.conns[0]), conn(c.conns[1])), source=_source(rep, obj))
+        sc.enabled = bool(a.get(obj, "enabled", True))
+        sc.min_effort = a.real(obj, "min_effort", -math.inf)
+        sc.max_effort = a.real(obj, "max_effort", math.inf)
+        if c.kind == "velocity_motor":
+            sc.target_speed = a.real(obj, "target_speed", 0.0)
+            sc.gain = a.real(obj, "gain", 1e8)
+        elif c.kind == "torque_motor":
+            sc.effort = a.real(obj, "default_torque", 0.0)
+        elif c.kind == "force_motor":
+            sc.effort = a.real(obj, "default_force", 0.0)
+        elif c.kind == "range":
+            sc.start = a.real(obj, "start", math.nan)
+            sc.end = a.real(obj, "end", math.nan)
+            if not math.isfinite(sc.start) or not math.isfinite(sc.end):
+                sc.start = sc.end = None
+        elif c.kind == "spring":
+            sc.rest = a.real(obj, "angle" if c.dof == "rotational" else "position", 0.0)
+            fl = ev.child(obj, "flexibility")
+            if isinstance(fl, Obj) and k.isa(fl, LINEAR_ELASTIC):
+                sc.stiffness = a.real(fl, "stiffness", 1e6)
+            ds = ev.child(obj, "dissipation")
+            if isinstance(ds, Obj) and k.isa(ds, MECH_DAMPING):
+                sc.damping = a.real(ds, "damping_constant", 0.0)
+        scene.controllers.append(sc)
+    for cr in col.contacts:
+        if cr.key1 is None or cr.key2 is None:
+            continue
+        scene.contact_models.append(S.ContactModel(cr.obj.display, cr.key1, cr.key2, cr.friction, cr.friction_model,
+                                                   cr.restitution, cr.tangential_restitution, cr.enabled,
+                                                   _source(rep, cr.obj)))
+    seen: set[tuple[str, str]] = set()
+    for x, y, pair in col.exclude_pairs():
+        key = tuple(sorted((x.path, y.path)))
+        if key in seen:
+            continue
+        seen.add(key)
+        scene.excludes.append(S.ExcludePair(x.path, y.path, _source(rep, pair)))
+    root = asm.root
+    if k.isa(root, ENVIRONMENT):
+        g = ev.child(root, "gravity")
+        if isinstance(g, Obj) and k.isa(g, UNIFORM_GRAVITY):
+            vec = a._vec(g, "vector", None)
+            if vec is not None:
+                scene.gravity = _t3(vec)
+    for what, obj, msg in col.unsupported:
+        scene.unsupported.append(S.Unsupported(what, obj.display, _source(rep, obj), msg))
+    return scene
+
+
+__all__ = ["Collector", "ContactRec", "GeomRec", "to_scene", "span_of", "MateRec", "CtrlRec"]

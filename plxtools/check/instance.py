@@ -1,0 +1,383 @@
+"""Instantiate a model: the object tree with dotted paths, before any value is computed.
+
+How an object is put together (spec C.3-C.8):
+
+* Every model body is flattened once into *effects* (:class:`TEff`): declarations (``a is T``,
+  ``a becomes T``), values (``a.b: expr``, ``a is T: expr``) and ``with`` lines, each with a path
+  relative to the object the body configures.  A block under a declaration or an assignment adds
+  its statements with the longer path.
+* The effects that apply to an object are, lowest priority first: the bodies of its type's
+  linearisation (base-most model first; a model's traits above its base; the model's own body on
+  top), then the effects its owners route down to it (an instance block, dotted assignments such as
+  ``kinematics.local_transform.position.z: 1.1`` in an enclosing model), in the owners' order.  The
+  last effect wins.  This gives "instance block > model body > its traits > base" and lets an
+  enclosing model override anything inside.
+* Every effect carries its *scope*: the instance of the outermost model whose body (or trait body)
+  holds the statement.  Expressions are evaluated there (C.6), so ``radius: radius`` in a nested
+  block reads the outer model's ``radius`` and ``source: this`` is the body or hinge itself.
+* A model-typed attribute owns a new object unless it is given an existing one: a value effect on a
+  non-struct model attribute makes it a :class:`Ref` (``connectors: [...]``, ``group1: own_parts``,
+  ``material: TireMaterial``); so does a ``reference`` declaration; ``x is SomeConstModel`` aliases
+  the singleton.
+* Value types (``Math.Vec3``, ``Quat``, ``AffineTransform``, ``Matrix3x3``...) are *struct objects*:
+  they keep all their effects in one ordered list, so a whole-value assignment
+  (``position: {1, 2, 3}``) and a field assignment (``position.z: 1.1``) compete by priority.
+
+Nothing here evaluates an expression; :mod:`plxtools.check.evaluate` does that, lazily.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from plxtools.model.natives import STRUCT_TYPES
+from plxtools.model.program import Program
+from plxtools.model.symbols import FileUnit, ModelSym, Ty
+from plxtools.syntax import ast
+
+DECL, VALUE, WITH = 0, 1, 2
+MAX_DEPTH = 48  # nesting of owned objects; deeper means a model (indirectly) contains itself
+
+
+@dataclass(slots=True, eq=False)
+class TEff:
+    """One effect of a model body, before it is bound to an object (a template)."""
+
+    kind: int
+    path: tuple[str, ...]
+    stmt: ast.Stmt
+    unit: FileUnit
+    expr: Any = None  # VALUE: the expression
+    ty: Ty | None = None  # DECL: the declared type (resolved in ``unit``)
+    optional: bool = False
+    reference: bool = False
+    traits: tuple = ()  # WITH: trait ModelSyms
+
+
+# A bound effect: (template, scope object, depth).  ``template.path[depth:]`` is the path relative
+# to the object holding the effect list.
+Eff = tuple
+
+
+@dataclass(slots=True, eq=False)
+class Prim:
+    """A primitive, array or union attribute of a non-struct object."""
+
+    name: str
+    ty: Ty | None
+    decl: Eff
+    value: Eff | None
+    optional: bool
+
+
+@dataclass(slots=True, eq=False)
+class Ref:
+    """An attribute that refers to an object instead of owning one."""
+
+    name: str
+    path: str
+    owner: "Obj"
+    ty: Ty
+    decl: Eff
+    value: Eff | None  # None: unbound (or a const alias when ``const_model`` is set)
+    optional: bool
+    reference: bool
+    const_model: ModelSym | None = None
+
+
+@dataclass(slots=True, eq=False)
+class Obj:
+    """One model instance.  ``path`` is dotted from the root (the root itself has path "")."""
+
+    name: str
+    path: str
+    model: ModelSym
+    traits: tuple
+    owner: "Obj | None"
+    decl: Eff | None  # the winning declaration that created it (None for the root / singletons)
+    struct: str | None = None  # the STRUCT_TYPES name for value types
+    effects: list = field(default_factory=list)  # struct objects only: every effect, in order
+    children: dict = field(default_factory=dict)  # name -> Obj | Ref
+    prims: dict = field(default_factory=dict)  # name -> Prim
+    order: list = field(default_factory=list)  # member names in declaration order
+    explicit: bool = False  # an owner routed a value to it (or below it): "declared" by the user
+    singleton: bool = False
+
+    @property
+    def display(self) -> str:
+        return self.path or self.model.name
+
+    def __repr__(self) -> str:
+        return f"<Obj {self.display}: {self.model.qname}>"
+
+
+class Builder:
+    """Builds object trees over a :class:`Program`.  Template and linearisation caches are shared."""
+
+    def __init__(self, program: Program, report=None):
+        self.p = program
+        self.report = report  # callable(code, message, obj) for instantiation problems
+        self._templates: dict[int, list[TEff]] = {}
+        self._layers: dict[tuple, list[ModelSym]] = {}
+        self._struct: dict[int, str | None] = {}
+        self._plans: dict = {}
+        self.singletons: dict[int, Obj] = {}
+        self._building_singletons: set[int] = set()
+        self.objects = 0
+        self.too_deep: list[Obj] = []
+
+    # ------------------------------------------------------------------ types
+
+    def struct_name(self, model: ModelSym | None) -> str | None:
+        """The value-type name when ``model`` is (a subtype of) Math.Vec3, Quat, AffineTransform..."""
+        if model is None:
+            return None
+        key = id(model)
+        if key not in self._struct:
+            found = None
+            for m in self.p.ancestors(model):
+                if not m.anonymous and m.qname in STRUCT_TYPES:
+                    found = m.qname
+                    break
+            self._struct[key] = found
+        return self._struct[key]
+
+    def layers(self, model: ModelSym, traits: tuple = ()) -> list[ModelSym]:
+        """Models whose bodies configure an instance, lowest priority first."""
+        key = id(model) if not traits else (id(model), tuple(id(t) for t in traits))
+        cached = self._layers.get(key)
+        if cached is not None:
+            return cached
+        out: list[ModelSym] = []
+        seen: set[int] = set()
+
+        def add(m: ModelSym) -> None:
+            stack = [(m, False)]
+            while stack:
+                cur, expanded = stack.pop()
+                if expanded:
+                    out.append(cur)
+                    continue
+                if id(cur) in seen:
+                    continue
+                seen.add(id(cur))
+                stack.append((cur, True))
+                # pushed in reverse: base first, then the base's inline traits, then own traits
+                pre: list[ModelSym] = []
+                base = self.p.base_of(cur)
+                if base is not None and base.model is not None:
+                    pre.append(base.model)
+                    pre.extend(base.traits)
+                pre.extend(self.p.traits_of(cur))
+                for x in reversed(pre):
+                    if id(x) not in seen:
+                        stack.append((x, False))
+
+        add(model)
+        for t in traits:
+            add(t)
+        self._layers[key] = out
+        return out
+
+    def templates(self, model: ModelSym) -> list[TEff]:
+        cached = self._templates.get(id(model))
+        if cached is not None:
+            return cached
+        out: list[TEff] = []
+        body = getattr(model.stmt, "body", None) if model.stmt is not None else None
+        if body and model.unit is not None and not model.anonymous:
+            self._flatten(body, (), model.unit, out, top=True)
+        self._templates[id(model)] = out
+        return out
+
+    def _flatten(self, body: list, prefix: tuple, unit: FileUnit, out: list, top: bool = False) -> None:
+        for s in body:
+            if isinstance(s, ast.Declaration) and s.keyword in ("is", "becomes"):
+                path = prefix + tuple(p.name for p in s.path.parts)
+                ty = self.p.resolve_type_expr(s.type, unit)
+                out.append(TEff(DECL, path, s, unit, ty=ty, optional=s.optional, reference=s.reference))
+                if s.value is not None:
+                    out.append(TEff(VALUE, path, s, unit, expr=s.value))
+                if s.body:
+                    self._flatten(s.body, path, unit, out)
+            elif isinstance(s, ast.Assignment):
+                path = prefix + tuple(p.name for p in s.path.parts)
+                if s.value is not None:
+                    out.append(TEff(VALUE, path, s, unit, expr=s.value))
+                if s.body:
+                    self._flatten(s.body, path, unit, out)
+            elif isinstance(s, ast.WithStmt) and not top:
+                traits = []
+                for q in s.traits:
+                    t = self.p.lookup([p.name for p in q.parts], unit)
+                    if isinstance(t, ModelSym) and t.is_trait:
+                        traits.append(t)
+                if traits:
+                    out.append(TEff(WITH, prefix, s, unit, traits=tuple(traits)))
+
+    # ------------------------------------------------------------------ objects
+
+    def root(self, model: ModelSym) -> Obj:
+        obj = Obj(model.name, "", model, (), None, None)
+        self._build(obj, model, (), [], 0)
+        return obj
+
+    def singleton(self, model: ModelSym) -> Obj | None:
+        """The single instance of a const model (None while it is being built: a cycle)."""
+        key = id(model)
+        obj = self.singletons.get(key)
+        if obj is not None:
+            return obj
+        if key in self._building_singletons:
+            return None
+        self._building_singletons.add(key)
+        try:
+            obj = Obj(model.name, model.qname, model, (), None, None, singleton=True)
+            self._build(obj, model, (), [], 0)
+            self.singletons[key] = obj
+            return obj
+        finally:
+            self._building_singletons.discard(key)
+
+    def _plan(self, model: ModelSym, traits: tuple) -> tuple:
+        """The own-layer effects of a type, routed once: (struct name, templates, routing)."""
+        key = id(model) if not traits else (id(model), tuple(id(x) for x in traits))
+        plan = self._plans.get(key)
+        if plan is not None:
+            return plan
+        templates = [tm for m in self.layers(model, traits) for tm in self.templates(m)]
+        struct = self.struct_name(model)
+        if struct is not None:
+            plan = (struct, templates, None)
+        else:
+            decls: dict[str, TEff] = {}
+            order: list[str] = []
+            flags: dict[str, tuple] = {}
+            routed: dict[str, list] = {}
+            for tm in templates:
+                if not tm.path:
+                    continue
+                name = tm.path[0]
+                if tm.kind == DECL and len(tm.path) == 1:
+                    if name not in decls:
+                        order.append(name)
+                        flags[name] = (tm.optional, tm.reference)
+                    else:
+                        o, r = flags[name]
+                        flags[name] = (o or tm.optional, r or tm.reference)
+                        if decls[name].stmt.keyword == "becomes" and tm.stmt.keyword != "becomes":
+                            continue
+                    decls[name] = tm
+                    continue
+                routed.setdefault(name, []).append(tm)
+            plan = (None, templates, (decls, order, flags, routed))
+        self._plans[key] = plan
+        return plan
+
+    def _build(self, obj: Obj, model: ModelSym, traits: tuple, received: list, depth: int) -> None:
+        self.objects += 1
+        struct, templates, info = self._plan(model, traits)
+        for e in received:
+            if e[0].kind == VALUE:
+                obj.explicit = True
+                break
+        obj.struct = struct
+        if struct is not None:
+            effs = [(tm, obj, 0) for tm in templates]
+            effs.extend(received)
+            obj.effects = effs
+            return
+        if depth > MAX_DEPTH:
+            self.too_deep.append(obj)
+            if self.report is not None:
+                parts = obj.display.split(".")
+                shown = obj.display if len(parts) <= 6 else ".".join(parts[:3]) + ". ... ." + ".".join(parts[-2:])
+                self.report("A009", f"{shown} is nested {depth} objects deep: does a model contain itself? "
+                            f"Its members are not instantiated", obj)
+            return
+        own_decls, own_order, own_flags, own_routed = info
+        decls: dict[str, Eff] = {}
+        flags: dict[str, list] = {}
+        order = obj.order
+        for name in own_order:
+            order.append(name)
+            decls[name] = (own_decls[name], obj, 0)
+            flags[name] = list(own_flags[name])
+        routed: dict[str, list] = {}
+        for e in received:
+            t, _scope, d = e
+            rest = len(t.path) - d
+            if rest <= 0:
+                continue  # a whole value on a non-struct object: decided by the owner (a Ref)
+            name = t.path[d]
+            if t.kind == DECL and rest == 1:
+                if name not in decls:
+                    order.append(name)
+                    flags[name] = [t.optional, t.reference]
+                else:
+                    f = flags[name]
+                    f[0] = f[0] or t.optional
+                    f[1] = f[1] or t.reference
+                    # `becomes` narrows an `is` wherever it comes from (a trait may specialise an
+                    # attribute its host declares): a later plain `is` does not undo it
+                    if decls[name][0].stmt.keyword == "becomes" and t.stmt.keyword != "becomes":
+                        continue
+                decls[name] = e
+                continue
+            lst = routed.get(name)
+            if lst is None:
+                lst = routed[name] = []
+            lst.append((t, e[1], d + 1))
+        prefix = obj.path + "." if obj.path else ""
+        for name in order:
+            e = decls[name]
+            t = e[0]
+            ty = t.ty
+            optional, reference = flags[name]
+            own = own_routed.get(name)
+            ce = [(tm, obj, 1) for tm in own] if own else []
+            more = routed.get(name)
+            if more:
+                ce.extend(more)
+            if ty is None or ty.unknown or ty.alts or ty.array or ty.primitive is not None or ty.model is None:
+                value = None
+                for x in ce:
+                    if x[0].kind == VALUE and len(x[0].path) == x[2]:
+                        value = x
+                obj.prims[name] = Prim(name, ty, e, value, optional)
+                continue
+            cmodel = ty.model
+            path = prefix + name
+            whole = None
+            for x in ce:
+                if x[0].kind == VALUE and len(x[0].path) == x[2]:
+                    whole = x
+            is_struct = self.struct_name(cmodel) is not None
+            if not is_struct and (whole is not None or reference or cmodel.is_trait):
+                obj.children[name] = Ref(name, path, obj, ty, e, whole, optional, reference)
+                continue
+            if cmodel.const and not is_struct:
+                obj.children[name] = Ref(name, path, obj, ty, e, None, optional, reference, const_model=cmodel)
+                continue
+            ctraits = tuple(ty.traits)
+            sub = []
+            for x in ce:
+                if x[0].kind == WITH and len(x[0].path) == x[2]:
+                    ctraits = ctraits + tuple(tr for tr in x[0].traits if tr not in ctraits)
+                else:
+                    sub.append(x)
+            child = Obj(name, path, cmodel, ctraits, obj, e)
+            obj.children[name] = child
+            self._build(child, cmodel, ctraits, sub, depth + 1)
+
+
+def walk_owned(root: Obj):
+    """Every owned object below ``root`` (not references, not singletons), depth first, in
+    declaration order; ``root`` itself first."""
+    stack = [root]
+    while stack:
+        obj = stack.pop()
+        yield obj
+        kids = [c for c in (obj.children.get(n) for n in obj.order) if isinstance(c, Obj)]
+        stack.extend(reversed(kids))

@@ -1,0 +1,209 @@
+"""Reports of `plx check`: the text report (rich on a terminal, plain otherwise) and the JSON document."""
+
+from __future__ import annotations
+
+import math
+import os
+from typing import Any, TextIO
+
+from plxtools.check.pipeline import FileCheck
+from plxtools.diagnostics import Diagnostic
+
+
+def _r(x: float, nd: int = 6) -> float:
+    return float(round(float(x), nd)) + 0.0
+
+
+def simulation_json(fc: FileCheck) -> dict[str, Any]:
+    if fc.simulation is None:
+        return {"model": fc.model, "skipped": fc.skipped or "not simulated"}
+    s = fc.simulation
+    bodies = {}
+    for path, b in s.bodies.items():
+        bodies[path] = {
+            "dynamic": b.dynamic,
+            "initial": {"position": [_r(x) for x in b.initial_pos], "quaternion": [_r(x) for x in b.initial_quat]},
+            "final": {"position": [_r(x) for x in b.final_pos], "quaternion": [_r(x) for x in b.final_quat]},
+            "distance": _r(b.distance),
+            "horizontal_distance": _r(b.horizontal_distance),
+            "path_length": _r(b.path_length),
+            "heading_change": _r(b.heading_change),
+            "max_speed": _r(b.max_speed),
+        }
+    d = s.to_dict()
+    return {
+        "model": fc.model,
+        "duration": s.duration,
+        "simulated_time": _r(s.simulated_time, 9),
+        "steps": s.steps,
+        "timestep": s.timestep,
+        "wall_time_s": _r(s.wall_time_s, 4),
+        "bodies": bodies,
+        "mates": d.get("mates", {}),
+        "motors": d.get("motors", {}),
+        "findings": {
+            "blowup": d.get("blowup"),
+            "fall_through": d.get("fall_through", []),
+            "initial_penetrations": d.get("penetrations", []),
+            "mates_pulled_apart": [m for m, r in d.get("mates", {}).items() if r.get("pulled_apart")],
+            "joint_limit_violations": d.get("joint_limit_violations", []),
+        },
+        "energy": d.get("energy", {}),
+    }
+
+
+def document(results: list[FileCheck], diags: list[Diagnostic], simulate: bool) -> dict[str, Any]:
+    doc: dict[str, Any] = {"diagnostics": [d.to_json() for d in diags]}
+    doc["assembly"] = {
+        fc.path: ({"model": fc.model, "bodies": fc.assembled_bodies()} if fc.assembly is not None
+                  else {"model": fc.model, "skipped": fc.skipped})
+        for fc in results
+    }
+    if simulate:
+        doc["simulation"] = {fc.path: simulation_json(fc) for fc in results}
+    return doc
+
+
+# ---------------------------------------------------------------------- text
+
+
+def _use_rich(stream: TextIO) -> bool:
+    if os.environ.get("NO_COLOR"):
+        return False
+    if os.environ.get("FORCE_COLOR"):
+        return True
+    return hasattr(stream, "isatty") and stream.isatty()
+
+
+def _vec(v, nd: int = 2) -> str:
+    tiny = 0.5 * 10 ** -nd  # no "-0.00"
+    return "(" + ", ".join(f"{(0.0 if abs(float(x)) < tiny else float(x)):.{nd}f}" for x in v) + ")"
+
+
+def assembly_line(fc: FileCheck) -> str:
+    asm = fc.assembly
+    bodies = asm.bodies
+    snap = sum(1 for n in bodies if n.placed_by.startswith("SNAP"))
+    declared = sum(1 for n in bodies if n.explicit and n is not asm.root_node)
+    other = len(bodies) - snap - declared
+    parts = [f"{len(bodies)} bod{'ies' if len(bodies) != 1 else 'y'} ({declared} declared, {snap} placed by SNAP, "
+             f"{other} at their system's origin)",
+             f"{len(asm.mates)} mate{'s' if len(asm.mates) != 1 else ''}",
+             f"{len(asm.controllers)} controller{'s' if len(asm.controllers) != 1 else ''}"]
+    return f"{fc.path}: {fc.model}: " + ", ".join(parts)
+
+
+def motion_rows(fc: FileCheck) -> list[tuple[str, str, str, str, str]]:
+    rows = []
+    for path, b in fc.simulation.bodies.items():
+        if not b.dynamic:
+            continue
+        heading = f"{math.degrees(b.heading_change):+.1f} deg" if _upright(b) else "n/a"
+        rows.append((path, _vec(b.initial_pos), _vec(b.final_pos), f"{b.distance:.3f} m", heading))
+    return rows
+
+
+def _upright(b) -> bool:
+    """Heading (yaw of the body's x axis) means something only for a body that stays upright."""
+    import numpy as np
+
+    from plxtools.check.frames import quat_xyzw_to_mat
+
+    for q in (b.initial_quat, b.final_quat):
+        w, x, y, z = q
+        if quat_xyzw_to_mat((x, y, z, w))[2, 2] < math.cos(math.radians(30)):
+            return False
+    return bool(np.isfinite(b.heading_change))
+
+
+def findings(fc: FileCheck) -> list[str]:
+    s = fc.simulation
+    out = []
+    if s.blowup:
+        b = s.blowup
+        out.append(f"blow-up at t={b['time']:.3f} s: {b['reason']}"
+                   + (f" (fastest body: {b['fastest_body']})" if b.get("fastest_body") else ""))
+    for m in s.mates.values():
+        if m.pulled_apart:
+            out.append(f"{m.path} pulled apart: max separation {m.max_separation:.4g} m at t="
+                       f"{m.max_separation_time:.2f} s, max axis misalignment {math.degrees(m.max_misalignment):.3g} "
+                       f"deg")
+    for f in s.fall_through:
+        out.append(f"{f['body']} fell through {f['ground']} at t={f['time']:.2f} s")
+    for p in s.penetrations:
+        out.append(f"{p['geom1']} and {p['geom2']} start {p['depth']:.4g} m deep in each other")
+    for j in s.joint_limit_violations:
+        out.append(f"{j['mate']} exceeded its range by {j['violation']:.3g} at t={j['time']:.2f} s")
+    return out
+
+
+def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO, *, simulate: bool) -> None:
+    from plxtools.lint.reporters import _summary_line, render_text as lint_text
+
+    rich = _use_rich(stream)
+    lint_text(diags, stream, summary=False)
+    console = None
+    if rich:
+        from rich.console import Console
+
+        console = Console(file=stream, highlight=False, soft_wrap=True)
+    for fc in results:
+        if fc.assembly is None:
+            if fc.skipped and fc.skipped != "the file defines no model":
+                _line(stream, console, f"{fc.path}: not assembled: {fc.skipped}", "yellow")
+            continue
+        if results and (diags or len(results) > 1 or simulate):
+            stream.write("\n") if console is None else console.print()
+        _line(stream, console, assembly_line(fc), "bold")
+        if not simulate:
+            continue
+        if fc.simulation is None:
+            _line(stream, console, f"  simulation skipped: {fc.skipped or 'the scene did not compile'}", "yellow")
+            continue
+        s = fc.simulation
+        head = (f"  simulated {s.simulated_time:.2f} s in {s.steps} steps of {s.timestep:g} s "
+                f"({s.wall_time_s:.2f} s wall)")
+        _line(stream, console, head, None)
+        rows = motion_rows(fc)
+        cols = ("body", "start", "end", "moved", "heading")
+        if console is not None:
+            from rich.table import Table
+
+            table = Table(show_header=True, header_style="bold", box=None, padding=(0, 1), pad_edge=False)
+            for c in cols:
+                table.add_column(c, justify="right" if c in ("moved", "heading") else "left")
+            for r in rows:
+                table.add_row(*r)
+            from rich.padding import Padding
+
+            console.print(Padding(table, (0, 0, 0, 2), expand=False))
+        else:
+            widths = [max(len(c), *(len(r[i]) for r in rows)) if rows else len(c) for i, c in enumerate(cols)]
+            fmt = "  " + "  ".join(f"{{:{'>' if i >= 3 else '<'}{w}}}" for i, w in enumerate(widths))
+            stream.write(fmt.format(*cols) + "\n")
+            for r in rows:
+                stream.write(fmt.format(*r) + "\n")
+        found = findings(fc)
+        if found:
+            _line(stream, console, "  findings:", "bold red")
+            for f in found:
+                _line(stream, console, f"    - {f}", None)
+        else:
+            _line(stream, console, "  findings: none (no blow-up, no mate pulled apart, nothing fell through, "
+                  "no deep initial penetration)", "green")
+    if diags or results:
+        stream.write("\n") if console is None else console.print()
+    summary = _summary_line(diags, len(results))
+    if console is not None:
+        console.print(summary, style="bold" if diags else "green")
+    else:
+        stream.write(summary + "\n")
+
+
+def _line(stream: TextIO, console, text: str, style: str | None) -> None:
+    if console is not None:
+        from rich.text import Text
+
+        console.print(Text(text, style=style or ""))
+    else:
+        stream.write(text + "\n")

@@ -1,0 +1,227 @@
+"""`plx check` for one file: lint -> instantiate -> evaluate -> SNAP -> static checks -> scene IR
+-> (optionally) MuJoCo compile / simulate / export / render.
+
+mujoco is imported only when a MuJoCo step is requested (inside :func:`run_backend`).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from plxtools.check.assemble import Assembler, Assembly, Kinds
+from plxtools.check.checks import StaticChecks, scan_strings
+from plxtools.check.convert import Collector, to_scene
+from plxtools.check.evaluate import Evaluator
+from plxtools.check.frames import mat_to_quat_wxyz
+from plxtools.check.instance import Builder
+from plxtools.check.report import Reporter
+from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Pos, Severity, Span
+from plxtools.model.symbols import ModelSym
+from plxtools.syntax import ast, parse_bytes
+
+# codes whose errors make a simulation meaningless (the scene is not what the file says)
+_BLOCKING_PREFIXES = ("S", "N", "T", "M", "B", "E")
+_BLOCKING_CODES = {"A001", "A002", "A003", "A004", "A005", "A006", "A009", "A030", "A032", "A033", "A034"}
+
+
+@dataclass
+class FileCheck:
+    path: str
+    tree: ast.File | None = None
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    model: str | None = None
+    assembly: Assembly | None = None
+    scene: Any = None  # plxtools.check.scene.Scene
+    compiled: Any = None  # CompiledScene
+    simulation: Any = None  # SimulationResult
+    skipped: str | None = None  # why the simulation (or the whole check) did not run
+    internal_error: str | None = None
+    timings: dict[str, float] = field(default_factory=dict)
+    objects: int = 0
+    rep: Reporter | None = field(default=None, repr=False)  # the check diagnostics, before merging
+    raw: list[Diagnostic] = field(default_factory=list, repr=False)  # lint's, before filtering
+    cfg: Any = field(default=None, repr=False)
+
+    @property
+    def has_errors(self) -> bool:
+        return any(d.severity == Severity.ERROR for d in self.diagnostics)
+
+    def assembled_bodies(self) -> dict[str, dict[str, Any]]:
+        if self.assembly is None:
+            return {}
+        out = {}
+        for n in self.assembly.nodes:
+            if n.kind != "body":
+                continue
+            out[n.path] = {
+                "position": [round(float(x), 12) + 0.0 for x in n.world[1]],
+                "quaternion": [round(x, 12) + 0.0 for x in mat_to_quat_wxyz(n.world[0])],
+                "placed_by": n.placed_by,
+                "dynamic": n.is_dynamic,
+            }
+        return out
+
+
+def _pick_root(program, unit, name: str | None, rep: Reporter) -> ModelSym | None:
+    from plxtools.model.completeness import root_model
+
+    if not name:
+        root = root_model(program, unit)
+        if root is None:
+            return None
+        return root
+    found = program.lookup(name.split("."), unit)
+    if isinstance(found, ModelSym) and found.is_trait:
+        span = found.stmt.header if found.unit is unit and found.stmt is not None else EMPTY_SPAN
+        rep.add("A002", f"'{name}' is a trait; a trait cannot be instantiated as the root model", span=span,
+                help="name a model with --model, or leave it out to load the last model of the file")
+        return None
+    if not isinstance(found, ModelSym):
+        models = [s.path.parts[0].name for s in unit.tree.statements
+                  if isinstance(s, ast.Declaration) and s.keyword != "becomes" and len(s.path.parts) == 1
+                  and s.value is None]
+        rep.add("A001", f"no model named '{name}'" + (f"; this file defines {', '.join(models)}" if models else ""),
+                span=EMPTY_SPAN)
+        return None
+    return found
+
+
+def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileCheck:
+    """Everything up to the scene IR (no MuJoCo)."""
+    fc = FileCheck(str(path))
+    t0 = time.perf_counter()
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        fc.diagnostics = [Diagnostic("E001", f"cannot read file: {exc.strerror}", EMPTY_SPAN, Severity.ERROR,
+                                     file=str(path))]
+        fc.skipped = "the file cannot be read"
+        return fc
+    tree = parse_bytes(data, str(path))
+    fc.tree = tree
+    raw: list[Diagnostic] = list(tree.diagnostics)
+    if any(d.code == "S001" for d in tree.diagnostics):
+        fc.skipped = "not an OpenPLX text file"
+        fc.diagnostics = _finish(tree, raw, cfg)
+        return fc
+    fa = workspace.analyse(tree)
+    raw.extend(fa.diagnostics)
+    fc.timings["lint"] = time.perf_counter() - t0
+    rep = Reporter(fa.unit, str(path))
+    if tree.has_errors:
+        fc.skipped = "the file has syntax errors"
+        fc.diagnostics = _finish(tree, raw, cfg)
+        return fc
+    t1 = time.perf_counter()
+    program = workspace.program
+    root = _pick_root(program, fa.unit, model, rep)
+    if root is None:
+        if not rep.entries:
+            fc.skipped = "the file defines no model"
+        else:
+            fc.skipped = "no root model"
+        scan_strings(tree, rep)
+        fc.diagnostics = _finish(tree, raw + rep.diagnostics(), cfg)
+        return fc
+    fc.model = root.name
+    rep.root_stmt = root.stmt if root.unit is fa.unit else None
+    builder = Builder(program)
+    builder.report = lambda code, msg, obj: rep.add(code, msg, obj=obj)
+    obj = builder.root(root)
+    fc.objects = builder.objects
+    ev = Evaluator(program, builder, fa.unit,
+                   lambda code, msg, node, unit, anchor, help: rep.add(code, msg, node=node, unit=unit, obj=anchor,
+                                                                       help=help))
+    kinds = Kinds(program)
+    asmb = Assembler(program, ev, rep, kinds)
+    asm = asmb.run(obj)
+    fc.assembly = asm
+    col = Collector(asm, asmb, kinds, rep)
+    col.run()
+    StaticChecks(asm, asmb, col, kinds, rep).run()
+    scan_strings(tree, rep)
+    fc.scene = to_scene(asm, col, rep, os.path.dirname(os.path.abspath(str(path))))
+    fc.timings["assemble"] = time.perf_counter() - t1
+    fc.rep, fc.raw, fc.cfg = rep, raw, cfg
+    fc.diagnostics = _finish(tree, raw + _dedupe_missing(rep.diagnostics(), raw), cfg)
+    return fc
+
+
+def blocking_reason(fc: FileCheck) -> str | None:
+    if fc.skipped:
+        return fc.skipped
+    if fc.scene is None:
+        return "no scene"
+    bad = [d for d in fc.diagnostics if d.severity == Severity.ERROR and
+           (d.code.startswith(_BLOCKING_PREFIXES) or d.code in _BLOCKING_CODES)]
+    if bad:
+        codes = ", ".join(sorted({d.code for d in bad}))
+        return f"{len(bad)} error{'s' if len(bad) != 1 else ''} make the scene unreliable ({codes})"
+    return None
+
+
+def run_backend(fc: FileCheck, *, simulate: bool, duration: float, compile_only: bool = False) -> None:
+    """Compile (and simulate) the file's scene; backend notes become diagnostics."""
+    from plxtools.check import mujoco_backend as mjb
+
+    t0 = time.perf_counter()
+    fc.compiled = mjb.compile_scene(fc.scene)
+    fc.timings["compile"] = time.perf_counter() - t0
+    notes = list(fc.compiled.notes)
+    if simulate and fc.compiled.ok:
+        t1 = time.perf_counter()
+        fc.simulation = mjb.simulate(fc.compiled, duration)
+        fc.timings["simulate"] = time.perf_counter() - t1
+        notes = list(fc.simulation.notes)
+    add_backend_notes(fc.rep, fc.tree, notes)
+    fc.diagnostics = _finish(fc.tree, fc.raw + _dedupe_missing(fc.rep.diagnostics(), fc.raw), fc.cfg)
+
+
+def add_backend_notes(rep: Reporter, tree: ast.File, notes: list) -> None:
+    from plxtools.lint.catalog.assembly import BACKEND_CODES
+
+    static = [(e.diag.code, e.path) for e in rep.entries]
+    for n in notes:
+        code = BACKEND_CODES.get(n.code, "A199")
+        if code < "A100" and any(c == code and (n.path is None or p == n.path) for c, p in static):
+            continue  # the static check already said this
+        span = _span_of_source(tree, n.source) if n.source is not None else rep.anchor(None)
+        msg = n.message if code != "A199" else f"[{n.code}] {n.message}"
+        rep.add(code, msg, span=span, severity=n.severity, path=n.path)
+
+
+def _span_of_source(tree: ast.File, src) -> Span:
+    if src is None or src.line <= 0:
+        return EMPTY_SPAN
+    line, col = src.line - 1, max(src.column - 1, 0)
+    end_line = (src.end_line - 1) if src.end_line > 0 else line
+    end_col = (src.end_column - 1) if src.end_column > 0 else col
+    try:
+        a = tree.index.offset(line, col)
+        b = tree.index.offset(end_line, end_col)
+    except Exception:  # out of range: keep the line, drop the offset
+        a = b = 0
+    return Span(Pos(a, line, col), Pos(b, end_line, end_col))
+
+
+_LINT_TWIN = {"A004": "M007", "A005": "M008", "A006": "M006"}
+
+
+def _dedupe_missing(mine: list[Diagnostic], lint: list[Diagnostic]) -> list[Diagnostic]:
+    """Drop our missing-value / unbound-reference / cycle errors where lint's M007 / M008 / M006
+    already reports the same line, and evaluation errors on a line with a type or name error."""
+    covered = {(d.code, d.span.start.line) for d in lint if d.code in _LINT_TWIN.values()}
+    typed = {d.span.start.line for d in lint if d.severity == Severity.ERROR and d.code[0] in "TN"}
+    return [d for d in mine if (_LINT_TWIN.get(d.code), d.span.start.line) not in covered
+            and not (d.code == "A003" and d.span.start.line in typed)]
+
+
+def _finish(tree: ast.File, diags: list[Diagnostic], cfg) -> list[Diagnostic]:
+    """Lint's own config filtering and suppressions, over lint's and check's findings together."""
+    from plxtools.lint.runner import finalize
+
+    return finalize(tree, diags, cfg)

@@ -1,0 +1,358 @@
+"""Assembly and simulation rules (A...): reported by `plx check`.
+
+A0xx: instantiation, evaluation and static assembly checks (stage "check").
+A1xx: findings of the MuJoCo backend and of the simulation (stage "simulate", only with --simulate).
+
+``BACKEND_CODES`` maps the MuJoCo backend's note codes to these rule codes; a backend note that
+repeats a static finding maps to the static code and is dropped when that finding was already
+reported for the same object.
+"""
+
+from plxtools.diagnostics import Severity
+from plxtools.lint.registry import rule
+
+E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
+C, SIM = "check", "simulate"
+
+# ---------------------------------------------------------------- instantiation and evaluation
+
+rule("A001", "root-model-not-found", E,
+     "The model named with `--model` does not exist in the file (or the file defines no model).",
+     "`plx check` instantiates one root model per file: the last model of the file, or the one named with "
+     "`--model`. With no such model nothing can be assembled.", stage=C)
+rule("A002", "root-is-trait", E,
+     "The model chosen as the root is a trait.",
+     "A trait only adds attributes to the models that use it; it cannot be instantiated on its own "
+     "(AGXUnity: \"Cannot directly import a trait\").", stage=C)
+rule("A003", "evaluation-error", E,
+     "A value cannot be computed: a function called outside its domain (normalising a zero vector, "
+     "`arccos(2)`), a division by zero, an unknown name, a value of the wrong kind.",
+     "`plx check` evaluates the expressions of every object the root model creates, the way the OpenPLX "
+     "runtime does, on the final object (defaults late). A value that cannot be computed makes the "
+     "object unusable.", example="normal: main_axis.normal() / 0", use_instead="normal: main_axis.normal()",
+     stage=C)
+rule("A004", "missing-value", E,
+     "A value the assembly needs has no assignment and no default.",
+     "Usually reported by M007 already; this catches values that only the evaluation needs (a field of "
+     "a Matrix4x4, a value read through a reference).", stage=C)
+rule("A005", "unbound-reference", E,
+     "An attribute that must refer to an existing object is not bound, or is given something that is "
+     "not an object.",
+     "References (`connectors: [...]`, `group1: parts`, `material: Steel`) are followed during "
+     "assembly; an unbound one leaves the mate, group or geometry without its target.", stage=C)
+rule("A006", "value-cycle", E,
+     "Values depend on each other in a ring, found while evaluating (`a: b + 1`, `b: a`).",
+     "Such values can never be computed. The message lists the ring; break it by giving one of them a "
+     "value that does not depend on the others.", example="a is Real: b\nb is Real: a",
+     use_instead="a is Real: 1.0\nb is Real: a", stage=C)
+rule("A007", "environment-variable-unset", W,
+     "A `$\"...{VAR}...\"` string names an environment variable that is not set.",
+     "Interpolated strings take `{NAME}` from the environment (the BoxTruck tutorial uses "
+     "`$\"{AGX_DATA_DIR}/...\"`). Where the variable is unset the path cannot be resolved, so the file it "
+     "names is missing at run time.", example='path: $"{AGX_DATA_DIR}/models/wheel.obj"',
+     use_instead='path: @"wheel.obj"', stage=C)
+rule("A008", "unsupported-function", W,
+     "An expression calls a function that the plxtools evaluator does not implement "
+     "(`Physics3D.System.resnap`, signal factories, `on_init`...).",
+     "Such functions need the AGX runtime. The value is left unknown and whatever depends on it is "
+     "skipped.", stage=C)
+rule("A009", "instantiation-too-deep", E,
+     "Owned objects nest more than 48 levels deep: a model contains itself, directly or through others.",
+     "Instantiating would never end; the objects below that depth are not created.",
+     example="Link is Physics3D.System:\n    next is Link", stage=C)
+
+# ---------------------------------------------------------------- connectors and mates
+
+rule("A010", "zero-main-axis", E,
+     "A MateConnector's `main_axis` is the zero vector.",
+     "The main axis is the axis a hinge turns about and a prismatic slides along; a zero vector defines "
+     "no frame (AGXUnity `InvalidMateConnectorAxis`).", example="main_axis: {0, 0, 0}",
+     use_instead="main_axis: {0, 0, 1}", stage=C)
+rule("A011", "degenerate-normal", E,
+     "A MateConnector's `normal` is zero, or parallel or antiparallel to its `main_axis`.",
+     "The connector frame is x = normal (orthogonalised), z = main_axis; a normal along the main axis "
+     "leaves the rotation about the axis undefined, so SNAP cannot orient the parts.",
+     example="main_axis: {0, 1, 0}\nnormal: {0, -1, 0}", use_instead="main_axis: {0, 1, 0}\nnormal: {1, 0, 0}",
+     stage=C)
+rule("A012", "normal-not-orthogonal", I,
+     "A MateConnector's `normal` is not orthogonal to its `main_axis`; only its orthogonal part counts.",
+     "This is allowed (the frame is Gram-Schmidt orthogonalised), but it usually means the axes were "
+     "mixed up. The message shows the normal that is actually used.", stage=C)
+rule("A013", "connector-count", E,
+     "A mate or a 1-DOF controller does not have exactly two MateConnectors.",
+     "A mate joins two parts: `connectors[0]` and `connectors[1]`. With fewer there is nothing to join; "
+     "extra connectors are ignored by the runtime.",
+     example="connectors: [chassis.hub]", use_instead="connectors: [chassis.hub, wheel.connector]", stage=C)
+rule("A014", "mate-same-connector", E,
+     "A mate lists the same connector twice.", "A mate must join two different parts.", stage=C)
+rule("A015", "mate-same-body", E,
+     "Both connectors of a mate belong to the same body (or both to the world / a system), so it joins "
+     "nothing (AGXUnity `MissingConnectedBody`).",
+     "A mate constrains one body relative to another; within one body it has no effect and SNAP cannot "
+     "use it.", stage=C)
+rule("A016", "mate-not-coincident", E,
+     "After assembly the two connector frames of a mate do not coincide: the message gives the distance "
+     "and the angle, and how each side was placed.",
+     "SNAP moves only bodies and systems without a declared transform. When both sides of a mate are "
+     "placed by declared transforms (or by other mates) and their connectors do not meet, the simulation "
+     "starts with a violated joint and the solver yanks the parts together.",
+     example="front_left_wheel is Wheel:\n    kinematics.local_transform.position.z: 2.0",
+     use_instead="front_left_wheel is Wheel", stage=C)
+rule("A017", "mate-without-dynamic-body", W,
+     "A mate joins two parts that cannot move (static bodies, `is_dynamic: false`, or the world).",
+     "Such a mate has no effect; usually one side was meant to be dynamic.", stage=C)
+rule("A018", "hinge-axis-off-cylinder-axis", W,
+     "A hinge (or cylindrical mate) turns a body about an axis that is not the axis of the cylinder or "
+     "capsule it passes through. OpenPLX cylinders lie along their local Y axis.",
+     "The classic wheel mistake: a wheel connector with `main_axis: {0, 0, 1}` makes SNAP turn the "
+     "wheel so that its local Z lies on the hub's axis, and the wheel then tumbles about a diameter "
+     "instead of rolling.", example="connector is Physics3D.Interactions.MateConnector:\n    main_axis: {0, 0, 1}",
+     use_instead="connector is Physics3D.Interactions.MateConnector:\n    main_axis: {0, -1, 0}", stage=C)
+
+# ---------------------------------------------------------------- controllers
+
+rule("A020", "controller-without-mate", E,
+     "A motor, range or spring has a connector pair that no mate uses, so it drives nothing.",
+     "Controllers attach to the mate with the same two connectors (`connectors: hinge.connectors`). "
+     "With any other pair the runtime cannot find the degree of freedom to drive.",
+     example="connectors: [chassis.front_left_hub, front_right_wheel.connector]",
+     use_instead="connectors: front_left_hinge.connectors", stage=C)
+rule("A021", "controller-dof-mismatch", E,
+     "A controller's type does not fit its mate: a rotational motor, range or spring on a Prismatic, a "
+     "linear one on a Hinge, or any controller on a Lock, Ball or Distance.",
+     "Rotational controllers need a Hinge or Cylindrical mate; linear ones a Prismatic or Cylindrical.",
+     stage=C)
+rule("A022", "angle-probably-degrees", I,
+     "An angle or angular speed (`initial_angle`, `target_speed` of a rotational motor, a rotational "
+     "range) is larger than 2 pi.",
+     "OpenPLX angles are radians. A value such as 90 is likely meant in degrees; "
+     "`Math.Functions.deg_to_rad(90)` converts it.", example="initial_angle: 90",
+     use_instead="initial_angle: Math.Functions.deg_to_rad(90)", stage=C)
+rule("A023", "mirrored-drive-motors", I,
+     "Two velocity motors with the same target speed drive hinges whose axes point in opposite directions "
+     "(the left and right hubs of a vehicle).",
+     "The BoxTruck trap: left hubs look along -Y and right hubs along +Y, so equal target speeds turn the "
+     "two sides in opposite directions and the vehicle yaws on the spot. Give one side the opposite sign "
+     "to drive straight. This is information only: spinning on the spot may be intended.",
+     example="front_left_motor ...:\n    target_speed: 1\nfront_right_motor ...:\n    target_speed: 1",
+     use_instead="front_left_motor ...:\n    target_speed: 1\nfront_right_motor ...:\n    target_speed: -1",
+     stage=C)
+rule("A024", "inverted-limits", E,
+     "A range has `start > end`, or a controller has `min_effort > max_effort`.",
+     "The allowed interval is empty; the runtime cannot satisfy it.", stage=C)
+
+# ---------------------------------------------------------------- geometry, mass, contacts
+
+rule("A030", "non-positive-size", E,
+     "A geometry has a size that is not positive: a Box `size` component <= 0 (the default is 0, 0, 0!), a "
+     "radius or cylinder height <= 0, a capsule height < 0, a mesh scale <= 0, or a mesh without vertices.",
+     "Such a geometry has no volume: it cannot collide and gives no mass. The MuJoCo backend skips it.",
+     example="geometry is Physics3D.Geometries.Box", use_instead="geometry is Physics3D.Geometries.Box:\n"
+     "    size: {1, 0.5, 0.2}", stage=C)
+rule("A031", "missing-file", E,
+     "A file named with `@\"...\"` (relative to the .openplx file's folder), or a mesh file, does not exist. "
+     "Missing visual meshes and files behind `$\"...\"` are warnings.",
+     "The runtime fails to load the model, or the geometry is missing from the simulation.",
+     example='path: @"whel.obj"', use_instead='path: @"wheel.obj"', stage=C)
+rule("A032", "negative-mass", E, "A body has a negative `inertia.mass` (AGXUnity `NegativeMass`).",
+     "Mass must be positive; 0 means \"compute it from the geometries\".", stage=C)
+rule("A033", "zero-mass-dynamic-body", E,
+     "A dynamic body has `inertia.mass` 0 and no contact geometry that gives it mass.",
+     "Mass 0 means \"compute from the geometries\" (density x volume); with no geometry that counts the "
+     "body would have zero mass, which no solver can integrate.", stage=C)
+rule("A034", "invalid-inertia", E,
+     "An explicit inertia tensor is not symmetric, not positive definite, or breaks the triangle "
+     "inequality of principal moments.",
+     "The tensor counts as set when any diagonal element is not 0, and is then used as given. A physical "
+     "tensor has positive principal moments a, b, c with a + b >= c.", stage=C)
+rule("A035", "duplicate-contact-model", E,
+     "Two SurfaceContact.Models are given for the same (unordered) pair of materials.",
+     "The runtime rejects this (AGXUnity `DuplicateMaterialPairForSurfaceContactModelDefinitionError`): it "
+     "cannot know which friction to use.", stage=C)
+rule("A036", "invalid-contact-parameter", E,
+     "A contact model has a negative friction coefficient, or a restitution outside [0, 1].",
+     "Friction coefficients are >= 0 and restitution is a fraction of the normal speed kept after impact.",
+     stage=C)
+rule("A037", "unplaced-body-overlaps", W,
+     "A body with no declared transform that no mate places stays at its system's origin, where it "
+     "overlaps another body.",
+     "Bodies that SNAP cannot place keep the identity transform. Several of them pile up at the origin "
+     "and the simulation starts by pushing them apart.", stage=C)
+rule("A038", "non-positive-density", W,
+     "A material used by a mass-giving geometry has density <= 0.", "The geometry then adds no mass.",
+     stage=C)
+rule("A039", "body-not-in-system", W,
+     "A RigidBody is owned by an object that is not a Physics3D.System (AGXUnity "
+     "`RigidBodyOwnerNotSystemError`).",
+     "Bodies belong directly to systems; to attach one body to another use a mate (a Lock).", stage=C)
+rule("A040", "unsupported-feature", W,
+     "Something that the MuJoCo backend of `plx check --simulate` cannot represent: Physics1D, DriveTrain, "
+     "Terrain, Sensors, Vehicles and Robotics objects, signals, KinematicLock, restitution, non-dry friction "
+     "models, PointGravitationalField, unknown mate or interaction types.",
+     "It is named, never dropped silently: the simulation runs without it, so its results may differ "
+     "from AGX's.", stage=C)
+
+# ---------------------------------------------------------------- simulation (MuJoCo backend)
+
+rule("A101", "simulation-blowup", E,
+     "The simulation became numerically unstable: NaN/Inf, MuJoCo's bad-state warnings, or a velocity "
+     "above 1000 (m or rad)/s. The time and the fastest body are named.",
+     "The model is usually wrong: masses many orders of magnitude apart, huge stiffness, violated mates "
+     "or deep initial penetration.", stage=SIM)
+rule("A102", "fell-through-ground", E,
+     "A dynamic body that started above static geometry ended up below it (its centre of mass more than "
+     "1 cm below the top, inside the footprint).",
+     "Collisions are off for that pair (collision groups, `enable_collisions: false`) or the body tunnelled.",
+     stage=SIM)
+rule("A103", "mate-came-apart", W,
+     "During the simulation a mate's connectors separated by more than 5 mm, or its axes by more than "
+     "0.05 rad; the maximum and its time are given.",
+     "Stiff mates hold within millimetres. Larger separations mean a violated start (see A016), a loop "
+     "that MuJoCo cannot close exactly, or forces far beyond what the model can carry.", stage=SIM)
+rule("A104", "initial-penetration", W,
+     "Two geometries overlap by more than 5 mm at t = 0.",
+     "The solver pushes them apart in the first steps, which shows up as a jump or a blow-up.", stage=SIM)
+rule("A105", "joint-limit-exceeded", W, "A joint went more than 0.02 beyond its range during the run.",
+     "The range is enforced by a soft limit in MuJoCo; large excursions mean large forces.", stage=SIM)
+rule("A106", "motor-not-tracking", W,
+     "A velocity motor's mean speed over the last 20 % of the run is off its target by more than 10 % "
+     "(+ 0.05).", "The motor is blocked, its effort range is too small, or it fights another motor.",
+     stage=SIM)
+rule("A107", "bad-control", E, "MuJoCo rejected a NaN or huge actuator control and zeroed the controls.",
+     "A target speed or effort evaluated to an unusable number.", stage=SIM)
+rule("A108", "simulation-incomplete", I, "The simulation stopped before the requested duration.",
+     "Usually after a blow-up (A101).", stage=SIM)
+rule("A110", "mujoco-compile-error", E,
+     "MuJoCo rejected the compiled model; the message names the OpenPLX element when it can.",
+     "This is a model MuJoCo cannot represent (or a gap in the backend).", stage=SIM)
+rule("A111", "velocity-motor-gain-clamped", I,
+     "A velocity motor's `gain` (1e8 by default) is far too stiff for an explicit actuator; the MuJoCo "
+     "velocity gain is clamped to 1000 x the joint's effective inertia / timestep.",
+     "With the implicit integrator this still tracks the target speed almost rigidly, like AGX's stiff "
+     "motor, without making the simulation unstable.", stage=SIM)
+rule("A112", "spring-stiffness-clamped", I,
+     "A spring's stiffness would be unstable at the MuJoCo timestep and is lowered.",
+     "Joint stiffness is integrated explicitly; the cap keeps sqrt(k / I) * timestep <= 0.2.", stage=SIM)
+rule("A113", "friction-model-approximated", I,
+     "A dry friction model (box, scaled box, constant normal force...) is approximated by MuJoCo's "
+     "Coulomb cone with the same coefficient.", "Friction magnitudes can differ from AGX's model.",
+     stage=SIM)
+rule("A114", "loop-closure", I,
+     "A mate closes a kinematic loop and becomes a MuJoCo equality constraint (weld, connect, or two "
+     "connects on a hinge axis).", "Equality constraints are soft; they hold within millimetres.",
+     stage=SIM)
+rule("A115", "loop-closure-unsupported", W,
+     "A prismatic or cylindrical mate closes a kinematic loop; MuJoCo cannot express it and it is not "
+     "enforced.", "The parts it should hold together can drift apart in the simulation.", stage=SIM)
+rule("A116", "distance-mate-approximated", W,
+     "A Distance mate is approximated by a tendon-length equality (or a connect when the distance is 0).",
+     "MuJoCo has no distance constraint; the approximation is soft.", stage=SIM)
+rule("A117", "concave-mesh-hull", I, "MuJoCo collides with the convex hull of a (possibly concave) mesh.",
+     "Contacts inside concavities are lost.", stage=SIM)
+rule("A118", "mesh-format-unsupported", W, "MuJoCo cannot read this mesh file format; the geometry is skipped.",
+     "MuJoCo reads .obj and .stl meshes (and a few others).", stage=SIM)
+rule("A119", "range-effort-ignored", I, "A range's effort limits are not modelled: MuJoCo limits are hard.",
+     "Ranges become joint limits in MuJoCo.", stage=SIM)
+rule("A120", "initial-velocity-ignored", I,
+     "An initial velocity of a body attached by a mate is ignored (it follows its joints).",
+     "Only free bodies (the roots of the MuJoCo tree) take an initial velocity.", stage=SIM)
+rule("A121", "kinematic-motion-ignored", W,
+     "A static (`is_dynamic: false`) body has an initial velocity; MuJoCo holds it fixed.",
+     "Kinematically driven bodies are not supported by the backend.", stage=SIM)
+rule("A122", "controller-reversed", I,
+     "A controller lists its mate's connectors in the opposite order, so its coordinate is the negated "
+     "mate coordinate.", "A positive target speed then turns the other way; usually unintended.", stage=SIM)
+rule("A123", "controller-on-disabled-mate", W, "A controller drives a mate that is disabled.",
+     "It has nothing to drive.", stage=SIM)
+rule("A124", "controller-on-loop-mate", W,
+     "A controller drives a mate that closes a kinematic loop (an equality constraint in MuJoCo); this is "
+     "not supported.", "The controller is ignored in the simulation.", stage=SIM)
+rule("A125", "stacked-controllers", I,
+     "Several ranges or springs act on one degree of freedom: ranges are intersected; springs are summed "
+     "and the last rest value wins.", "Check that this is what the model means.", stage=SIM)
+rule("A126", "mass-without-geometry", W,
+     "A body has a mass but no geometry to shape its inertia; a 0.1 m solid sphere is assumed.",
+     "Give the body a geometry or an inertia tensor.", stage=SIM)
+rule("A127", "plane-on-dynamic-body", W, "MuJoCo planes can only be static; the geometry is skipped.",
+     "Use a thin box for a moving plate.", stage=SIM)
+rule("A128", "contact-model-unused", I,
+     "A SurfaceContact.Model names a material that no colliding geometry uses.",
+     "The model has no effect; often the geometry's `material` was not set.", stage=SIM)
+rule("A129", "disabled-element", I, "A mate, controller or contact model is disabled (`enabled: false`).",
+     "It is left out of the simulation.", stage=SIM)
+rule("A130", "invalid-controller-parameter", E,
+     "A controller parameter is unusable: a non-positive gain or stiffness, a negative damping, a range "
+     "without start or end.", "The controller is ignored in the simulation.", stage=SIM)
+rule("A131", "scene-inconsistent", E,
+     "The scene handed to the MuJoCo backend names an unknown or duplicate body.",
+     "This points at a plxtools bug; please report it with the model.", stage=SIM)
+rule("A199", "backend-note", W, "Another note from the MuJoCo backend (its own code is in the message).",
+     "Reported so that nothing the backend says is lost.", stage=SIM)
+
+BACKEND_CODES: dict[str, str] = {
+    # repeats of static checks (dropped when the static check already reported the same object)
+    "negative-mass": "A032",
+    "mate-connector-count": "A013",
+    "controller-connector-count": "A013",
+    "mate-same-body": "A015",
+    "mate-no-dynamic-body": "A017",
+    "zero-main-axis": "A010",
+    "mate-initially-violated": "A016",
+    "controller-without-mate": "A020",
+    "controller-dof-mismatch": "A021",
+    "effort-range-inverted": "A024",
+    "range-inverted": "A024",
+    "invalid-geometry-size": "A030",
+    "mesh-empty": "A030",
+    "mesh-file-missing": "A031",
+    "zero-mass": "A033",
+    "invalid-inertia": "A034",
+    "duplicate-contact-model": "A035",
+    "negative-friction": "A036",
+    "non-positive-density": "A038",
+    "unsupported-feature": "A040",
+    "unsupported-geometry": "A040",
+    "unsupported-controller": "A040",
+    "unknown-mate-kind": "A040",
+    "restitution-unsupported": "A040",
+    "friction-model-unsupported": "A040",
+    # the backend's own findings
+    "sim-blowup": "A101",
+    "sim-fell-through": "A102",
+    "sim-mate-separated": "A103",
+    "sim-initial-penetration": "A104",
+    "sim-joint-limit-exceeded": "A105",
+    "sim-motor-not-tracking": "A106",
+    "sim-bad-control": "A107",
+    "sim-incomplete": "A108",
+    "mujoco-compile-error": "A110",
+    "velocity-motor-gain-clamped": "A111",
+    "spring-stiffness-clamped": "A112",
+    "friction-model-approximated": "A113",
+    "loop-closure": "A114",
+    "loop-closure-unsupported": "A115",
+    "distance-mate-approximated": "A116",
+    "concave-mesh-hull": "A117",
+    "mesh-format-unsupported": "A118",
+    "range-effort-ignored": "A119",
+    "initial-velocity-ignored": "A120",
+    "kinematic-motion-ignored": "A121",
+    "controller-reversed": "A122",
+    "controller-on-disabled-mate": "A123",
+    "controller-on-loop-mate": "A124",
+    "multiple-ranges": "A125",
+    "multiple-springs": "A125",
+    "mass-without-geometry": "A126",
+    "plane-on-dynamic-body": "A127",
+    "contact-model-unused": "A128",
+    "mate-disabled": "A129",
+    "controller-disabled": "A129",
+    "contact-model-disabled": "A129",
+    "non-positive-gain": "A130",
+    "non-positive-stiffness": "A130",
+    "negative-damping": "A130",
+    "range-incomplete": "A130",
+    "duplicate-body": "A131",
+    "unknown-body": "A131",
+}
+"""MuJoCo backend note code -> rule code (anything else maps to A199)."""
