@@ -262,19 +262,32 @@ def walk_statements(stmts: list[Stmt]) -> Iterator[Stmt]:
             stack.pop()
 
 
-def structure(node: object) -> object:
-    """A layout-free rendering of a tree: equal for two texts that mean the same."""
-    if isinstance(node, list):
-        return tuple(structure(n) for n in node)
-    if is_dataclass(node) and isinstance(node, Node):
-        out: list[object] = [type(node).__name__]
-        for f in fields(node):
-            if f.name in ("span", "header"):
-                continue
-            value = getattr(node, f.name)
-            out.append(structure(value))
-        return tuple(out)
-    return node
+def structure(node: object) -> tuple:
+    """A layout-free rendering of a tree: equal for two texts that mean the same.
+
+    Flat (pre-order, with open and close markers) and built without recursion, so two renderings
+    of a file nested hundreds of levels deep compare at Python's default recursion limit.
+    """
+    out: list[object] = []
+    stack: list[object] = [node]
+    while stack:
+        n = stack.pop()
+        if n is _CLOSE:
+            out.append(")")
+        elif isinstance(n, list):
+            out.append("[")
+            stack.append(_CLOSE)
+            stack.extend(reversed(n))
+        elif is_dataclass(n) and isinstance(n, Node):
+            out.append(type(n).__name__)
+            stack.append(_CLOSE)
+            stack.extend(reversed([getattr(n, f.name) for f in fields(n) if f.name not in ("span", "header")]))
+        else:
+            out.append(repr(n))
+    return tuple(out)
+
+
+_CLOSE = object()
 
 
 def _all_subclasses(cls):

@@ -1,0 +1,225 @@
+"""Laying out a whole file: statements at their block level, comments, blank lines, regions.
+
+The syntax tree says which block each statement belongs to; the lexer's logical lines give each
+statement's tokens and the comments inside it. Both come from the same text, one logical line per
+statement, in the same order, so they are walked side by side.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from plxtools.fmt.brackets import LayoutError, Note, Tok, nest
+from plxtools.fmt.directives import directive
+from plxtools.fmt.printer import print_line
+from plxtools.fmt.style import COMMENT_GAP, INDENT, blank_cap, token_kinds
+from plxtools.fmt.verbatim import indent_width, rebased_lines
+from plxtools.syntax import ast
+from plxtools.syntax.lexer import LexResult, LogicalLine
+
+
+@dataclass(slots=True)
+class Piece:
+    """One statement header or one own-line comment between statements, in file order."""
+
+    depth: int
+    first_line: int  # source lines, 0-based
+    last_line: int
+    stmt: ast.Stmt | None = None
+    line: LogicalLine | None = None
+    comment_text: str = ""  # for a comment piece: its text
+    trailing: tuple[int, str] | None = None  # a statement's trailing comment: (end offset, text)
+    inner: list[Note] = field(default_factory=list)
+    opens_block: bool = False
+    verbatim: bool = False
+    out: list[str] = field(default_factory=list)  # printed code, without the trailing comment
+    blanks: int = 0  # blank lines printed before the piece
+
+
+@dataclass(slots=True)
+class Layout:
+    text: str  # the formatted text
+    pieces: list[Piece]  # what it was made of, for range formatting
+
+
+def _statements_with_depth(stmts: list[ast.Stmt]) -> list[tuple[ast.Stmt, int]]:
+    out: list[tuple[ast.Stmt, int]] = []
+    stack = [(iter(stmts), 0)]
+    while stack:
+        it, depth = stack[-1]
+        for s in it:
+            out.append((s, depth))
+            body = ast.body_of(s)
+            if body:
+                stack.append((iter(body), depth + 1))
+            break
+        else:
+            stack.pop()
+    return out
+
+
+def _comment_depth(column: int, cols: list[int], lowest: int) -> int:
+    """The deepest open block, no deeper than the comment's column, and not above `lowest`.
+
+    `cols[d]` is the source column of the enclosing statement at depth d of the statement before
+    the comment; `lowest` is the depth of the statement after it (the comment belongs there
+    unless it is indented into a block that is still open).
+    """
+    for d in range(len(cols) - 1, lowest - 1, -1):
+        if cols[d] <= column:
+            return d
+    return lowest
+
+
+@dataclass(slots=True)
+class _Comments:
+    inner: dict[int, list[Note]] = field(default_factory=dict)  # by logical line: inside its brackets
+    trailing: dict[int, tuple[int, str]] = field(default_factory=dict)  # by logical line: (end, text)
+    standalone: list[tuple[int, int, int, str]] = field(default_factory=list)  # start, line, column, text
+
+
+def _sort_comments(text: str, lexed: LexResult) -> _Comments:
+    """Each comment is inside a logical line, trails one, or stands alone between statements."""
+    out = _Comments()
+    lines = lexed.lines
+    li = -1
+    for start, line, _col, end, ctext, own in lexed.comments:
+        while li + 1 < len(lines) and lines[li + 1].start < start:
+            li += 1
+        cur = lines[li] if li >= 0 else None
+        if cur is not None and start < cur.end:
+            out.inner.setdefault(li, []).append(Note(ctext.rstrip(), own, line, start))
+        elif cur is not None and not own and line == cur.tokens[-1].end_line:
+            out.trailing[li] = (end, ctext.rstrip())
+        else:
+            line_start = text.rfind("\n", 0, start) + 1
+            column, _ = indent_width(text[line_start:start])
+            out.standalone.append((start, line, column, ctext.rstrip()))
+    return out
+
+
+def build_pieces(text: str, tree: ast.File, lexed: LexResult) -> list[Piece]:
+    stmts = _statements_with_depth(tree.statements)
+    lines = lexed.lines
+    if len(stmts) != len(lines) or any(s.header.start.offset != ln.start for (s, _), ln in zip(stmts, lines)):
+        raise LayoutError("statements and logical lines do not match")
+    comments = _sort_comments(text, lexed)
+    standalone = comments.standalone
+
+    pieces: list[Piece] = []
+    cols: list[int] = []  # source columns of the statement before and of its enclosing statements
+    ci = 0
+
+    def comments_before(offset: int, next_depth: int) -> None:
+        nonlocal ci
+        while ci < len(standalone) and standalone[ci][0] < offset:
+            _start, line, column, ctext = standalone[ci]
+            pieces.append(Piece(_comment_depth(column, cols, next_depth), line, line, comment_text=ctext))
+            ci += 1
+
+    for i, ((stmt, depth), ln) in enumerate(zip(stmts, lines)):
+        comments_before(ln.start, depth)
+        del cols[depth:]
+        cols.append(ln.indent)
+        piece = Piece(depth, ln.tokens[0].line, ln.tokens[-1].end_line, stmt=stmt, line=ln)
+        piece.trailing = comments.trailing.get(i)
+        piece.inner = comments.inner.get(i, [])
+        piece.opens_block = bool(ast.body_of(stmt))
+        pieces.append(piece)
+    comments_before(len(text) + 1, 0)
+    _mark_verbatim(pieces)
+    return pieces
+
+
+def _mark_verbatim(pieces: list[Piece]) -> None:
+    """`# plx: fmt: off` ... `# plx: fmt: on` regions, and statements ending in `# plx: fmt: skip`."""
+    off = False
+    for p in pieces:
+        if p.stmt is None:
+            d = directive(p.comment_text)
+            if d == "off" and not off:
+                off = True
+                p.verbatim = True
+            elif off:
+                p.verbatim = True
+                if d == "on":
+                    off = False
+        else:
+            p.verbatim = off or (p.trailing is not None and directive(p.trailing[1]) == "skip")
+
+
+def _render(text: str, p: Piece) -> None:
+    indent = p.depth * INDENT
+    if p.stmt is None:
+        p.out = [" " * indent + p.comment_text]
+        return
+    ln = p.line
+    assert ln is not None
+    if p.verbatim:
+        end = p.trailing[0] if p.trailing else ln.end
+        strings = [(t.start_pos, t.end_pos) for t in ln.tokens if t.type == "STRING"]
+        p.out = rebased_lines(text, ln.start, end, ln.indent, indent, strings)
+        return
+    kinds = token_kinds([t.type for t in ln.tokens])
+    toks = [Tok(k, text[t.start_pos : t.end_pos], t.line, t.end_line, t.start_pos) for t, k in zip(ln.tokens, kinds)]
+    p.out = print_line(nest(toks, p.inner), indent)
+
+
+def _blank_lines(pieces: list[Piece]) -> None:
+    prev: Piece | None = None
+    for p in pieces:
+        if prev is None:
+            p.blanks = 0
+        else:
+            found = max(0, p.first_line - prev.last_line - 1)
+            if prev.verbatim and p.verbatim:
+                p.blanks = found  # inside a `fmt: off` region
+            elif prev.opens_block and p.depth > prev.depth:
+                p.blanks = 0  # nothing between a block's header and its first line
+            else:
+                p.blanks = min(found, blank_cap(p.depth))
+        prev = p
+
+
+def _single_line(p: Piece) -> bool:
+    return p.stmt is not None and not p.verbatim and len(p.out) == 1 and "\n" not in p.out[0]
+
+
+def _attach_trailing(pieces: list[Piece]) -> None:
+    """Trailing comments: two spaces after the code, aligned across a run of sibling lines.
+
+    A run is a stretch of one-line statements of the same block with no blank line or comment
+    line between them; the comments in it line up two spaces after its longest commented line.
+    """
+    i = 0
+    n = len(pieces)
+    while i < n:
+        p = pieces[i]
+        if not _single_line(p):
+            if p.trailing is not None and not p.verbatim:
+                p.out[-1] += " " * COMMENT_GAP + p.trailing[1]
+            i += 1
+            continue
+        j = i + 1
+        while j < n and _single_line(pieces[j]) and pieces[j].depth == p.depth and pieces[j].blanks == 0:
+            j += 1
+        run = [q for q in pieces[i:j] if q.trailing is not None]
+        if run:
+            col = max(len(q.out[0]) for q in run) + COMMENT_GAP
+            for q in run:
+                q.out[0] = q.out[0].ljust(col) + q.trailing[1]  # type: ignore[index]
+        i = j
+
+
+def layout(text: str, tree: ast.File, lexed: LexResult, newline: str) -> Layout:
+    pieces = build_pieces(text, tree, lexed)
+    for p in pieces:
+        _render(text, p)
+    _blank_lines(pieces)
+    _attach_trailing(pieces)
+    out: list[str] = []
+    for p in pieces:
+        out.extend([""] * p.blanks)
+        out.extend(p.out)
+    body = newline.join(out) + newline if out else ""
+    return Layout(body, pieces)
