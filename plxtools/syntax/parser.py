@@ -498,6 +498,19 @@ def parse_file(path: str | Path) -> ast.File:
 
 
 def _parse_decoded(text: str, path: str, diags: list[Diagnostic], had_bom: bool, newline: str) -> ast.File:
+    import gc
+
+    # the tree is acyclic: collection passes while it grows only rescan it (superlinear on big files)
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        return _parse_decoded_inner(text, path, diags, had_bom, newline)
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _parse_decoded_inner(text: str, path: str, diags: list[Diagnostic], had_bom: bool, newline: str) -> ast.File:
     diags = list(diags)
     lexed = lex(text)
     diags.extend(lexed.diagnostics)
