@@ -27,13 +27,14 @@ def _add_lint(sub) -> None:
                    help="text (default), json, github (workflow annotations) or sarif (SARIF 2.1.0)")
     p.add_argument("--fix", action="store_true", help="apply safe fixes in place")
     p.add_argument("--unsafe-fixes", action="store_true", help="with --fix or --diff, also apply unsafe fixes")
-    p.add_argument("--diff", action="store_true", help="print the fixes as a unified diff instead of writing")
+    p.add_argument("--diff", action="store_true",
+                   help="print the fixes (safe ones; all with --unsafe-fixes) as a unified diff; write nothing (exit 0)")
     p.add_argument("--statistics", action="store_true", help="print a count per rule instead of each diagnostic")
     p.add_argument("--exit-zero", action="store_true", help="exit 0 even when errors are found")
     p.add_argument("--select", metavar="CODES", help="comma-separated codes or prefixes to enable (overrides config)")
     p.add_argument("--ignore", metavar="CODES", help="comma-separated codes or prefixes to disable (adds to config)")
     p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
-                   help="extra folder holding bundles (repeatable); also OPENPLX_BUNDLE_PATH")
+                   help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
     p.add_argument("--no-cache", action="store_true", help="do not read or write the bundle symbol cache")
     p.add_argument("-q", "--quiet", action="store_true", help="print diagnostics only, no summary line")
     p.set_defaults(func=_run_lint)
@@ -42,8 +43,9 @@ def _add_lint(sub) -> None:
 def _add_rule(sub) -> None:
     p = sub.add_parser("rule", help="show the documentation of a rule, or list all rules",
                        description="Print a rule's documentation page (by code or name), or list every rule.")
-    p.add_argument("code", nargs="?", help="rule code (e.g. S011) or name (e.g. invalid-syntax)")
-    p.add_argument("--all", action="store_true", help="list every rule with its code, name and severity")
+    p.add_argument("code", nargs="?", metavar="CODE", help="rule code (e.g. S011) or name (e.g. invalid-syntax)")
+    p.add_argument("--all", action="store_true",
+                   help="list every rule: code, name, severity and summary (the default without CODE)")
     p.add_argument("--output-format", choices=("text", "json"), default="text", help="text or json")
     p.set_defaults(func=_run_rule)
 
@@ -65,7 +67,9 @@ def _add_fmt(sub) -> None:
 def _add_check(sub) -> None:
     p = sub.add_parser("check", help="assemble a scene, check it, and optionally simulate it in MuJoCo",
                        description="Instantiate the root model of each file, assemble it as OpenPLX's SNAP "
-                       "does, check the assembly, and with --simulate compile it to MuJoCo and run it.")
+                       "does, check the assembly, and with --simulate compile it to MuJoCo and run it. Exit 0 "
+                       "when there is no error-severity diagnostic, 1 when there is, 2 on usage or internal "
+                       "errors or when a --render/--export-mjcf file cannot be written.")
     p.add_argument("paths", nargs="+", metavar="PATH", help="files or folders")
     p.add_argument("--model", metavar="NAME", help="the model to load (default: the last model in the file)")
     p.add_argument("--simulate", action="store_true", help="compile to MuJoCo and run the scene")
@@ -74,7 +78,8 @@ def _add_check(sub) -> None:
     p.add_argument("--output-format", choices=OUTPUT_FORMATS, default="text", help="text, json, github or sarif")
     p.add_argument("--render", metavar="FILE.png", help="save a picture of the assembled scene (offscreen)")
     p.add_argument("--export-mjcf", metavar="FILE.xml", help="write the compiled MuJoCo model")
-    p.add_argument("--bundle-path", action="append", default=[], metavar="DIR", help="extra bundle folder")
+    p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
+                   help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
     p.add_argument("--exit-zero", action="store_true", help="exit 0 even when errors are found")
     p.set_defaults(func=_run_check)
 
@@ -91,7 +96,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="plx",
         description="plxtools: lint, format, check and simulate OpenPLX models, and an editor language server.",
-        epilog="Run 'plx COMMAND --help' for a command's options. Docs: docs/ in the plxtools repository.",
+        epilog="Run 'plx COMMAND --help' for a command's options and 'plx rule CODE' to explain a diagnostic. "
+        "Docs: docs/getting-started.md in the plxtools repository.",
     )
     parser.add_argument("--version", action="version", version=f"plx {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -198,7 +204,7 @@ def entry() -> None:
     try:
         sys.stdout.flush()
         sys.stderr.flush()
-    except (BrokenPipeError, OSError):
+    except (BrokenPipeError, OSError, ValueError):  # ValueError: the server closed stdout itself
         pass
     import os
 

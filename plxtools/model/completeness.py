@@ -25,25 +25,26 @@ def root_model(program: Program, unit) -> ModelSym | None:
     return last
 
 
+def _walk_assigned(body, prefix: tuple[str, ...], out: set[tuple[str, ...]]) -> None:
+    for s in body:
+        if isinstance(s, ast.Declaration) and s.keyword in ("is", "becomes"):
+            if s.value is not None:
+                out.add(prefix + tuple(p.name for p in s.path.parts))
+        elif isinstance(s, ast.Assignment):
+            path = prefix + tuple(p.name for p in s.path.parts)
+            if s.value is not None:
+                out.add(path)
+            if s.body:
+                _walk_assigned(s.body, path, out)
+
+
 def _assigned(program: Program, model: ModelSym) -> set[tuple[str, ...]]:
+    """Paths given a value anywhere in a model's chain of bases, traits and its own body."""
     out: set[tuple[str, ...]] = set()
-
-    def walk(body, prefix: tuple[str, ...]) -> None:
-        for s in body:
-            if isinstance(s, ast.Declaration) and s.keyword in ("is", "becomes"):
-                if s.value is not None:
-                    out.add(prefix + tuple(p.name for p in s.path.parts))
-            elif isinstance(s, ast.Assignment):
-                path = prefix + tuple(p.name for p in s.path.parts)
-                if s.value is not None:
-                    out.add(path)
-                if s.body:
-                    walk(s.body, path)
-
     for m in program.ancestors(model):
         body = getattr(m.stmt, "body", None)
         if body:
-            walk(body, ())
+            _walk_assigned(body, (), out)
     return out
 
 
@@ -55,14 +56,21 @@ def completeness_diagnostics(program: Program, unit, checker) -> list[Diagnostic
         return []
     out: list[Diagnostic] = []
     seen: set[tuple[str, str]] = set()
+    memo: dict[int, set[tuple[str, ...]]] = {}
+
+    def assigned_in(m: ModelSym) -> set[tuple[str, ...]]:
+        got = memo.get(id(m))
+        if got is None:
+            got = memo[id(m)] = _assigned(program, m)
+        return got
 
     def visit(ty: Ty, outer: set[tuple[str, ...]], path: str, anchor: Span, depth: int, chain: tuple) -> None:
         model = ty.model
         if model is None or depth > MAX_DEPTH or id(model) in chain:
             return
-        assigned = _assigned(program, model) | outer
+        assigned = assigned_in(model) | outer
         for t in ty.traits:
-            assigned |= _assigned(program, t)
+            assigned |= assigned_in(t)
         for name, mem in program.members_of(ty).items():
             mty = program.member_type(mem)
             here = (name,) in assigned or mem.value is not None

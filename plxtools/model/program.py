@@ -51,7 +51,11 @@ class Program:
             self._add_top(unit, stmt)
 
     def remove_unit(self, path: str) -> None:
-        """Forget a file's symbols (the language server replaces a file on every edit)."""
+        """Forget a file's symbols (the language server replaces a file on every edit).
+
+        Only a bundle file's symbols can be named by other files, so only removing one of those
+        resets the cached member tables of every model.
+        """
         unit = self.units.pop(path, None)
         if unit is None:
             return
@@ -62,7 +66,8 @@ class Program:
         for op, lst in self.operators.items():
             self.operators[op] = [o for o in lst if o.unit is not unit]
         self.duplicates = [d for d in self.duplicates if d[0] is not unit]
-        self.invalidate()
+        if unit.bundle is not None:
+            self.invalidate()
 
     def invalidate(self) -> None:
         """Drop cached member tables and resolved types (after files changed)."""
@@ -79,6 +84,7 @@ class Program:
             while stack:
                 m = stack.pop()
                 m._all = None
+                m._ancestors = None
                 m.base = None
                 m.traits = None
                 for mem in m.members.values():
@@ -275,7 +281,15 @@ class Program:
         return model.traits
 
     def ancestors(self, model: ModelSym) -> list[ModelSym]:
-        """The model, its bases and all traits applied anywhere in that chain (no duplicates)."""
+        """The model, its bases and all traits applied anywhere in that chain (no duplicates).
+
+        Cached per model (cleared by invalidate); callers get a copy they may extend.
+        """
+        if model._ancestors is None:
+            model._ancestors = self._compute_ancestors(model)
+        return list(model._ancestors)
+
+    def _compute_ancestors(self, model: ModelSym) -> list[ModelSym]:
         out: list[ModelSym] = []
         seen: set[int] = set()
         stack = [model]

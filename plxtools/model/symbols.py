@@ -70,6 +70,7 @@ class ModelSym:
     doc: str | None = None
     deprecated: dict[str, str] = field(default_factory=dict)  # member name -> note from the source
     _all: "dict[str, MemberSym] | None" = None
+    _ancestors: "list[ModelSym] | None" = None
     _resolving: bool = False
 
     @property

@@ -11,7 +11,7 @@ import zlib
 import os
 import pickle
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 from plxtools import __version__
@@ -20,7 +20,7 @@ from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_
 from plxtools.model.checker import Checker, Occurrence
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
-from plxtools.syntax import ast, parse_bytes, parse_file
+from plxtools.syntax import ast, parse_file
 
 
 _URI_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]+:")  # a scheme of 2+ letters: not a drive letter
@@ -42,8 +42,11 @@ def _cache_dir() -> Path:
     return Path(base) / "plxtools"
 
 
+_CACHE_FORMAT = 3  # bump when the pickled classes change shape
+
+
 def _cache_key(paths: list[Path]) -> str:
-    h = zlib.crc32(__version__.encode())
+    h = zlib.crc32(f"{__version__}/{_CACHE_FORMAT}".encode())
     n = 0
     for p in paths:
         try:
@@ -217,6 +220,11 @@ class Workspace:
             return existing
         # an editor buffer named by a URI (`untitled:Untitled-1`) is no file: it belongs to no bundle
         bundle = self.bundle_of(Path(path)) if tree.path and not _URI_NAME.match(path) else None
+        if existing is None and bundle is not None:
+            # finding the bundle may just have loaded it, this file included
+            existing = self.program.units.get(str(Path(path).resolve())) or self.program.units.get(path)
+            if existing is not None and existing.tree.text == tree.text:
+                return existing
         if existing is not None:
             self.program.remove_unit(existing.path)
         if bundle is not None and Path(path).name == "config.openplx" and Path(path).resolve().parent == bundle.root.resolve():
@@ -231,8 +239,8 @@ class Workspace:
             ns = self._loose_ns.setdefault(path, Namespace("", ()))
             unit = FileUnit(path, tree, ns, None)
         self.program.add_unit(unit)
-        if existing is not None or bundle is None:
-            self.program.invalidate()
+        if existing is not None and bundle is not None:
+            self.program.invalidate()  # a bundle file changed: any model may see its symbols
         return unit
 
     def analyse(self, tree: ast.File) -> FileAnalysis:
@@ -278,8 +286,10 @@ def workspace_for_cli(bundle_paths: list[str], files: list[Path], use_cache: boo
     from plxtools.config import config_for
 
     paths: list[Path] = [Path(p) for p in bundle_paths]
-    for f in files[:1] or [Path(".")]:
-        paths.extend(config_for(f).bundle_paths)
+    for folder in sorted({f.parent for f in files} or {Path(".")}):
+        for p in config_for(folder / "x.openplx").bundle_paths:
+            if p not in paths:
+                paths.append(p)
     for p in paths:
         if not p.exists():
             raise WorkspaceError(f"bundle path {p} does not exist")
