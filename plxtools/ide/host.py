@@ -1,0 +1,450 @@
+"""The analysis host: open documents, the semantic model, and one cached analysis per file version.
+
+Everything here speaks paths, text and offsets (code points); nothing knows about LSP. The host
+keeps the semantic model's units in step with the editor's buffers: a buffer that differs from
+the disk replaces that file's symbols, and closing it puts the disk version back.
+
+A file's analysis stays valid while its text is the same and no bundle file changed since
+(`generation`). Loose files (outside any bundle) are invisible to every other file, so editing
+one never invalidates anything else.
+"""
+
+from __future__ import annotations
+
+import bisect
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from plxtools.config import Config, ConfigError, config_for
+from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity
+from plxtools.ide.incremental import IncrementalParser
+from plxtools.syntax import ast, parse_text
+
+
+def is_file_path(path: str) -> bool:
+    """True for real files; False for editor buffers named by a URI such as `untitled:Untitled-1`."""
+    return os.path.isabs(path)
+
+
+@dataclass(slots=True)
+class Document:
+    path: str
+    text: str
+    version: int | None = None
+
+
+@dataclass(slots=True, eq=False)
+class FileState:
+    """One analysed version of one file."""
+
+    path: str
+    text: str
+    version: int | None
+    tree: ast.File
+    analysis: object | None  # model.workspace.FileAnalysis (None when the bundles are unavailable)
+    diagnostics: list[Diagnostic]  # exactly `plx lint`'s, after config and suppressions
+    generation: int
+    program: object = None  # model.program.Program
+    unit: object = None  # model.symbols.FileUnit
+    known_annotations: frozenset = frozenset()
+    _occ: list | None = None
+    _by_start: dict | None = None
+    _starts: list[int] | None = None
+
+    @property
+    def checked(self) -> bool:
+        """False for a quick state (symbols only, no checker run: no occurrences, no diagnostics)."""
+        return self.analysis is not None
+
+    @property
+    def occurrences(self) -> list:
+        return self.analysis.occurrences if self.analysis is not None else []
+
+    def occurrences_at(self, offset: int) -> list:
+        """Every recorded name whose span holds the offset, innermost first, definitions first."""
+        if self._occ is None:
+            occ = sorted(self.occurrences, key=lambda o: (o.span.start.offset, -o.span.end.offset))
+            self._occ = occ
+            self._starts = [o.span.start.offset for o in occ]
+        i = bisect.bisect_right(self._starts, offset)
+        hits = []
+        j = i - 1
+        # spans do not nest deeply; a short look back finds every span that holds the offset
+        while j >= 0 and i - j < 64:
+            o = self._occ[j]
+            if o.span.start.offset <= offset <= o.span.end.offset:
+                hits.append(o)
+            j -= 1
+        hits.sort(key=lambda o: (o.span.end.offset - o.span.start.offset, o.kind != "definition"))
+        return hits
+
+
+class _Precomputed:
+    """Hands lint the analysis the host already made, so a file is checked once, not twice."""
+
+    def __init__(self, workspace, analysis):
+        self._ws = workspace
+        self._analysis = analysis
+
+    def analyse(self, tree):
+        if self._analysis is not None and self._analysis.unit.tree is tree:
+            return self._analysis
+        return self._ws.analyse(tree)
+
+    def __getattr__(self, name):
+        return getattr(self._ws, name)
+
+
+@dataclass(slots=True)
+class Settings:
+    bundle_paths: list[str] = field(default_factory=list)
+    select: list[str] | None = None
+    ignore: list[str] = field(default_factory=list)
+
+
+class AnalysisHost:
+    def __init__(self, settings: Settings | None = None, use_cache: bool = True, root: str | None = None):
+        self.settings = settings or Settings()
+        self.use_cache = use_cache
+        self.root = root
+        self.docs: dict[str, Document] = {}
+        self._states: dict[str, FileState] = {}
+        self._parsers: dict[str, IncrementalParser] = {}
+        self._trees: dict[str, ast.File] = {}  # the last parse of each open buffer
+        self._ws = None
+        self._loaded_once = False
+        self.workspace_error: str | None = None
+        self.generation = 0
+        self.messages: list[str] = []  # problems the editor should show once (bad config, bundle path)
+
+    # ------------------------------------------------------------------ the semantic model
+
+    @property
+    def workspace(self):
+        if self._ws is None and self.workspace_error is None:
+            from plxtools.model.workspace import Workspace, WorkspaceError
+
+            paths = [Path(p) for p in self.settings.bundle_paths]
+            if self.root and is_file_path(self.root):
+                try:
+                    paths.extend(config_for(Path(self.root) / "x.openplx").bundle_paths)
+                except ConfigError as exc:
+                    self.messages.append(str(exc))
+            good = []
+            for p in paths:
+                if p.exists():
+                    good.append(p)
+                else:
+                    self.messages.append(f"bundle path {p} does not exist")
+            self._loaded_once = True
+            try:
+                self._ws = Workspace(good, use_cache=self.use_cache)
+            except (WorkspaceError, OSError) as exc:
+                try:  # retry without the user's folders so the official bundles still work
+                    self._ws = Workspace([], use_cache=self.use_cache)
+                    self.messages.append(str(exc))
+                except (WorkspaceError, OSError) as exc2:
+                    self.workspace_error = str(exc2)
+                    self.messages.append(str(exc2))
+        return self._ws
+
+    @property
+    def program(self):
+        ws = self.workspace
+        return ws.program if ws is not None else None
+
+    def configure(self, settings: Settings) -> bool:
+        """New settings; a different bundle path rebuilds the semantic model (returns True then)."""
+        rebuild = [str(p) for p in settings.bundle_paths] != [str(p) for p in self.settings.bundle_paths]
+        self.settings = settings
+        if rebuild:
+            self._ws = None
+            self.workspace_error = None
+            self._parsers.clear()
+            self._trees.clear()
+        self._states.clear()
+        self.generation += 1
+        return rebuild and self._loaded_once
+
+    # ------------------------------------------------------------------ documents
+
+    def open_document(self, path: str, text: str, version: int | None = None) -> None:
+        self.docs[path] = Document(path, text, version)
+        self._load_config_bundles(path)
+
+    def update_document(self, path: str, text: str, version: int | None = None) -> None:
+        doc = self.docs.get(path)
+        if doc is None:
+            self.docs[path] = Document(path, text, version)
+        else:
+            doc.text = text
+            doc.version = version
+
+    def close_document(self, path: str) -> None:
+        """Forget a buffer; a bundle file goes back to its text on disk."""
+        doc = self.docs.pop(path, None)
+        self._states.pop(path, None)
+        self._parsers.pop(path, None)
+        self._trees.pop(path, None)
+        ws = self._ws
+        if doc is None or ws is None:
+            return
+        unit = ws.program.units.get(path)
+        if unit is None:
+            return
+        if unit.bundle is None:
+            ws.program.remove_unit(path)  # a loose file: the model resets nothing for it
+            return
+        if is_file_path(path) and os.path.isfile(path):
+            try:
+                disk = Path(path).read_text(encoding="utf-8")
+            except (OSError, UnicodeDecodeError):
+                return
+            if disk != unit.tree.text:
+                ws.unit_for(parse_text(disk, path))
+                self.generation += 1
+
+    def file_changed_on_disk(self, path: str) -> bool:
+        """A watched file changed: reload it unless the editor holds it open. True if anything changed."""
+        if path in self.docs or self._ws is None:
+            return False
+        unit = self._ws.program.units.get(path)
+        if unit is None:
+            if path.endswith(".openplx") and os.path.isfile(path):
+                b = self._ws.bundle_of(Path(path))
+                if b is not None and not b.official:
+                    self._ws.unit_for(parse_text(Path(path).read_text(encoding="utf-8", errors="replace"), path))
+                    self.generation += 1
+                    return True
+            return False
+        try:
+            disk = Path(path).read_text(encoding="utf-8", errors="replace")
+        except OSError:
+            if unit.bundle is not None and not unit.official:
+                self._ws.program.remove_unit(path)
+                self.generation += 1
+                return True
+            return False
+        if disk == unit.tree.text:
+            return False
+        self._ws.unit_for(parse_text(disk, path))
+        self._states.pop(path, None)
+        if unit.bundle is not None:
+            self.generation += 1
+        return True
+
+    def _load_config_bundles(self, path: str) -> None:
+        if not is_file_path(path):
+            return
+        ws = self.workspace
+        if ws is None:
+            return
+        try:
+            cfg = config_for(path)
+        except ConfigError as exc:
+            self.messages.append(str(exc))
+            return
+        for p in cfg.bundle_paths:
+            if not any(Path(b.root).resolve() == p or Path(b.root).resolve().parent == p for b in ws.bundles.values()):
+                try:
+                    ws.add_bundle_folder(p)
+                    self.generation += 1
+                except Exception as exc:  # noqa: BLE001 - a bad folder is reported, never fatal
+                    self.messages.append(str(exc))
+
+    def config(self, path: str) -> Config:
+        cfg = Config()
+        if is_file_path(path):
+            try:
+                cfg = config_for(path)
+            except ConfigError as exc:
+                self.messages.append(str(exc))
+                cfg = Config()
+        s = self.settings
+        if s.select is not None or s.ignore:
+            from dataclasses import replace
+
+            cfg = replace(cfg, select=list(s.select) if s.select is not None else cfg.select,
+                          ignore=list(cfg.ignore) + list(s.ignore))
+        return cfg
+
+    def text_of(self, path: str) -> str | None:
+        doc = self.docs.get(path)
+        if doc is not None:
+            return doc.text
+        ws = self._ws
+        if ws is not None:
+            unit = ws.program.units.get(path)
+            if unit is not None:
+                return unit.tree.text
+        if is_file_path(path) and os.path.isfile(path):
+            try:
+                return Path(path).read_text(encoding="utf-8", errors="replace")
+            except OSError:
+                return None
+        return None
+
+    def tree_of(self, path: str) -> ast.File | None:
+        """The syntax tree of any file: an analysed buffer, a bundle file, or a file on disk."""
+        st = self._states.get(path)
+        text = self.text_of(path)
+        if st is not None and st.text == text:
+            return st.tree
+        ws = self._ws
+        if ws is not None:
+            unit = ws.program.units.get(path)
+            if unit is not None and unit.tree.text == text:
+                return unit.tree
+        if text is None:
+            return None
+        return parse_text(text, path)
+
+    # ------------------------------------------------------------------ analysis
+
+    def _parse(self, path: str, text: str) -> ast.File:
+        last = self._trees.get(path)
+        if last is not None and last.text == text:
+            return last
+        if path in self.docs:
+            parser = self._parsers.get(path)
+            if parser is None:
+                parser = self._parsers[path] = IncrementalParser()
+            tree = parser.parse(text, path)
+            self._trees[path] = tree
+            return tree
+        return parse_text(text, path)
+
+    def _sync_buffers(self, skip: str) -> None:
+        """Register every edited bundle buffer with the model before anything is checked against it."""
+        ws = self._ws
+        if ws is None:
+            return
+        for path, doc in self.docs.items():
+            if path == skip:
+                continue
+            unit = ws.program.units.get(path)
+            if unit is None or unit.bundle is None or unit.tree.text == doc.text:
+                continue
+            ws.unit_for(self._parse(path, doc.text))
+            self.generation += 1
+
+    def _current(self, path: str, text: str) -> FileState | None:
+        st = self._states.get(path)
+        if st is not None and st.text == text and st.generation == self.generation:
+            doc = self.docs.get(path)
+            if doc is not None:
+                st.version = doc.version
+            return st
+        return None
+
+    def state(self, path: str) -> FileState | None:
+        """The current analysis of a file (an open buffer, or a file on disk); cached per version."""
+        doc = self.docs.get(path)
+        text = doc.text if doc is not None else self.text_of(path)
+        if text is None:
+            return None
+        ws = self.workspace
+        self._sync_buffers(path)
+        st = self._current(path, text)
+        if st is not None and st.checked:
+            return st
+        tree = None
+        if ws is not None and doc is None:
+            unit = ws.program.units.get(path)
+            if unit is not None and unit.tree.text == text:
+                tree = unit.tree
+        if tree is None:
+            tree = self._parse(path, text)
+        analysis = None
+        if ws is not None:
+            before = ws.program.units.get(path)
+            analysis = ws.analyse(tree)
+            if before is not None and analysis.unit is not before and analysis.unit.bundle is not None:
+                self.generation += 1  # a bundle file's symbols changed: everything may see them
+        diags = self._lint(tree, analysis)
+        st = FileState(path, text, doc.version if doc is not None else None, tree, analysis, diags, self.generation,
+                       ws.program if ws is not None else None, analysis.unit if analysis is not None else None,
+                       frozenset(ws.known_annotations) if ws is not None else frozenset())
+        self._states[path] = st
+        return st
+
+    def quick_state(self, path: str) -> FileState | None:
+        """The current text's symbols without checking it (for completion while typing).
+
+        When the full analysis is current it is returned; otherwise the buffer is parsed
+        (incrementally) and its symbols registered, which is what completion needs, and the checker
+        waits for the diagnostics debounce. Such a state has no occurrences and no diagnostics.
+        """
+        doc = self.docs.get(path)
+        text = doc.text if doc is not None else self.text_of(path)
+        if text is None:
+            return None
+        ws = self.workspace
+        if ws is None:
+            return self.state(path)
+        self._sync_buffers(path)
+        st = self._current(path, text)
+        if st is not None:
+            return st
+        tree = self._parse(path, text)
+        before = ws.program.units.get(path)
+        unit = ws.unit_for(tree)
+        if before is not None and unit is not before and unit.bundle is not None:
+            self.generation += 1
+        st = FileState(path, text, doc.version if doc is not None else None, tree, None, [], self.generation,
+                       ws.program, unit, frozenset(ws.known_annotations))
+        self._states[path] = st
+        return st
+
+    def _lint(self, tree: ast.File, analysis) -> list[Diagnostic]:
+        from plxtools.lint.runner import analyse_tree
+
+        cfg = self.config(tree.path)
+        ws = self._ws
+        if ws is None:
+            diags = list(tree.diagnostics)
+            diags.append(Diagnostic("B000", f"OpenPLX bundles unavailable: {self.workspace_error}", EMPTY_SPAN,
+                                    Severity.WARNING, file=tree.path))
+            return diags
+        return analyse_tree(tree, cfg, _Precomputed(ws, analysis))
+
+    def dependents(self, path: str) -> list[str]:
+        """Open documents whose diagnostics may change when `path` changes."""
+        ws = self._ws
+        if ws is None:
+            return []
+        unit = ws.program.units.get(path)
+        if unit is None or unit.bundle is None:
+            return []
+        out = []
+        for other in self.docs:
+            if other == path:
+                continue
+            ou = ws.program.units.get(other)
+            if ou is None or ou.bundle is None:
+                out.append(other)  # loose files see every bundle
+            elif unit.bundle in (ws.program.visibility.get(ou.bundle) or {ou.bundle}):
+                out.append(other)
+        return out
+
+    # ------------------------------------------------------------------ helpers for the features
+
+    def bundle_files(self, bundle: str) -> list[str]:
+        ws = self._ws
+        if ws is None:
+            return []
+        return [p for p, u in ws.program.units.items() if u.bundle == bundle]
+
+    def is_official(self, path: str) -> bool:
+        ws = self._ws
+        if ws is None:
+            return False
+        unit = ws.program.units.get(path)
+        if unit is not None:
+            return bool(unit.official)
+        try:
+            Path(path).resolve().relative_to(ws.official_root)
+            return True
+        except (ValueError, OSError):
+            return False

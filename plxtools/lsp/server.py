@@ -1,0 +1,848 @@
+"""`plx lsp`: the OpenPLX language server (pygls glue only).
+
+Every feature is a call into `plxtools.ide` (offsets in, data out); this module converts positions
+(`convert.Positions`, the one place that knows the client's encoding), shapes LSP objects to the
+client's capabilities, debounces diagnostics and keeps errors inside the request that caused them.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import gc
+import logging
+import os
+import sys
+import time
+from urllib.parse import unquote
+
+from lsprotocol import types
+from pygls.exceptions import JsonRpcException
+from pygls.lsp.server import LanguageServer
+from pygls.protocol import LanguageServerProtocol
+from pygls.protocol.language_server import lsp_method
+from pygls.uris import from_fs_path, to_fs_path
+
+from plxtools import __version__, ide
+from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.ide.host import AnalysisHost, Settings
+from plxtools.lsp.convert import Positions
+from plxtools.syntax.source import LineIndex
+
+log = logging.getLogger("plxtools.lsp")
+
+DEFAULT_DEBOUNCE_MS = 150
+CONFIG_SECTION = "openplx"
+
+
+class RequestFailed(JsonRpcException):
+    """LSP's RequestFailed (-32803): the request was valid but cannot be answered."""
+
+    CODE = -32803
+
+
+# ------------------------------------------------------------------ protocol: tolerate odd clients
+
+
+class PlxProtocol(LanguageServerProtocol):
+    @lsp_method(types.TEXT_DOCUMENT_DID_CHANGE)
+    def lsp_text_document__did_change(self, params: types.DidChangeTextDocumentParams):
+        """An edit to a document that was never opened is ignored (or, if it carries the whole
+        text, treated as an open) instead of failing inside pygls."""
+        uri = params.text_document.uri
+        if unquote(uri) not in self.workspace.text_documents:
+            whole = [c for c in params.content_changes if isinstance(c, types.TextDocumentContentChangeWholeDocument)]
+            if not whole:
+                log.warning("didChange for %s, which is not open: ignored", uri)
+                return
+            self.workspace.put_text_document(types.TextDocumentItem(
+                uri=uri, language_id="openplx", version=params.text_document.version, text=whole[-1].text))
+            params = types.DidChangeTextDocumentParams(text_document=params.text_document, content_changes=[])
+        yield from super().lsp_text_document__did_change(params)
+
+
+# ------------------------------------------------------------------ the server
+
+
+class PlxServer(LanguageServer):
+    def __init__(self) -> None:
+        super().__init__("plx", __version__, protocol_cls=PlxProtocol,
+                         text_document_sync_kind=types.TextDocumentSyncKind.Incremental)
+        self.host = AnalysisHost()
+        self.debounce = DEFAULT_DEBOUNCE_MS / 1000
+        self.rule_docs_url: str | None = None
+        self.init_options: dict = {}
+        self.uris: dict[str, str] = {}  # path -> the client's URI for open documents
+        self._timers: dict[str, asyncio.TimerHandle] = {}
+        self._completion_keys: list = []
+        self._shown: set[str] = set()
+        self.timings: dict[str, list[tuple[float, float]]] = {}  # kind -> recent (wall ms, CPU ms)
+
+    def report_server_error(self, error: Exception, source) -> None:
+        """Errors outside a request (a failing notification, a bad message) are logged; the editor is
+        told once per distinct error, and the server keeps running."""
+        log.error("server error (%s): %s", getattr(source, "__name__", source), error)
+        key = f"{type(error).__name__}: {error}"
+        if key in self._shown or getattr(source, "__name__", "") == "FeatureRequestError":
+            return
+        self._shown.add(key)
+        try:
+            self.window_log_message(types.LogMessageParams(type=types.MessageType.Error,
+                                                           message=f"plx: internal error: {key}"))
+        except Exception:  # noqa: BLE001 - reporting must never raise
+            pass
+
+    # -------------------------------------------------------------- paths and positions
+
+    def path_of(self, uri: str) -> str:
+        if uri.startswith("file:"):
+            fs = to_fs_path(uri)
+            if fs:
+                return os.path.realpath(fs)
+        return uri  # untitled: and other schemes: the URI names the buffer
+
+    def uri_of(self, path: str) -> str:
+        got = self.uris.get(path)
+        if got is not None:
+            return got
+        if os.path.isabs(path):
+            return from_fs_path(path) or path
+        return path
+
+    @property
+    def encoding(self):
+        try:
+            return self.workspace.position_encoding
+        except RuntimeError:
+            return types.PositionEncodingKind.Utf16
+
+    def positions(self, path: str, st=None) -> Positions:
+        if st is not None:
+            return Positions(st.tree.index, self.encoding)
+        tree = self.host.tree_of(path)
+        if tree is not None:
+            return Positions(tree.index, self.encoding)
+        return Positions(LineIndex(self.host.text_of(path) or ""), self.encoding)
+
+    def cap(self, dotted: str, default=None):
+        """A client capability by dotted attribute path (None-safe)."""
+        cur = self.client_capabilities
+        for part in dotted.split("."):
+            cur = getattr(cur, part, None)
+            if cur is None:
+                return default
+        return cur
+
+    def markup(self, text: str) -> types.MarkupContent:
+        formats = self.cap("text_document.hover.content_format") or [types.MarkupKind.PlainText]
+        if types.MarkupKind.Markdown in formats:
+            return types.MarkupContent(kind=types.MarkupKind.Markdown, value=text)
+        return types.MarkupContent(kind=types.MarkupKind.PlainText, value=_plain(text))
+
+    def doc_markup(self, text: str):
+        formats = self.cap("text_document.completion.completion_item.documentation_format") or []
+        if types.MarkupKind.Markdown in formats:
+            return types.MarkupContent(kind=types.MarkupKind.Markdown, value=text)
+        return _plain(text)
+
+    # -------------------------------------------------------------- state
+
+    def state(self, uri: str, quick: bool = False):
+        """The analysis of a document; `quick` (completion, signature help) skips the checker when the
+        buffer changed since the last check, so typing does not wait for the diagnostics."""
+        path = self.path_of(uri)
+        doc = self.workspace.text_documents.get(unquote(uri))
+        if doc is not None:
+            if path not in self.host.docs:
+                self.uris[path] = uri
+                self.host.open_document(path, doc.source, doc.version)
+            elif self.host.docs[path].text != doc.source:
+                self.host.update_document(path, doc.source, doc.version)
+        return self.host.quick_state(path) if quick else self.host.state(path)
+
+    def notify_messages(self) -> None:
+        while self.host.messages:
+            msg = self.host.messages.pop(0)
+            if msg in self._shown:
+                continue
+            self._shown.add(msg)
+            log.warning("%s", msg)
+            self.window_show_message(types.ShowMessageParams(type=types.MessageType.Warning, message=f"plx: {msg}"))
+
+    # -------------------------------------------------------------- diagnostics
+
+    def lsp_diagnostic(self, d: Diagnostic, pos: Positions) -> types.Diagnostic:
+        sev = {Severity.ERROR: types.DiagnosticSeverity.Error, Severity.WARNING: types.DiagnosticSeverity.Warning,
+               Severity.INFO: types.DiagnosticSeverity.Information}[d.severity]
+        message = d.message + (f"\nhelp: {d.help}" if d.help else "")
+        out = types.Diagnostic(range=pos.range(d.span), message=message, severity=sev, code=d.code, source="plx")
+        if self.rule_docs_url and self.cap("text_document.publish_diagnostics.code_description_support"):
+            out.code_description = types.CodeDescription(href=self.rule_docs_url.replace("{code}", d.code))
+        tags = []
+        if d.code == "C004":
+            tags.append(types.DiagnosticTag.Deprecated)
+        if d.code == "C002":
+            tags.append(types.DiagnosticTag.Unnecessary)
+        if tags and self.cap("text_document.publish_diagnostics.tag_support"):
+            out.tags = tags
+        if d.related and self.cap("text_document.publish_diagnostics.related_information"):
+            rel = []
+            for file, span, msg in d.related:
+                p = file or ""
+                rel.append(types.DiagnosticRelatedInformation(
+                    location=types.Location(uri=self.uri_of(p), range=self.positions(p).range(span)), message=msg))
+            out.related_information = rel
+        if d.fix is not None:
+            out.data = {"fix": {"message": d.fix.message, "safe": d.fix.safe,
+                                "edits": [[e.start, e.end, e.text] for e in d.fix.edits]}}
+        return out
+
+    def publish(self, uri: str) -> None:
+        """Check a document now and publish its diagnostics for the version they were computed for."""
+        doc = self.workspace.text_documents.get(unquote(uri))
+        if doc is None:
+            return
+        t0, c0 = time.perf_counter(), time.process_time()
+        with no_gc():
+            st = self.state(uri)
+            if st is None:
+                return
+            pos = Positions(st.tree.index, self.encoding)
+            diags = [self.lsp_diagnostic(d, pos) for d in st.diagnostics]
+            self._record("check", t0, c0)
+            self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
+                uri=uri, version=doc.version, diagnostics=diags))
+        self.notify_messages()
+
+    def _record(self, kind: str, t0: float, c0: float) -> None:
+        got = self.timings.setdefault(kind, [])
+        got.append(((time.perf_counter() - t0) * 1000, (time.process_time() - c0) * 1000))
+        del got[:-200]
+
+    def schedule(self, uri: str, delay: float | None = None, cascade: bool = True) -> None:
+        """Debounce: (re)start the timer for a document; a newer edit replaces the pending check.
+
+        With `cascade`, the open documents that depend on this one (same user bundle) are checked
+        after it; their own checks do not cascade further.
+        """
+        old = self._timers.pop(uri, None)
+        if old is not None:
+            old.cancel()
+        doc = self.workspace.text_documents.get(unquote(uri))
+        if doc is None:
+            return
+        version = doc.version
+        loop = asyncio.get_running_loop()
+        self._timers[uri] = loop.call_later(self.debounce if delay is None else delay, self._fire, uri, version,
+                                            cascade)
+
+    def _fire(self, uri: str, version, cascade: bool) -> None:
+        self._timers.pop(uri, None)
+        doc = self.workspace.text_documents.get(unquote(uri))
+        if doc is None or doc.version != version:
+            return  # stale: a newer edit has its own timer
+        try:
+            self.publish(uri)
+            if cascade:
+                self.schedule_dependents(self.path_of(uri))
+        except Exception:  # noqa: BLE001 - a failing check must not stop the server
+            log.exception("checking %s failed", uri)
+
+    def schedule_dependents(self, path: str, deps: list[str] | None = None) -> None:
+        for dep in self.host.dependents(path) if deps is None else deps:
+            dep_uri = self.uri_of(dep)
+            if dep_uri not in self._timers:
+                self.schedule(dep_uri, 0, cascade=False)
+
+    def recheck_all(self) -> None:
+        for uri in list(self.workspace.text_documents):
+            self.schedule(uri, 0, cascade=False)
+
+    # -------------------------------------------------------------- settings
+
+    def _resolve_setting_path(self, p: str) -> str:
+        root = self.host.root if self.host.root and os.path.isabs(self.host.root) else os.getcwd()
+        p = os.path.expanduser(p.strip().replace("${workspaceFolder}", root))
+        return p if os.path.isabs(p) else os.path.normpath(os.path.join(root, p))
+
+    def apply_settings(self, raw: dict | None) -> None:
+        merged = dict(self.init_options)
+        for k, v in (raw or {}).items():
+            if v is None or v == "":
+                continue  # an unset editor setting does not override initializationOptions
+            if k == "bundlePath" and self.init_options.get("bundlePath"):
+                continue  # the client resolved this one already (VS Code expands ${workspaceFolder})
+            merged[k] = v
+        s = Settings()
+        bp = merged.get("bundlePath") or merged.get("bundle_path") or []
+        if isinstance(bp, str):
+            bp = [p for p in bp.split(os.pathsep) if p.strip()]
+        s.bundle_paths = [self._resolve_setting_path(str(p)) for p in bp if isinstance(p, str)]
+        sel = merged.get("select")
+        if isinstance(sel, str):
+            sel = [c.strip() for c in sel.split(",") if c.strip()]
+        s.select = [c.upper() for c in sel] if sel else None
+        ign = merged.get("ignore") or []
+        if isinstance(ign, str):
+            ign = [c.strip() for c in ign.split(",") if c.strip()]
+        s.ignore = [c.upper() for c in ign]
+        delay = merged.get("diagnosticsDelayMs")
+        if isinstance(delay, (int, float)) and delay >= 0:
+            self.debounce = delay / 1000
+        url = merged.get("ruleDocsUrl")
+        self.rule_docs_url = url if isinstance(url, str) and url else None
+        if self.host.configure(s):  # a new bundle path: the old model is garbage now
+            gc.unfreeze()
+            _ = self.host.workspace
+            freeze_loaded()
+
+
+class no_gc:
+    """No cyclic garbage collection while a file is checked (or completed while typing) and the
+    result is sent. A check allocates ~10^5 objects (the model's completeness pass alone leaves
+    ~10^4 self-referencing closures), and collections in the middle of it cost ~50 ms on a
+    2,000-line file. Collection resumes 5 ms after the reply, when the editor is usually idle."""
+
+    def __enter__(self):
+        gc.disable()
+
+    def __exit__(self, *exc):
+        _resume_gc_soon()
+
+
+_gc_resume_pending = False
+_young_collections = 0
+
+
+def _resume_gc() -> None:
+    global _gc_resume_pending, _young_collections
+    _gc_resume_pending = False
+    gc.enable()
+    # most allocation happens while collection is off, so the collector's own schedule would rarely
+    # reach the oldest generation (where the previous version's symbols end up): do it here
+    _young_collections += 1
+    gc.collect(2 if _young_collections % 4 == 0 else 1)
+
+
+def _resume_gc_soon() -> None:
+    global _gc_resume_pending
+    if _gc_resume_pending:
+        return
+    try:
+        loop = asyncio.get_running_loop()
+    except RuntimeError:
+        _resume_gc()
+        return
+    _gc_resume_pending = True
+    loop.call_later(0.005, _resume_gc)  # after the reply queued now has been written
+
+
+def freeze_loaded() -> None:
+    """Move everything loaded so far (the bundles' trees and symbols, which live as long as the
+    server) out of the collector's sight, so collections only walk what edits create."""
+    gc.collect()
+    gc.freeze()
+
+
+def _plain(markdown: str) -> str:
+    return markdown.replace("```openplx\n", "").replace("```\n", "").replace("```", "")
+
+
+def _section(obj) -> dict | None:
+    if not isinstance(obj, dict):
+        return None
+    for key in ("openplx", "plx"):
+        if isinstance(obj.get(key), dict):
+            return obj[key]
+    return obj
+
+
+KIND = {
+    "model": types.CompletionItemKind.Class,
+    "trait": types.CompletionItemKind.Interface,
+    "constant": types.CompletionItemKind.Constant,
+    "namespace": types.CompletionItemKind.Module,
+    "attribute": types.CompletionItemKind.Field,
+    "method": types.CompletionItemKind.Method,
+    "keyword": types.CompletionItemKind.Keyword,
+    "value": types.CompletionItemKind.Value,
+    "type": types.CompletionItemKind.TypeParameter,
+}
+SYMBOL_KIND = {
+    "model": types.SymbolKind.Class,
+    "trait": types.SymbolKind.Interface,
+    "const": types.SymbolKind.Constant,
+    "global": types.SymbolKind.Constant,
+    "attribute": types.SymbolKind.Field,
+    "method": types.SymbolKind.Method,
+    "operator": types.SymbolKind.Operator,
+    "block": types.SymbolKind.Object,
+    "import": types.SymbolKind.Module,
+}
+
+
+def _guard(method: str, fn):
+    """Log a request's failure with its traceback; the request gets an error, the server lives on.
+
+    `PLX_LSP_FAULT=<method>` makes that request fail on purpose (for the robustness tests)."""
+    import functools
+
+    @functools.wraps(fn)
+    def wrapper(ls, params):
+        if os.environ.get("PLX_LSP_FAULT") == method:
+            raise RuntimeError(f"injected fault in {method} (PLX_LSP_FAULT)")
+        try:
+            return fn(ls, params)
+        except JsonRpcException:
+            raise
+        except Exception:
+            log.exception("%s failed", method)
+            raise
+    return wrapper
+
+
+def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
+    server = PlxServer()
+
+    def server_feature(method: str, options=None):
+        def register(fn):
+            if asyncio.iscoroutinefunction(fn):
+                return server.feature(method, options)(fn)
+            return server.feature(method, options)(_guard(method, fn))
+        return register
+
+    # -------------------------------------------------------------- lifecycle
+
+    @server_feature(types.INITIALIZE)
+    def initialize(ls: PlxServer, params: types.InitializeParams) -> None:
+        ls.init_options = _section(params.initialization_options) or {}
+        root = None
+        if params.root_uri:
+            root = ls.path_of(params.root_uri)
+        elif params.workspace_folders:
+            root = ls.path_of(params.workspace_folders[0].uri)
+        elif params.root_path:
+            root = params.root_path
+        ls.host.root = root
+        ls.apply_settings(None)
+
+    @server_feature(types.INITIALIZED)
+    async def initialized(ls: PlxServer, params: types.InitializedParams) -> None:
+        if ls.cap("workspace.configuration"):
+            await _pull_configuration(ls)
+        _ = ls.host.workspace  # load the bundles now, not on the first keystroke
+        freeze_loaded()
+        ls.notify_messages()
+
+    async def _pull_configuration(ls: PlxServer) -> None:
+        try:
+            got = await ls.workspace_configuration_async(types.ConfigurationParams(
+                items=[types.ConfigurationItem(section=CONFIG_SECTION)]))
+        except Exception as exc:  # noqa: BLE001 - a client that cannot answer keeps the defaults
+            log.info("workspace/configuration failed: %s", exc)
+            return
+        if got:
+            ls.apply_settings(_section(got[0]) if isinstance(got[0], dict) else None)
+
+    @server_feature(types.WORKSPACE_DID_CHANGE_CONFIGURATION)
+    async def did_change_configuration(ls: PlxServer, params: types.DidChangeConfigurationParams) -> None:
+        if ls.cap("workspace.configuration"):
+            await _pull_configuration(ls)
+        else:
+            ls.apply_settings(_section(params.settings) if isinstance(params.settings, dict) else None)
+        ls.recheck_all()
+
+    # -------------------------------------------------------------- documents
+
+    @server_feature(types.TEXT_DOCUMENT_DID_OPEN)
+    def did_open(ls: PlxServer, params: types.DidOpenTextDocumentParams) -> None:
+        uri = params.text_document.uri
+        path = ls.path_of(uri)
+        ls.uris[path] = uri
+        before = ls.host.text_of(path)  # what the model knew: the file on disk, if any
+        ls.host.open_document(path, params.text_document.text, params.text_document.version)
+        ls.publish(uri)
+        if before is not None and before != params.text_document.text:
+            ls.schedule_dependents(path)
+
+    @server_feature(types.TEXT_DOCUMENT_DID_CHANGE)
+    def did_change(ls: PlxServer, params: types.DidChangeTextDocumentParams) -> None:
+        uri = params.text_document.uri
+        doc = ls.workspace.text_documents.get(unquote(uri))
+        if doc is None:
+            return
+        path = ls.path_of(uri)
+        ls.uris.setdefault(path, uri)
+        ls.host.update_document(path, doc.source, doc.version)
+        ls.schedule(uri)
+
+    @server_feature(types.TEXT_DOCUMENT_DID_CLOSE)
+    def did_close(ls: PlxServer, params: types.DidCloseTextDocumentParams) -> None:
+        uri = params.text_document.uri
+        path = ls.path_of(uri)
+        timer = ls._timers.pop(uri, None)
+        if timer is not None:
+            timer.cancel()
+        deps = ls.host.dependents(path)
+        ls.host.close_document(path)
+        ls.uris.pop(path, None)
+        ls.text_document_publish_diagnostics(types.PublishDiagnosticsParams(uri=uri, diagnostics=[]))
+        ls.schedule_dependents(path, deps)
+
+    @server_feature(types.TEXT_DOCUMENT_DID_SAVE)
+    def did_save(ls: PlxServer, params: types.DidSaveTextDocumentParams) -> None:
+        pass  # buffers are checked as they change; saving changes nothing the server sees
+
+    @server_feature(types.WORKSPACE_DID_CHANGE_WATCHED_FILES)
+    def did_change_watched(ls: PlxServer, params: types.DidChangeWatchedFilesParams) -> None:
+        changed = False
+        for ev in params.changes:
+            path = ls.path_of(ev.uri)
+            if path.endswith(".openplx"):
+                changed = ls.host.file_changed_on_disk(path) or changed
+        if changed:
+            ls.recheck_all()
+
+    # -------------------------------------------------------------- hover and navigation
+
+    @server_feature(types.TEXT_DOCUMENT_HOVER)
+    def hover(ls: PlxServer, params: types.HoverParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        res = ide.hover(st, pos.offset(params.position))
+        if res is None:
+            return None
+        return types.Hover(contents=ls.markup(res.markdown), range=pos.range(res.span))
+
+    def _locations(ls: PlxServer, targets, link_support: str | None, origin=None):
+        if not targets:
+            return None
+        if link_support and ls.cap(link_support) and origin is not None:
+            out = []
+            for t in targets:
+                tp = ls.positions(t.path)
+                out.append(types.LocationLink(target_uri=ls.uri_of(t.path), target_range=tp.range(t.full),
+                                              target_selection_range=tp.range(t.focus), origin_selection_range=origin))
+            return out
+        return [types.Location(uri=ls.uri_of(t.path), range=ls.positions(t.path).range(t.focus)) for t in targets]
+
+    def _nav(fn, link_cap):
+        def handler(ls: PlxServer, params):
+            st = ls.state(params.text_document.uri)
+            if st is None:
+                return None
+            pos = ls.positions(st.path, st)
+            offset = pos.offset(params.position)
+            targets = fn(st, offset)
+            origin = None
+            from plxtools.ide.context import resolve_at
+
+            r = resolve_at(st, offset) if targets else None
+            if r is not None:
+                origin = pos.range(r.span)
+            return _locations(ls, targets, link_cap, origin)
+        return handler
+
+    server_feature(types.TEXT_DOCUMENT_DEFINITION)(_nav(ide.definition, "text_document.definition.link_support"))
+    server_feature(types.TEXT_DOCUMENT_DECLARATION)(_nav(ide.declaration, "text_document.declaration.link_support"))
+    server_feature(types.TEXT_DOCUMENT_TYPE_DEFINITION)(
+        _nav(ide.type_definition, "text_document.type_definition.link_support"))
+
+    @server_feature(types.TEXT_DOCUMENT_REFERENCES)
+    def references(ls: PlxServer, params: types.ReferenceParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        refs = ide.references(ls.host, st.path, pos.offset(params.position),
+                              include_declaration=params.context.include_declaration)
+        return [types.Location(uri=ls.uri_of(r.path), range=ls.positions(r.path).range(r.span)) for r in refs]
+
+    @server_feature(types.TEXT_DOCUMENT_PREPARE_RENAME)
+    def prepare_rename(ls: PlxServer, params: types.PrepareRenameParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        try:
+            span, name = ide.prepare_rename(ls.host, st.path, pos.offset(params.position))
+        except ide.RenameError as exc:
+            raise RequestFailed(str(exc)) from None
+        return types.PrepareRenamePlaceholder(range=pos.range(span), placeholder=name)
+
+    @server_feature(types.TEXT_DOCUMENT_RENAME)
+    def rename(ls: PlxServer, params: types.RenameParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        try:
+            edits = ide.rename(ls.host, st.path, pos.offset(params.position), params.new_name)
+        except ide.RenameError as exc:
+            raise RequestFailed(str(exc)) from None
+        changes = {}
+        for path, file_edits in edits.items():
+            fp = ls.positions(path)
+            changes[ls.uri_of(path)] = [types.TextEdit(range=fp.offsets_range(e.start, e.end), new_text=e.text)
+                                        for e in file_edits]
+        return types.WorkspaceEdit(changes=changes)
+
+    # -------------------------------------------------------------- completion and signatures
+
+    @server_feature(types.TEXT_DOCUMENT_COMPLETION,
+                    types.CompletionOptions(trigger_characters=[".", " "], resolve_provider=True))
+    def completion(ls: PlxServer, params: types.CompletionParams):
+        t0, c0 = time.perf_counter(), time.process_time()
+        with no_gc():
+            st = ls.state(params.text_document.uri, quick=True)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        offset = pos.offset(params.position)
+        ctx = params.context
+        trigger = ctx.trigger_character if ctx is not None and ctx.trigger_kind == \
+            types.CompletionTriggerKind.TriggerCharacter else None
+        res = ide.complete(st, offset, trigger)
+        rng = pos.offsets_range(res.replace_start, offset)
+        lazy_doc = "documentation" in (ls.cap("text_document.completion.completion_item.resolve_support.properties")
+                                       or [])
+        label_details = ls.cap("text_document.completion.completion_item.label_details_support")
+        tag_support = ls.cap("text_document.completion.completion_item.tag_support")
+        ls._completion_keys = []
+        items = []
+        for i, it in enumerate(res.items):
+            item = types.CompletionItem(label=it.label, kind=KIND.get(it.kind), detail=it.detail or None,
+                                        sort_text=it.sort_text, filter_text=it.filter_text,
+                                        text_edit=types.TextEdit(range=rng, new_text=it.insert_text or it.label))
+            if label_details and (it.label_detail or it.label_description):
+                item.label_details = types.CompletionItemLabelDetails(detail=it.label_detail,
+                                                                      description=it.label_description)
+            if it.deprecated and tag_support:
+                item.tags = [types.CompletionItemTag.Deprecated]
+            if it.key is not None:
+                ls._completion_keys.append(it.key)
+                item.data = {"k": len(ls._completion_keys) - 1}
+                if not lazy_doc:
+                    doc = ide.completion_documentation(st.program, it.key)
+                    if doc:
+                        item.documentation = ls.doc_markup(doc)
+            items.append(item)
+            del i
+        ls._record("completion" if st.checked else "completion-while-typing", t0, c0)
+        return types.CompletionList(is_incomplete=res.is_incomplete, items=items)
+
+    @server_feature(types.COMPLETION_ITEM_RESOLVE)
+    def completion_resolve(ls: PlxServer, item: types.CompletionItem):
+        data = item.data if isinstance(item.data, dict) else {}
+        k = data.get("k")
+        if isinstance(k, int) and 0 <= k < len(ls._completion_keys) and ls.host.program is not None:
+            doc = ide.completion_documentation(ls.host.program, ls._completion_keys[k])
+            if doc:
+                item.documentation = ls.doc_markup(doc)
+        return item
+
+    @server_feature(types.TEXT_DOCUMENT_SIGNATURE_HELP,
+                    types.SignatureHelpOptions(trigger_characters=["(", ","], retrigger_characters=[","]))
+    def signature_help(ls: PlxServer, params: types.SignatureHelpParams):
+        st = ls.state(params.text_document.uri, quick=True)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        res = ide.signature_help(st, pos.offset(params.position))
+        if res is None:
+            return None
+        offsets = ls.cap("text_document.signature_help.signature_information.parameter_information."
+                         "label_offset_support")
+        from plxtools.ide.signature import param_label_offsets
+
+        sigs = []
+        for s in res.signatures:
+            labels = param_label_offsets(s) if offsets else [p.label for p in s.parameters]
+            params_ = [types.ParameterInformation(label=lab) for lab in labels]
+            sigs.append(types.SignatureInformation(label=s.label, parameters=params_,
+                                                   documentation=ls.doc_markup(s.documentation)
+                                                   if s.documentation else None))
+        return types.SignatureHelp(signatures=sigs, active_signature=res.active_signature,
+                                   active_parameter=res.active_parameter)
+
+    # -------------------------------------------------------------- symbols
+
+    @server_feature(types.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
+    def document_symbol(ls: PlxServer, params: types.DocumentSymbolParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        syms = ide.document_symbols(st.tree)
+        if ls.cap("text_document.document_symbol.hierarchical_document_symbol_support"):
+            def conv(s):
+                return types.DocumentSymbol(name=s.name, kind=SYMBOL_KIND[s.kind], range=pos.range(s.span),
+                                            selection_range=pos.range(s.selection), detail=s.detail or None,
+                                            children=[conv(c) for c in s.children] or None)
+            return [conv(s) for s in syms]
+        flat = []
+        uri = params.text_document.uri
+
+        def walk(s, container):
+            flat.append(types.SymbolInformation(name=s.name, kind=SYMBOL_KIND[s.kind],
+                                                location=types.Location(uri=uri, range=pos.range(s.span)),
+                                                container_name=container))
+            for c in s.children:
+                walk(c, s.name)
+        for s in syms:
+            walk(s, None)
+        return flat
+
+    @server_feature(types.WORKSPACE_SYMBOL)
+    def workspace_symbol(ls: PlxServer, params: types.WorkspaceSymbolParams):
+        out = []
+        for w in ide.workspace_symbols(ls.host, params.query):
+            out.append(types.WorkspaceSymbol(name=w.name, kind=SYMBOL_KIND.get(w.kind, types.SymbolKind.Class),
+                                             location=types.Location(uri=ls.uri_of(w.path),
+                                                                     range=ls.positions(w.path).range(w.span)),
+                                             container_name=w.container or None))
+        return out
+
+    # -------------------------------------------------------------- formatting
+
+    @server_feature(types.TEXT_DOCUMENT_FORMATTING)
+    def formatting(ls: PlxServer, params: types.DocumentFormattingParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        try:
+            edits = ide.format_document(st.text, st.path if os.path.isabs(st.path) else "")
+        except ide.FormattingRefused as exc:
+            if "syntax errors" in str(exc):
+                ls.window_log_message(types.LogMessageParams(type=types.MessageType.Info, message=f"plx: {exc}"))
+                return []
+            raise RequestFailed(str(exc)) from None
+        pos = ls.positions(st.path, st)
+        return [types.TextEdit(range=pos.offsets_range(e.start, e.end), new_text=e.text) for e in edits]
+
+    @server_feature(types.TEXT_DOCUMENT_RANGE_FORMATTING)
+    def range_formatting(ls: PlxServer, params: types.DocumentRangeFormattingParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        r = params.range
+        end_line = r.end.line - 1 if r.end.character == 0 and r.end.line > r.start.line else r.end.line
+        try:
+            edits = ide.format_lines(st.text, r.start.line, end_line)
+        except ide.FormattingRefused as exc:
+            raise RequestFailed(str(exc)) from None
+        pos = ls.positions(st.path, st)
+        return [types.TextEdit(range=pos.offsets_range(e.start, e.end), new_text=e.text) for e in edits]
+
+    # -------------------------------------------------------------- code actions
+
+    @server_feature(types.TEXT_DOCUMENT_CODE_ACTION,
+                    types.CodeActionOptions(code_action_kinds=[types.CodeActionKind.QuickFix,
+                                                               types.CodeActionKind.SourceFixAll]))
+    def code_action(ls: PlxServer, params: types.CodeActionParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        start, end = pos.offset(params.range.start), pos.offset(params.range.end)
+        only = [str(k.value if hasattr(k, "value") else k) for k in params.context.only] \
+            if params.context.only else None
+        actions = ide.code_actions(st, start, end, only)
+        sent = list(params.context.diagnostics or [])
+        out = []
+        for a in actions:
+            changes = {}
+            for path, edits in a.edits.items():
+                fp = ls.positions(path, st if path == st.path else None)
+                changes[ls.uri_of(path)] = [types.TextEdit(range=fp.offsets_range(e.start, e.end), new_text=e.text)
+                                            for e in edits]
+            diags = []
+            for d in a.diagnostics[:20]:
+                rng = pos.range(d.span)
+                match = next((x for x in sent if x.code == d.code and x.range == rng), None)
+                diags.append(match or ls.lsp_diagnostic(d, pos))
+            out.append(types.CodeAction(title=a.title, kind=a.kind, diagnostics=diags or None,
+                                        is_preferred=a.preferred or None, edit=types.WorkspaceEdit(changes=changes)))
+        return out
+
+    @server.feature("plx/stats")
+    def stats(ls: PlxServer, params) -> dict:
+        """Recent server-side timings (wall and CPU ms) of checks and completions, for bench/lsp_bench.py."""
+        return {kind: [list(x) for x in vals] for kind, vals in ls.timings.items()}
+
+    # -------------------------------------------------------------- presentation
+
+    @server_feature(types.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL,
+                    types.SemanticTokensLegend(token_types=ide.TOKEN_TYPES, token_modifiers=ide.TOKEN_MODIFIERS))
+    def semantic_tokens(ls: PlxServer, params: types.SemanticTokensParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        from plxtools.ide.tokens import encode
+
+        return types.SemanticTokens(data=encode(ide.semantic_tokens(st), pos.length))
+
+    @server_feature(types.TEXT_DOCUMENT_FOLDING_RANGE)
+    def folding_range(ls: PlxServer, params: types.FoldingRangeParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        kinds = {"comment": types.FoldingRangeKind.Comment, "region": types.FoldingRangeKind.Region}
+        return [types.FoldingRange(start_line=f.start_line, end_line=f.end_line, kind=kinds.get(f.kind))
+                for f in ide.folding_ranges(st.tree)]
+
+    @server_feature(types.TEXT_DOCUMENT_DOCUMENT_LINK)
+    def document_link(ls: PlxServer, params: types.DocumentLinkParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        tooltips = ls.cap("text_document.document_link.tooltip_support")
+        return [types.DocumentLink(range=pos.range(link.span), target=from_fs_path(link.target),
+                                   tooltip=link.tooltip if tooltips else None)
+                for link in ide.document_links(st.tree, st.path)]
+
+    @server_feature(types.TEXT_DOCUMENT_INLAY_HINT)
+    def inlay_hint(ls: PlxServer, params: types.InlayHintParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        start, end = pos.offset(params.range.start), pos.offset(params.range.end)
+        kinds = {"type": types.InlayHintKind.Type, "parameter": types.InlayHintKind.Parameter}
+        return [types.InlayHint(position=pos.position(h.line, h.column), label=h.label, kind=kinds[h.kind],
+                                padding_left=h.padding_left or None, padding_right=h.padding_right or None)
+                for h in ide.inlay_hints(st, start, end)]
+
+    return server
+
+
+def _configure_logging(log_file: str | None) -> None:
+    handler: logging.Handler
+    if log_file:
+        handler = logging.FileHandler(log_file, encoding="utf-8")
+        level = logging.INFO
+    else:
+        handler = logging.StreamHandler(sys.stderr)
+        level = logging.WARNING
+    handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s"))
+    root = logging.getLogger()
+    root.handlers[:] = [handler]
+    root.setLevel(level)
+    logging.getLogger("pygls").setLevel(logging.WARNING if not log_file else logging.INFO)
+
+
+def run_server(args) -> int:
+    """Entry point of `plx lsp`: serve over stdin/stdout until the client says exit."""
+    _configure_logging(getattr(args, "log_file", None))
+    server = create_server()
+    log.info("plx lsp %s starting (python %s)", __version__, sys.version.split()[0])
+    server.start_io()
+    # pygls closes stdout when the client says exit; later flushes must not fail on it
+    for name in ("stdout", "stderr"):
+        stream = getattr(sys, name)
+        if stream is None or stream.closed:
+            setattr(sys, name, open(os.devnull, "w"))
+    return 0

@@ -1,0 +1,43 @@
+"""Hover over stdio, in each client's position encoding."""
+
+from __future__ import annotations
+
+import pytest
+from lsprotocol import types
+
+from tests.lsp.conftest import EXAMPLE_URI, close, example_text, open_and_wait, position
+
+pytestmark = [pytest.mark.asyncio(loop_scope="module"),
+              pytest.mark.filterwarnings("error::pytest_lsp.LspSpecificationWarning")]
+
+
+async def hover(client, uri, text, needle, delta=0, nth=0):
+    return await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=position(client, text, needle, delta, nth)))
+
+
+async def test_hover_attribute_and_type(client):
+    text = example_text()
+    await open_and_wait(client, EXAMPLE_URI, text)
+    h = await hover(client, EXAMPLE_URI, text, "inertia.mass: 10", len("inertia.") + 1)
+    assert h.contents.kind == types.MarkupKind.Markdown
+    assert "`Real`" in h.contents.value and "default `0.0`" in h.contents.value
+    assert h.range.start == position(client, text, "inertia.mass: 10", len("inertia."))
+    h = await hover(client, EXAMPLE_URI, text, "Physics3D.Bodies.RigidBody", 20)
+    assert "Physics3D.Bodies.RigidBody is Physics3D.Bodies.Body" in h.contents.value
+    assert await hover(client, EXAMPLE_URI, text, "# A static plate") is None
+    close(client, EXAMPLE_URI)
+
+
+async def test_hover_after_non_ascii_text_on_the_line(client):
+    # names after a 4-byte character: UTF-8 (Neovim) and UTF-16 (VS Code) columns differ
+    uri = "untitled:hover-utf"
+    text = ("S is Physics3D.System:\n    `😀é` is Real: 2\n"
+            "    y is Math.Vec3: {`😀é`, `😀é` * 2, Math.PI}\n")
+    await open_and_wait(client, uri, text)
+    h = await hover(client, uri, text, "Math.PI", len("Math.") + 1)
+    assert h is not None and "PI is Real" in h.contents.value
+    assert h.range.start == position(client, text, "PI}")
+    h = await hover(client, uri, text, "`😀é` * 2", 2)
+    assert h is not None and "`Real`" in h.contents.value
+    close(client, uri)
