@@ -96,8 +96,8 @@ def index_page(rules: list[Rule]) -> str:
            "Severities are the defaults: an **error** makes `plx lint` and `plx check` exit 1, a "
            "**warning** or **info** does not. Fix: *safe* fixes are applied by `--fix`, *unsafe* ones "
            "only with `--unsafe-fixes` as well.", ""]
-    prefixes = sorted({r.code[0] for r in rules}, key=lambda p: (list(PREFIXES).index(p) if p in PREFIXES
-                                                                    else len(PREFIXES), p))
+    order = list(PREFIXES)
+    prefixes = sorted({r.code[0] for r in rules}, key=lambda p: (order.index(p) if p in order else len(order), p))
     for p in prefixes:
         title, blurb = PREFIXES.get(p, (f"{p} rules", ""))
         out += [f"## {title} ({p})", ""]

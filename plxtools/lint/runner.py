@@ -29,6 +29,9 @@ def discover(paths: list[str], *, use_exclude: str = "lint") -> list[Path]:
                 seen.add(p)
                 out.append(p)
             continue
+        # a folder named on the command line is walked even if an exclude pattern matches it;
+        # patterns still skip what they match below it
+        root_excluded = config_for(p).is_excluded(p)
         for dirpath, dirnames, filenames in os.walk(p):
             dirnames[:] = sorted(d for d in dirnames if d not in DEFAULT_EXCLUDE and not d.startswith("."))
             for name in sorted(filenames):
@@ -37,7 +40,7 @@ def discover(paths: list[str], *, use_exclude: str = "lint") -> list[Path]:
                 f = Path(dirpath) / name
                 cfg = config_for(f)
                 patterns = cfg.exclude + (cfg.fmt_exclude if use_exclude == "fmt" else [])
-                if cfg.is_excluded(f, patterns):
+                if not root_excluded and cfg.is_excluded(f, patterns):
                     continue
                 if f not in seen:
                     seen.add(f)

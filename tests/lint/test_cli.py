@@ -99,3 +99,15 @@ def test_rule_command():
     r = run_plx("rule", "--all")
     assert "S011" in r.stdout and "M007" in r.stdout
     assert run_plx("rule", "X999").returncode == 2
+
+
+def test_excluded_folder_named_explicitly_is_still_linted(tmp_path):
+    (tmp_path / "plx.toml").write_text('exclude = ["broken"]\n')
+    broken = tmp_path / "broken"
+    broken.mkdir()
+    write(broken, "w.openplx", BROKEN)
+    write(tmp_path, "ok.openplx", "Scene is Physics3D.System\n")
+    r = run_plx("lint", str(tmp_path))
+    assert r.returncode == 0 and "1 file" in r.stdout  # walking the parent skips the excluded folder
+    r = run_plx("lint", str(broken))
+    assert r.returncode == 1 and "N002" in r.stdout  # naming it explicitly lints it

@@ -13,24 +13,24 @@ rule("N001", "unresolved-type", E,
      "A type name after `is`, `becomes`, `with`, in a parameter or a return type does not resolve.",
      "Names are looked up from the current namespace outwards and then from the bundles (spec C.2). "
      "A misspelt or missing type leaves the attribute untyped, so nothing about it can be checked.",
-     example="geometry is Physics3D.Geometries.Bx", use_instead="geometry is Physics3D.Geometries.Box")
+     example="geometry is Physics3D.Geometries.Bx", use_instead="geometry is Physics3D.Geometries.Box", fix="unsafe")
 rule("N002", "unknown-attribute", E,
      "An assignment or a dotted path names an attribute that the object being configured does not have.",
      "A misspelt attribute would otherwise be silently ignored or rejected at load time; the message "
      "names the model that was searched and suggests the closest attribute.",
      example="Wheel is Physics3D.Bodies.RigidBody:\n    inertia.mas: 10",
-     use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    inertia.mass: 10")
+     use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    inertia.mass: 10", fix="unsafe")
 rule("N003", "unresolved-name", E,
      "A name in an expression is neither an attribute of the model being defined nor a global name "
      "(const model, global attribute, type or namespace).",
      "In OpenPLX the scope of a right-hand side is the outermost model where it is written, then the "
      "global names; a name outside both cannot be evaluated.",
      example="Chassis is Physics3D.Bodies.RigidBody:\n    inertia.mass: chassis_mass",
-     use_instead="Chassis is Physics3D.Bodies.RigidBody:\n    chassis_mass is Real: 1000\n    inertia.mass: chassis_mass")
+     use_instead="Chassis is Physics3D.Bodies.RigidBody:\n    chassis_mass is Real: 1000\n    inertia.mass: chassis_mass", fix="unsafe")
 rule("N004", "unknown-member", E,
      "`.name` is used on a value whose type has no attribute or method of that name.",
      "Member access is checked against the declared types, through bases and traits.",
-     example="x is Real: Math.Vec3.Z_AXIS().lenght()", use_instead="x is Real: Math.Vec3.Z_AXIS().length()")
+     example="x is Real: Math.Vec3.Z_AXIS().lenght()", use_instead="x is Real: Math.Vec3.Z_AXIS().length()", fix="unsafe")
 rule("N005", "wrong-kind-of-type", E,
      "A model is used where a trait is needed (after `with`) or a trait is inherited with `is`.",
      "Models inherit from one model; traits are applied with `with`. Mixing them up changes what the "
