@@ -31,6 +31,7 @@ from plxtools.model import natives
 from plxtools.model.natives import STRUCT_TYPES, NativeError, Transform
 from plxtools.model.program import Program
 from plxtools.model.symbols import GlobalSym, MethodSym, ModelSym, Namespace, Ty
+from plxtools.model.values import NsRef, TypeObj
 from plxtools.syntax import ast
 
 
@@ -55,16 +56,6 @@ class SView:
     obj: Obj
     sub: tuple
     tname: str
-
-
-@dataclass(frozen=True, slots=True)
-class TypeRef:
-    sym: Any  # ModelSym (non-const) or primitive name
-
-
-@dataclass(frozen=True, slots=True)
-class NsRef:
-    ns: Namespace
 
 
 @dataclass(frozen=True, slots=True)
@@ -512,9 +503,9 @@ class Evaluator:
                 if obj.struct is not None:
                     return SView(obj, (), obj.struct)
                 return obj
-            return TypeRef(found)
+            return TypeObj(found)
         if isinstance(found, str):
-            return TypeRef(found)
+            return TypeObj(found)
         return _MISSING
 
     def _member(self, base: Any, name: str, e: ast.Member, unit) -> Any:
@@ -524,7 +515,7 @@ class Evaluator:
             if v is _MISSING:
                 raise EvalError("A003", f"'{name}' is not in namespace {base.ns.dotted}", e, unit)
             return v
-        if isinstance(base, TypeRef):
+        if isinstance(base, TypeObj):
             if isinstance(base.sym, ModelSym):
                 meth = self.p.all_methods(base.sym).get(name)
                 if meth is not None:
@@ -649,7 +640,7 @@ def _kind(v: Any) -> str:
         return f"the object {v.display}"
     if isinstance(v, (SView,)):
         return f"a {v.tname}"
-    if isinstance(v, (TypeRef,)):
+    if isinstance(v, (TypeObj,)):
         return f"the type {getattr(v.sym, 'qname', v.sym)}"
     if isinstance(v, NsRef):
         return f"the namespace {v.ns.dotted}"

@@ -19,8 +19,8 @@ import re
 from plxtools.ide.context import (
     UNKNOWN,
     BlockContext,
-    MethodValue,
-    TypeValue,
+    MethodRef,
+    TypeObj,
     block_context,
     chain_before,
     eval_chain,
@@ -488,7 +488,7 @@ def _member_items(st: FileState, base) -> list[CompletionItem]:
         for name, child in sorted(base.children.items()):
             items.append(_ns_item(child, RANK_REST))
         return items
-    if isinstance(base, TypeValue) and isinstance(base.sym, ModelSym):
+    if isinstance(base, TypeObj) and isinstance(base.sym, ModelSym):
         for meth in p.all_methods(base.sym).values():
             if meth.static:
                 items.append(_method_item(meth, RANK_BEST))
@@ -504,7 +504,7 @@ def _member_items(st: FileState, base) -> list[CompletionItem]:
                 continue
             items.append(_method_item(meth, RANK_GOOD))
         return items
-    if isinstance(base, MethodValue):
+    if isinstance(base, MethodRef):
         return []
     return items
 

@@ -16,11 +16,11 @@ from plxtools.model.symbols import (
     UNKNOWN,
     GlobalSym,
     MemberSym,
-    MethodSym,
     ModelSym,
     Namespace,
     Ty,
 )
+from plxtools.model.values import MethodRef, TypeObj
 from plxtools.syntax import ast
 
 # ------------------------------------------------------------------ statements
@@ -262,19 +262,6 @@ def path_type(st: FileState, ctx: BlockContext, parts: list[str]) -> tuple[Ty, M
 # ------------------------------------------------------------------ expressions
 
 
-@dataclass(frozen=True, slots=True)
-class TypeValue:
-    """A type used as a value (for static calls)."""
-
-    sym: object
-
-
-@dataclass(frozen=True, slots=True)
-class MethodValue:
-    method: MethodSym
-    on_type: bool
-
-
 def name_value(st: FileState, outer: ModelSym | None, name: str):
     """What a bare name means in an expression: an attribute of the outer model, else a global name."""
     p = _program(st)
@@ -296,9 +283,9 @@ def global_value(p, found):
             found.ty = p.resolve_type_expr(found.stmt.type, found.unit)
         return found.ty
     if isinstance(found, ModelSym):
-        return Ty(found) if found.const else TypeValue(found)
+        return Ty(found) if found.const else TypeObj(found)
     if isinstance(found, str):
-        return TypeValue(found)
+        return TypeObj(found)
     return None
 
 
@@ -306,11 +293,11 @@ def member_value(st: FileState, base, name: str):
     p = _program(st)
     if isinstance(base, Namespace):
         return global_value(p, p._walk(base, [name]))
-    if isinstance(base, TypeValue):
+    if isinstance(base, TypeObj):
         if isinstance(base.sym, ModelSym):
             meth = p.all_methods(base.sym).get(name)
             if meth is not None:
-                return MethodValue(meth, True)
+                return MethodRef(meth, True)
         return None
     if isinstance(base, Ty) and not base.unknown and base.model is not None and not base.array:
         mem = p.members_of(base).get(name)
@@ -318,12 +305,12 @@ def member_value(st: FileState, base, name: str):
             return p.member_type(mem)
         meth = p.methods_of(base).get(name)
         if meth is not None:
-            return MethodValue(meth, False)
+            return MethodRef(meth, False)
     return None
 
 
 def call_value(st: FileState, f):
-    if isinstance(f, MethodValue) and f.method.stmt.returns is not None:
+    if isinstance(f, MethodRef) and f.method.stmt.returns is not None:
         p = _program(st)
         return p.resolve_type_ref(f.method.stmt.returns, f.method.owner.unit)
     return None

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from plxtools.ide.context import (
-    MethodValue,
+    MethodRef,
     block_context,
     chain_before,
     eval_chain,
@@ -71,7 +71,7 @@ def signature_help(st: FileState, offset: int) -> SignatureHelpResult | None:
         return None
     base = eval_chain(st, outer, head)
     f = member_value(st, base, last) if base is not None else None
-    if not isinstance(f, MethodValue):
+    if not isinstance(f, MethodRef):
         return None
     meth = f.method
     params = [ParameterInfo(f"{p.name.name}: {p.type.name.text}{'[]' if p.type.array else ''}")

@@ -26,27 +26,10 @@ from plxtools.model.symbols import (
     Namespace,
     Ty,
 )
+from plxtools.model.values import MethodRef, NsRef, TypeObj
 from plxtools.syntax import ast
 
 E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
-
-
-@dataclass(frozen=True, slots=True)
-class TypeObj:
-    """A type named in an expression (for static calls), not a value."""
-
-    sym: object
-
-
-@dataclass(frozen=True, slots=True)
-class NsRef:
-    ns: Namespace
-
-
-@dataclass(frozen=True, slots=True)
-class MethodRef:
-    method: MethodSym
-    on_type: bool
 
 
 @dataclass(slots=True)
