@@ -96,10 +96,7 @@ def original_declaration(program, mem: MemberSym, also=()) -> MemberSym:
     for other in also:
         if isinstance(other, MemberSym) and other.name == mem.name and other is not mem:
             return original_declaration(program, other)
-    owner = mem.owner
-    seen = 0
-    for anc in program.ancestors(owner)[1:]:
-        seen += 1
+    for anc in program.ancestors(mem.owner)[1:]:
         cand = anc.members.get(mem.name)
         if cand is not None and cand.keyword == "is":
             return cand
