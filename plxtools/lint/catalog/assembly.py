@@ -227,7 +227,7 @@ rule("A110", "mujoco-compile-error", E,
      "This is a model MuJoCo cannot represent (or a gap in the backend).", stage=SIM)
 rule("A111", "velocity-motor-gain-clamped", I,
      "A velocity motor's `gain` (1e8 by default) is far too stiff for an explicit actuator; the MuJoCo "
-     "velocity gain is clamped to 1000 x the joint's effective inertia / timestep.",
+     "velocity gain is clamped to 10 x the joint's effective inertia / timestep.",
      "With the implicit integrator this still tracks the target speed almost rigidly, like AGX's stiff "
      "motor, without making the simulation unstable.", stage=SIM)
 rule("A112", "spring-stiffness-clamped", I,
