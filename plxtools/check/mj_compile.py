@@ -402,26 +402,15 @@ class _Builder(GeomMixin, ControllerMixin):
         pos, axis, _ = self.local_frame(cc)
         self.out.joint_sign[m.path] = sign
         names: list[str] = []
-        if m.kind in ("hinge", "cylindrical"):
-            n = self.names.add("joint", m.path, m.source, ":rot" if m.kind == "cylindrical" else "")
-            mb.add_joint(
-                name=n,
-                type=mj.mjtJoint.mjJNT_HINGE,
-                pos=list(pos),
-                axis=list(axis),
-                ref=sign * float(m.initial_angle),
-            )
-            names.append(n)
-        if m.kind in ("prismatic", "cylindrical"):
-            n = self.names.add("joint", m.path, m.source, ":slide" if m.kind == "cylindrical" else "")
-            mb.add_joint(
-                name=n,
-                type=mj.mjtJoint.mjJNT_SLIDE,
-                pos=list(pos),
-                axis=list(axis),
-                ref=sign * float(m.initial_position),
-            )
-            names.append(n)
+        # a cylindrical mate is a hinge and a slide on the same axis
+        for kinds, jtype, suffix, offset in (
+            (("hinge", "cylindrical"), mj.mjtJoint.mjJNT_HINGE, ":rot", m.initial_angle),
+            (("prismatic", "cylindrical"), mj.mjtJoint.mjJNT_SLIDE, ":slide", m.initial_position),
+        ):
+            if m.kind in kinds:
+                n = self.names.add("joint", m.path, m.source, suffix if m.kind == "cylindrical" else "")
+                mb.add_joint(name=n, type=jtype, pos=list(pos), axis=list(axis), ref=sign * float(offset))
+                names.append(n)
         if m.kind == "ball":
             n = self.names.add("joint", m.path, m.source)
             mb.add_joint(name=n, type=mj.mjtJoint.mjJNT_BALL, pos=list(pos))

@@ -396,5 +396,18 @@ def _tok_span(tok: Token) -> Span:
     )
 
 
+_last: tuple[str, LexResult] | None = None
+
+
 def lex(text: str) -> LexResult:
-    return Lexer(text).run()
+    """Lex a text; the last result is kept, since the formatter lexes the text it just parsed.
+
+    The key is the text object itself (strings are immutable), so a hit is always the same input.
+    """
+    global _last
+    last = _last
+    if last is not None and last[0] is text:
+        return last[1]
+    result = Lexer(text).run()
+    _last = (text, result)
+    return result
