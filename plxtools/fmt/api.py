@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from plxtools.diagnostics import Diagnostic, Severity
 from plxtools.fmt.brackets import LayoutError
 from plxtools.fmt.document import Layout, layout
-from plxtools.fmt.safety import same_meaning
+from plxtools.fmt.safety import same_lint_results, same_meaning
 from plxtools.syntax import ast, parse_bytes, parse_text
 from plxtools.syntax.lexer import lex
 
@@ -61,6 +61,8 @@ def format_tree(tree: ast.File) -> str:
             second = layout_tree(again).text
             if second != out:
                 reason = "formatting the output again changes it (unstable)"
+        if reason is None:
+            reason = same_lint_results(tree, again)
     except LayoutError as exc:
         reason = f"the output could not be laid out again ({exc})"
     except RecursionError:

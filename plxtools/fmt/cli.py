@@ -88,7 +88,7 @@ def _format_file(path: Path, args, tally: _Tally) -> None:
     try:
         write_atomic(path, result.text, result.had_bom)
     except OSError as exc:
-        _say(f"{name}: cannot write: {exc.strerror}")
+        _say(exc.strerror or f"{name}: cannot write: {exc}")
         tally.changed -= 1
         tally.failed += 1
         return

@@ -14,3 +14,11 @@ def directive(comment_text: str) -> str | None:
     """ "off", "on" or "skip" when the comment is exactly that directive, else None."""
     m = _DIRECTIVE.match(comment_text.strip())
     return m.group(1) if m else None
+
+
+_LINE_SUPPRESSION = re.compile(r"#\s*plx:\s*ignore\b(?!-)")
+
+
+def is_line_suppression(comment_text: str) -> bool:
+    """A `# plx: ignore[...]` comment: it covers one line, so what it covers must not move."""
+    return _LINE_SUPPRESSION.search(comment_text) is not None

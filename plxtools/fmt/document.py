@@ -10,12 +10,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from plxtools.fmt.brackets import LayoutError, Note, Tok, nest
-from plxtools.fmt.directives import directive
+from plxtools.fmt.directives import directive, is_line_suppression
 from plxtools.fmt.printer import print_line
 from plxtools.fmt.style import COMMENT_GAP, INDENT, blank_cap, token_kinds
 from plxtools.fmt.verbatim import indent_width, rebased_lines
 from plxtools.syntax import ast
 from plxtools.syntax.lexer import LexResult, LogicalLine
+from plxtools.syntax.source import line_start
 
 
 @dataclass(slots=True)
@@ -32,6 +33,7 @@ class Piece:
     inner: list[Note] = field(default_factory=list)
     opens_block: bool = False
     verbatim: bool = False
+    pinned: bool = False  # covered by a `# plx: ignore`: its line structure must not change
     out: list[str] = field(default_factory=list)  # printed code, without the trailing comment
     blanks: int = 0  # blank lines printed before the piece
 
@@ -92,8 +94,8 @@ def _sort_comments(text: str, lexed: LexResult) -> _Comments:
         elif cur is not None and not own and line == cur.tokens[-1].end_line:
             out.trailing[li] = (end, ctext.rstrip())
         else:
-            line_start = text.rfind("\n", 0, start) + 1
-            column, _ = indent_width(text[line_start:start])
+            begin = line_start(text, start)
+            column, _ = indent_width(text[begin:start])
             out.standalone.append((start, line, column, ctext.rstrip()))
     return out
 
@@ -128,6 +130,7 @@ def build_pieces(text: str, tree: ast.File, lexed: LexResult) -> list[Piece]:
         pieces.append(piece)
     comments_before(len(text) + 1, 0)
     _mark_verbatim(pieces)
+    _mark_pinned(pieces)
     return pieces
 
 
@@ -148,6 +151,23 @@ def _mark_verbatim(pieces: list[Piece]) -> None:
             p.verbatim = off or (p.trailing is not None and directive(p.trailing[1]) == "skip")
 
 
+def _mark_pinned(pieces: list[Piece]) -> None:
+    """Statements a `# plx: ignore` comment covers (before, after or inside them) keep their lines.
+
+    The suppression covers one line; splitting or joining the statement would move the code it
+    covers off that line (and a clean file would get errors after formatting).
+    """
+    prev: Piece | None = None
+    for p in pieces:
+        if p.stmt is not None:
+            p.pinned = (
+                (prev is not None and prev.stmt is None and is_line_suppression(prev.comment_text))
+                or (p.trailing is not None and is_line_suppression(p.trailing[1]))
+                or any(is_line_suppression(n.text) for n in p.inner)
+            )
+        prev = p
+
+
 def _render(text: str, p: Piece) -> None:
     indent = p.depth * INDENT
     if p.stmt is None:
@@ -163,6 +183,9 @@ def _render(text: str, p: Piece) -> None:
     kinds = token_kinds([t.type for t in ln.tokens])
     toks = [Tok(k, text[t.start_pos : t.end_pos], t.line, t.end_line, t.start_pos) for t, k in zip(ln.tokens, kinds)]
     p.out = print_line(nest(toks, p.inner), indent)
+    if p.pinned and (len(p.out) != 1 or "\n" in p.out[0] or ln.tokens[0].line != ln.tokens[-1].end_line):
+        p.verbatim = True  # only a one-line statement that stays one line may be re-spaced
+        _render(text, p)
 
 
 def _blank_lines(pieces: list[Piece]) -> None:

@@ -1,13 +1,19 @@
 """The checks that stand between the formatter and the user's file.
 
 Before anything is written, the output is parsed again: it must mean the same as the input (the
-same layout-free tree, the same comments in the same order) and formatting it once more must
-change nothing. black does the same with `--safe`; here it cannot be turned off.
+same layout-free tree, the same comments in the same order), formatting it once more must
+change nothing, and when the file has `# plx: ignore` comments (the only thing that makes lint
+results depend on layout) `plx lint` must report the same, suppressions applied. black does
+the same with `--safe`; here it cannot be turned off.
 """
 
 from __future__ import annotations
 
+import re
+
 from plxtools.syntax import ast
+
+_SUPPRESSION = re.compile(r"#\s*plx:\s*ignore")
 
 
 def comment_texts(tree: ast.File) -> list[str]:
@@ -26,3 +32,27 @@ def same_meaning(before: ast.File, after: ast.File) -> str | None:
     if comment_texts(before) != comment_texts(after):
         return "the output's comments differ from the input's"
     return None
+
+
+def _lint_signature(tree: ast.File) -> list[tuple[str, str, str]]:
+    """What `plx lint` reports for a tree (suppressions applied), without positions."""
+    from pathlib import Path
+
+    from plxtools.config import Config, config_for
+    from plxtools.lint.runner import analyse_tree
+
+    cfg = config_for(Path(tree.path)) if tree.path else Config()
+    return sorted((d.code, d.severity.value, d.message) for d in analyse_tree(tree, cfg))
+
+
+def same_lint_results(before: ast.File, after: ast.File) -> str | None:
+    """None when lint reports the same for both texts; only computed when suppressions exist."""
+    if "plx:" not in before.text or not any(_SUPPRESSION.search(c.text) for c in before.comments):
+        return None  # same tree, no suppression: the same diagnostics
+    old, new = _lint_signature(before), _lint_signature(after)
+    if old == new:
+        return None
+    gone = [f"{c} {m}" for c, _, m in old if (c, _, m) not in new]
+    came = [f"{c} {m}" for c, _, m in new if (c, _, m) not in old]
+    what = f"it would report {came[0]}" if came else f"it would no longer report {gone[0]}"
+    return f"formatting would change what a `# plx: ignore` comment covers ({what})"

@@ -7,6 +7,10 @@ relative to the first line is kept. Lines inside a \"\"\" string are never touch
 
 from __future__ import annotations
 
+import re
+
+_BREAK_RE = re.compile(r"\r\n?|\n")
+
 
 def indent_width(line: str) -> tuple[int, int]:
     """(column, characters) of a line's leading whitespace, counting tabs as the lexer does."""
@@ -31,16 +35,15 @@ def rebased_lines(
     `string_spans` are (start, end) offsets of the strings inside it; a line break inside one is
     part of the string, not a place to re-indent.
     """
-    cuts = []
-    pos = text.find("\n", start, end)
-    while pos != -1:
-        if not any(s < pos < e for s, e in string_spans):
-            cuts.append(pos)
-        pos = text.find("\n", pos + 1, end)
+    cuts = [  # (start, end) of each line break outside strings; \r\n, \r and \n all count
+        (m.start(), m.end())
+        for m in _BREAK_RE.finditer(text, start, end)
+        if not any(s < m.start() < e for s, e in string_spans)
+    ]
     delta = indent - column
     out: list[str] = []
     begin = start
-    for n, cut in enumerate(cuts + [end]):
+    for n, (cut, after) in enumerate(cuts + [(end, end)]):
         piece = text[begin:cut].rstrip()
         if n == 0:
             out.append(" " * indent + piece)
@@ -49,5 +52,5 @@ def rebased_lines(
             out.append(" " * max(0, col + delta) + piece[skip:])
         else:
             out.append("")
-        begin = cut + 1
+        begin = after
     return out

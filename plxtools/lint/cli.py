@@ -56,7 +56,11 @@ def run_lint(args) -> int:
                 else:
                     from plxtools.fileio import write_atomic
 
-                    write_atomic(f, new_text, result.tree.had_bom)
+                    try:
+                        write_atomic(f, new_text, result.tree.had_bom)
+                    except OSError as exc:  # the user's file system, not a bug: say what happened
+                        print(f"plx lint: {exc.strerror}", file=sys.stderr)
+                        return 2
                     fixed_files += 1
                     fixes_applied += n
                     diags = lint_file(f, cfg, workspace).diagnostics

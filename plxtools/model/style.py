@@ -22,14 +22,16 @@ def style_diagnostics(program: Program, unit, checker) -> list[Diagnostic]:
     def add(code, msg, span, sev, help_=None):
         out.append(Diagnostic(code, msg, span, sev, file=unit.path, help=help_))
 
-    # C006: siblings whose indentation differs (official files do it; fmt aligns them)
+    # C006: siblings whose indentation differs (official files do it; fmt aligns them).
+    # Lines where the parser already reported the cause (S015, an ambiguous tab) are skipped.
+    caused = {d.span.start.line for d in tree.diagnostics if d.code in ("S003", "S015") and d.severity is Severity.ERROR}
     stack = [tree.statements]
     while stack:
         body = stack.pop()
         if body:
             col = body[0].header.start.column
             for s in body[1:]:
-                if s.header.start.column != col:
+                if s.header.start.column != col and s.header.start.line not in caused:
                     add("C006", f"this line is indented {s.header.start.column} spaces but the block's first "
                         f"line is indented {col}", s.header, Severity.INFO,
                         "align it with the lines above; a missing ':' on the line above would also cause this "

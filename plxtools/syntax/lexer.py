@@ -54,8 +54,8 @@ MAX_BRACKET_DEPTH = 200
 
 _TOKEN_RE = re.compile(
     r"""
-    (?P<ws>(?:[ \t\f]|\r(?!\n))+)
-  | (?P<nl>\r?\n)
+    (?P<ws>[ \t\f]+)
+  | (?P<nl>\r\n?|\n)
   | (?P<comment>\#[^\r\n]*)
   | (?P<number>\d+(?:\.\d+)?(?:[eE][+-]?\d+)?)
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
@@ -68,6 +68,8 @@ _TOKEN_RE = re.compile(
     re.VERBOSE | re.DOTALL,
 )
 _IDENT_CHAR = re.compile(r"[A-Za-z0-9_.]")
+_BREAK_RE = re.compile(r"\r\n?|\n")  # the line breaks of OpenPLX (and of LSP): \r\n, \r, \n
+MAX_INT_DIGITS = 4300  # Python's int-from-string limit (sys.get_int_max_str_digits)
 
 
 @dataclass(slots=True)
@@ -147,174 +149,238 @@ class Lexer:
             if line_error is None:
                 line_error = diag
 
-        while self.pos < n:
-            if at_line_start:
-                # measure indentation of the next non-blank line
-                i = self.pos
-                col = 0
-                tab_at = -1
-                while i < n and text[i] in " \t\f":
-                    if text[i] == "\t":
-                        if tab_at < 0:
-                            tab_at = i
-                        col = (col // 4 + 1) * 4
-                    else:
-                        col += 1
-                    i += 1
-                if i >= n or text[i] in "\n#" or text.startswith("\r\n", i):
+        snapshot = None  # where to resume if an open bracket turns out never to close
+        while True:
+            while self.pos < n:
+                if at_line_start:
+                    # measure indentation of the next non-blank line
+                    i = self.pos
+                    col = 0
+                    tab_at = -1
+                    while i < n and text[i] in " \t\f":
+                        if text[i] == "\t":
+                            if tab_at < 0:
+                                tab_at = i
+                            col = (col // 4 + 1) * 4
+                        else:
+                            col += 1
+                        i += 1
+                    if i >= n or text[i] in "\r\n#":
+                        self.pos = i
+                        if i < n and text[i] == "#":
+                            m = match(text, i)
+                            end = m.end()
+                            comments.append((i, self.line, i - self.line_start, end, m.group(), True))
+                            self.pos = end
+                        if self.pos < n:
+                            m = match(text, self.pos)
+                            self._newline(m.end())
+                            self.pos = m.end()
+                        continue
+                    if tab_at >= 0:
+                        p = self._p(tab_at)
+                        diagnostics.append(
+                            Diagnostic(
+                                "S003",
+                                "tab character in indentation; OpenPLX indents with spaces",
+                                Span(p, Pos(tab_at + 1, p.line, p.column + 1)),
+                                Severity.WARNING,
+                                help="indent with 4 spaces per level (`plx fmt` does this)",
+                            )
+                        )
+                    indent = col
                     self.pos = i
-                    if i < n and text[i] == "#":
-                        m = match(text, i)
-                        end = m.end()
-                        comments.append((i, self.line, i - self.line_start, end, m.group(), True))
-                        self.pos = end
-                    if self.pos < n:
-                        m = match(text, self.pos)
-                        self._newline(m.end())
-                        self.pos = m.end()
+                    at_line_start = False
                     continue
-                if tab_at >= 0:
-                    p = self._p(tab_at)
-                    diagnostics.append(
+
+                m = match(text, self.pos)
+                kind = m.lastgroup
+                start = self.pos
+                end = m.end()
+                if kind == "ws":
+                    self.pos = end
+                    continue
+                if kind == "nl":
+                    self._newline(end)
+                    self.pos = end
+                    if brackets:
+                        kind = self._next_line_kind(indent)
+                        if kind == _STRONG or (kind == _PARAM_LIKE and not _in_params(tokens, brackets)):
+                            fail(_never_closed(brackets[-1]))
+                            finish()
+                            snapshot = None
+                            at_line_start = True
+                        elif kind == _PARAM_LIKE and snapshot is None:
+                            # `b: Real` continues a parameter list, unless the list is never closed:
+                            # remember where to resume if the end of the file proves it was not
+                            snapshot = (self.pos, self.line, self.line_start, len(tokens), len(comments),
+                                        len(diagnostics), list(brackets), line_error)
+                        continue
+                    finish()
+                    at_line_start = True
+                    continue
+                if kind == "comment":
+                    own = not (tokens and tokens[-1].end_line == self.line)
+                    comments.append((start, self.line, start - self.line_start, end, m.group(), own))
+                    self.pos = end
+                    continue
+                if kind == "str":
+                    tok = self._string(m.group(), start, fail, diagnostics)
+                    tokens.append(tok)
+                    continue
+
+                p0 = self._p(start)
+                p1 = self._p(end)
+                if kind == "number":
+                    tok = Token("NUMBER", m.group(), start, p0.line, p0.column, p1.line, p1.column, end)
+                    if end < n and _IDENT_CHAR.match(text, end):
+                        bad_end = end + 1
+                        while bad_end < n and _IDENT_CHAR.match(text, bad_end):
+                            bad_end += 1
+                        word = text[start:bad_end]
+                        msg = (
+                            f"invalid number '{word}': a number needs digits after the '.'"
+                            if text[end] == "."
+                            else f"invalid number '{word}'"
+                        )
+                        fail(Diagnostic("S005", msg, Span(p0, self._p(bad_end)), Severity.ERROR))
+                    elif end - start > MAX_INT_DIGITS and m.group().isdigit():
+                        fail(Diagnostic("S005", f"integer literal too long: {end - start} digits "
+                                        f"(at most {MAX_INT_DIGITS})", Span(p0, p1), Severity.ERROR,
+                                        help="write it with an exponent, e.g. 1e4300"))
+                elif kind == "name":
+                    word = m.group()
+                    tok = Token(KEYWORDS.get(word, "NAME"), word, start, p0.line, p0.column, p1.line, p1.column, end)
+                elif kind == "tick":
+                    tok = Token("TICKNAME", m.group()[1:-1], start, p0.line, p0.column, p1.line, p1.column, end)
+                    if len(m.group()) == 2:
+                        fail(Diagnostic("S006", "empty backtick name", Span(p0, p1), Severity.ERROR))
+                elif kind == "arrow":
+                    tok = Token("ARROW", "->", start, p0.line, p0.column, p1.line, p1.column, end)
+                elif kind == "punct":
+                    ch = m.group()
+                    tok = Token(PUNCT[ch], ch, start, p0.line, p0.column, p1.line, p1.column, end)
+                    if ch in OPENERS:
+                        brackets.append(tok)
+                        if len(brackets) > MAX_BRACKET_DEPTH:
+                            fail(
+                                Diagnostic(
+                                    "S007",
+                                    f"brackets nested more than {MAX_BRACKET_DEPTH} levels deep",
+                                    _tok_span(tok),
+                                    Severity.ERROR,
+                                )
+                            )
+                    elif ch in CLOSERS:
+                        if not brackets:
+                            fail(Diagnostic("S004", f"unmatched '{ch}'", _tok_span(tok), Severity.ERROR))
+                        elif OPENERS[brackets[-1].value] != ch:
+                            opener = brackets.pop()
+                            fail(
+                                Diagnostic(
+                                    "S004",
+                                    f"'{ch}' does not match '{opener.value}' opened at line {opener.line + 1}",
+                                    _tok_span(tok),
+                                    Severity.ERROR,
+                                )
+                            )
+                        else:
+                            brackets.pop()
+                        if not brackets:
+                            snapshot = None
+                else:  # bad character
+                    ch = m.group()
+                    fail(
                         Diagnostic(
-                            "S003",
-                            "tab character in indentation; OpenPLX indents with spaces",
-                            Span(p, Pos(tab_at + 1, p.line, p.column + 1)),
-                            Severity.WARNING,
-                            help="indent with 4 spaces per level (`plx fmt` does this)",
+                            "S008",
+                            f"unexpected {_describe(ch)}",
+                            Span(p0, p1),
+                            Severity.ERROR,
+                            help=_bad_char_help(ch),
                         )
                     )
-                indent = col
-                self.pos = i
-                at_line_start = False
-                continue
-
-            m = match(text, self.pos)
-            kind = m.lastgroup
-            start = self.pos
-            end = m.end()
-            if kind == "ws":
-                self.pos = end
-                continue
-            if kind == "nl":
-                self._newline(end)
-                self.pos = end
-                if brackets:
-                    if self._continuation_ends(indent):
-                        fail(_never_closed(brackets[-1]))
-                        finish()
-                        at_line_start = True
+                    self.pos = end
                     continue
+                tokens.append(tok)
+                self.pos = end
+
+            if brackets and snapshot is not None:
+                # never closed: resume at the first line that could have been a statement
+                (self.pos, self.line, self.line_start, ntok, ncom, ndiag, brackets, line_error) = snapshot
+                snapshot = None
+                del tokens[ntok:], comments[ncom:], diagnostics[ndiag:]
+                fail(_never_closed(brackets[-1]))
                 finish()
                 at_line_start = True
                 continue
-            if kind == "comment":
-                own = not (tokens and tokens[-1].end_line == self.line)
-                comments.append((start, self.line, start - self.line_start, end, m.group(), own))
-                self.pos = end
-                continue
-            if kind == "str":
-                tok = self._string(m.group(), start, fail, diagnostics)
-                tokens.append(tok)
-                continue
-
-            p0 = self._p(start)
-            p1 = self._p(end)
-            if kind == "number":
-                tok = Token("NUMBER", m.group(), start, p0.line, p0.column, p1.line, p1.column, end)
-                if end < n and _IDENT_CHAR.match(text, end):
-                    bad_end = end + 1
-                    while bad_end < n and _IDENT_CHAR.match(text, bad_end):
-                        bad_end += 1
-                    word = text[start:bad_end]
-                    msg = (
-                        f"invalid number '{word}': a number needs digits after the '.'"
-                        if text[end] == "."
-                        else f"invalid number '{word}'"
-                    )
-                    fail(Diagnostic("S005", msg, Span(p0, self._p(bad_end)), Severity.ERROR))
-            elif kind == "name":
-                word = m.group()
-                tok = Token(KEYWORDS.get(word, "NAME"), word, start, p0.line, p0.column, p1.line, p1.column, end)
-            elif kind == "tick":
-                tok = Token("TICKNAME", m.group()[1:-1], start, p0.line, p0.column, p1.line, p1.column, end)
-                if len(m.group()) == 2:
-                    fail(Diagnostic("S006", "empty backtick name", Span(p0, p1), Severity.ERROR))
-            elif kind == "arrow":
-                tok = Token("ARROW", "->", start, p0.line, p0.column, p1.line, p1.column, end)
-            elif kind == "punct":
-                ch = m.group()
-                tok = Token(PUNCT[ch], ch, start, p0.line, p0.column, p1.line, p1.column, end)
-                if ch in OPENERS:
-                    brackets.append(tok)
-                    if len(brackets) > MAX_BRACKET_DEPTH:
-                        fail(
-                            Diagnostic(
-                                "S007",
-                                f"brackets nested more than {MAX_BRACKET_DEPTH} levels deep",
-                                _tok_span(tok),
-                                Severity.ERROR,
-                            )
-                        )
-                elif ch in CLOSERS:
-                    if not brackets:
-                        fail(Diagnostic("S004", f"unmatched '{ch}'", _tok_span(tok), Severity.ERROR))
-                    elif OPENERS[brackets[-1].value] != ch:
-                        opener = brackets.pop()
-                        fail(
-                            Diagnostic(
-                                "S004",
-                                f"'{ch}' does not match '{opener.value}' opened at line {opener.line + 1}",
-                                _tok_span(tok),
-                                Severity.ERROR,
-                            )
-                        )
-                    else:
-                        brackets.pop()
-            else:  # bad character
-                ch = m.group()
-                fail(
-                    Diagnostic(
-                        "S008",
-                        f"unexpected {_describe(ch)}",
-                        Span(p0, p1),
-                        Severity.ERROR,
-                        help=_bad_char_help(ch),
-                    )
-                )
-                self.pos = end
-                continue
-            tokens.append(tok)
-            self.pos = end
-
+            break
         if brackets:
             fail(_never_closed(brackets[-1]))
         finish()
         return LexResult(lines, comments, diagnostics)
 
-    def _continuation_ends(self, indent: int) -> bool:
-        """Inside brackets at a newline: does the next line look like a new statement instead?"""
+    def _next_line_kind(self, indent: int) -> int:
+        """Inside brackets at a line break: can the next code line still continue the statement?
+
+        Only the tokens decide: a line at or left of the statement's indentation that begins the
+        way a statement does and no expression can (`x is`, `x becomes`, `.a:`, a keyword such as
+        `const` or `fn`) is `_STRONG`; `x:` is `_PARAM_LIKE` (a parameter of a continued `fn`
+        list); anything else continues.
+        """
         text = self.text
-        i = self.pos
         n = len(text)
-        while True:
+        i = self.pos
+        match = _TOKEN_RE.match
+        while True:  # skip blank and comment-only lines
             col = 0
             while i < n and text[i] in " \t\f":
-                col += 1
+                col = (col // 4 + 1) * 4 if text[i] == "\t" else col + 1
                 i += 1
             if i >= n:
-                return False
-            if text[i] in "\r\n#":
-                j = text.find("\n", i)
-                if j < 0:
-                    return False
-                i = j + 1
+                return _CONTINUES
+            if text[i] == "#":
+                i = match(text, i).end()
+            if i < n and text[i] in "\r\n":
+                i = match(text, i).end()
                 continue
+            if i >= n:
+                return _CONTINUES
             break
-        if col > indent or text[i] in ")]},":
-            return False
-        rest = text[i : text.find("\n", i) if text.find("\n", i) >= 0 else n]
-        return bool(_STATEMENT_START.match(rest))
+        if col > indent:
+            return _CONTINUES
+
+        def token(i: int) -> tuple[str | None, str, int]:
+            while True:
+                m = match(text, i)
+                if m is None:
+                    return None, "", i
+                if m.lastgroup != "ws":
+                    return m.lastgroup, m.group(), m.end()
+                i = m.end()
+
+        kind, word, i = token(i)
+        if kind == "name" and word in _STATEMENT_KEYWORDS:
+            return _STRONG
+        if kind == "punct" and word == ".":
+            kind, word, i = token(i)
+            if kind not in ("name", "tick") or word in KEYWORDS:
+                return _CONTINUES
+            kind, word, i = token(i)
+            return _STRONG if word == ":" else _CONTINUES
+        if kind not in ("name", "tick") or (kind == "name" and word in KEYWORDS):
+            return _CONTINUES
+        while True:  # a dotted name
+            kind, word, i = token(i)
+            if word != ".":
+                break
+            kind, word, i = token(i)
+            if kind not in ("name", "tick"):
+                return _CONTINUES
+        if kind == "name" and word in ("is", "becomes"):
+            return _STRONG
+        if word == ":":
+            return _PARAM_LIKE
+        return _CONTINUES
 
     def _string(self, opener: str, start: int, fail, diagnostics) -> Token:
         text = self.text
@@ -335,10 +401,16 @@ class Lexer:
             else:
                 end = close + 3
             body = text[start:end]
-            nl = body.count("\n")
-            if nl:
-                self.line += nl
-                self.line_start = start + body.rfind("\n") + 1
+            if "\r" in body:
+                breaks = [m.end() for m in _BREAK_RE.finditer(body)]
+                if breaks:
+                    self.line += len(breaks)
+                    self.line_start = start + breaks[-1]
+            else:
+                nl = body.count("\n")
+                if nl:
+                    self.line += nl
+                    self.line_start = start + body.rfind("\n") + 1
             self.pos = end
             p1 = self._p(end)
             return Token("STRING", body, start, p0.line, p0.column, p1.line, p1.column, end)
@@ -365,11 +437,16 @@ class Lexer:
         return Token("STRING", text[start:end], start, p0.line, p0.column, p1.line, p1.column, end)
 
 
-_STATEMENT_START = re.compile(
-    r"(?:(?:const|optional|static|trait|fn|operator|with|import)\b"
-    r"|\.[A-Za-z_]\w*\s*:"
-    r"|[A-Za-z_`][\w.`]*\s*(?::|is\b|becomes\b))"
-)
+_CONTINUES, _PARAM_LIKE, _STRONG = 0, 1, 2
+_STATEMENT_KEYWORDS = {"const", "optional", "static", "trait", "fn", "operator", "with", "import", "becomes"}
+
+
+def _in_params(tokens: list[Token], brackets: list[Token]) -> bool:
+    """Is the only open bracket the parameter list of a `fn` or `operator` header?"""
+    if len(brackets) != 1 or brackets[0].type != "LPAR" or not tokens:
+        return False
+    first = tokens[0].type
+    return first in ("FN", "OPERATOR") or (first == "STATIC" and len(tokens) > 1 and tokens[1].type == "FN")
 
 
 def _bad_char_help(ch: str) -> str | None:

@@ -12,7 +12,7 @@ from lark.lexer import Lexer as LarkLexer
 from plxtools.diagnostics import Diagnostic, Pos, Severity, Span
 from plxtools.syntax import ast
 from plxtools.syntax.lexer import LogicalLine, lex
-from plxtools.syntax.source import LineIndex, decode, decode_text
+from plxtools.syntax.source import LineIndex, decode, decode_text, line_start
 
 # ------------------------------------------------------------------ building nodes
 
@@ -66,7 +66,10 @@ class _Build(Transformer):
         t = c[0]
         text = str(t)
         is_int = not any(ch in text for ch in ".eE")
-        value = int(text) if is_int else float(text)
+        try:
+            value = int(text) if is_int else float(text)
+        except ValueError:  # over Python's int-string limit: the lexer has reported it (S005)
+            value = float(text)
         return ast.Number(_sp(t), text, value, is_int)
 
     def string(self, c):
@@ -334,13 +337,14 @@ def _syntax_error(exc: UnexpectedInput, line: LogicalLine) -> Diagnostic:
 
 
 class _Frame:
-    __slots__ = ("header_indent", "child_indent", "body", "owner")
+    __slots__ = ("header_indent", "child_indent", "body", "owner", "child8")
 
-    def __init__(self, header_indent: int, child_indent: int | None, body: list, owner):
+    def __init__(self, header_indent: int, child_indent: int | None, body: list, owner, child8: int | None = None):
         self.header_indent = header_indent
         self.child_indent = child_indent
         self.body = body
         self.owner = owner
+        self.child8 = child8  # the child indentation with 8-wide tabs (files with tabs only)
 
 
 def _parse_line(parser: Lark, line: LogicalLine, text: str, diags: list[Diagnostic]) -> ast.Stmt:
@@ -455,30 +459,97 @@ def parse_lines(text: str, lines: list[LogicalLine], diags: list[Diagnostic]) ->
         )
         stmt.body = []  # type: ignore[attr-defined]
 
+    def land(col: int, wide: bool) -> int:
+        """Index of the frame a line at `col` would join (len(stack): the pending block)."""
+        if pending is not None and col > (pending_h8 if wide else pending[1]):
+            return len(stack)
+        k = len(stack) - 1
+        while k > 0 and col < (stack[k].child8 if wide else stack[k].child_indent):  # type: ignore[operator]
+            k -= 1
+        return k
+
+    # With tabs in the file, the block structure is also followed with 8-wide tabs: a line whose
+    # block depends on the width is ambiguous (an error, the cause of what would follow)
+    tabs = "\t" in text
+    i8 = pending_h8 = 0
     for line in lines:
         stmt = _parse_line(parser, line, text, diags)
         i = line.indent
+        if tabs:
+            lead = text[line_start(text, line.start) : line.start]
+            i8 = _width(lead, 8)
+            k4, k8 = land(i, False), land(i8, True)
+            if k4 != k8:
+                _tab_is_ambiguous(diags, line, i, i8)
+                if k8 > k4:  # keep the line in the block that is open, as 8-wide tabs show it
+                    i = stack[k8].child_indent if k8 < len(stack) else pending[1] + 4  # type: ignore[index]
         if pending is not None:
             owner, h, pline = pending
             pending = None
             if i > h:
                 owner.body = []  # type: ignore[attr-defined]
-                stack.append(_Frame(h, i, owner.body, owner))  # type: ignore[attr-defined]
+                stack.append(_Frame(h, i, owner.body, owner, i8))  # type: ignore[attr-defined]
             else:
                 missing_block(owner, pline)
+        popped = None
         while len(stack) > 1 and i < stack[-1].child_indent:  # type: ignore[operator]
-            stack.pop()
+            popped = stack.pop()
         frame = stack[-1]
+        if (popped is not None and frame.child_indent is not None and i > frame.child_indent
+                and i != popped.header_indent):  # (at the column of the block's owner: a sibling)
+            # between two levels: the file cannot mean what the layout suggests. Report the
+            # cause and keep the line in the block it was closer to closing (so the lines
+            # after it that are correctly indented stay there too, and nothing cascades)
+            lead = text[line_start(text, line.start) : line.start]
+            _between_levels(diags, line, lead, frame.child_indent, popped.child_indent)
+            stack.append(popped)
+            frame = popped
         if frame.child_indent is None:
-            frame.child_indent = i
+            frame.child_indent, frame.child8 = i, i8
         stmt = _check_placement(stmt, frame is root, diags)
         frame.body.append(stmt)
         if _opens_block(stmt, line):
-            pending = (stmt, i, line)
+            pending, pending_h8 = (stmt, i, line), i8
     if pending is not None:
         missing_block(pending[0], pending[2])
     _close_spans(root.body)
     return root.body
+
+
+def _width(lead: str, tab: int) -> int:
+    col = 0
+    for ch in lead:
+        col = (col // tab + 1) * tab if ch == "\t" else col + 1
+    return col
+
+
+def _lead_span(line: LogicalLine, lead: str) -> Span:
+    first = line.tokens[0]
+    start = Pos(first.start_pos - len(lead), first.line, 0)
+    return Span(start, Pos(first.start_pos, first.line, first.column))
+
+
+def _between_levels(diags: list[Diagnostic], line: LogicalLine, lead: str, outer: int, inner: int) -> None:
+    how = f"{line.indent} columns" if "\t" not in lead else f"{line.indent} columns (a tab counted as 4)"
+    diags.append(Diagnostic(
+        "S015",
+        f"this line is indented {how}: between the block at column {outer} and the one at column {inner}",
+        _sp(line.tokens[0]),
+        Severity.ERROR,
+        help=f"indent it {inner} spaces to keep it in the block above, or {outer} to end that block "
+             "(it is read as part of the block above)",
+    ))
+
+
+def _tab_is_ambiguous(diags: list[Diagnostic], line: LogicalLine, narrow: int, wide: int) -> None:
+    diags.append(Diagnostic(
+        "S003",
+        f"a tab in this line's indentation makes its block ambiguous: {narrow} columns with 4-wide tabs, "
+        f"{wide} with 8-wide tabs, and the two belong to different blocks",
+        _sp(line.tokens[0]),
+        Severity.ERROR,
+        help="indent with spaces only (4 per level); it is read as part of the deeper block",
+    ))
 
 
 def parse_text(text: str, path: str = "") -> ast.File:
@@ -519,6 +590,10 @@ def _parse_decoded_inner(text: str, path: str, diags: list[Diagnostic], had_bom:
         ast.Comment(Span(Pos(s, ln, col), Pos(e, ln, col + (e - s))), body, own)
         for (s, ln, col, e, body, own) in lexed.comments
     ]
+    ambiguous_tabs = {d.span.start.line for d in diags if d.code == "S003" and d.severity is Severity.ERROR}
+    if ambiguous_tabs:  # the error replaces the lexer's warning on the same line
+        diags = [d for d in diags if not (d.code == "S003" and d.severity is Severity.WARNING
+                                          and d.span.start.line in ambiguous_tabs)]
     for d in diags:
         d.file = path
     diags.sort(key=lambda d: d.span.start.offset)

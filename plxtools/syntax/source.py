@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import codecs
+import re
 from bisect import bisect_right
 from dataclasses import dataclass, field
 
@@ -28,10 +29,13 @@ class LineIndex:
     def __init__(self, text: str):
         self.text = text
         starts = [0]
-        i = text.find("\n")
-        while i != -1:
-            starts.append(i + 1)
-            i = text.find("\n", i + 1)
+        if "\r" in text:  # \r\n, a lone \r and \n each end a line, as in the lexer and LSP
+            starts.extend(m.end() for m in _BREAK_RE.finditer(text))
+        else:
+            i = text.find("\n")
+            while i != -1:
+                starts.append(i + 1)
+                i = text.find("\n", i + 1)
         self.starts = starts
 
     @property
@@ -52,10 +56,10 @@ class LineIndex:
         return min(self.starts[line] + max(column, 0), end)
 
     def line_end(self, line: int) -> int:
-        """Offset of the end of a line's content (before its \\r\\n or \\n)."""
+        """Offset of the end of a line's content (before its \\r\\n, \\r or \\n)."""
         if line + 1 < len(self.starts):
             end = self.starts[line + 1] - 1
-            if end > self.starts[line] and self.text[end - 1] == "\r":
+            if self.text[end] == "\n" and end > self.starts[line] and self.text[end - 1] == "\r":
                 end -= 1
             return end
         return len(self.text)
@@ -69,11 +73,18 @@ class LineIndex:
         return Span(self.pos(start), self.pos(end))
 
 
+_BREAK_RE = re.compile(r"\r\n?|\n")
+
+
 def detect_newline(text: str) -> str:
-    i = text.find("\n")
-    if i > 0 and text[i - 1] == "\r":
-        return "\r\n"
-    return "\n"
+    """The file's line break: its first one (\\n when it has none)."""
+    m = _BREAK_RE.search(text)
+    return m.group() if m else "\n"
+
+
+def line_start(text: str, offset: int) -> int:
+    """Offset of the start of the line holding `offset`."""
+    return max(text.rfind("\n", 0, offset), text.rfind("\r", 0, offset)) + 1
 
 
 def decode(data: bytes) -> DecodedSource:

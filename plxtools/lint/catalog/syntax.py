@@ -72,3 +72,14 @@ rule("S014", "non-literal-annotation", E,
      "An annotation (`.name: value`) has a value that is not a string, number, true or false.",
      "Annotations are metadata read by tools and runtimes; the language allows only literal values there.",
      example=".doc: description", use_instead='.doc: "A wheel with a rubber tyre"', stage="syntax")
+rule("S015", "indentation-between-levels", E,
+     "A line is indented less than the block it follows but more than the block around that one.",
+     "Blocks are given by indentation, so a line between two levels has no meaning of its own: it could "
+     "end the inner block or belong to it. plxtools reads it as part of the inner block (so the lines "
+     "after it stay where they are) and reports it as an error; `plx fmt` refuses the file until it is "
+     "fixed, rather than moving code out of its block.",
+     example="Wheel is Physics3D.Bodies.RigidBody:\n    geometry is Physics3D.Geometries.Cylinder:\n"
+             "        radius: 0.4\n      height: 0.3",
+     use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    geometry is Physics3D.Geometries.Cylinder:\n"
+                 "        radius: 0.4\n        height: 0.3",
+     stage="syntax")
