@@ -40,7 +40,7 @@ def same_meaning(before: ast.File, after: ast.File) -> str | None:
 LAYOUT_CODES = ("C006", "S003")
 
 
-def _lint_signature(tree: ast.File) -> list[tuple[str, str, str]]:
+def _lint_signature(tree: ast.File) -> list[tuple[str, str, str, str]]:
     """What `plx lint` reports for a tree (suppressions applied), without positions."""
     from pathlib import Path
 
@@ -50,7 +50,7 @@ def _lint_signature(tree: ast.File) -> list[tuple[str, str, str]]:
     cfg = config_for(Path(tree.path)) if tree.path else Config()
     cfg = replace(cfg, ignore=list(cfg.ignore) + list(LAYOUT_CODES))
     # messages may quote line numbers ("first defined at line 3"), which blank lines shift
-    return sorted((d.code, d.severity.value, _DIGITS.sub("#", d.message)) for d in analyse_tree(tree, cfg)
+    return sorted((d.code, d.severity.value, _DIGITS.sub("#", d.message), d.message) for d in analyse_tree(tree, cfg)
                   if d.code not in LAYOUT_CODES)  # (syntax codes are never configured away)
 
 
@@ -59,9 +59,9 @@ def same_lint_results(before: ast.File, after: ast.File) -> str | None:
     if "plx:" not in before.text or not any(_SUPPRESSION.search(c.text) for c in before.comments):
         return None  # same tree, no suppression: the same diagnostics
     old, new = _lint_signature(before), _lint_signature(after)
-    if old == new:
+    if [k[:3] for k in old] == [k[:3] for k in new]:
         return None
-    gone = [f"{c} {m}" for c, _, m in old if (c, _, m) not in new]
-    came = [f"{c} {m}" for c, _, m in new if (c, _, m) not in old]
+    gone = [f"{c} {m}" for c, s, n, m in old if (c, s, n) not in {k[:3] for k in new}]
+    came = [f"{c} {m}" for c, s, n, m in new if (c, s, n) not in {k[:3] for k in old}]
     what = f"it would report {came[0]}" if came else f"it would no longer report {gone[0]}"
     return f"formatting would change what a `# plx: ignore` comment covers ({what})"
