@@ -523,12 +523,6 @@ def _width(lead: str, tab: int) -> int:
     return col
 
 
-def _lead_span(line: LogicalLine, lead: str) -> Span:
-    first = line.tokens[0]
-    start = Pos(first.start_pos - len(lead), first.line, 0)
-    return Span(start, Pos(first.start_pos, first.line, first.column))
-
-
 def _between_levels(diags: list[Diagnostic], line: LogicalLine, lead: str, outer: int, inner: int) -> None:
     how = f"{line.indent} columns" if "\t" not in lead else f"{line.indent} columns (a tab counted as 4)"
     diags.append(Diagnostic(

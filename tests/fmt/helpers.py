@@ -4,6 +4,7 @@ of the formatter's own safety net."""
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -45,3 +46,35 @@ def run_fmt(*args: str, stdin: bytes | None = None, cwd: Path | None = None) -> 
         env=env,
         timeout=120,
     )
+
+
+# An independent tokenizer (not plxtools' lexer): strings, backtick names, numbers, words,
+# `->` and single characters; comments and whitespace are layout.
+_ORACLE = re.compile(r'"""[\s\S]*?(?:"""|$)|[@$]?"[^"\r\n]*"?|`[^`\r\n]*`|\d+(?:\.\d+)?(?:[eE][+-]?\d+)?|\w+|->|#[^\r\n]*|\S')
+
+
+def oracle_tokens(text: str) -> list[str]:
+    """The text's tokens without comments, and without a comma right before a closing bracket."""
+    toks = [t for t in _ORACLE.findall(text) if not t.startswith("#")]
+    return [t for i, t in enumerate(toks) if not (t == "," and i + 1 < len(toks) and toks[i + 1] in ")]}")]
+
+
+def assert_same_tokens(before: str, after: str) -> None:
+    assert oracle_tokens(before) == oracle_tokens(after)
+
+
+def lint_signature(text: str) -> list[tuple[str, str]]:
+    """What the public lint API reports (suppressions applied), minus what fmt fixes by design
+    (C006 indentation, S003 tabs) and the line numbers messages quote."""
+    from dataclasses import replace
+
+    from plxtools.config import Config
+    from plxtools.lint.runner import analyse_tree
+
+    cfg = replace(Config(), ignore=["C006"])
+    diags = analyse_tree(parse_text(text), cfg)
+    return sorted((d.code, re.sub(r"\d+", "#", d.message)) for d in diags if d.code not in ("C006", "S003"))
+
+
+def assert_same_lint(before: str, after: str) -> None:
+    assert lint_signature(before) == lint_signature(after)

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 from plxtools.fmt import format_text
 from plxtools.syntax import parse_text
 from tests.conftest import bundle_files
-from tests.fmt.helpers import assert_fixed_point, assert_same_meaning
+from tests.fmt.helpers import assert_fixed_point, assert_same_lint, assert_same_meaning, assert_same_tokens
 from tests.fmt.programs import mutate, programs
 
 SETTINGS = settings(
@@ -25,6 +25,8 @@ def _check(source: str) -> None:
     result = format_text(source)
     assert result.ok, result.internal_error
     assert_same_meaning(source, result.text)
+    assert_same_tokens(source, result.text)
+    assert_same_lint(source, result.text)
     assert_fixed_point(result.text)
 
 
