@@ -2,10 +2,16 @@
 
 The floor is lark's LALR parser alone on the same pre-tokenised logical lines, building lark's
 default tree (no AST, no lexing, no indentation handling). Run: python bench/parse_bench.py
+
+`--scaling` instead parses and formats one generated file (valid OpenPLX, models of a few
+attributes each) at 1k, 10k and 100k lines (`--max 1000000` adds 1M), each size in a fresh
+process, and prints CPU seconds, lines per second and the growth factor per 10x lines (10 is
+linear). Run: python bench/parse_bench.py --scaling [--max 1000000]
 """
 
 from __future__ import annotations
 
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -50,5 +56,60 @@ def main() -> None:
     print(table(rows, ("run", "ms", "lines/s", "MB/s")))
 
 
+BLOCK = (
+    "Part{i} is Physics3D.Bodies.RigidBody:\n"
+    "    inertia.mass: {i}.5\n"
+    "    geometry is Physics3D.Geometries.Box:\n"
+    "        size: Math.Vec3.from_xyz(0.{i}, 1.0, 2.0 * 3)\n"
+    "    hook is Physics3D.Interactions.MateConnector:\n"
+    "        position: [1, 2,\n"
+    "            3]  # a comment\n"
+    "\n"
+)
+
+
+def generated(lines: int) -> str:
+    per = BLOCK.count("\n")
+    return "".join(BLOCK.format(i=i) for i in range(lines // per))
+
+
+def one_size(lines: int) -> None:
+    """In a fresh process: CPU seconds to parse, and to format, a generated file of `lines` lines."""
+    from plxtools.fmt import format_text
+    from plxtools.syntax import parse_text
+
+    text = generated(lines)
+    t = time.process_time()
+    tree = parse_text(text)
+    parse_s = time.process_time() - t
+    assert not tree.diagnostics
+    del tree
+    t = time.process_time()
+    result = format_text(text)
+    fmt_s = time.process_time() - t
+    assert result.ok, result.internal_error
+    print(f"{text.count(chr(10))} {parse_s:.3f} {fmt_s:.3f}")
+
+
+def scaling(max_lines: int) -> None:
+    sizes = [s for s in (1_000, 10_000, 100_000, 1_000_000) if s <= max_lines]
+    rows = []
+    prev = None
+    for n in sizes:
+        out = subprocess.run([sys.executable, __file__, "--one", str(n)], capture_output=True, text=True, check=True)
+        lines, p, f = out.stdout.split()
+        lines, p, f = int(lines), float(p), float(f)
+        grow = "" if prev is None else f"{p / prev[0]:.1f} / {f / prev[1]:.1f}"
+        rows.append((f"{lines:,}", f"{p:.2f}", f"{lines / p:,.0f}", f"{f:.2f}", f"{lines / f:,.0f}", grow))
+        prev = (p, f)
+    print(f"One generated file per size ({machine()}); CPU seconds, fresh process per size")
+    print(table(rows, ("lines", "parse s", "parse lines/s", "fmt s", "fmt lines/s", "x per 10x (parse / fmt)")))
+
+
 if __name__ == "__main__":
-    main()
+    if "--one" in sys.argv:
+        one_size(int(sys.argv[sys.argv.index("--one") + 1]))
+    elif "--scaling" in sys.argv:
+        scaling(int(sys.argv[sys.argv.index("--max") + 1]) if "--max" in sys.argv else 100_000)
+    else:
+        main()

@@ -347,10 +347,115 @@ class _Frame:
         self.child8 = child8  # the child indentation with 8-wide tabs (files with tabs only)
 
 
+_B = _Build()
+_NAMEISH = ("NAME", "TICKNAME")
+_LITERALS = {"NUMBER": _B.number, "STRING": _B.string, "TRUE": _B.true, "FALSE": _B.false}
+FAST_PATH = True  # tests turn it off to compare with the grammar
+
+
+def _qname(tokens: list[Token], i: int) -> tuple[ast.QName | None, int]:
+    n = len(tokens)
+    if i >= n or tokens[i].type not in _NAMEISH:
+        return None, i
+    items = [_B.name([tokens[i]])]
+    i += 1
+    while i + 1 < n and tokens[i].type == "DOT" and tokens[i + 1].type in _NAMEISH:
+        items.append(tokens[i])
+        items.append(_B.name([tokens[i + 1]]))
+        i += 2
+    return _B.qname(items), i
+
+
+def _value(tokens: list[Token], i: int):
+    """A value ending the line that is a literal, `-` number, or a dotted name, else None."""
+    n = len(tokens)
+    t = tokens[i]
+    build = _LITERALS.get(t.type)
+    if build is not None:
+        return build([t]) if i + 1 == n else None
+    if t.type == "MINUS":
+        if i + 2 == n and tokens[i + 1].type == "NUMBER":
+            return _B.neg([t, _B.number([tokens[i + 1]])])
+        return None
+    if t.type == "THIS":
+        expr = _B.this([t])
+    elif t.type in _NAMEISH:
+        expr = _B.ref([_B.name([t])])
+    else:
+        return None
+    i += 1
+    while i + 1 < n and tokens[i].type == "DOT" and tokens[i + 1].type in _NAMEISH:
+        expr = _B.member([expr, tokens[i], _B.name([tokens[i + 1]])])
+        i += 2
+    return expr if i == n else None
+
+
+def _fast(tokens: list[Token]) -> ast.Stmt | None:
+    """The commonest line shapes built without the LALR parser, by the grammar's own node builders.
+
+    `a.b:`, `a.b: v`, `a is T`, `a is T:`, `a is T: v` (v a literal or a plain name). Anything else
+    returns None and goes to the grammar; tests check both give the same tree.
+    """
+    n = len(tokens)
+    first = tokens[0].type
+    if first == "DOT":  # `.doc: "..."`
+        if n >= 4 and tokens[1].type in _NAMEISH and tokens[2].type == "COLON":
+            value = _value(tokens, 3)
+            if value is not None:
+                return _B.annotation([tokens[0], _B.name([tokens[1]]), tokens[2], value])
+        return None
+    if first == "WITH":  # `with A.B, C`
+        items: list = [tokens[0]]
+        i = 1
+        while True:
+            q, i = _qname(tokens, i)
+            if q is None:
+                return None
+            items.append(q)
+            if i == n:
+                return _B.with_stmt(items)
+            if tokens[i].type != "COMMA":
+                return None
+            items.append(tokens[i])
+            i += 1
+    path, i = _qname(tokens, 0)
+    if path is None or i >= len(tokens):
+        return None
+    kind = tokens[i].type
+    if kind == "COLON":
+        if i + 1 == n:
+            return _B.assignment([path, tokens[i], None])
+        value = _value(tokens, i + 1)
+        return None if value is None else _B.assignment([path, tokens[i], value])
+    if kind != "IS" and kind != "BECOMES":
+        return None
+    kw = tokens[i]
+    type_name, j = _qname(tokens, i + 1)
+    if type_name is None:
+        return None
+    texpr = _B.type_expr([_B.type_ref([type_name, None, None])])
+    colon = value = None
+    if j < n:
+        if tokens[j].type != "COLON":
+            return None
+        colon = tokens[j]
+        if j + 1 < n:
+            value = _value(tokens, j + 1)
+            if value is None:
+                return None
+    if kind == "IS":
+        return _B.declaration([None, None, path, kw, texpr, None, colon, value])
+    return _B.becomes_stmt([path, kw, texpr, None, colon, value])
+
+
 def _parse_line(parser: Lark, line: LogicalLine, text: str, diags: list[Diagnostic]) -> ast.Stmt:
     if line.error is not None:
         diags.append(line.error)
         return _error_stmt(line, text)
+    if FAST_PATH:
+        stmt = _fast(line.tokens)
+        if stmt is not None:
+            return stmt
     try:
         return parser.parse(line.tokens)
     except UnexpectedInput as exc:

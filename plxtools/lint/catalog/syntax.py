@@ -16,14 +16,20 @@ rule("S002", "invalid-utf8", E,
 rule("S003", "tab-indentation", W,
      "A tab character is used for indentation.",
      "Indentation decides which block a line belongs to. No official file uses tabs, and a tab's width "
-     "is ambiguous; plxtools counts a tab as reaching the next multiple of 4 columns.",
+     "is ambiguous; plxtools counts a tab as reaching the next multiple of 4 columns. When the block a "
+     "line belongs to would differ with 8-wide tabs, it is an error (the cause of everything that would "
+     "follow from the wrong block): the line is read as part of the deeper block, and `plx fmt` refuses "
+     "the file.",
      example="Wheel is Physics3D.Bodies.RigidBody:\n\tis_dynamic: true",
      use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    is_dynamic: true", stage="syntax")
 rule("S004", "unbalanced-bracket", E,
      "A `(`, `[` or `{` is never closed, or a closing bracket has no matching opener.",
      "Brackets let an expression continue over several lines, so a missing closer would swallow the "
-     "lines after it. plxtools ends the expression at the next line that looks like a new statement "
-     "and reports the opener.",
+     "lines after it. Bracket depth decides: a line inside an open bracket continues the statement "
+     "unless, at or left of the statement's indentation, it begins the way only a statement can "
+     "(`x is`, `x becomes`, `.a:`, `const`, `fn`, ...); there the expression ends and the opener is "
+     "reported. A continued `fn` parameter list (`b: Real`) is only cut when the end of the file shows "
+     "the list never closes, at its first such line.",
      example="connectors: [a.connector, b.connector", use_instead="connectors: [a.connector, b.connector]",
      stage="syntax")
 rule("S005", "invalid-number", E,
