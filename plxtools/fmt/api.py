@@ -6,6 +6,7 @@ error diagnostics, and a formatter bug comes back as `internal_error` with nothi
 
 from __future__ import annotations
 
+import gc
 from dataclasses import dataclass, field
 
 from plxtools.diagnostics import Diagnostic, Severity
@@ -76,10 +77,17 @@ def _result(tree: ast.File) -> FormatResult:
     errors = syntax_errors(tree)
     if errors:
         return FormatResult(None, diagnostics=errors, had_bom=tree.had_bom)
+    # layout builds many small acyclic objects (pieces, lines, a second tree): the cyclic
+    # collector would only rescan them as they grow (superlinear on big files), as in the parser
+    enabled = gc.isenabled()
+    gc.disable()
     try:
         out = format_tree(tree)
     except FormatError as exc:
         return FormatResult(None, internal_error=str(exc), had_bom=tree.had_bom)
+    finally:
+        if enabled:
+            gc.enable()
     return FormatResult(out, out != tree.text, had_bom=tree.had_bom)
 
 
