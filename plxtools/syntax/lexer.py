@@ -229,10 +229,11 @@ class Lexer:
                     tokens.append(tok)
                     continue
 
-                p0 = self._p(start)
-                p1 = self._p(end)
+                ln = self.line  # tokens other than strings lie on one line
+                c0 = start - self.line_start
+                c1 = end - self.line_start
                 if kind == "number":
-                    tok = Token("NUMBER", m.group(), start, p0.line, p0.column, p1.line, p1.column, end)
+                    tok = Token("NUMBER", m.group(), start, ln, c0, ln, c1, end)
                     if end < n and _IDENT_CHAR.match(text, end):
                         bad_end = end + 1
                         while bad_end < n and _IDENT_CHAR.match(text, bad_end):
@@ -243,23 +244,23 @@ class Lexer:
                             if text[end] == "."
                             else f"invalid number '{word}'"
                         )
-                        fail(Diagnostic("S005", msg, Span(p0, self._p(bad_end)), Severity.ERROR))
+                        fail(Diagnostic("S005", msg, Span(self._p(start), self._p(bad_end)), Severity.ERROR))
                     elif end - start > MAX_INT_DIGITS and m.group().isdigit():
                         fail(Diagnostic("S005", f"integer literal too long: {end - start} digits "
-                                        f"(at most {MAX_INT_DIGITS})", Span(p0, p1), Severity.ERROR,
+                                        f"(at most {MAX_INT_DIGITS})", Span(self._p(start), self._p(end)), Severity.ERROR,
                                         help="write it with an exponent, e.g. 1e4300"))
                 elif kind == "name":
                     word = m.group()
-                    tok = Token(KEYWORDS.get(word, "NAME"), word, start, p0.line, p0.column, p1.line, p1.column, end)
+                    tok = Token(KEYWORDS.get(word, "NAME"), word, start, ln, c0, ln, c1, end)
                 elif kind == "tick":
-                    tok = Token("TICKNAME", m.group()[1:-1], start, p0.line, p0.column, p1.line, p1.column, end)
+                    tok = Token("TICKNAME", m.group()[1:-1], start, ln, c0, ln, c1, end)
                     if len(m.group()) == 2:
-                        fail(Diagnostic("S006", "empty backtick name", Span(p0, p1), Severity.ERROR))
+                        fail(Diagnostic("S006", "empty backtick name", Span(self._p(start), self._p(end)), Severity.ERROR))
                 elif kind == "arrow":
-                    tok = Token("ARROW", "->", start, p0.line, p0.column, p1.line, p1.column, end)
+                    tok = Token("ARROW", "->", start, ln, c0, ln, c1, end)
                 elif kind == "punct":
                     ch = m.group()
-                    tok = Token(PUNCT[ch], ch, start, p0.line, p0.column, p1.line, p1.column, end)
+                    tok = Token(PUNCT[ch], ch, start, ln, c0, ln, c1, end)
                     if ch in OPENERS:
                         brackets.append(tok)
                         if len(brackets) > MAX_BRACKET_DEPTH:
@@ -294,7 +295,7 @@ class Lexer:
                         Diagnostic(
                             "S008",
                             f"unexpected {_describe(ch)}",
-                            Span(p0, p1),
+                            Span(self._p(start), self._p(end)),
                             Severity.ERROR,
                             help=_bad_char_help(ch),
                         )
