@@ -101,6 +101,7 @@ def scaling(max_lines: int) -> None:
         lines, p, f = int(lines), float(p), float(f)
         grow = "" if prev is None else f"{p / prev[0]:.1f} / {f / prev[1]:.1f}"
         rows.append((f"{lines:,}", f"{p:.2f}", f"{lines / p:,.0f}", f"{f:.2f}", f"{lines / f:,.0f}", grow))
+        print(f"  {lines:,} lines: parse {p:.2f} s, fmt {f:.2f} s", file=sys.stderr, flush=True)
         prev = (p, f)
     print(f"One generated file per size ({machine()}); CPU seconds, fresh process per size")
     print(table(rows, ("lines", "parse s", "parse lines/s", "fmt s", "fmt lines/s", "x per 10x (parse / fmt)")))
