@@ -10,6 +10,7 @@ import difflib
 from dataclasses import dataclass
 
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity, Span
+from plxtools.model import resolve
 from plxtools.model.program import Program
 from plxtools.model.symbols import (
     BOOL,
@@ -94,12 +95,7 @@ class Checker:
                             stmt.name.span if isinstance(stmt, ast.TraitDef) else stmt.path.span)
 
     def _symbol_for(self, stmt: ast.Stmt) -> ModelSym | GlobalSym | None:
-        name = stmt.name.name if isinstance(stmt, ast.TraitDef) else stmt.path.parts[0].name
-        table = self.unit.locals if self.unit.bundle is None else self.unit.namespace.symbols
-        sym = table.get(name)
-        if sym is not None and sym.stmt is stmt:
-            return sym
-        return None
+        return resolve.symbol_of_top(self.unit, stmt)
 
     def _top(self, stmt: ast.Stmt) -> None:
         if isinstance(stmt, ast.Declaration) and stmt.keyword != "becomes" and len(stmt.path.parts) == 1:
@@ -214,26 +210,10 @@ class Checker:
         self.in_trait = False
 
     def _inherited(self, model: ModelSym) -> dict[str, MemberSym]:
-        out: dict[str, MemberSym] = {}
-        base = self.p.base_of(model)
-        if base is not None and base.model is not None:
-            out.update(self.p.all_members(base.model))
-            for t in base.traits:
-                out.update(self.p.all_members(t))
-        for t in self.p.traits_of(model):
-            for k, v in self.p.all_members(t).items():
-                out.setdefault(k, v)
-        return out
+        return self.p.inherited_members(model)
 
     def _member_for(self, model_def: ModelSym | None, stmt: ast.Declaration) -> MemberSym | None:
-        if model_def is None:
-            return None
-        name = stmt.path.parts[-1].name
-        if len(stmt.path.parts) == 1:
-            mem = model_def.members.get(name)
-        else:
-            mem = model_def.path_members.get(tuple(p.name for p in stmt.path.parts[:-1]), {}).get(name)
-        return mem if mem is not None and mem.stmt is stmt else None
+        return resolve.declared_member(model_def, stmt)
 
     def _block(self, body: list[ast.Stmt], target: Ty, prefix: tuple[str, ...], model_def: ModelSym | None) -> None:
         for s in body:
@@ -325,11 +305,7 @@ class Checker:
     # ------------------------------------------------------------------ paths
 
     def _extras(self, prefix: tuple[str, ...]) -> dict[str, MemberSym]:
-        out: dict[str, MemberSym] = {}
-        if self.outer is not None:
-            for m in self.p.ancestors(self.outer):
-                out.update(m.path_members.get(prefix, {}))
-        return out
+        return resolve.path_members(self.p, self.outer, prefix)
 
     def _path(self, parts: list[ast.Ident], target: Ty, prefix: tuple[str, ...], model_def) -> tuple[Ty, MemberSym | None]:
         cur = target
