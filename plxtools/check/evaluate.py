@@ -27,11 +27,11 @@ from typing import Any, Callable
 import numpy as np
 
 from plxtools.check.instance import VALUE, Builder, Obj, Prim, Ref
-from plxtools.model import natives
+from plxtools.model import natives, resolve
 from plxtools.model.natives import STRUCT_TYPES, NativeError, Transform
 from plxtools.model.program import Program
-from plxtools.model.symbols import GlobalSym, MethodSym, ModelSym, Namespace, Ty
-from plxtools.model.values import NsRef, TypeObj
+from plxtools.model.symbols import GlobalSym, MethodSym, ModelSym, Ty
+from plxtools.model.values import MethodRef, NsRef, TypeObj
 from plxtools.syntax import ast
 
 
@@ -489,37 +489,32 @@ class Evaluator:
         raise EvalError("A003", f"unknown name '{name}'", e, unit)
 
     def _global(self, found: Any) -> Any:
-        if found is None:
+        """The value of a name model/resolve.py found: a const model is its single instance."""
+        meaning = resolve.global_meaning(self.p, found)
+        if meaning is None:
             return _MISSING
-        if isinstance(found, Namespace):
-            return NsRef(found)
         if isinstance(found, GlobalSym):
             return self.global_value(found)
-        if isinstance(found, ModelSym):
-            if found.const:
-                obj = self.b.singleton(found)
-                if obj is None:
-                    raise EvalError("A006", f"const model {found.qname} refers to itself", None, None)
-                if obj.struct is not None:
-                    return SView(obj, (), obj.struct)
-                return obj
-            return TypeObj(found)
-        if isinstance(found, str):
-            return TypeObj(found)
-        return _MISSING
+        if isinstance(found, ModelSym) and isinstance(meaning, Ty):
+            obj = self.b.singleton(found)
+            if obj is None:
+                raise EvalError("A006", f"const model {found.qname} refers to itself", None, None)
+            if obj.struct is not None:
+                return SView(obj, (), obj.struct)
+            return obj
+        return meaning
 
     def _member(self, base: Any, name: str, e: ast.Member, unit) -> Any:
         if isinstance(base, NsRef):
-            found = self.p._walk(base.ns, [name])
+            found = resolve.member_target(self.p, base, name)
             v = self._global(found)
             if v is _MISSING:
                 raise EvalError("A003", f"'{name}' is not in namespace {base.ns.dotted}", e, unit)
             return v
         if isinstance(base, TypeObj):
-            if isinstance(base.sym, ModelSym):
-                meth = self.p.all_methods(base.sym).get(name)
-                if meth is not None:
-                    return Bound(None, meth, meth.qname)
+            ref = resolve.member_target(self.p, base, name)
+            if isinstance(ref, MethodRef):
+                return Bound(None, ref.method, ref.method.qname)
             raise EvalError("A003", f"{getattr(base.sym, 'qname', base.sym)} has no static function '{name}'", e, unit)
         if isinstance(base, SView):
             ftype = _codec_field_type(base.tname, (name,))
@@ -532,11 +527,7 @@ class Evaluator:
             v = self._attr(base, name)
             if v is not _MISSING:
                 return v
-            meths = self.p.all_methods(base.model)
-            for t in base.traits:
-                for k, m in self.p.all_methods(t).items():
-                    meths.setdefault(k, m)
-            meth = meths.get(name)
+            meth = self.p.methods_of(Ty(base.model, False, tuple(base.traits))).get(name)
             if meth is not None:
                 return Bound(None if meth.static else base, meth, meth.qname)
             raise EvalError("A003", f"{base.display} ({self.p.concrete(base.model).qname}) has no attribute '{name}'",

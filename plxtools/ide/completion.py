@@ -33,6 +33,7 @@ from plxtools.ide.describe import describe, expr_text, signature
 from plxtools.ide.host import FileState
 from plxtools.ide.types import CompletionItem, CompletionResult
 from plxtools.model.symbols import PRIMITIVES, GlobalSym, MemberSym, MethodSym, ModelSym, Namespace, Ty
+from plxtools.model.values import NsRef
 from plxtools.syntax import ast
 
 _WORD_END = re.compile(r"[A-Za-z_]\w*$")
@@ -479,6 +480,8 @@ def _open_brackets(s: str) -> list[tuple[str, int]]:
 def _member_items(st: FileState, base) -> list[CompletionItem]:
     p = st.program
     items: list[CompletionItem] = []
+    if isinstance(base, NsRef):
+        base = base.ns
     if isinstance(base, Namespace):
         for name, sym in sorted(base.symbols.items()):
             if isinstance(sym, GlobalSym):

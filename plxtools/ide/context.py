@@ -11,13 +11,12 @@ from dataclasses import dataclass
 
 from plxtools.diagnostics import Pos, Span
 from plxtools.ide.host import FileState
+from plxtools.model import resolve
 from plxtools.model.symbols import (
     PRIMITIVES,
     UNKNOWN,
-    GlobalSym,
     MemberSym,
     ModelSym,
-    Namespace,
     Ty,
 )
 from plxtools.model.values import MethodRef, TypeObj
@@ -120,20 +119,7 @@ class BlockContext:
 
 
 def symbol_of_top(st: FileState, stmt: ast.Stmt):
-    unit = st.unit
-    if unit is None:
-        return None
-    if isinstance(stmt, ast.TraitDef):
-        name = stmt.name.name
-    elif isinstance(stmt, ast.Declaration) and stmt.path.parts:
-        name = stmt.path.parts[0].name
-    else:
-        return None
-    table = unit.locals if unit.bundle is None else unit.namespace.symbols
-    sym = table.get(name)
-    if sym is not None and getattr(sym, "stmt", None) is stmt:
-        return sym
-    return None
+    return resolve.symbol_of_top(st.unit, stmt) if st.unit is not None else None
 
 
 def member_of_stmt(st: FileState, stmt: ast.Stmt) -> MemberSym | None:
@@ -148,18 +134,6 @@ def member_of_stmt(st: FileState, stmt: ast.Stmt) -> MemberSym | None:
                 if isinstance(o.target, MemberSym):
                     return o.target
     return None
-
-
-def _declared_member(model_def: ModelSym | None, s: ast.Declaration) -> MemberSym | None:
-    """The attribute a declaration in a model's body creates (works without the checker's occurrences)."""
-    if model_def is None or not s.path.parts:
-        return None
-    name = s.path.parts[-1].name
-    if len(s.path.parts) == 1:
-        mem = model_def.members.get(name)
-    else:
-        mem = model_def.path_members.get(tuple(p.name for p in s.path.parts[:-1]), {}).get(name)
-    return mem if mem is not None and mem.stmt is s else None
 
 
 _ERR_DECL = re.compile(r"^\s*(?:const\s+)?(?:optional\s+)?([\w.`]+)\s+(is|becomes)\s+([\w.`]+)")
@@ -194,7 +168,7 @@ def _program(st: FileState):
 def _child_context(st: FileState, ctx: BlockContext, s: ast.Stmt) -> BlockContext:
     p = _program(st)
     if isinstance(s, ast.Declaration):
-        mem = member_of_stmt(st, s) or _declared_member(ctx.model_def, s)
+        mem = member_of_stmt(st, s) or resolve.declared_member(ctx.model_def, s)
         prefix = ctx.prefix + tuple(x.name for x in s.path.parts)
         if mem is not None and mem.stmt is s:
             ty = p.member_type(mem)
@@ -233,12 +207,8 @@ def path_members(st: FileState, ctx: BlockContext, ty: Ty, prefix: tuple[str, ..
     """Attributes reachable on an object: its type's, plus dotted declarations made for this path."""
     p = _program(st)
     out = dict(p.members_of(ty)) if not ty.unknown else {}
-    if ctx.outer is not None:
-        for m in p.ancestors(ctx.outer):
-            extra = m.path_members.get(prefix)
-            if extra:
-                for k, v in extra.items():
-                    out.setdefault(k, v)
+    for k, v in resolve.path_members(p, ctx.outer, prefix).items():
+        out.setdefault(k, v)
     return out
 
 
@@ -263,57 +233,18 @@ def path_type(st: FileState, ctx: BlockContext, parts: list[str]) -> tuple[Ty, M
 
 
 def name_value(st: FileState, outer: ModelSym | None, name: str):
-    """What a bare name means in an expression: an attribute of the outer model, else a global name."""
+    """What a bare name means in an expression (model/resolve.py decides)."""
     p = _program(st)
-    if outer is not None:
-        mem = p.members_of(Ty(outer)).get(name)
-        if mem is not None:
-            return p.member_type(mem)
-    found = p.lookup([name], st.unit)
-    return global_value(p, found)
-
-
-def global_value(p, found):
-    if found is None:
-        return None
-    if isinstance(found, Namespace):
-        return found
-    if isinstance(found, GlobalSym):
-        if found.ty is None:
-            found.ty = p.resolve_type_expr(found.stmt.type, found.unit)
-        return found.ty
-    if isinstance(found, ModelSym):
-        return Ty(found) if found.const else TypeObj(found)
-    if isinstance(found, str):
-        return TypeObj(found)
-    return None
+    return resolve.meaning(p, resolve.name_target(p, st.unit, outer, name))
 
 
 def member_value(st: FileState, base, name: str):
     p = _program(st)
-    if isinstance(base, Namespace):
-        return global_value(p, p._walk(base, [name]))
-    if isinstance(base, TypeObj):
-        if isinstance(base.sym, ModelSym):
-            meth = p.all_methods(base.sym).get(name)
-            if meth is not None:
-                return MethodRef(meth, True)
-        return None
-    if isinstance(base, Ty) and not base.unknown and base.model is not None and not base.array:
-        mem = p.members_of(base).get(name)
-        if mem is not None:
-            return p.member_type(mem)
-        meth = p.methods_of(base).get(name)
-        if meth is not None:
-            return MethodRef(meth, False)
-    return None
+    return resolve.meaning(p, resolve.member_target(p, base, name))
 
 
 def call_value(st: FileState, f):
-    if isinstance(f, MethodRef) and f.method.stmt.returns is not None:
-        p = _program(st)
-        return p.resolve_type_ref(f.method.stmt.returns, f.method.owner.unit)
-    return None
+    return resolve.call_result(_program(st), f)
 
 
 _CHAIN_TOKEN = re.compile(r"\s*(?:(?P<name>[A-Za-z_]\w*|`[^`]*`)|(?P<dot>\.)|(?P<open>[(\[])|(?P<close>[)\]]))")

@@ -476,13 +476,10 @@ class Checker:
 
     def _name(self, ident: ast.Ident):
         name = ident.name
-        if self.outer is not None:
-            mems = self.p.members_of(Ty(self.outer))
-            mem = mems.get(name)
-            if mem is not None:
-                self.occ(ident.span, mem, "attribute")
-                return self.p.member_type(mem)
-        found = self.p.lookup([name], self.unit)
+        found = resolve.name_target(self.p, self.unit, self.outer, name)
+        if isinstance(found, MemberSym):
+            self.occ(ident.span, found, "attribute")
+            return self.p.member_type(found)
         v = self._global_value(found, ident)
         if v is not None:
             return v
@@ -494,69 +491,45 @@ class Checker:
         return UNKNOWN
 
     def _global_value(self, found, ident: ast.Ident):
-        if found is None:
-            return None
-        if isinstance(found, Namespace):
+        v = resolve.global_meaning(self.p, found)
+        if v is not None and not isinstance(found, str):
             self.occ(ident.span, found, "name")
-            return NsRef(found)
-        if isinstance(found, GlobalSym):
-            self.occ(ident.span, found, "name")
-            if found.ty is None:
-                found.ty = self.p.resolve_type_expr(found.stmt.type, found.unit)
-            return found.ty
-        if isinstance(found, ModelSym):
-            self.occ(ident.span, found, "name")
-            if found.const:
-                return Ty(found)
-            return TypeObj(found)
-        if isinstance(found, str):
-            return TypeObj(found)
-        return None
+        return v
 
     def _member(self, e: ast.Member):
         base = self._expr(e.obj)
         name = e.name.name
+        if isinstance(base, MethodRef):
+            self.report("T008", f"method '{base.method.name}' must be called before '.{name}'", e.span)
+            return UNKNOWN
+        if isinstance(base, Ty):
+            if base.unknown or self._opaque(base):
+                return UNKNOWN
+            if base.array or base.alts or base.primitive is not None:
+                self.report("N004", f"a value of type {base.display()} has no member '{name}'", e.name.span)
+                return UNKNOWN
+        found = resolve.member_target(self.p, base, name)
         if isinstance(base, NsRef):
-            found = self.p._walk(base.ns, [name])
             v = self._global_value(found, e.name)
             if v is None:
                 self.report("N003", f"'{name}' is not in namespace {base.ns.dotted}", e.name.span,
                             help=self._suggest(name, list(base.ns.symbols) + list(base.ns.children)))
                 return UNKNOWN
             return v
+        if isinstance(found, MethodRef):
+            self.occ(e.name.span, found.method, "name")
+            return found
+        if isinstance(found, MemberSym):
+            self.occ(e.name.span, found, "attribute")
+            self._deprecated_check(found, e.name.span)
+            return self.p.member_type(found)
         if isinstance(base, TypeObj):
-            sym = base.sym
-            if isinstance(sym, ModelSym):
-                meth = self.p.all_methods(sym).get(name)
-                if meth is not None:
-                    self.occ(e.name.span, meth, "name")
-                    return MethodRef(meth, True)
-                self.report("N004", f"{sym.qname} has no static function '{name}'", e.name.span,
-                            help=self._suggest(name, self.p.all_methods(sym)))
+            if isinstance(base.sym, ModelSym):
+                self.report("N004", f"{base.sym.qname} has no static function '{name}'", e.name.span,
+                            help=self._suggest(name, self.p.all_methods(base.sym)))
             return UNKNOWN
-        if isinstance(base, MethodRef):
-            self.report("T008", f"method '{base.method.name}' must be called before '.{name}'", e.span)
-            return UNKNOWN
-        ty: Ty = base
-        if ty.unknown or self._opaque(ty):
-            return UNKNOWN
-        if ty.array or ty.alts or ty.primitive is not None:
-            self.report("N004", f"a value of type {ty.display()} has no member '{name}'", e.name.span)
-            return UNKNOWN
-        mems = self.p.members_of(ty)
-        mem = mems.get(name)
-        if mem is not None:
-            self.occ(e.name.span, mem, "attribute")
-            self._deprecated_check(mem, e.name.span)
-            return self.p.member_type(mem)
-        meths = self.p.methods_of(ty)
-        meth = meths.get(name)
-        if meth is not None:
-            self.occ(e.name.span, meth, "name")
-            # a const model is its own single instance: Math.Functions.sin(x) is the normal call
-            return MethodRef(meth, bool(ty.model.const and meth.static))
-        self.report("N004", f"{self.p.concrete(ty.model).qname} has no attribute or method '{name}'", e.name.span,
-                    help=self._suggest(name, list(mems) + list(meths)))
+        self.report("N004", f"{self.p.concrete(base.model).qname} has no attribute or method '{name}'", e.name.span,
+                    help=self._suggest(name, list(self.p.members_of(base)) + list(self.p.methods_of(base))))
         return UNKNOWN
 
     def _method_types(self, meth: MethodSym) -> tuple[list[Ty], Ty | None]:
