@@ -308,9 +308,15 @@ class Evaluator:
             v = self._eval_effect(ref.value, ref.ty)
             if isinstance(v, SView) and v.sub == ():
                 v = v.obj
+            if isinstance(v, TypeObj) and isinstance(v.sym, ModelSym):
+                raise EvalError("A005", f"{ref.path} must refer to an object ({ref.ty.display()}), but "
+                                f"{v.sym.qname} is a model: a model used as a value must be declared "
+                                f"'const' (or instantiated)", t.expr, t.unit,
+                                help=f"write 'const {v.sym.name} ...' where it is defined, or declare "
+                                     f"'{ref.name} is {v.sym.qname}' to create one")
             if v is not None and not isinstance(v, Obj):
                 raise EvalError("A005", f"{ref.path} must refer to an object ({ref.ty.display()}), "
-                                f"not to a {type(v).__name__} value", t.expr, t.unit)
+                                f"not to {_kind(v)}", t.expr, t.unit)
             return v
 
         node = ref.value[0].expr if ref.value is not None else None
