@@ -69,7 +69,6 @@ class Bound:
 
 _MISSING = object()
 _INTERP = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
-_BY_LENGTH = {2: "Math.Vec2", 3: "Math.Vec3", 4: "Math.Quat", 9: "Math.Matrix3x3", 16: "Math.Matrix4x4"}
 
 
 def _codec_field_type(tname: str, sub: tuple) -> str | None:
@@ -419,8 +418,7 @@ class Evaluator:
         codec = STRUCT_TYPES[sname]
         if isinstance(v, codec.python_type):
             if isinstance(v, np.ndarray):
-                want = {"Math.Vec2": (2,), "Math.Vec3": (3,), "Math.Quat": (4,), "Math.Matrix3x3": (3, 3),
-                        "Math.Matrix4x4": (4, 4)}.get(sname)
+                want = natives.SHAPES.get(sname)
                 if want is not None and v.shape != want:
                     raise EvalError("A003", f"expected a {sname}, got an array of shape {v.shape}", node, unit)
             return v
@@ -611,8 +609,7 @@ class Evaluator:
                         break
             elif expected.model is not None and not expected.array:
                 tname = self.b.struct_name(expected.model)
-        if tname is None:
-            tname = _BY_LENGTH.get(len(e.items))
+        # no guessing from the item count (a 4-item literal is not always a Quat): the expected type decides
         codec = STRUCT_TYPES.get(tname) if tname else None
         if codec is None or tname in ("Math.AffineTransform", "Math.Line"):
             raise EvalError("A003", f"a {{...}} literal of {len(e.items)} values has no known type here", e, unit)

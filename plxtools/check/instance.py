@@ -31,7 +31,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from plxtools.model.natives import STRUCT_TYPES
+from plxtools.model.natives import STRUCT_TYPES, bind_struct_types
 from plxtools.model.program import Program
 from plxtools.model.resolve import replaces
 from plxtools.model.symbols import FileUnit, ModelSym, Ty
@@ -118,6 +118,7 @@ class Builder:
 
     def __init__(self, program: Program, report=None):
         self.p = program
+        bind_struct_types(program)  # Vec3, Quat, ... fields and defaults as the bundles declare them
         self.report = report  # callable(code, message, obj) for instantiation problems
         self._templates: dict[int, list[TEff]] = {}
         self._struct: dict[int, str | None] = {}
