@@ -6,7 +6,6 @@ checker's recorded occurrences where it resolved a name and the program's lookup
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
 from plxtools.diagnostics import Pos, Span
@@ -21,6 +20,7 @@ from plxtools.model.symbols import (
 )
 from plxtools.model.values import MethodRef, TypeObj
 from plxtools.syntax import ast
+from plxtools.syntax.fragments import dotted_name, fragment_tokens, matching_close
 
 # ------------------------------------------------------------------ statements
 
@@ -77,13 +77,8 @@ def owners_for_line(tree: ast.File, line: int, indent: int) -> list[ast.Stmt]:
 
 
 def _ends_with_colon(tree: ast.File, s: ast.Stmt) -> bool:
-    text = tree.text[s.header.start.offset:s.header.end.offset]
-    return _strip_comment(text).rstrip().endswith(":")
-
-
-def _strip_comment(line: str) -> str:
-    m = re.match(r'(?:[^"#]|"[^"\n]*")*', line)
-    return m.group() if m else line
+    toks = fragment_tokens(tree.text[s.header.start.offset:s.header.end.offset])
+    return bool(toks) and toks[-1].type == "COLON"
 
 
 def line_indent(line_text: str) -> int:
@@ -136,10 +131,6 @@ def member_of_stmt(st: FileState, stmt: ast.Stmt) -> MemberSym | None:
     return None
 
 
-_ERR_DECL = re.compile(r"^\s*(?:const\s+)?(?:optional\s+)?([\w.`]+)\s+(is|becomes)\s+([\w.`]+)")
-_ERR_ASSIGN = re.compile(r"^\s*([\w.`]+)\s*:")
-
-
 def block_context(st: FileState, owners: list[ast.Stmt]) -> BlockContext:
     """The object configured by the innermost of `owners` (outermost first)."""
     p = _program(st)
@@ -186,20 +177,25 @@ def _child_context(st: FileState, ctx: BlockContext, s: ast.Stmt) -> BlockContex
 def _guess_error_type(st: FileState, s: ast.ErrorStmt, ctx: BlockContext) -> Ty:
     """A header that did not parse still says what it configures often enough: `x is T...`, `x:`."""
     p = _program(st)
-    text = s.text.split("\n", 1)[0]
-    m = _ERR_DECL.match(text)
-    if m:
-        found = p.lookup(m.group(3).replace("`", "").split("."), st.unit)
-        if isinstance(found, ModelSym):
-            return Ty(found)
-        if isinstance(found, str):
-            return Ty(found)
-        if m.group(2) == "becomes" or not found:
-            return path_type(st, ctx, m.group(1).replace("`", "").split("."))[0]
+    toks = fragment_tokens(s.text.split("\n", 1)[0])
+    i = 0
+    while i < len(toks) and toks[i].type in ("CONST", "OPTIONAL"):
+        i += 1
+    path, i = dotted_name(toks, i)
+    if not path or i >= len(toks):
         return UNKNOWN
-    m = _ERR_ASSIGN.match(text)
-    if m:
-        return path_type(st, ctx, m.group(1).replace("`", "").split("."))[0]
+    if toks[i].type in ("IS", "BECOMES"):
+        type_path, _ = dotted_name(toks, i + 1)
+        if not type_path:
+            return UNKNOWN
+        found = p.lookup(type_path, st.unit)
+        if isinstance(found, (ModelSym, str)):
+            return Ty(found)
+        if toks[i].type == "BECOMES" or not found:
+            return path_type(st, ctx, path)[0]
+        return UNKNOWN
+    if toks[i].type == "COLON":
+        return path_type(st, ctx, path)[0]
     return UNKNOWN
 
 
@@ -247,9 +243,6 @@ def call_value(st: FileState, f):
     return resolve.call_result(_program(st), f)
 
 
-_CHAIN_TOKEN = re.compile(r"\s*(?:(?P<name>[A-Za-z_]\w*|`[^`]*`)|(?P<dot>\.)|(?P<open>[(\[])|(?P<close>[)\]]))")
-
-
 def chain_before(text: str, end: int) -> str | None:
     """The postfix chain (`a.b(c).d[0].`) that ends at `end`, or None if there is none."""
     i = end
@@ -278,66 +271,33 @@ def chain_before(text: str, end: int) -> str | None:
 
 def eval_chain(st: FileState, outer: ModelSym | None, chain: str):
     """Type a postfix chain of names, member accesses, calls and indexes (without the last `.x`)."""
-    parts: list[tuple[str, str]] = []
-    i = 0
-    while i < len(chain):
-        m = _CHAIN_TOKEN.match(chain, i)
-        if not m or m.end() == i:
-            return None
-        if m.group("name"):
-            parts.append(("name", m.group("name").strip("`")))
-            i = m.end()
-        elif m.group("dot"):
-            parts.append(("dot", "."))
-            i = m.end()
-        elif m.group("open"):
-            close = _matching(chain, m.end() - 1)
-            if close < 0:
-                return None
-            parts.append(("call" if m.group("open") == "(" else "index", chain[m.end():close]))
-            i = close + 1
-        else:
-            return None
-    if not parts or parts[0][0] != "name":
+    toks = fragment_tokens(chain)
+    if not toks or toks[0].type not in ("NAME", "TICKNAME", "THIS"):
         return None
-    first = parts[0][1]
-    if first == "this":
+    if toks[0].type == "THIS":
         cur = Ty(outer) if outer is not None else None
     else:
-        cur = name_value(st, outer, first)
+        cur = name_value(st, outer, str(toks[0]))
     k = 1
-    while k < len(parts) and cur is not None:
-        kind, val = parts[k]
-        if kind == "dot":
-            if k + 1 >= len(parts) or parts[k + 1][0] != "name":
+    while k < len(toks) and cur is not None:
+        kind = toks[k].type
+        if kind == "DOT":
+            if k + 1 >= len(toks) or toks[k + 1].type not in ("NAME", "TICKNAME"):
                 return None
-            cur = member_value(st, cur, parts[k + 1][1])
+            cur = member_value(st, cur, str(toks[k + 1]))
             k += 2
-        elif kind == "call":
-            cur = call_value(st, cur)
-            k += 1
-        elif kind == "index":
-            cur = cur.element() if isinstance(cur, Ty) and cur.array else None
-            k += 1
+        elif kind in ("LPAR", "LSQB"):
+            close = matching_close(toks, k)
+            if close < 0:
+                return None
+            if kind == "LPAR":
+                cur = call_value(st, cur)
+            else:
+                cur = cur.element() if isinstance(cur, Ty) and cur.array else None
+            k = close + 1
         else:
             return None
     return cur
-
-
-def _matching(text: str, i: int) -> int:
-    pairs = {"(": ")", "[": "]"}
-    stack = [pairs[text[i]]]
-    j = i + 1
-    while j < len(text):
-        ch = text[j]
-        if ch in pairs:
-            stack.append(pairs[ch])
-        elif stack and ch == stack[-1]:
-            stack.pop()
-            if not stack:
-                return j
-        j += 1
-    return -1
 
 
 # ------------------------------------------------------------------ names under the cursor
