@@ -201,28 +201,11 @@ def _guess_error_type(st: FileState, s: ast.ErrorStmt, ctx: BlockContext) -> Ty:
 
 def path_members(st: FileState, ctx: BlockContext, ty: Ty, prefix: tuple[str, ...]) -> dict[str, MemberSym]:
     """Attributes reachable on an object: its type's, plus dotted declarations made for this path."""
-    p = _program(st)
-    out = dict(p.members_of(ty)) if not ty.unknown else {}
-    for k, v in resolve.path_members(p, ctx.outer, prefix).items():
-        out.setdefault(k, v)
-    return out
+    return resolve.attributes(_program(st), ty, ctx.outer, prefix)
 
 
 def path_type(st: FileState, ctx: BlockContext, parts: list[str]) -> tuple[Ty, MemberSym | None]:
-    p = _program(st)
-    cur = ctx.ty
-    mem = None
-    prefix = ctx.prefix
-    for name in parts:
-        if cur.unknown or cur.array or cur.alts or cur.primitive is not None:
-            return UNKNOWN, None
-        mems = path_members(st, ctx, cur, prefix)
-        mem = mems.get(name)
-        if mem is None:
-            return UNKNOWN, None
-        cur = p.member_type(mem)
-        prefix = prefix + (name,)
-    return cur, mem
+    return resolve.path_target(_program(st), ctx.ty, ctx.outer, ctx.prefix, parts)
 
 
 # ------------------------------------------------------------------ expressions

@@ -342,9 +342,6 @@ class Checker:
 
     # ------------------------------------------------------------------ paths
 
-    def _extras(self, prefix: tuple[str, ...]) -> dict[str, MemberSym]:
-        return resolve.path_members(self.p, self.outer, prefix)
-
     def _path(self, parts: list[ast.Ident], target: Ty, prefix: tuple[str, ...], model_def) -> tuple[Ty, MemberSym | None]:
         cur = target
         mem: MemberSym | None = None
@@ -355,19 +352,18 @@ class Checker:
             if cur.array or cur.alts or cur.primitive is not None:
                 self.report("N002", f"'{part.name}' cannot be set on a value of type {cur.display()}", part.span)
                 return UNKNOWN, None
-            mems = self.p.members_of(cur)
-            extra = self._extras(path)
-            found = mems.get(part.name) or extra.get(part.name)
+            mems = resolve.attributes(self.p, cur, self.outer, path)
+            found = mems.get(part.name)
             if found is None:
                 if self.in_trait and i == 0 and not prefix:
                     return UNKNOWN, None  # a host attribute the trait does not declare
                 where = self.p.concrete(cur.model).qname if cur.model is not None else cur.display()
                 if i == 0 and not prefix:
                     self._unknown("N002", f"'{part.name}' is not an attribute of {where}", part.span, part.name,
-                                  list(mems) + list(extra))
+                                  list(mems))
                 else:
                     self.report("N002", f"'{part.name}' is not an attribute of {where}", part.span,
-                                suggest=self._closest(part.name, list(mems) + list(extra)))
+                                suggest=self._closest(part.name, list(mems)))
                 return UNKNOWN, None
             mem = found
             self.occ(part.span, mem, "attribute")

@@ -28,6 +28,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from plxtools.model.symbols import (
+    UNKNOWN,
     FileUnit,
     GlobalSym,
     MemberSym,
@@ -196,6 +197,36 @@ def path_members(p: "Program", outer: ModelSym | None, prefix: tuple[str, ...]) 
         if extra:
             _apply(out, extra)
     return out
+
+
+def attributes(p: "Program", ty: Ty, outer: ModelSym | None, prefix: tuple[str, ...]) -> dict[str, MemberSym]:
+    """Attributes a path step may name on an object of type `ty` reached by `prefix` from `outer`:
+    its type's, plus dotted declarations (`chassis.connector is ...`) made for that path."""
+    out = p.members_of(ty) if not ty.unknown else {}
+    extra = path_members(p, outer, prefix)
+    if not extra:
+        return out
+    merged = dict(out)
+    for k, v in extra.items():
+        merged.setdefault(k, v)
+    return merged
+
+
+def path_target(p: "Program", ty: Ty, outer: ModelSym | None, prefix: tuple[str, ...],
+                parts: list[str]) -> tuple[Ty, MemberSym | None]:
+    """The type and attribute a dotted path (`a.b.c: ...`) names, starting on `ty`; UNKNOWN if a step
+    does not resolve (the checker walks the same steps with `attributes` to say which one)."""
+    cur = ty
+    mem = None
+    for name in parts:
+        if cur.unknown or cur.array or cur.alts or cur.primitive is not None:
+            return UNKNOWN, None
+        mem = attributes(p, cur, outer, prefix).get(name)
+        if mem is None:
+            return UNKNOWN, None
+        cur = p.member_type(mem)
+        prefix = prefix + (name,)
+    return cur, mem
 
 
 def has_cycle(p: "Program", model: ModelSym) -> list[ModelSym] | None:
