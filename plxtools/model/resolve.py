@@ -229,6 +229,17 @@ def path_target(p: "Program", ty: Ty, outer: ModelSym | None, prefix: tuple[str,
     return cur, mem
 
 
+def introduced_by(p: "Program", mem: MemberSym) -> MemberSym:
+    """The `is` a `becomes` specialises: the strongest `is` of that name below the owner's layer."""
+    if mem.keyword != "becomes":
+        return mem
+    for layer in reversed(linearize(p, mem.owner)[:-1]):
+        cand = layer.members.get(mem.name)
+        if cand is not None and cand.keyword == "is":
+            return cand
+    return mem
+
+
 def has_cycle(p: "Program", model: ModelSym) -> list[ModelSym] | None:
     """The inheritance cycle `model`'s base chain runs into, if any.
 
