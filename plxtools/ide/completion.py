@@ -35,6 +35,7 @@ from plxtools.ide.types import CompletionItem, CompletionResult
 from plxtools.model.symbols import PRIMITIVES, GlobalSym, MemberSym, MethodSym, ModelSym, Namespace, Ty
 from plxtools.model.values import NsRef
 from plxtools.syntax import ast
+from plxtools.syntax.fragments import ends_in_comment_or_string
 
 _WORD_END = re.compile(r"[A-Za-z_]\w*$")
 _QUAL = r"((?:(?:[A-Za-z_]\w*|`[^`]*`)\.)*)"
@@ -95,8 +96,7 @@ def complete(st: FileState, offset: int, trigger: str | None = None) -> Completi
 
 
 def _in_comment_or_string(st: FileState, before: str, offset: int) -> bool:
-    code = re.match(r'(?:[^"#]|"[^"\n]*")*', before).group()
-    if len(code) < len(before):
+    if ends_in_comment_or_string(before):
         return True  # after a '#' or inside an open "..."
     for s in st.tree.statements:
         if s.span.start.offset <= offset <= s.span.end.offset:

@@ -47,3 +47,16 @@ def matching_close(tokens: list[Token], i: int) -> int:
             if not stack:
                 return j
     return -1
+
+
+def ends_in_comment_or_string(text: str) -> bool:
+    """Does the end of `text` (a line up to the cursor) sit in a comment or in a string not yet closed?"""
+    result = Lexer(text).run()
+    if result.comments:
+        return True  # a comment runs to the end of its line
+    tokens = [tok for line in result.lines for tok in line.tokens]
+    if not tokens or tokens[-1].type != "STRING" or tokens[-1].end_pos != len(text):
+        return False
+    body = str(tokens[-1]).lstrip("@$")
+    quote = '"""' if body.startswith('"""') else '"'
+    return len(body) < 2 * len(quote) or not body.endswith(quote)
