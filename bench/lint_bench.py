@@ -2,12 +2,16 @@
 
 Peer: flake8 (pyflakes + pycodestyle) on standard-library Python files of about the same number
 of lines. Both run as real subprocesses with a warm cache; CPU time is the child's user+sys.
-Run:  python bench/lint_bench.py
+Also: `plx lint` on inheritance chains of 1,000 to 3,000 models (issue 14, item 9: every walk over
+a chain is linear, so the time grows with the chain, not its square).
+Run:  python bench/lint_bench.py          (everything)
+      python bench/lint_bench.py chains   (the inheritance chains only)
 """
 
 from __future__ import annotations
 
 import sys
+import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
@@ -48,5 +52,25 @@ def main() -> None:
     print(f"\nplx lint per CPU-second: {ratio:.2f}x flake8's; one-file: {w1_plx / w1_f8:.2f}x flake8's wall time")
 
 
+def chains() -> None:
+    """Wall time of `plx lint` on `A0 is Physics3D.System`, `A1 is A0`, ... chains."""
+    plx = tool("plx")
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for n in (1000, 2000, 3000):
+            path = Path(tmp) / f"chain_{n}.openplx"
+            path.write_text("A0 is Physics3D.System\n" + "".join(f"A{i} is A{i - 1}\n" for i in range(1, n)))
+            median_of([plx, "lint", "--exit-zero", str(path)], 1)  # warm the bundle cache
+            w, c = median_of([plx, "lint", "--exit-zero", str(path)], 3)
+            rows.append((f"chain of {n} models", n, f"{w:.2f}", f"{c:.2f}"))
+    print(f"Inheritance chains ({machine()}), median of 3 runs")
+    print(table(rows, ("run", "models", "wall s", "CPU s")))
+
+
 if __name__ == "__main__":
-    main()
+    if sys.argv[1:] == ["chains"]:
+        chains()
+    else:
+        main()
+        print()
+        chains()

@@ -39,6 +39,29 @@ def f(name: str):
     return FUNCTIONS[name]
 
 
+@pytest.fixture(scope="module", autouse=True)
+def official_struct_types():
+    """The math types' fields and defaults come from the bundle program, as in `plx check`."""
+    from plxtools.model.natives import bind_struct_types
+    from plxtools.model.workspace import Workspace
+
+    program = Workspace().program
+    bind_struct_types(program)
+    return program
+
+
+def test_struct_fields_and_defaults_are_read_from_the_bundles(official_struct_types):
+    p = official_struct_types
+    for name in ("Math.Vec2", "Math.Vec3", "Math.Quat", "Math.Matrix3x3", "Math.Matrix4x4", "Math.AffineTransform",
+                 "Math.Line"):
+        model = p.lookup_outside_visibility(name.split("."))
+        assert STRUCT_TYPES[name].fields == tuple(p.all_members(model)), name
+    quat = p.lookup_outside_visibility(["Math", "Quat"])
+    assert p.all_members(quat)["w"].value.value == 1 and STRUCT_TYPES["Math.Quat"].defaults["w"] == 1.0
+    assert STRUCT_TYPES["Math.AffineTransform"].field_types == {"position": "Math.Vec3", "rotation": "Math.Quat"}
+    assert "e00" not in STRUCT_TYPES["Math.Matrix4x4"].defaults  # the bundle gives Matrix4x4 no defaults
+
+
 def close(a, b, tol=1e-9) -> bool:
     return bool(np.allclose(np.asarray(a, dtype=float), np.asarray(b, dtype=float), atol=tol, rtol=0))
 

@@ -27,11 +27,11 @@ from typing import Any, Callable
 import numpy as np
 
 from plxtools.check.instance import VALUE, Builder, Obj, Prim, Ref
-from plxtools.model import natives
+from plxtools.model import natives, resolve
 from plxtools.model.natives import STRUCT_TYPES, NativeError, Transform
 from plxtools.model.program import Program
-from plxtools.model.symbols import GlobalSym, MethodSym, ModelSym, Namespace, Ty
-from plxtools.model.values import NsRef, TypeObj
+from plxtools.model.symbols import GlobalSym, MethodSym, ModelSym, Ty
+from plxtools.model.values import MethodRef, NsRef, TypeObj
 from plxtools.syntax import ast
 
 
@@ -69,7 +69,6 @@ class Bound:
 
 _MISSING = object()
 _INTERP = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
-_BY_LENGTH = {2: "Math.Vec2", 3: "Math.Vec3", 4: "Math.Quat", 9: "Math.Matrix3x3", 16: "Math.Matrix4x4"}
 
 
 def _codec_field_type(tname: str, sub: tuple) -> str | None:
@@ -308,9 +307,15 @@ class Evaluator:
             v = self._eval_effect(ref.value, ref.ty)
             if isinstance(v, SView) and v.sub == ():
                 v = v.obj
+            if isinstance(v, TypeObj) and isinstance(v.sym, ModelSym):
+                raise EvalError("A005", f"{ref.path} must refer to an object ({ref.ty.display()}), but "
+                                f"{v.sym.qname} is a model: a model used as a value must be declared "
+                                f"'const' (or instantiated)", t.expr, t.unit,
+                                help=f"write 'const {v.sym.name} ...' where it is defined, or declare "
+                                     f"'{ref.name} is {v.sym.qname}' to create one")
             if v is not None and not isinstance(v, Obj):
                 raise EvalError("A005", f"{ref.path} must refer to an object ({ref.ty.display()}), "
-                                f"not to a {type(v).__name__} value", t.expr, t.unit)
+                                f"not to {_kind(v)}", t.expr, t.unit)
             return v
 
         node = ref.value[0].expr if ref.value is not None else None
@@ -413,8 +418,7 @@ class Evaluator:
         codec = STRUCT_TYPES[sname]
         if isinstance(v, codec.python_type):
             if isinstance(v, np.ndarray):
-                want = {"Math.Vec2": (2,), "Math.Vec3": (3,), "Math.Quat": (4,), "Math.Matrix3x3": (3, 3),
-                        "Math.Matrix4x4": (4, 4)}.get(sname)
+                want = natives.SHAPES.get(sname)
                 if want is not None and v.shape != want:
                     raise EvalError("A003", f"expected a {sname}, got an array of shape {v.shape}", node, unit)
             return v
@@ -489,37 +493,32 @@ class Evaluator:
         raise EvalError("A003", f"unknown name '{name}'", e, unit)
 
     def _global(self, found: Any) -> Any:
-        if found is None:
+        """The value of a name model/resolve.py found: a const model is its single instance."""
+        meaning = resolve.global_meaning(self.p, found)
+        if meaning is None:
             return _MISSING
-        if isinstance(found, Namespace):
-            return NsRef(found)
         if isinstance(found, GlobalSym):
             return self.global_value(found)
-        if isinstance(found, ModelSym):
-            if found.const:
-                obj = self.b.singleton(found)
-                if obj is None:
-                    raise EvalError("A006", f"const model {found.qname} refers to itself", None, None)
-                if obj.struct is not None:
-                    return SView(obj, (), obj.struct)
-                return obj
-            return TypeObj(found)
-        if isinstance(found, str):
-            return TypeObj(found)
-        return _MISSING
+        if isinstance(found, ModelSym) and isinstance(meaning, Ty):
+            obj = self.b.singleton(found)
+            if obj is None:
+                raise EvalError("A006", f"const model {found.qname} refers to itself", None, None)
+            if obj.struct is not None:
+                return SView(obj, (), obj.struct)
+            return obj
+        return meaning
 
     def _member(self, base: Any, name: str, e: ast.Member, unit) -> Any:
         if isinstance(base, NsRef):
-            found = self.p._walk(base.ns, [name])
+            found = resolve.member_target(self.p, base, name)
             v = self._global(found)
             if v is _MISSING:
                 raise EvalError("A003", f"'{name}' is not in namespace {base.ns.dotted}", e, unit)
             return v
         if isinstance(base, TypeObj):
-            if isinstance(base.sym, ModelSym):
-                meth = self.p.all_methods(base.sym).get(name)
-                if meth is not None:
-                    return Bound(None, meth, meth.qname)
+            ref = resolve.member_target(self.p, base, name)
+            if isinstance(ref, MethodRef):
+                return Bound(None, ref.method, ref.method.qname)
             raise EvalError("A003", f"{getattr(base.sym, 'qname', base.sym)} has no static function '{name}'", e, unit)
         if isinstance(base, SView):
             ftype = _codec_field_type(base.tname, (name,))
@@ -532,11 +531,7 @@ class Evaluator:
             v = self._attr(base, name)
             if v is not _MISSING:
                 return v
-            meths = self.p.all_methods(base.model)
-            for t in base.traits:
-                for k, m in self.p.all_methods(t).items():
-                    meths.setdefault(k, m)
-            meth = meths.get(name)
+            meth = self.p.methods_of(Ty(base.model, False, tuple(base.traits))).get(name)
             if meth is not None:
                 return Bound(None if meth.static else base, meth, meth.qname)
             raise EvalError("A003", f"{base.display} ({self.p.concrete(base.model).qname}) has no attribute '{name}'",
@@ -614,8 +609,7 @@ class Evaluator:
                         break
             elif expected.model is not None and not expected.array:
                 tname = self.b.struct_name(expected.model)
-        if tname is None:
-            tname = _BY_LENGTH.get(len(e.items))
+        # no guessing from the item count (a 4-item literal is not always a Quat): the expected type decides
         codec = STRUCT_TYPES.get(tname) if tname else None
         if codec is None or tname in ("Math.AffineTransform", "Math.Line"):
             raise EvalError("A003", f"a {{...}} literal of {len(e.items)} values has no known type here", e, unit)

@@ -31,8 +31,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from plxtools.model.natives import STRUCT_TYPES
+from plxtools.model.natives import STRUCT_TYPES, bind_struct_types
 from plxtools.model.program import Program
+from plxtools.model.resolve import replaces
 from plxtools.model.symbols import FileUnit, ModelSym, Ty
 from plxtools.syntax import ast
 
@@ -117,9 +118,9 @@ class Builder:
 
     def __init__(self, program: Program, report=None):
         self.p = program
+        bind_struct_types(program)  # Vec3, Quat, ... fields and defaults as the bundles declare them
         self.report = report  # callable(code, message, obj) for instantiation problems
         self._templates: dict[int, list[TEff]] = {}
-        self._layers: dict[tuple, list[ModelSym]] = {}
         self._struct: dict[int, str | None] = {}
         self._plans: dict = {}
         self.singletons: dict[int, Obj] = {}
@@ -144,41 +145,8 @@ class Builder:
         return self._struct[key]
 
     def layers(self, model: ModelSym, traits: tuple = ()) -> list[ModelSym]:
-        """Models whose bodies configure an instance, lowest priority first."""
-        key = id(model) if not traits else (id(model), tuple(id(t) for t in traits))
-        cached = self._layers.get(key)
-        if cached is not None:
-            return cached
-        out: list[ModelSym] = []
-        seen: set[int] = set()
-
-        def add(m: ModelSym) -> None:
-            stack = [(m, False)]
-            while stack:
-                cur, expanded = stack.pop()
-                if expanded:
-                    out.append(cur)
-                    continue
-                if id(cur) in seen:
-                    continue
-                seen.add(id(cur))
-                stack.append((cur, True))
-                # pushed in reverse: base first, then the base's inline traits, then own traits
-                pre: list[ModelSym] = []
-                base = self.p.base_of(cur)
-                if base is not None and base.model is not None:
-                    pre.append(base.model)
-                    pre.extend(base.traits)
-                pre.extend(self.p.traits_of(cur))
-                for x in reversed(pre):
-                    if id(x) not in seen:
-                        stack.append((x, False))
-
-        add(model)
-        for t in traits:
-            add(t)
-        self._layers[key] = out
-        return out
+        """Models whose bodies configure an instance, lowest priority first (model/resolve.py's order)."""
+        return self.p.linearize(model, traits)
 
     def templates(self, model: ModelSym) -> list[TEff]:
         cached = self._templates.get(id(model))
@@ -266,7 +234,7 @@ class Builder:
                     else:
                         o, r = flags[name]
                         flags[name] = (o or tm.optional, r or tm.reference)
-                        if decls[name].stmt.keyword == "becomes" and tm.stmt.keyword != "becomes":
+                        if not replaces(decls[name].stmt.keyword, tm.stmt.keyword):
                             continue
                     decls[name] = tm
                     continue
@@ -319,9 +287,8 @@ class Builder:
                     f = flags[name]
                     f[0] = f[0] or t.optional
                     f[1] = f[1] or t.reference
-                    # `becomes` narrows an `is` wherever it comes from (a trait may specialise an
-                    # attribute its host declares): a later plain `is` does not undo it
-                    if decls[name][0].stmt.keyword == "becomes" and t.stmt.keyword != "becomes":
+                    # the override rule of model/resolve.py: a later plain `is` does not undo a `becomes`
+                    if not replaces(decls[name][0].stmt.keyword, t.stmt.keyword):
                         continue
                 decls[name] = e
                 continue

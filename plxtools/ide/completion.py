@@ -33,7 +33,9 @@ from plxtools.ide.describe import describe, expr_text, signature
 from plxtools.ide.host import FileState
 from plxtools.ide.types import CompletionItem, CompletionResult
 from plxtools.model.symbols import PRIMITIVES, GlobalSym, MemberSym, MethodSym, ModelSym, Namespace, Ty
+from plxtools.model.values import NsRef
 from plxtools.syntax import ast
+from plxtools.syntax.fragments import dotted_name, ends_in_comment_or_string, fragment_tokens
 
 _WORD_END = re.compile(r"[A-Za-z_]\w*$")
 _QUAL = r"((?:(?:[A-Za-z_]\w*|`[^`]*`)\.)*)"
@@ -94,8 +96,7 @@ def complete(st: FileState, offset: int, trigger: str | None = None) -> Completi
 
 
 def _in_comment_or_string(st: FileState, before: str, offset: int) -> bool:
-    code = re.match(r'(?:[^"#]|"[^"\n]*")*', before).group()
-    if len(code) < len(before):
+    if ends_in_comment_or_string(before):
         return True  # after a '#' or inside an open "..."
     for s in st.tree.statements:
         if s.span.start.offset <= offset <= s.span.end.offset:
@@ -431,16 +432,13 @@ def _global_items(st: FileState, sym, label: str, expected: Ty):
 def _expected_type(st: FileState, ctx: BlockContext, m: re.Match, value_text: str) -> Ty:
     p = st.program
     path = _qualifier(m.group(1) + ".")
-    decl = m.group(2)
-    if decl and decl.strip().startswith("is"):
-        tname = decl.strip()[2:].strip().split(" with ")[0].strip()
-        arr = tname.endswith("[]")
-        found = p.lookup([x.strip("`") for x in tname.rstrip("[]").split(".") if x], st.unit)
+    decl = fragment_tokens(m.group(2) or "")
+    if decl and decl[0].type in ("IS", "BECOMES"):
+        # `is T[] with A`: the declared type's name, from the lexer's tokens
+        names, after = dotted_name(decl, 1)
+        arr = after + 1 < len(decl) and decl[after].type == "LSQB" and decl[after + 1].type == "RSQB"
+        found = p.lookup(names, st.unit) if names else None
         ty = Ty(found, arr) if isinstance(found, (ModelSym, str)) else UNKNOWN
-    elif decl and decl.strip().startswith("becomes"):
-        tname = decl.strip()[7:].strip().split(" with ")[0].strip()
-        found = p.lookup([x.strip("`") for x in tname.rstrip("[]").split(".") if x], st.unit)
-        ty = Ty(found, tname.endswith("[]")) if isinstance(found, (ModelSym, str)) else UNKNOWN
     else:
         ty, _mem = path_type(st, ctx, path)
     # inside brackets: the element, or the field of a {...} literal
@@ -479,6 +477,8 @@ def _open_brackets(s: str) -> list[tuple[str, int]]:
 def _member_items(st: FileState, base) -> list[CompletionItem]:
     p = st.program
     items: list[CompletionItem] = []
+    if isinstance(base, NsRef):
+        base = base.ns
     if isinstance(base, Namespace):
         for name, sym in sorted(base.symbols.items()):
             if isinstance(sym, GlobalSym):

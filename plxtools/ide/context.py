@@ -6,22 +6,21 @@ checker's recorded occurrences where it resolved a name and the program's lookup
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
 from plxtools.diagnostics import Pos, Span
 from plxtools.ide.host import FileState
+from plxtools.model import resolve
 from plxtools.model.symbols import (
     PRIMITIVES,
     UNKNOWN,
-    GlobalSym,
     MemberSym,
     ModelSym,
-    Namespace,
     Ty,
 )
 from plxtools.model.values import MethodRef, TypeObj
 from plxtools.syntax import ast
+from plxtools.syntax.fragments import dotted_name, fragment_tokens, matching_close
 
 # ------------------------------------------------------------------ statements
 
@@ -78,13 +77,8 @@ def owners_for_line(tree: ast.File, line: int, indent: int) -> list[ast.Stmt]:
 
 
 def _ends_with_colon(tree: ast.File, s: ast.Stmt) -> bool:
-    text = tree.text[s.header.start.offset:s.header.end.offset]
-    return _strip_comment(text).rstrip().endswith(":")
-
-
-def _strip_comment(line: str) -> str:
-    m = re.match(r'(?:[^"#]|"[^"\n]*")*', line)
-    return m.group() if m else line
+    toks = fragment_tokens(tree.text[s.header.start.offset:s.header.end.offset])
+    return bool(toks) and toks[-1].type == "COLON"
 
 
 def line_indent(line_text: str) -> int:
@@ -120,20 +114,7 @@ class BlockContext:
 
 
 def symbol_of_top(st: FileState, stmt: ast.Stmt):
-    unit = st.unit
-    if unit is None:
-        return None
-    if isinstance(stmt, ast.TraitDef):
-        name = stmt.name.name
-    elif isinstance(stmt, ast.Declaration) and stmt.path.parts:
-        name = stmt.path.parts[0].name
-    else:
-        return None
-    table = unit.locals if unit.bundle is None else unit.namespace.symbols
-    sym = table.get(name)
-    if sym is not None and getattr(sym, "stmt", None) is stmt:
-        return sym
-    return None
+    return resolve.symbol_of_top(st.unit, stmt) if st.unit is not None else None
 
 
 def member_of_stmt(st: FileState, stmt: ast.Stmt) -> MemberSym | None:
@@ -148,22 +129,6 @@ def member_of_stmt(st: FileState, stmt: ast.Stmt) -> MemberSym | None:
                 if isinstance(o.target, MemberSym):
                     return o.target
     return None
-
-
-def _declared_member(model_def: ModelSym | None, s: ast.Declaration) -> MemberSym | None:
-    """The attribute a declaration in a model's body creates (works without the checker's occurrences)."""
-    if model_def is None or not s.path.parts:
-        return None
-    name = s.path.parts[-1].name
-    if len(s.path.parts) == 1:
-        mem = model_def.members.get(name)
-    else:
-        mem = model_def.path_members.get(tuple(p.name for p in s.path.parts[:-1]), {}).get(name)
-    return mem if mem is not None and mem.stmt is s else None
-
-
-_ERR_DECL = re.compile(r"^\s*(?:const\s+)?(?:optional\s+)?([\w.`]+)\s+(is|becomes)\s+([\w.`]+)")
-_ERR_ASSIGN = re.compile(r"^\s*([\w.`]+)\s*:")
 
 
 def block_context(st: FileState, owners: list[ast.Stmt]) -> BlockContext:
@@ -194,7 +159,7 @@ def _program(st: FileState):
 def _child_context(st: FileState, ctx: BlockContext, s: ast.Stmt) -> BlockContext:
     p = _program(st)
     if isinstance(s, ast.Declaration):
-        mem = member_of_stmt(st, s) or _declared_member(ctx.model_def, s)
+        mem = member_of_stmt(st, s) or resolve.declared_member(ctx.model_def, s)
         prefix = ctx.prefix + tuple(x.name for x in s.path.parts)
         if mem is not None and mem.stmt is s:
             ty = p.member_type(mem)
@@ -212,111 +177,53 @@ def _child_context(st: FileState, ctx: BlockContext, s: ast.Stmt) -> BlockContex
 def _guess_error_type(st: FileState, s: ast.ErrorStmt, ctx: BlockContext) -> Ty:
     """A header that did not parse still says what it configures often enough: `x is T...`, `x:`."""
     p = _program(st)
-    text = s.text.split("\n", 1)[0]
-    m = _ERR_DECL.match(text)
-    if m:
-        found = p.lookup(m.group(3).replace("`", "").split("."), st.unit)
-        if isinstance(found, ModelSym):
-            return Ty(found)
-        if isinstance(found, str):
-            return Ty(found)
-        if m.group(2) == "becomes" or not found:
-            return path_type(st, ctx, m.group(1).replace("`", "").split("."))[0]
+    toks = fragment_tokens(s.text.split("\n", 1)[0])
+    i = 0
+    while i < len(toks) and toks[i].type in ("CONST", "OPTIONAL"):
+        i += 1
+    path, i = dotted_name(toks, i)
+    if not path or i >= len(toks):
         return UNKNOWN
-    m = _ERR_ASSIGN.match(text)
-    if m:
-        return path_type(st, ctx, m.group(1).replace("`", "").split("."))[0]
+    if toks[i].type in ("IS", "BECOMES"):
+        type_path, _ = dotted_name(toks, i + 1)
+        if not type_path:
+            return UNKNOWN
+        found = p.lookup(type_path, st.unit)
+        if isinstance(found, (ModelSym, str)):
+            return Ty(found)
+        if toks[i].type == "BECOMES" or not found:
+            return path_type(st, ctx, path)[0]
+        return UNKNOWN
+    if toks[i].type == "COLON":
+        return path_type(st, ctx, path)[0]
     return UNKNOWN
 
 
 def path_members(st: FileState, ctx: BlockContext, ty: Ty, prefix: tuple[str, ...]) -> dict[str, MemberSym]:
     """Attributes reachable on an object: its type's, plus dotted declarations made for this path."""
-    p = _program(st)
-    out = dict(p.members_of(ty)) if not ty.unknown else {}
-    if ctx.outer is not None:
-        for m in p.ancestors(ctx.outer):
-            extra = m.path_members.get(prefix)
-            if extra:
-                for k, v in extra.items():
-                    out.setdefault(k, v)
-    return out
+    return resolve.attributes(_program(st), ty, ctx.outer, prefix)
 
 
 def path_type(st: FileState, ctx: BlockContext, parts: list[str]) -> tuple[Ty, MemberSym | None]:
-    p = _program(st)
-    cur = ctx.ty
-    mem = None
-    prefix = ctx.prefix
-    for name in parts:
-        if cur.unknown or cur.array or cur.alts or cur.primitive is not None:
-            return UNKNOWN, None
-        mems = path_members(st, ctx, cur, prefix)
-        mem = mems.get(name)
-        if mem is None:
-            return UNKNOWN, None
-        cur = p.member_type(mem)
-        prefix = prefix + (name,)
-    return cur, mem
+    return resolve.path_target(_program(st), ctx.ty, ctx.outer, ctx.prefix, parts)
 
 
 # ------------------------------------------------------------------ expressions
 
 
 def name_value(st: FileState, outer: ModelSym | None, name: str):
-    """What a bare name means in an expression: an attribute of the outer model, else a global name."""
+    """What a bare name means in an expression (model/resolve.py decides)."""
     p = _program(st)
-    if outer is not None:
-        mem = p.members_of(Ty(outer)).get(name)
-        if mem is not None:
-            return p.member_type(mem)
-    found = p.lookup([name], st.unit)
-    return global_value(p, found)
-
-
-def global_value(p, found):
-    if found is None:
-        return None
-    if isinstance(found, Namespace):
-        return found
-    if isinstance(found, GlobalSym):
-        if found.ty is None:
-            found.ty = p.resolve_type_expr(found.stmt.type, found.unit)
-        return found.ty
-    if isinstance(found, ModelSym):
-        return Ty(found) if found.const else TypeObj(found)
-    if isinstance(found, str):
-        return TypeObj(found)
-    return None
+    return resolve.meaning(p, resolve.name_target(p, st.unit, outer, name))
 
 
 def member_value(st: FileState, base, name: str):
     p = _program(st)
-    if isinstance(base, Namespace):
-        return global_value(p, p._walk(base, [name]))
-    if isinstance(base, TypeObj):
-        if isinstance(base.sym, ModelSym):
-            meth = p.all_methods(base.sym).get(name)
-            if meth is not None:
-                return MethodRef(meth, True)
-        return None
-    if isinstance(base, Ty) and not base.unknown and base.model is not None and not base.array:
-        mem = p.members_of(base).get(name)
-        if mem is not None:
-            return p.member_type(mem)
-        meth = p.methods_of(base).get(name)
-        if meth is not None:
-            return MethodRef(meth, False)
-    return None
+    return resolve.meaning(p, resolve.member_target(p, base, name))
 
 
 def call_value(st: FileState, f):
-    if isinstance(f, MethodRef) and f.method.stmt.returns is not None:
-        p = _program(st)
-        return p.resolve_type_ref(f.method.stmt.returns, f.method.owner.unit)
-    return None
-
-
-_CHAIN_TOKEN = re.compile(r"\s*(?:(?P<name>[A-Za-z_]\w*|`[^`]*`)|(?P<dot>\.)|(?P<open>[(\[])|(?P<close>[)\]]))")
+    return resolve.call_result(_program(st), f)
 
 
 def chain_before(text: str, end: int) -> str | None:
@@ -347,66 +254,33 @@ def chain_before(text: str, end: int) -> str | None:
 
 def eval_chain(st: FileState, outer: ModelSym | None, chain: str):
     """Type a postfix chain of names, member accesses, calls and indexes (without the last `.x`)."""
-    parts: list[tuple[str, str]] = []
-    i = 0
-    while i < len(chain):
-        m = _CHAIN_TOKEN.match(chain, i)
-        if not m or m.end() == i:
-            return None
-        if m.group("name"):
-            parts.append(("name", m.group("name").strip("`")))
-            i = m.end()
-        elif m.group("dot"):
-            parts.append(("dot", "."))
-            i = m.end()
-        elif m.group("open"):
-            close = _matching(chain, m.end() - 1)
-            if close < 0:
-                return None
-            parts.append(("call" if m.group("open") == "(" else "index", chain[m.end():close]))
-            i = close + 1
-        else:
-            return None
-    if not parts or parts[0][0] != "name":
+    toks = fragment_tokens(chain)
+    if not toks or toks[0].type not in ("NAME", "TICKNAME", "THIS"):
         return None
-    first = parts[0][1]
-    if first == "this":
+    if toks[0].type == "THIS":
         cur = Ty(outer) if outer is not None else None
     else:
-        cur = name_value(st, outer, first)
+        cur = name_value(st, outer, str(toks[0]))
     k = 1
-    while k < len(parts) and cur is not None:
-        kind, val = parts[k]
-        if kind == "dot":
-            if k + 1 >= len(parts) or parts[k + 1][0] != "name":
+    while k < len(toks) and cur is not None:
+        kind = toks[k].type
+        if kind == "DOT":
+            if k + 1 >= len(toks) or toks[k + 1].type not in ("NAME", "TICKNAME"):
                 return None
-            cur = member_value(st, cur, parts[k + 1][1])
+            cur = member_value(st, cur, str(toks[k + 1]))
             k += 2
-        elif kind == "call":
-            cur = call_value(st, cur)
-            k += 1
-        elif kind == "index":
-            cur = cur.element() if isinstance(cur, Ty) and cur.array else None
-            k += 1
+        elif kind in ("LPAR", "LSQB"):
+            close = matching_close(toks, k)
+            if close < 0:
+                return None
+            if kind == "LPAR":
+                cur = call_value(st, cur)
+            else:
+                cur = cur.element() if isinstance(cur, Ty) and cur.array else None
+            k = close + 1
         else:
             return None
     return cur
-
-
-def _matching(text: str, i: int) -> int:
-    pairs = {"(": ")", "[": "]"}
-    stack = [pairs[text[i]]]
-    j = i + 1
-    while j < len(text):
-        ch = text[j]
-        if ch in pairs:
-            stack.append(pairs[ch])
-        elif stack and ch == stack[-1]:
-            stack.pop()
-            if not stack:
-                return j
-        j += 1
-    return -1
 
 
 # ------------------------------------------------------------------ names under the cursor

@@ -240,26 +240,10 @@ def describe(program, target, context: ModelSym | None = None, path: tuple[str, 
 
 
 def precedence(program, model: ModelSym) -> list[ModelSym]:
-    """Models whose assignments apply to `model`, the strongest first: itself, its traits, its base..."""
-    out: list[ModelSym] = []
-    seen: set[int] = set()
-    cur: ModelSym | None = model
-    guard = 0
-    while cur is not None and guard < 200:
-        guard += 1
-        if id(cur) in seen:
-            break
-        seen.add(id(cur))
-        out.append(cur)
-        base = program.base_of(cur)
-        traits = list(program.traits_of(cur)) + (list(base.traits) if base is not None else [])
-        for t in traits:
-            for a in program.ancestors(t):
-                if id(a) not in seen:
-                    seen.add(id(a))
-                    out.append(a)
-        cur = base.model if base is not None else None
-    return out
+    """Models whose assignments apply to `model`, the strongest first: itself, its traits, its base...
+
+    The reverse of the one class ordering (model/resolve.py)."""
+    return program.ancestors(model)
 
 
 def _in_body(body: list[ast.Stmt] | None, path: tuple[str, ...]):

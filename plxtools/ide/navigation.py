@@ -8,6 +8,7 @@ import re
 from plxtools.ide.context import resolve_at
 from plxtools.ide.host import AnalysisHost, FileState
 from plxtools.ide.types import FileSpan, NavTarget, RenameError, TextEdit
+from plxtools.model import resolve
 from plxtools.model.symbols import GlobalSym, MemberSym, MethodSym, ModelSym, Namespace
 from plxtools.syntax import ast
 
@@ -96,11 +97,7 @@ def original_declaration(program, mem: MemberSym, also=()) -> MemberSym:
     for other in also:
         if isinstance(other, MemberSym) and other.name == mem.name and other is not mem:
             return original_declaration(program, other)
-    for anc in program.ancestors(mem.owner)[1:]:
-        cand = anc.members.get(mem.name)
-        if cand is not None and cand.keyword == "is":
-            return cand
-    return mem
+    return resolve.introduced_by(program, mem)
 
 
 def type_definition(st: FileState, offset: int) -> list[NavTarget]:

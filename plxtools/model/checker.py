@@ -10,6 +10,7 @@ import difflib
 from dataclasses import dataclass
 
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity, Span
+from plxtools.model import resolve
 from plxtools.model.program import Program
 from plxtools.model.symbols import (
     BOOL,
@@ -48,23 +49,63 @@ class Checker:
         self.known_annotations = known_annotations
         self.outer: ModelSym | None = None
         self.in_trait = False
+        self._broken_cache: dict[int, dict[str, int]] = {}
 
     # ------------------------------------------------------------------ reporting
 
     def report(self, code: str, msg: str, span: Span, sev: Severity = E, help: str | None = None,
-               fix: Fix | None = None) -> None:
-        if fix is None and help and help.startswith("did you mean '") and code in ("N001", "N002", "N003", "N004"):
-            word = help[len("did you mean '"):-2]
-            fix = Fix(f"replace with '{word}'", (Edit(span.start.offset, span.end.offset, word),), safe=False)
+               fix: Fix | None = None, suggest: str | None = None) -> None:
+        """Record a diagnostic; `suggest` is a replacement for the text at `span` ("did you mean"),
+        given as a help line and an (unsafe) fix that makes the edit."""
+        if suggest is not None:
+            help = f"did you mean '{suggest}'?"
+            fix = Fix(f"replace with '{suggest}'", (Edit(span.start.offset, span.end.offset, suggest),), safe=False)
         self.diags.append(Diagnostic(code, msg, span, sev, file=self.unit.path, help=help, fix=fix))
 
     def occ(self, span: Span, target, kind: str) -> None:
         self.occurrences.append(Occurrence(span, target, kind))
 
     @staticmethod
-    def _suggest(name: str, options) -> str | None:
+    def _closest(name: str, options) -> str | None:
         close = difflib.get_close_matches(name, list(options), n=1, cutoff=0.7)
-        return f"did you mean '{close[0]}'?" if close else None
+        return close[0] if close else None
+
+    def _suggest(self, name: str, options) -> str | None:
+        close = self._closest(name, options)
+        return f"did you mean '{close}'?" if close else None
+
+    def _broken(self) -> dict[str, int]:
+        """Names that a line which did not parse was declaring (`front_left_wheel Wheel`, missing
+        `is`), in the current model's body and at the top of the file: name -> line (0-based).
+
+        An unknown name that is one of these is a cascade of that syntax error: no "did you mean"
+        (it would offer a sibling such as `front_right_wheel` and wire the wrong object).
+        """
+        key = id(self.outer)
+        cached = self._broken_cache.get(key)
+        if cached is not None:
+            return cached
+        out: dict[str, int] = {}
+        bodies = [self.unit.tree.statements]
+        body = getattr(self.outer.stmt, "body", None) if self.outer is not None else None
+        if body:
+            bodies.append(body)
+        for stmts in bodies:
+            for st in stmts:
+                if isinstance(st, ast.ErrorStmt):
+                    name = _declared_name(st.text)
+                    if name is not None:
+                        out.setdefault(name, st.span.start.line)
+        self._broken_cache[key] = out
+        return out
+
+    def _unknown(self, code: str, msg: str, span: Span, name: str, options) -> None:
+        """An unknown name or attribute, with a suggestion unless it is a broken declaration's name."""
+        line = self._broken().get(name)
+        if line is not None:
+            self.report(code, msg, span, help=f"its declaration at line {line + 1} has a syntax error; fix that first")
+            return
+        self.report(code, msg, span, suggest=self._closest(name, options))
 
     # ------------------------------------------------------------------ entry
 
@@ -94,12 +135,7 @@ class Checker:
                             stmt.name.span if isinstance(stmt, ast.TraitDef) else stmt.path.span)
 
     def _symbol_for(self, stmt: ast.Stmt) -> ModelSym | GlobalSym | None:
-        name = stmt.name.name if isinstance(stmt, ast.TraitDef) else stmt.path.parts[0].name
-        table = self.unit.locals if self.unit.bundle is None else self.unit.namespace.symbols
-        sym = table.get(name)
-        if sym is not None and sym.stmt is stmt:
-            return sym
-        return None
+        return resolve.symbol_of_top(self.unit, stmt)
 
     def _top(self, stmt: ast.Stmt) -> None:
         if isinstance(stmt, ast.Declaration) and stmt.keyword != "becomes" and len(stmt.path.parts) == 1:
@@ -140,13 +176,13 @@ class Checker:
                             f"bundle '{self.unit.bundle}' does not depend on", ref.name.span,
                             help=f"add \"{outside.namespace.qname[0]}\" to the dependencies in config.openplx")
                 return UNKNOWN
-            self.report("N001", f"unknown type '{ref.name.text}'", ref.name.span,
-                        help=self._type_suggestion(parts))
+            help_, word = self._type_suggestion(parts)
+            self.report("N001", f"unknown type '{ref.name.text}'", ref.name.span, help=help_, suggest=word)
             return UNKNOWN
         if isinstance(found, Namespace):
             self.occ(ref.name.span, found, "type")
             self.report("N001", f"'{ref.name.text}' is a namespace, not a type", ref.name.span,
-                        help=self._type_suggestion(parts + [""]))
+                        help=self._type_suggestion(parts + [""])[0])
             return UNKNOWN
         if isinstance(found, GlobalSym):
             self.report("N001", f"'{ref.name.text}' is a global value, not a type", ref.name.span)
@@ -162,20 +198,18 @@ class Checker:
             return Ty(found, ref.array)
         return Ty(found, ref.array)
 
-    def _type_suggestion(self, parts: list[str]) -> str | None:
-        """Suggest the closest name in the namespace the prefix names."""
+    def _type_suggestion(self, parts: list[str]) -> tuple[str | None, str | None]:
+        """(help, replacement): the closest name in the namespace the prefix names, else what it has."""
         if len(parts) >= 2:
             ns = self.p.lookup(parts[:-1], self.unit)
             if isinstance(ns, Namespace):
-                options = list(ns.symbols) + list(ns.children)
-                s = self._suggest(parts[-1], options)
-                if s and parts[-1]:
-                    return s.replace("'", f"'{'.'.join(parts[:-1])}.", 1)
-                if not parts[-1] or True:
-                    names = sorted(ns.symbols)[:8]
-                    if names:
-                        return f"{ns.dotted} has: " + ", ".join(names) + (" ..." if len(ns.symbols) > 8 else "")
-        return None
+                close = self._closest(parts[-1], list(ns.symbols) + list(ns.children)) if parts[-1] else None
+                if close:
+                    return None, ".".join(parts[:-1]) + "." + close
+                names = sorted(ns.symbols)[:8]
+                if names:
+                    return f"{ns.dotted} has: " + ", ".join(names) + (" ..." if len(ns.symbols) > 8 else ""), None
+        return None, None
 
     def _type_expr(self, texpr: ast.TypeExpr | None, want: str | None = None) -> Ty:
         if texpr is None:
@@ -214,26 +248,10 @@ class Checker:
         self.in_trait = False
 
     def _inherited(self, model: ModelSym) -> dict[str, MemberSym]:
-        out: dict[str, MemberSym] = {}
-        base = self.p.base_of(model)
-        if base is not None and base.model is not None:
-            out.update(self.p.all_members(base.model))
-            for t in base.traits:
-                out.update(self.p.all_members(t))
-        for t in self.p.traits_of(model):
-            for k, v in self.p.all_members(t).items():
-                out.setdefault(k, v)
-        return out
+        return self.p.inherited_members(model)
 
     def _member_for(self, model_def: ModelSym | None, stmt: ast.Declaration) -> MemberSym | None:
-        if model_def is None:
-            return None
-        name = stmt.path.parts[-1].name
-        if len(stmt.path.parts) == 1:
-            mem = model_def.members.get(name)
-        else:
-            mem = model_def.path_members.get(tuple(p.name for p in stmt.path.parts[:-1]), {}).get(name)
-        return mem if mem is not None and mem.stmt is stmt else None
+        return resolve.declared_member(model_def, stmt)
 
     def _block(self, body: list[ast.Stmt], target: Ty, prefix: tuple[str, ...], model_def: ModelSym | None) -> None:
         for s in body:
@@ -324,13 +342,6 @@ class Checker:
 
     # ------------------------------------------------------------------ paths
 
-    def _extras(self, prefix: tuple[str, ...]) -> dict[str, MemberSym]:
-        out: dict[str, MemberSym] = {}
-        if self.outer is not None:
-            for m in self.p.ancestors(self.outer):
-                out.update(m.path_members.get(prefix, {}))
-        return out
-
     def _path(self, parts: list[ast.Ident], target: Ty, prefix: tuple[str, ...], model_def) -> tuple[Ty, MemberSym | None]:
         cur = target
         mem: MemberSym | None = None
@@ -341,15 +352,18 @@ class Checker:
             if cur.array or cur.alts or cur.primitive is not None:
                 self.report("N002", f"'{part.name}' cannot be set on a value of type {cur.display()}", part.span)
                 return UNKNOWN, None
-            mems = self.p.members_of(cur)
-            extra = self._extras(path)
-            found = mems.get(part.name) or extra.get(part.name)
+            mems = resolve.attributes(self.p, cur, self.outer, path)
+            found = mems.get(part.name)
             if found is None:
                 if self.in_trait and i == 0 and not prefix:
                     return UNKNOWN, None  # a host attribute the trait does not declare
                 where = self.p.concrete(cur.model).qname if cur.model is not None else cur.display()
-                self.report("N002", f"'{part.name}' is not an attribute of {where}", part.span,
-                            help=self._suggest(part.name, list(mems) + list(extra)))
+                if i == 0 and not prefix:
+                    self._unknown("N002", f"'{part.name}' is not an attribute of {where}", part.span, part.name,
+                                  list(mems))
+                else:
+                    self.report("N002", f"'{part.name}' is not an attribute of {where}", part.span,
+                                suggest=self._closest(part.name, list(mems)))
                 return UNKNOWN, None
             mem = found
             self.occ(part.span, mem, "attribute")
@@ -380,8 +394,7 @@ class Checker:
             return
         got = self._expr(expr, expected)
         if not isinstance(got, Ty):
-            what = self._describe_nonvalue(got)
-            self.report("T001", f"{what} is not a value", expr.span)
+            self._not_a_value("T001", got, expr.span)
             return
         verdict = self.p.assignable(got, expected)
         if verdict == "no":
@@ -407,10 +420,27 @@ class Checker:
             return f"method '{v.method.name}' must be called: it"
         return "this"
 
+    def _not_a_value(self, code: str, v, span: Span) -> None:
+        """A type, namespace or method where a value is needed. A model named as a value most often
+        lacks `const`: say so, and offer to add it when the model is defined in this file."""
+        sym = v.sym if isinstance(v, TypeObj) else None
+        if isinstance(sym, ModelSym) and not sym.is_trait and not sym.anonymous:
+            fix = None
+            stmt = sym.stmt
+            if sym.unit is self.unit and isinstance(stmt, ast.Declaration):
+                at = stmt.header.start.offset
+                fix = Fix(f"declare {sym.name} 'const'", (Edit(at, at, "const "),), safe=False)
+            self.report(code, f"'{sym.qname}' is a model, not a value: a model used as a value must be declared "
+                        f"'const' (or instantiated)", span, fix=fix,
+                        help=f"write 'const {sym.name} ...' where it is defined, or declare an attribute "
+                             f"'name is {sym.qname}' to create one")
+            return
+        self.report(code, f"{self._describe_nonvalue(v)} is not a value", span)
+
     def _as_ty(self, v, span: Span) -> Ty:
         if isinstance(v, Ty):
             return v
-        self.report("T001", f"{self._describe_nonvalue(v)} is not a value", span)
+        self._not_a_value("T001", v, span)
         return UNKNOWN
 
     def _expr(self, e, expected: Ty = UNKNOWN):  # noqa: C901 - one dispatch over the expression kinds
@@ -500,13 +530,10 @@ class Checker:
 
     def _name(self, ident: ast.Ident):
         name = ident.name
-        if self.outer is not None:
-            mems = self.p.members_of(Ty(self.outer))
-            mem = mems.get(name)
-            if mem is not None:
-                self.occ(ident.span, mem, "attribute")
-                return self.p.member_type(mem)
-        found = self.p.lookup([name], self.unit)
+        found = resolve.name_target(self.p, self.unit, self.outer, name)
+        if isinstance(found, MemberSym):
+            self.occ(ident.span, found, "attribute")
+            return self.p.member_type(found)
         v = self._global_value(found, ident)
         if v is not None:
             return v
@@ -514,73 +541,49 @@ class Checker:
             return UNKNOWN
         options = list(self.p.members_of(Ty(self.outer))) if self.outer is not None else []
         options += list(self.unit.locals) + list(self.unit.namespace.symbols)
-        self.report("N003", f"unknown name '{name}'", ident.span, help=self._suggest(name, options))
+        self._unknown("N003", f"unknown name '{name}'", ident.span, name, options)
         return UNKNOWN
 
     def _global_value(self, found, ident: ast.Ident):
-        if found is None:
-            return None
-        if isinstance(found, Namespace):
+        v = resolve.global_meaning(self.p, found)
+        if v is not None and not isinstance(found, str):
             self.occ(ident.span, found, "name")
-            return NsRef(found)
-        if isinstance(found, GlobalSym):
-            self.occ(ident.span, found, "name")
-            if found.ty is None:
-                found.ty = self.p.resolve_type_expr(found.stmt.type, found.unit)
-            return found.ty
-        if isinstance(found, ModelSym):
-            self.occ(ident.span, found, "name")
-            if found.const:
-                return Ty(found)
-            return TypeObj(found)
-        if isinstance(found, str):
-            return TypeObj(found)
-        return None
+        return v
 
     def _member(self, e: ast.Member):
         base = self._expr(e.obj)
         name = e.name.name
-        if isinstance(base, NsRef):
-            found = self.p._walk(base.ns, [name])
-            v = self._global_value(found, e.name)
-            if v is None:
-                self.report("N003", f"'{name}' is not in namespace {base.ns.dotted}", e.name.span,
-                            help=self._suggest(name, list(base.ns.symbols) + list(base.ns.children)))
-                return UNKNOWN
-            return v
-        if isinstance(base, TypeObj):
-            sym = base.sym
-            if isinstance(sym, ModelSym):
-                meth = self.p.all_methods(sym).get(name)
-                if meth is not None:
-                    self.occ(e.name.span, meth, "name")
-                    return MethodRef(meth, True)
-                self.report("N004", f"{sym.qname} has no static function '{name}'", e.name.span,
-                            help=self._suggest(name, self.p.all_methods(sym)))
-            return UNKNOWN
         if isinstance(base, MethodRef):
             self.report("T008", f"method '{base.method.name}' must be called before '.{name}'", e.span)
             return UNKNOWN
-        ty: Ty = base
-        if ty.unknown or self._opaque(ty):
+        if isinstance(base, Ty):
+            if base.unknown or self._opaque(base):
+                return UNKNOWN
+            if base.array or base.alts or base.primitive is not None:
+                self.report("N004", f"a value of type {base.display()} has no member '{name}'", e.name.span)
+                return UNKNOWN
+        found = resolve.member_target(self.p, base, name)
+        if isinstance(base, NsRef):
+            v = self._global_value(found, e.name)
+            if v is None:
+                self.report("N003", f"'{name}' is not in namespace {base.ns.dotted}", e.name.span,
+                            suggest=self._closest(name, list(base.ns.symbols) + list(base.ns.children)))
+                return UNKNOWN
+            return v
+        if isinstance(found, MethodRef):
+            self.occ(e.name.span, found.method, "name")
+            return found
+        if isinstance(found, MemberSym):
+            self.occ(e.name.span, found, "attribute")
+            self._deprecated_check(found, e.name.span)
+            return self.p.member_type(found)
+        if isinstance(base, TypeObj):
+            if isinstance(base.sym, ModelSym):
+                self.report("N004", f"{base.sym.qname} has no static function '{name}'", e.name.span,
+                            suggest=self._closest(name, self.p.all_methods(base.sym)))
             return UNKNOWN
-        if ty.array or ty.alts or ty.primitive is not None:
-            self.report("N004", f"a value of type {ty.display()} has no member '{name}'", e.name.span)
-            return UNKNOWN
-        mems = self.p.members_of(ty)
-        mem = mems.get(name)
-        if mem is not None:
-            self.occ(e.name.span, mem, "attribute")
-            self._deprecated_check(mem, e.name.span)
-            return self.p.member_type(mem)
-        meths = self.p.methods_of(ty)
-        meth = meths.get(name)
-        if meth is not None:
-            self.occ(e.name.span, meth, "name")
-            # a const model is its own single instance: Math.Functions.sin(x) is the normal call
-            return MethodRef(meth, bool(ty.model.const and meth.static))
-        self.report("N004", f"{self.p.concrete(ty.model).qname} has no attribute or method '{name}'", e.name.span,
-                    help=self._suggest(name, list(mems) + list(meths)))
+        self.report("N004", f"{self.p.concrete(base.model).qname} has no attribute or method '{name}'", e.name.span,
+                    suggest=self._closest(name, list(self.p.members_of(base)) + list(self.p.methods_of(base))))
         return UNKNOWN
 
     def _method_types(self, meth: MethodSym) -> tuple[list[Ty], Ty | None]:
@@ -613,7 +616,7 @@ class Checker:
         else:
             for arg, got, want in zip(e.args, arg_types, params):
                 if not isinstance(got, Ty):
-                    self.report("T005", f"{self._describe_nonvalue(got)} is not a value", arg.span)
+                    self._not_a_value("T005", got, arg.span)
                     continue
                 if isinstance(arg, ast.Brace):
                     got = self._brace(arg, want)
@@ -747,3 +750,15 @@ def _signature(meth: MethodSym) -> str:
     params = ", ".join(f"{p.name.name}: {p.type.name.text}{'[]' if p.type.array else ''}" for p in meth.stmt.params)
     ret = f" -> {meth.stmt.returns.name.text}" if meth.stmt.returns is not None else ""
     return f"{'static ' if meth.static else ''}fn {meth.name}({params}){ret}"
+
+
+def _declared_name(text: str) -> str | None:
+    """The name a line that did not parse starts with (after `const`/`optional`), from the lexer."""
+    from plxtools.syntax.lexer import lex
+
+    lines = lex(text.split("\n", 1)[0]).lines
+    for tok in lines[0].tokens if lines else ():
+        if tok.type in ("CONST", "OPTIONAL"):
+            continue
+        return str(tok) if tok.type == "NAME" else None
+    return None

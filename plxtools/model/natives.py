@@ -82,6 +82,8 @@ __all__ = [
     "ElementaryTransform",
     "StructCodec",
     "STRUCT_TYPES",
+    "SHAPES",
+    "bind_struct_types",
     "FUNCTIONS",
     "OPERATORS",
     "UNSUPPORTED",
@@ -1246,61 +1248,102 @@ def _coerce_field(type_name: str, v: Any, what: str) -> Any:
     return _array(v, _SHAPES[type_name], what).copy()
 
 
-_SHAPES = {_V2: (2,), _V3: (3,), _Q: (4,), _M3: (3, 3), _M4: (4, 4)}
+SHAPES = {_V2: (2,), _V3: (3,), _Q: (4,), _M3: (3, 3), _M4: (4, 4)}
+"""The numpy shape of each array-represented math type: the one table of shapes."""
+_SHAPES = SHAPES
 
 
-def _array_codec(type_name: str, names: Sequence[str], defaults: Sequence[float] | None) -> StructCodec:
-    shape = _SHAPES[type_name]
-    names = tuple(names)
-    return StructCodec(
-        type_name=type_name,
-        fields=names,
-        field_types={n: "Real" for n in names},
-        defaults=dict(zip(names, defaults)) if defaults is not None else {},
-        python_type=np.ndarray,
-        _build=lambda f: np.array([f[n] for n in names], dtype=float).reshape(shape),
-        _split=lambda v: dict(zip(names, (float(x) for x in _array(v, shape, type_name).ravel()))),
-    )
+def _array_repr(type_name: str):
+    shape = SHAPES[type_name]
+
+    def make(names: tuple[str, ...]):
+        return (np.ndarray,
+                lambda f: np.array([f[n] for n in names], dtype=float).reshape(shape),
+                lambda v: dict(zip(names, (float(x) for x in _array(v, shape, type_name).ravel()))))
+    return make
 
 
-_M3_FIELDS = [f"e{r}{c}" for r in range(3) for c in range(3)]
-_M4_FIELDS = [f"e{r}{c}" for r in range(4) for c in range(4)]
-
-STRUCT_TYPES: dict[str, StructCodec] = {
-    _V2: _array_codec(_V2, "xy", [0.0, 0.0]),
-    _V3: _array_codec(_V3, "xyz", [0.0, 0.0, 0.0]),
-    _Q: _array_codec(_Q, "xyzw", list(_IDENTITY_QUAT)),
-    _M3: _array_codec(_M3, _M3_FIELDS, np.eye(3).ravel().tolist()),
-    _M4: _array_codec(_M4, _M4_FIELDS, None),
-    _T: StructCodec(
-        type_name=_T,
-        fields=("position", "rotation"),
-        field_types={"position": _V3, "rotation": _Q},
-        defaults={"position": np.zeros(3), "rotation": np.array(_IDENTITY_QUAT)},
-        python_type=Transform,
-        _build=lambda f: Transform(f["position"], f["rotation"]),
-        _split=lambda t: {"position": t.position.copy(), "rotation": t.rotation.copy()},
-    ),
-    "Math.Line": StructCodec(
-        type_name="Math.Line",
-        fields=("start", "end"),
-        field_types={"start": _V3, "end": _V3},
-        defaults={"start": np.zeros(3), "end": np.zeros(3)},
-        python_type=Line,
-        _build=lambda f: Line(f["start"], f["end"]),
-        _split=lambda line: {"start": line.start.copy(), "end": line.end.copy()},
-    ),
-    _ET[:-1]: StructCodec(
-        type_name=_ET[:-1],
-        fields=("type", "c", "free", "flip"),
-        field_types={"type": "String", "c": "Real", "free": "Bool", "flip": "Bool"},
-        defaults={"type": "tx", "c": 0.0, "free": False, "flip": False},
-        python_type=ElementaryTransform,
-        _build=lambda f: ElementaryTransform(**f),
-        _split=lambda e: {"type": e.type, "c": e.c, "free": e.free, "flip": e.flip},
-    ),
+# Only the Python representation is hand-written; fields, field types and defaults are read from the
+# bundle program by `bind_struct_types` (the bundles declare them: `x is Real: 0` in Math/Vec3).
+_REPRESENTATIONS: dict[str, Callable] = {
+    _V2: _array_repr(_V2),
+    _V3: _array_repr(_V3),
+    _Q: _array_repr(_Q),
+    _M3: _array_repr(_M3),
+    _M4: _array_repr(_M4),
+    _T: lambda names: (Transform, lambda f: Transform(f["position"], f["rotation"]),
+                       lambda t: {"position": t.position.copy(), "rotation": t.rotation.copy()}),
+    "Math.Line": lambda names: (Line, lambda f: Line(f["start"], f["end"]),
+                                lambda line: {"start": line.start.copy(), "end": line.end.copy()}),
 }
-"""Codecs by qualified model name."""
+
+# ElementaryTransform is opaque in the bundle (static constructors only, no attributes): its fields
+# are this module's own representation, not bundle knowledge.
+_ET_CODEC = StructCodec(
+    type_name=_ET[:-1],
+    fields=("type", "c", "free", "flip"),
+    field_types={"type": "String", "c": "Real", "free": "Bool", "flip": "Bool"},
+    defaults={"type": "tx", "c": 0.0, "free": False, "flip": False},
+    python_type=ElementaryTransform,
+    _build=lambda f: ElementaryTransform(**f),
+    _split=lambda e: {"type": e.type, "c": e.c, "free": e.free, "flip": e.flip},
+)
+
+STRUCT_TYPES: dict[str, StructCodec] = {_ET_CODEC.type_name: _ET_CODEC}
+"""Codecs by qualified model name; the math types are added by `bind_struct_types`."""
+_BOUND: list = [None]  # the program the codecs were read from
+
+
+def bind_struct_types(program) -> None:
+    """Read the math value types' fields, field types and defaults from a bundle program.
+
+    Called by whoever evaluates against a program (check's Builder); re-reading for the same program
+    is free. A type the program does not declare has no codec (its values cannot be built).
+    """
+    if _BOUND[0] is program:
+        return
+    from plxtools.syntax import ast
+
+    codecs: dict[str, StructCodec] = {}
+    for name in _REPRESENTATIONS:  # dependencies first: Vec3/Quat before AffineTransform and Line
+        model = program.lookup_outside_visibility(name.split("."))
+        if model is None or not hasattr(model, "members"):
+            continue
+        members = program.all_members(model)
+        names = tuple(members)
+        types: dict[str, str] = {}
+        defaults: dict[str, Any] = {}
+        for field_name, mem in members.items():
+            ty = program.member_type(mem)
+            tname = ty.primitive or (ty.model.qname if ty.model is not None else "Real")
+            types[field_name] = tname
+            value = _literal(mem.value, ast)
+            if value is not None:
+                defaults[field_name] = float(value) if tname == "Real" else value
+            elif tname in codecs:
+                try:
+                    defaults[field_name] = codecs[tname].default()
+                except NativeError:
+                    pass
+        python_type, build, split = _REPRESENTATIONS[name](names)
+        codecs[name] = StructCodec(name, names, types, defaults, python_type, build, split)
+    for name in _REPRESENTATIONS:
+        STRUCT_TYPES.pop(name, None)
+    STRUCT_TYPES.update(codecs)
+    _BOUND[0] = program
+
+
+def _literal(expr, ast) -> Any:
+    """A default written as a literal (`0`, `-1.5`, `true`, `"x"`); None for anything else."""
+    if isinstance(expr, ast.Number):
+        return expr.value
+    if isinstance(expr, ast.Unary) and expr.op == "-" and isinstance(expr.operand, ast.Number):
+        return -expr.operand.value
+    if isinstance(expr, ast.Bool):
+        return expr.value
+    if isinstance(expr, ast.String):
+        return expr.value
+    return None
 
 
 _SHAPE_TYPES = {shape: name for name, shape in _SHAPES.items()}

@@ -9,6 +9,7 @@ from __future__ import annotations
 import re
 from typing import Iterable
 
+from plxtools.model import resolve
 from plxtools.model.symbols import (
     NUMERIC,
     PRIMITIVES,
@@ -36,6 +37,8 @@ class Program:
         self.visibility: dict[str, set[str]] = {}  # bundle -> visible bundle names
         self.official_bundles: set[str] = set()
         self.duplicates: list[tuple[FileUnit, ast.Stmt, object]] = []  # (unit, stmt, first symbol)
+        self.cycles: dict[int, tuple] = {}  # id(model) -> (model, inheritance cycle or None): resolve.py
+        self._comments: tuple = (None, {})  # (tree, own-line comments by line) of the file being added
 
     # ------------------------------------------------------------------ building
 
@@ -49,6 +52,7 @@ class Program:
         self.units[unit.path] = unit
         for stmt in unit.tree.statements:
             self._add_top(unit, stmt)
+        self._comments = (None, {})
 
     def remove_unit(self, path: str) -> None:
         """Forget a file's symbols (the language server replaces a file on every edit).
@@ -66,11 +70,13 @@ class Program:
         for op, lst in self.operators.items():
             self.operators[op] = [o for o in lst if o.unit is not unit]
         self.duplicates = [d for d in self.duplicates if d[0] is not unit]
+        self.cycles.clear()
         if unit.bundle is not None:
             self.invalidate()
 
     def invalidate(self) -> None:
         """Drop cached member tables and resolved types (after files changed)."""
+        self.cycles.clear()
         for ns in self._all_namespaces():
             for sym in ns.symbols.values():
                 self._reset(sym)
@@ -83,8 +89,7 @@ class Program:
             stack = [sym]
             while stack:
                 m = stack.pop()
-                m._all = None
-                m._ancestors = None
+                m._lin = m._inherited = m._all = m._methods = m._open = None
                 m.base = None
                 m.traits = None
                 for mem in m.members.values():
@@ -145,7 +150,9 @@ class Program:
         if model.doc:
             for m in _DEPRECATED_DOC.finditer(model.doc):
                 model.deprecated[m.group(1)] = m.group(2).strip()
-        comments_above = _comment_lines(unit.tree)
+        if self._comments[0] is not unit.tree:  # once per file, not once per model
+            self._comments = (unit.tree, _comment_lines(unit.tree))
+        comments_above = self._comments[1]
         for s in body:
             if isinstance(s, ast.Declaration) and s.keyword in ("is", "becomes"):
                 mem = MemberSym(s.path.parts[-1].name, model, s, s.keyword, s.optional, s.reference, s.value)
@@ -280,87 +287,34 @@ class Program:
             model.traits = out
         return model.traits
 
+    # the hierarchy questions are answered by model/resolve.py (one ordering, one override rule)
+
+    def linearize(self, model: ModelSym, traits: tuple = ()) -> list[ModelSym]:
+        """The layers of a model, lowest priority first (see model/resolve.py)."""
+        return resolve.linearize(self, model, traits)
+
     def ancestors(self, model: ModelSym) -> list[ModelSym]:
-        """The model, its bases and all traits applied anywhere in that chain (no duplicates).
+        """The model, its bases and all traits applied anywhere in that chain, highest priority first.
 
-        Cached per model (cleared by invalidate); callers get a copy they may extend.
+        A fresh list the caller may extend.
         """
-        if model._ancestors is None:
-            model._ancestors = self._compute_ancestors(model)
-        return list(model._ancestors)
-
-    def _compute_ancestors(self, model: ModelSym) -> list[ModelSym]:
-        out: list[ModelSym] = []
-        seen: set[int] = set()
-        stack = [model]
-        while stack:
-            m = stack.pop()
-            if id(m) in seen:
-                continue
-            seen.add(id(m))
-            out.append(m)
-            base = self.base_of(m)
-            if base is not None and base.model is not None:
-                stack.append(base.model)
-            for t in base.traits if base is not None else ():
-                stack.append(t)
-            stack.extend(self.traits_of(m))
-        return out
+        return resolve.linearize(self, model)[::-1]
 
     def is_open(self, model: ModelSym) -> bool:
-        """True when some base in the chain does not resolve: its attributes are unknown, not absent."""
-        for m in self.ancestors(model):
-            if m.base_ref is not None and self.base_of(m) is None:
-                return True
-            if m.kind == "import":
-                return True
-        return False
+        return resolve.is_open(self, model)
 
     def has_cycle(self, model: ModelSym) -> list[ModelSym] | None:
-        trail: list[ModelSym] = []
-        cur: ModelSym | None = model
-        while cur is not None:
-            if cur in trail:
-                return trail[trail.index(cur):] + [cur]
-            trail.append(cur)
-            base = self.base_of(cur)
-            cur = base.model if base is not None else None
-        return None
+        return resolve.has_cycle(self, model)
 
     def all_members(self, model: ModelSym) -> dict[str, MemberSym]:
-        """Every attribute of a model: inherited, from traits, then its own (later wins)."""
-        if model._all is not None:
-            return model._all
-        if model._resolving:  # a cycle: the checker reports it
-            return {}
-        model._resolving = True
-        try:
-            out: dict[str, MemberSym] = {}
-            base = self.base_of(model)
-            if base is not None and base.model is not None:
-                out.update(self.all_members(base.model))
-                for t in base.traits:
-                    out.update(self.all_members(t))
-            for t in self.traits_of(model):
-                for name, mem in self.all_members(t).items():
-                    if name not in out or mem.keyword == "becomes" or out[name].keyword != "becomes":
-                        out[name] = mem
-            out.update(model.members)
-            model._all = out
-            return out
-        finally:
-            model._resolving = False
+        """Every attribute of a model, by the override rule of model/resolve.py. Shared: do not mutate."""
+        return resolve.all_members(self, model)
+
+    def inherited_members(self, model: ModelSym) -> dict[str, MemberSym]:
+        return resolve.inherited_members(self, model)
 
     def all_methods(self, model: ModelSym) -> dict[str, MethodSym]:
-        out: dict[str, MethodSym] = {}
-        for m in reversed(self.ancestors(model)):
-            out.update(m.methods)
-        for m in self.ancestors(model):
-            for name, meth in m.methods.items():
-                out.setdefault(name, meth)
-        # own methods win
-        out.update(model.methods)
-        return out
+        return resolve.all_methods(self, model)
 
     def member_type(self, mem: MemberSym) -> Ty:
         if mem.ty is None:
@@ -373,22 +327,15 @@ class Program:
         return mem.ty
 
     def members_of(self, ty: Ty) -> dict[str, MemberSym]:
+        """Attributes of a value of this type (shared table: do not mutate)."""
         if ty.array or ty.alts or ty.model is None:
             return {}
-        out = dict(self.all_members(ty.model))
-        for t in ty.traits:
-            for k, v in self.all_members(t).items():
-                out.setdefault(k, v)
-        return out
+        return resolve.members_with_traits(self, ty.model, ty.traits)
 
     def methods_of(self, ty: Ty) -> dict[str, MethodSym]:
         if ty.array or ty.alts or ty.model is None:
             return {}
-        out = self.all_methods(ty.model)
-        for t in ty.traits:
-            for k, v in self.all_methods(t).items():
-                out.setdefault(k, v)
-        return out
+        return resolve.methods_with_traits(self, ty.model, ty.traits)
 
     def concrete(self, model: ModelSym) -> ModelSym:
         """Anonymous instance subtypes stand for their declared base where a name is needed."""
@@ -402,12 +349,7 @@ class Program:
         return model
 
     def is_subtype(self, sub: ModelSym, sup: ModelSym, extra_traits: tuple = ()) -> bool:
-        if sub is sup:
-            return True
-        chain = self.ancestors(sub)
-        for t in extra_traits:
-            chain.extend(self.ancestors(t))
-        return any(m is sup for m in chain)
+        return resolve.is_subtype(self, sub, sup, extra_traits)
 
     def assignable(self, actual: Ty, expected: Ty) -> str:
         """'ok', 'warn' (Real into Int) or 'no'. Unknown types are always 'ok' (no cascades)."""

@@ -69,9 +69,12 @@ class ModelSym:
     annotations: list[ast.Annotation] = field(default_factory=list)
     doc: str | None = None
     deprecated: dict[str, str] = field(default_factory=dict)  # member name -> note from the source
+    # filled by model/resolve.py (cleared by Program.invalidate)
+    _lin: "list[ModelSym] | None" = None  # layers, lowest priority first
+    _inherited: "dict[str, MemberSym] | None" = None
     _all: "dict[str, MemberSym] | None" = None
-    _ancestors: "list[ModelSym] | None" = None
-    _resolving: bool = False
+    _methods: "dict[str, MethodSym] | None" = None
+    _open: "bool | None" = None
 
     @property
     def is_trait(self) -> bool:

@@ -42,7 +42,7 @@ def _cache_dir() -> Path:
     return Path(base) / "plxtools"
 
 
-_CACHE_FORMAT = 3  # bump when the pickled classes change shape
+_CACHE_FORMAT = 5  # bump when the pickled classes change shape
 
 
 def _cache_key(paths: list[Path]) -> str:

@@ -9,8 +9,9 @@ from lark import Lark, Token, Transformer
 from lark.exceptions import UnexpectedEOF, UnexpectedInput, UnexpectedToken
 from lark.lexer import Lexer as LarkLexer
 
-from plxtools.diagnostics import Diagnostic, Pos, Severity, Span
+from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Severity, Span
 from plxtools.syntax import ast
+from plxtools.syntax.keywords import closest_keyword
 from plxtools.syntax.lexer import LogicalLine, lex
 from plxtools.syntax.source import LineIndex, decode, decode_text, line_start
 
@@ -329,8 +330,14 @@ def _syntax_error(exc: UnexpectedInput, line: LogicalLine) -> Diagnostic:
     if first.type in ("NAME", "TICKNAME") and isinstance(exc, UnexpectedToken) and tok is not None:
         if tok.type == "NAME" and len(line.tokens) > 1 and line.tokens[1] is tok:
             help_ = "declare with 'name is Type', or give a value with 'name: value'"
+    fix = None
+    if tok is not None and tok.type == "NAME":
+        kw = closest_keyword(str(tok), set(getattr(exc, "expected", None) or ()))
+        if kw is not None:
+            help_ = f"did you mean '{kw}'?"
+            fix = Fix(f"replace with '{kw}'", (Edit(span.start.offset, span.end.offset, kw),), safe=False)
     del at
-    return Diagnostic("S011", msg, span, Severity.ERROR, help=help_)
+    return Diagnostic("S011", msg, span, Severity.ERROR, help=help_, fix=fix)
 
 
 # ------------------------------------------------------------------ the driver
