@@ -75,6 +75,8 @@ DOF_OF_MATE = {
     "lock": set(),
     "distance": set(),
 }
+# attributes where an infinity means "no limit" (Math.INF, Math.NEG_INF in the bundles); NaN is never allowed
+MAY_BE_INFINITE = frozenset({"min_effort", "max_effort", "start", "end"})
 POS_TOL = 1e-4  # m
 ANGLE_TOL = 1e-3  # rad
 
@@ -222,12 +224,32 @@ class Assembler:
         self.ev = ev
         self.rep = rep
         self.k = kinds
+        self._non_finite_seen: set[tuple[int, str]] = set()
 
     # ------------------------------------------------------------------ helpers
 
+    def value(self, obj: Obj, path: str) -> Any:
+        """``ev.get`` for everything assembly reads: a non-finite number (``1e308 * 10``, ``inf - inf``)
+        is an error at its source line (A041) and the value is then unavailable, so no NaN or inf
+        reaches SNAP, the scene or MuJoCo.  Infinity stays allowed where it means "no limit"."""
+        v = self.ev.get(obj, path)
+        if v is None or isinstance(v, (Obj, str, bool)):
+            return v
+        bad = _non_finite(v)
+        if bad is not None and not (bad != "NaN" and path.rsplit(".", 1)[-1] in MAY_BE_INFINITE):
+            key = (id(obj), path)
+            if key not in self._non_finite_seen:
+                self._non_finite_seen.add(key)
+                node, unit = self.ev.where(obj, path)
+                self.rep.add("A041", f"{obj.display}.{path} is {bad}; a value must be a finite number",
+                             node=node, unit=unit, obj=obj,
+                             help="check the expression for an overflow (a result beyond 1.8e308) or inf - inf")
+            raise Unavailable(f"{obj.display}.{path} is {bad}")
+        return v
+
     def get(self, obj: Obj, path: str, default: Any = None) -> Any:
         try:
-            return self.ev.get(obj, path, default)
+            return self.value(obj, path)
         except Unavailable:
             return default
         except KeyError:
@@ -307,7 +329,7 @@ class Assembler:
             node.explicit = True
             node.explicit_where = self.ev.where(obj, path)
             try:
-                t = self.ev.get(obj, path)
+                t = self.value(obj, path)
                 node.local = from_transform(t)
             except (Unavailable, KeyError, AttributeError):
                 node.local = IDENTITY
@@ -377,7 +399,7 @@ class Assembler:
 
     def _vec(self, obj: Obj, path: str, default):
         try:
-            v = self.ev.get(obj, path)
+            v = self.value(obj, path)
         except (Unavailable, KeyError):
             return default
         try:
@@ -645,6 +667,33 @@ class Assembler:
                          f"{why}", obj=m.obj,
                          help="SNAP moves only bodies and systems without a declared transform; remove the "
                          "explicit local_transform of one side, or fix the connector positions and axes")
+
+
+def _non_finite(v: Any, depth: int = 0) -> str | None:
+    """"NaN", "infinite" or None: the first non-finite number inside a value (numbers, arrays, lists,
+    and value types such as a Transform that hold them)."""
+    if depth > 8 or isinstance(v, (bool, str, Obj)) or v is None:
+        return None
+    if isinstance(v, float):
+        return None if math.isfinite(v) else ("NaN" if math.isnan(v) else "infinite")
+    if isinstance(v, np.ndarray):
+        if v.dtype.kind != "f" or bool(np.all(np.isfinite(v))):
+            return None
+        return "NaN" if bool(np.any(np.isnan(v))) else "infinite"
+    if isinstance(v, np.floating):
+        return _non_finite(float(v), depth + 1)
+    if isinstance(v, (list, tuple)):
+        for x in v:
+            bad = _non_finite(x, depth + 1)
+            if bad is not None:
+                return bad
+        return None
+    for attr in ("position", "rotation"):
+        if hasattr(v, attr):
+            bad = _non_finite(getattr(v, attr), depth + 1)
+            if bad is not None:
+                return bad
+    return None
 
 
 def _v(a) -> str:

@@ -258,7 +258,7 @@ class Collector:
 
     def _num(self, obj: Obj, path: str) -> float | None:
         try:
-            v = self.ev.get(obj, path)
+            v = self.a.value(obj, path)
         except (Unavailable, KeyError):
             return None
         try:

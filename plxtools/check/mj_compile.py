@@ -93,6 +93,12 @@ class _Builder(GeomMixin, ControllerMixin):
             src = self.names.sources.get(path)
         self.notes.append(BackendNote(severity, code, message, src, path))
 
+    def invariant(self, owner: str, message: str, item: Any = None) -> None:
+        """A condition the static checks own (rule ``owner``) met in the scene: the checks reject such
+        a scene before it reaches the backend, so meeting it here is an inconsistency (A131).  The
+        backend still copes (skips or replaces the element) so that a hand-built scene compiles."""
+        self.note(ERROR, "A131", f"{message} (the static check {owner} should have rejected this scene)", item)
+
     def node(self, c: Connector) -> str | None:
         """Graph node of a connector: WORLD for world/system/static owners, else the body path."""
         if c.body is None:
@@ -147,14 +153,12 @@ class _Builder(GeomMixin, ControllerMixin):
             type=int(mj.mjtLightType.mjLIGHT_DIRECTIONAL),
         )
 
-        for u in scene.unsupported:
-            msg = u.message or f"{u.what} is not supported by the MuJoCo backend and is ignored"
-            self.note(WARNING, "unsupported-feature", msg, u)
+        # scene.unsupported: reported by the static checks (A040), which own it; nothing to build
         for i, body in enumerate(scene.bodies):
             if body.path in self.bodies:
                 self.note(
                     ERROR,
-                    "duplicate-body",
+                    "A131",
                     f"duplicate body path {body.path}; the second one is ignored",
                     body,
                 )
@@ -163,9 +167,7 @@ class _Builder(GeomMixin, ControllerMixin):
             self.body_index[body.path] = i
             self.names.add("body", body.path, body.source)
             if body.mass < 0:
-                self.note(
-                    ERROR,
-                    "negative-mass",
+                self.invariant("A032",
                     f"{body.path}: negative mass {body.mass}; using the geometry mass",
                     body,
                 )
@@ -200,13 +202,13 @@ class _Builder(GeomMixin, ControllerMixin):
         for idx, m in enumerate(self.scene.mates):
             self.names.add("mate", m.path, m.source)
             if not m.enabled:
-                self.note(INFO, "mate-disabled", f"{m.path} is disabled and not simulated", m)
+                self.note(INFO, "A129", f"{m.path} is disabled and not simulated", m)
                 continue
             if m.kind not in TREE_PRIORITY and m.kind != "distance":
-                self.note(ERROR, "unknown-mate-kind", f"{m.path}: unknown mate kind {m.kind!r}; ignored", m)
+                self.invariant("A040", f"{m.path}: unknown mate kind {m.kind!r}; ignored", m)
                 continue
             if len(m.connectors) != 2:
-                self.note(ERROR, "mate-connector-count", f"{m.path}: a mate needs exactly 2 connectors", m)
+                self.invariant("A013", f"{m.path}: a mate needs exactly 2 connectors", m)
                 continue
             c0, c1 = m.connectors
             n0, n1 = self.node(c0), self.node(c1)
@@ -214,27 +216,20 @@ class _Builder(GeomMixin, ControllerMixin):
             if bad:
                 self.note(
                     ERROR,
-                    "unknown-body",
+                    "A131",
                     f"{m.path}: connector {bad[0].path} belongs to unknown body {bad[0].body}",
                     m,
                 )
                 continue
             if c0.body is not None and c0.body == c1.body:
-                self.note(
-                    ERROR, "mate-same-body", f"{m.path}: both connectors belong to {c0.body}; ignored", m
+                self.invariant("A015", f"{m.path}: both connectors belong to {c0.body}; ignored", m
                 )
                 continue
             if n0 == WORLD and n1 == WORLD:
-                self.note(
-                    WARNING,
-                    "mate-no-dynamic-body",
-                    f"{m.path} joins two static/world frames and has no effect",
-                    m,
-                )
-                continue
+                continue  # no effect; the static checks own this finding (A017)
             for c in (c0, c1):
                 if float(np.linalg.norm(c.main_axis)) == 0.0:
-                    self.note(ERROR, "zero-main-axis", f"connector {c.path} has a zero main_axis", c)
+                    self.invariant("A010", f"connector {c.path} has a zero main_axis", c)
             self.check_alignment(m)
             if c0.body and c1.body:
                 self.mated.add(frozenset((c0.body, c1.body)))
@@ -276,9 +271,7 @@ class _Builder(GeomMixin, ControllerMixin):
         sep = float(np.linalg.norm(d)) if m.kind != "distance" else 0.0
         ang = angle_between(a0, a1) if m.kind not in ("ball", "distance") else 0.0
         if sep > ALIGN_POS_TOL or ang > ALIGN_ANGLE_TOL:
-            self.note(
-                WARNING,
-                "mate-initially-violated",
+            self.invariant("A016",
                 f"{m.path}: connector frames do not coincide after assembly (offset {sep:.4g} m, axis angle "
                 f"{math.degrees(ang):.3g} deg); the MuJoCo joint uses the child connector and keeps the offset",
                 m,
@@ -351,7 +344,7 @@ class _Builder(GeomMixin, ControllerMixin):
             if any(abs(v) > 0 for v in (*body.lin_vel, *body.ang_vel)):
                 self.note(
                     WARNING,
-                    "kinematic-motion-ignored",
+                    "A121",
                     f"{path} is not dynamic; its initial velocity is ignored (held fixed)",
                     body,
                 )
@@ -457,7 +450,7 @@ class _Builder(GeomMixin, ControllerMixin):
                 self.connect(m.path, ":b", b0, b1, p0 - HINGE_LOOP_HALF_LENGTH * a0, m)
                 self.note(
                     INFO,
-                    "loop-closure",
+                    "A114",
                     f"{m.path} closes a kinematic loop: two connect equalities on its axis (free rotation kept)",
                     m,
                 )
@@ -471,18 +464,18 @@ class _Builder(GeomMixin, ControllerMixin):
                 data[0:3] = p1  # anchor in body2; relpose zeros -> taken from the assembled pose
                 data[10] = 1.0
                 e.data = data
-                self.note(INFO, "loop-closure", f"{m.path} closes a kinematic loop: weld equality", m)
+                self.note(INFO, "A114", f"{m.path} closes a kinematic loop: weld equality", m)
             else:
                 self.note(
                     WARNING,
-                    "loop-closure-unsupported",
+                    "A115",
                     f"{m.path}: a loop-closing {m.kind} mate cannot be expressed in MuJoCo; it is NOT enforced",
                     m,
                 )
                 self.add_monitor(m, "open")
                 continue
             if m.kind == "ball":
-                self.note(INFO, "loop-closure", f"{m.path} closes a kinematic loop: connect equality", m)
+                self.note(INFO, "A114", f"{m.path} closes a kinematic loop: connect equality", m)
             self.add_monitor(m, "loop")
 
     def connect(self, path: str, suffix: str, b0: str, b1: str, anchor: np.ndarray, m: Mate) -> None:
@@ -510,7 +503,7 @@ class _Builder(GeomMixin, ControllerMixin):
                 )
                 self.note(
                     WARNING,
-                    "distance-mate-approximated",
+                    "A116",
                     f"{m.path}: Distance mate with zero distance approximated as a ball (connect) constraint",
                     m,
                 )
@@ -536,7 +529,7 @@ class _Builder(GeomMixin, ControllerMixin):
             e.data = data
             self.note(
                 WARNING,
-                "distance-mate-approximated",
+                "A116",
                 f"{m.path}: Distance mate approximated by a tendon-length equality (target {target:g} m)",
                 m,
             )

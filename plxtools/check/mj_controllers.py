@@ -41,6 +41,9 @@ class ControllerMixin:
     def note(self, severity: str, code: str, message: str, item: Any = None, path: str | None = None) -> None:
         raise NotImplementedError
 
+    def invariant(self, owner: str, message: str, item: Any = None) -> None:
+        raise NotImplementedError
+
     # -- controllers -----------------------------------------------------------------------------
     def add_controllers(self, model: Any) -> None:
         mates: dict[tuple[str, str], Mate] = {}
@@ -50,19 +53,17 @@ class ControllerMixin:
         for ctl in self.scene.controllers:
             self.names.add("controller", ctl.path, ctl.source)
             if not ctl.enabled:
-                self.note(INFO, "controller-disabled", f"{ctl.path} is disabled", ctl)
+                self.note(INFO, "A129", f"{ctl.path} is disabled", ctl)
                 continue
             if len(ctl.connectors) != 2:
-                self.note(ERROR, "controller-connector-count", f"{ctl.path}: needs exactly 2 connectors", ctl)
+                self.invariant("A013", f"{ctl.path}: needs exactly 2 connectors", ctl)
                 continue
             a, b = ctl.connectors[0].path, ctl.connectors[1].path
             mate, reversed_ = mates.get((a, b)), False
             if mate is None and (b, a) in mates:
                 mate, reversed_ = mates[(b, a)], True
             if mate is None:
-                self.note(
-                    ERROR,
-                    "controller-without-mate",
+                self.invariant("A020",
                     f"{ctl.path}: no mate uses the connector pair ({a}, {b}); controller ignored",
                     ctl,
                 )
@@ -74,7 +75,7 @@ class ControllerMixin:
             if reversed_:
                 self.note(
                     INFO,
-                    "controller-reversed",
+                    "A122",
                     f"{ctl.path} lists the connectors of {mate.path} in the opposite order: its coordinate is the negated mate coordinate",
                     ctl,
                 )
@@ -89,9 +90,7 @@ class ControllerMixin:
             elif ctl.kind == "spring":
                 self.add_spring(ctl, joint, sign, ieff)
             else:
-                self.note(
-                    WARNING,
-                    "unsupported-controller",
+                self.invariant("A040",
                     f"{ctl.path}: controller kind {ctl.kind!r} unsupported; ignored",
                     ctl,
                 )
@@ -99,7 +98,7 @@ class ControllerMixin:
     def controller_joint(self, ctl: Controller, mate: Mate) -> str | None:
         if not mate.enabled:
             self.note(
-                WARNING, "controller-on-disabled-mate", f"{ctl.path}: its mate {mate.path} is disabled", ctl
+                WARNING, "A123", f"{ctl.path}: its mate {mate.path} is disabled", ctl
             )
             return None
         joints = self.out.joints.get(mate.path)
@@ -109,9 +108,7 @@ class ControllerMixin:
             "cylindrical": ("rotational", "linear"),
         }.get(mate.kind, ())
         if ctl.dof not in fits:
-            self.note(
-                ERROR,
-                "controller-dof-mismatch",
+            self.invariant("A021",
                 f"{ctl.path}: a {ctl.dof} controller cannot drive the {mate.kind} mate {mate.path}",
                 ctl,
             )
@@ -119,7 +116,7 @@ class ControllerMixin:
         if not joints:
             self.note(
                 WARNING,
-                "controller-on-loop-mate",
+                "A124",
                 f"{ctl.path}: {mate.path} closes a kinematic loop (equality constraint); controllers on it are not supported",
                 ctl,
             )
@@ -131,9 +128,7 @@ class ControllerMixin:
     def effort_range(self, ctl: Controller, act: Any) -> None:
         lo, hi = float(ctl.min_effort), float(ctl.max_effort)
         if lo > hi:
-            self.note(
-                ERROR,
-                "effort-range-inverted",
+            self.invariant("A024",
                 f"{ctl.path}: min_effort {lo:g} > max_effort {hi:g}; effort left unlimited",
                 ctl,
             )
@@ -147,7 +142,7 @@ class ControllerMixin:
         if ctl.gain <= 0:
             self.note(
                 ERROR,
-                "non-positive-gain",
+                "A130",
                 f"{ctl.path}: gain {ctl.gain:g} must be positive; motor ignored",
                 ctl,
             )
@@ -164,7 +159,7 @@ class ControllerMixin:
             )
             self.note(
                 INFO,
-                "velocity-motor-gain-clamped",
+                "A111",
                 f"{ctl.path}: gain {ctl.gain:g} is far too stiff for MuJoCo; kv clamped to {kv:.4g} "
                 f"(= {steps:g} x effective inertia {ieff:.4g} / timestep {h:g}; {why})",
                 ctl,
@@ -202,12 +197,10 @@ class ControllerMixin:
 
     def add_range(self, ctl: Controller, joint: str, sign: int) -> None:
         if ctl.start is None or ctl.end is None:
-            self.note(ERROR, "range-incomplete", f"{ctl.path}: range needs start and end", ctl)
+            self.note(ERROR, "A130", f"{ctl.path}: range needs start and end", ctl)
             return
         if ctl.start > ctl.end:
-            self.note(
-                ERROR,
-                "range-inverted",
+            self.invariant("A024",
                 f"{ctl.path}: start {ctl.start:g} > end {ctl.end:g}; range ignored",
                 ctl,
             )
@@ -216,7 +209,7 @@ class ControllerMixin:
         if joint in self.joint_limits:
             plo, phi = self.joint_limits[joint]
             lo, hi = max(lo, plo), min(hi, phi)
-            self.note(INFO, "multiple-ranges", f"{ctl.path}: several ranges on one DOF are intersected", ctl)
+            self.note(INFO, "A125", f"{ctl.path}: several ranges on one DOF are intersected", ctl)
         self.joint_limits[joint] = [lo, hi]
         j = self.spec.joint(joint)
         j.limited = self.mj.mjtLimited.mjLIMITED_TRUE
@@ -224,7 +217,7 @@ class ControllerMixin:
         if math.isfinite(ctl.max_effort) or (math.isfinite(ctl.min_effort) and ctl.min_effort != 0):
             self.note(
                 INFO,
-                "range-effort-ignored",
+                "A119",
                 f"{ctl.path}: range effort limits are not modelled (hard MuJoCo joint limit)",
                 ctl,
             )
@@ -234,7 +227,7 @@ class ControllerMixin:
         if ctl.stiffness <= 0:
             self.note(
                 ERROR,
-                "non-positive-stiffness",
+                "A130",
                 f"{ctl.path}: stiffness {ctl.stiffness:g} must be positive; spring ignored",
                 ctl,
             )
@@ -242,7 +235,7 @@ class ControllerMixin:
         if ctl.damping < 0:
             self.note(
                 ERROR,
-                "negative-damping",
+                "A130",
                 f"{ctl.path}: damping {ctl.damping:g} must not be negative; spring ignored",
                 ctl,
             )
@@ -252,7 +245,7 @@ class ControllerMixin:
         if k < ctl.stiffness:
             self.note(
                 INFO,
-                "spring-stiffness-clamped",
+                "A112",
                 f"{ctl.path}: stiffness {ctl.stiffness:g} would be unstable at timestep {h:g}; clamped to {k:.4g} "
                 f"(natural frequency x timestep <= {SPRING_OMEGA_H:g} for effective inertia {ieff:.4g})",
                 ctl,
@@ -262,7 +255,7 @@ class ControllerMixin:
         if n:
             self.note(
                 WARNING,
-                "multiple-springs",
+                "A125",
                 f"{ctl.path}: several springs on one DOF; stiffness and damping are summed, the last rest value wins",
                 ctl,
             )
@@ -292,7 +285,7 @@ class ControllerMixin:
             elif np.any(v != 0) or np.any(w != 0):
                 self.note(
                     INFO,
-                    "initial-velocity-ignored",
+                    "A120",
                     f"{path}: initial velocity of a body attached by a mate is ignored (it follows its joints)",
                     body,
                 )

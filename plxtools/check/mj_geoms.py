@@ -41,6 +41,9 @@ class GeomMixin:
     def note(self, severity: str, code: str, message: str, item: Any = None, path: str | None = None) -> None:
         raise NotImplementedError
 
+    def invariant(self, owner: str, message: str, item: Any = None) -> None:
+        raise NotImplementedError
+
     # -- geoms -----------------------------------------------------------------------------------
     def add_geoms(self, mb: Any, body: Body) -> None:
         for g in body.geoms:
@@ -60,16 +63,14 @@ class GeomMixin:
         elif k == "mesh" and min(g.mesh_scale) <= 0:
             bad = f"mesh scale {tuple(g.mesh_scale)} must be positive"
         if bad:
-            self.note(ERROR, "invalid-geometry-size", f"{g.path}: {bad}; geometry skipped", g)
+            self.invariant("A030", f"{g.path}: {bad}; geometry skipped", g)
             return False
         return True
 
     def add_geom(self, mb: Any, body: Body, g: Geom) -> None:
         mj = self.mj
         if g.kind not in ("box", "sphere", "cylinder", "capsule", "mesh", "plane"):
-            self.note(
-                WARNING,
-                "unsupported-geometry",
+            self.invariant("A040",
                 f"{g.path}: geometry kind {g.kind!r} is not supported; skipped",
                 g,
             )
@@ -96,7 +97,7 @@ class GeomMixin:
             if body.is_dynamic:
                 self.note(
                     WARNING,
-                    "plane-on-dynamic-body",
+                    "A127",
                     f"{g.path}: planes can only be static in MuJoCo; skipped",
                     g,
                 )
@@ -114,10 +115,7 @@ class GeomMixin:
         in_mass = g.include_in_mass and not g.visual_only
         kw["density"] = float(g.density) if in_mass else 0.0
         if in_mass and g.density <= 0:
-            self.note(
-                WARNING, "non-positive-density", f"{g.path}: material density {g.density} gives no mass", g
-            )
-            kw["density"] = 0.0
+            kw["density"] = 0.0  # gives no mass; the static checks own this finding (A038)
         if g.visual_only:
             kw["group"] = VISUAL_GROUP
         if g.rgba is not None:
@@ -140,14 +138,13 @@ class GeomMixin:
             if not os.path.isabs(f) and self.scene.base_dir:
                 f = os.path.join(self.scene.base_dir, f)
             if not os.path.isfile(f):
-                self.note(
-                    WARNING, "mesh-file-missing", f"{g.path}: mesh file not found: {f}; geometry skipped", g
+                self.invariant("A031", f"{g.path}: mesh file not found: {f}; geometry skipped", g
                 )
                 return None
             if not f.lower().endswith(MESH_EXTENSIONS):
                 self.note(
                     WARNING,
-                    "mesh-format-unsupported",
+                    "A118",
                     f"{g.path}: MuJoCo reads only {', '.join(MESH_EXTENSIONS)} meshes, not {f}; skipped",
                     g,
                 )
@@ -158,11 +155,11 @@ class GeomMixin:
             if g.mesh_indices:
                 kw["userface"] = [int(i) for i in g.mesh_indices]
         else:
-            self.note(ERROR, "mesh-empty", f"{g.path}: mesh has neither a file nor vertices; skipped", g)
+            self.invariant("A030", f"{g.path}: mesh has neither a file nor vertices; skipped", g)
             return None
         if not g.convex and g.enable_collisions and not g.visual_only:
             self.note(
-                INFO, "concave-mesh-hull", f"{g.path}: MuJoCo collides with the convex hull of this mesh", g
+                INFO, "A117", f"{g.path}: MuJoCo collides with the convex hull of this mesh", g
             )
         self.spec.add_mesh(**kw)
         return name
@@ -184,7 +181,7 @@ class GeomMixin:
                 if item is not None:
                     self.note(
                         ERROR,
-                        "unknown-body",
+                        "A131",
                         f"collision exclusion names an unknown body: {a if ba is None else b}",
                         item,
                         path=a if ba is None else b,
@@ -202,13 +199,11 @@ class GeomMixin:
         for cm in self.scene.contact_models:
             self.names.add("contact", cm.path, cm.source)
             if not cm.enabled:
-                self.note(INFO, "contact-model-disabled", f"{cm.path} is disabled", cm)
+                self.note(INFO, "A129", f"{cm.path} is disabled", cm)
                 continue
             key = frozenset((cm.material1, cm.material2))
             if key in seen:
-                self.note(
-                    ERROR,
-                    "duplicate-contact-model",
+                self.invariant("A035",
                     f"{cm.path}: material pair already has contact model {seen[key]}; ignored",
                     cm,
                 )
@@ -220,43 +215,26 @@ class GeomMixin:
                 else (self.scene.default_friction if self.scene.default_friction is not None else 1.0)
             )
             if mu < 0:
-                self.note(
-                    ERROR, "negative-friction", f"{cm.path}: friction coefficient {mu} < 0; using 0", cm
+                self.invariant("A036", f"{cm.path}: friction coefficient {mu} < 0; using 0", cm
                 )
                 mu = 0.0
             if cm.friction_model not in ("dry", "dry_cone"):
                 if cm.friction_model.startswith("dry"):
                     self.note(
                         INFO,
-                        "friction-model-approximated",
+                        "A113",
                         f"{cm.path}: {cm.friction_model} friction approximated by MuJoCo's Coulomb cone with mu={mu:g}",
                         cm,
                     )
-                else:
-                    self.note(
-                        WARNING,
-                        "friction-model-unsupported",
-                        f"{cm.path}: friction model {cm.friction_model!r} unsupported; Coulomb mu={mu:g} used",
-                        cm,
-                    )
-            for what, val in (
-                ("normal_restitution", cm.restitution),
-                ("tangential_restitution", cm.tangential_restitution),
-            ):
-                if val is not None and val != 0:
-                    self.note(
-                        WARNING,
-                        "restitution-unsupported",
-                        f"{cm.path}: {what} {val:g} is not supported by MuJoCo (contacts are inelastic)",
-                        cm,
-                    )
+                # other models: Coulomb mu is used; the static checks own that finding (A040)
+            # restitution is not simulated; the static checks own that finding (A040)
             g1 = self.geoms_by_material.get(cm.material1, [])
             g2 = self.geoms_by_material.get(cm.material2, [])
             if not g1 or not g2:
                 missing = cm.material1 if not g1 else cm.material2
                 self.note(
                     INFO,
-                    "contact-model-unused",
+                    "A128",
                     f"{cm.path}: no colliding geometry uses material {missing}",
                     cm,
                 )
@@ -295,9 +273,7 @@ class GeomMixin:
             cm = np.asarray(body.cm_pos, dtype=float) if body.cm_pos is not None else None
             if tensor is None and mass == 0.0 and cm is None:
                 if geom_mass == 0.0:
-                    self.note(
-                        ERROR,
-                        "zero-mass",
+                    self.invariant("A033",
                         f"{path}: dynamic body with mass 0 and no mass-contributing geometry; simulated with 1 kg",
                         body,
                     )
@@ -306,9 +282,7 @@ class GeomMixin:
             if mass == 0.0:
                 mass = geom_mass
                 if mass == 0.0:
-                    self.note(
-                        ERROR,
-                        "zero-mass",
+                    self.invariant("A033",
                         f"{path}: dynamic body with mass 0 and no mass-contributing geometry; simulated with 1 kg",
                         body,
                     )
@@ -334,7 +308,7 @@ class GeomMixin:
             else:
                 self.note(
                     WARNING,
-                    "mass-without-geometry",
+                    "A126",
                     f"{path}: mass {mass:g} kg given but no geometry to shape the inertia; using a 0.1 m solid sphere",
                     body,
                 )
@@ -368,9 +342,7 @@ class GeomMixin:
                 if a + b < c * (1 - 1e-9):
                     problem = f"breaks the triangle inequality (principal moments {[round(x, 6) for x in (a, b, c)]})"
         if problem:
-            self.note(
-                ERROR,
-                "invalid-inertia",
+            self.invariant("A034",
                 f"{body.path}: inertia tensor {problem}; computed from geometry instead",
                 body,
             )

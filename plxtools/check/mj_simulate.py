@@ -224,7 +224,7 @@ def simulate_compiled(
     for (ga, gb), (depth, count, pos) in deepest.items():
         g1, g2 = (names.path("geom", model.geom(g).name) for g in (ga, gb))
         res.penetrations.append({"geom1": g1, "geom2": g2, "depth": depth, "contacts": count, "pos": pos})
-        add(WARNING, "sim-initial-penetration", f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
+        add(WARNING, "A104", f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
 
     supports = _Supports(model, data)
     below_of = {p: supports.above(data.xipos[i]) for p, i in dyn}  # by centre of mass
@@ -305,7 +305,7 @@ def simulate_compiled(
             res.blowup = {"time": t, "step": done, "reason": reason, "fastest_body": worst}
             add(
                 ERROR,
-                "sim-blowup",
+                "A101",
                 f"numerical blow-up at t={t:.3f} s: {reason}"
                 + (f" (fastest body before: {worst})" if worst else ""),
                 worst,
@@ -339,7 +339,7 @@ def simulate_compiled(
                         )
                         add(
                             ERROR,
-                            "sim-fell-through",
+                            "A102",
                             f"{p} fell through static geometry {gp} at t={t:.3f} s",
                             p,
                         )
@@ -368,7 +368,7 @@ def simulate_compiled(
     if int(data.warning[mujoco.mjtWarning.mjWARN_BADCTRL].number) > badctrl0:
         add(
             ERROR,
-            "sim-bad-control",
+            "A107",
             "MuJoCo rejected a NaN/huge actuator control (> 1e10) and zeroed the controls",
             None,
         )
@@ -404,7 +404,7 @@ def simulate_compiled(
         if pulled:
             add(
                 WARNING,
-                "sim-mate-separated",
+                "A103",
                 f"{m.path} came apart: max separation {st[1]:.4g} m at t={st[2]:.3f} s, "
                 f"max axis misalignment {math.degrees(st[4]):.3g} deg at t={st[5]:.3f} s",
                 m.path,
@@ -413,7 +413,7 @@ def simulate_compiled(
         if v > limit_tol:
             jp = names.path("joint", model.joint(j).name)
             res.joint_limit_violations.append({"mate": jp, "violation": v, "time": t})
-            add(WARNING, "sim-joint-limit-exceeded", f"{jp} exceeded its range by {v:.4g} at t={t:.3f} s", jp)
+            add(WARNING, "A105", f"{jp} exceeded its range by {v:.4g} at t={t:.3f} s", jp)
     for a, _ in act_ids:
         s = act_sum[a.path]
         n = max(s[2], 1)
@@ -431,7 +431,7 @@ def simulate_compiled(
         if err is not None and s[2] and err > 0.1 * abs(a.target_speed) + 0.05:
             add(
                 WARNING,
-                "sim-motor-not-tracking",
+                "A106",
                 f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g} over the last 20 % of the run",
                 a.path,
             )
@@ -441,6 +441,6 @@ def simulate_compiled(
         "max_kinetic": ke_max,
     }
     if res.blowup is None and res.simulated_time < duration - h / 2:
-        add(INFO, "sim-incomplete", f"simulated {res.simulated_time:.3f} of {duration:g} s", None)
+        add(INFO, "A108", f"simulated {res.simulated_time:.3f} of {duration:g} s", None)
     res.ok = not any(n.severity == ERROR for n in notes)
     return res

@@ -61,7 +61,32 @@ def document(results: list[FileCheck], diags: list[Diagnostic], simulate: bool) 
     }
     if simulate:
         doc["simulation"] = {fc.path: simulation_json(fc) for fc in results}
+        for path, sim in doc["simulation"].items():
+            bad: list[str] = []
+            doc["simulation"][path] = _finite_json(sim, "", bad)
+            if bad and "findings" in sim:
+                doc["simulation"][path]["findings"]["non_finite_values"] = bad
+    found: list[str] = []
+    doc = _finite_json(doc, "", found)
     return doc
+
+
+def _finite_json(v: Any, where: str, found: list[str]) -> Any:
+    """The value with every NaN / infinity replaced by None (JSON has no such numbers); the JSON
+    paths of the replaced numbers are appended to ``found``."""
+    if isinstance(v, float) or (hasattr(v, "dtype") and getattr(v, "shape", None) == ()):
+        f = float(v)
+        if not math.isfinite(f):
+            found.append(where or "/")
+            return None
+        return f if isinstance(v, float) else v
+    if hasattr(v, "tolist") and hasattr(v, "shape"):
+        return _finite_json(v.tolist(), where, found)
+    if isinstance(v, dict):
+        return {k: _finite_json(x, f"{where}/{k}", found) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_finite_json(x, f"{where}/{i}", found) for i, x in enumerate(v)]
+    return v
 
 
 # ---------------------------------------------------------------------- text
