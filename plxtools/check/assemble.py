@@ -26,6 +26,7 @@ Decisions (spec D.5, D.6):
 
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -116,6 +117,19 @@ class Kinds:
         return m.qname.split(".")[0]
 
 
+class Placement(enum.Enum):
+    """How SNAP gave a node its pose (state, read by the checks and reports; text only for display)."""
+
+    PENDING = "pending"
+    ROOT = "root"
+    DECLARED = "declared"  # a declared transform; ``via`` = " at line N" or ""
+    SNAP = "snap"  # moved so that mate ``via`` holds
+    MOVED_WITH = "moved_with"  # identity, carried by node ``via`` that mate ``via2`` placed
+    REFERENCE_BODY = "reference_body"  # identity as the reference_body of system ``via``
+    FORCED = "forced"  # identity so that SNAP can go on from mate ``via``
+    UNPLACED = "unplaced"  # nothing places it: identity in its parent
+
+
 @dataclass(eq=False)
 class Node:
     obj: Obj
@@ -125,13 +139,38 @@ class Node:
     local: Pose | None = None
     explicit: bool = False
     explicit_where: tuple = (None, None)  # (stmt, unit) of the declaring statement
-    placed_by: str = ""
+    placement: Placement = Placement.PENDING
+    via: str = ""  # the mate, system or line the placement names
+    via2: str = ""
     world: Pose | None = None
     is_dynamic: bool = True
 
     @property
     def path(self) -> str:
         return self.obj.display
+
+    def place(self, how: Placement, via: str = "", via2: str = "") -> None:
+        self.placement, self.via, self.via2 = how, via, via2
+
+    @property
+    def placed_by(self) -> str:
+        """Display text of the placement (reports, JSON); never parsed."""
+        p = self.placement
+        if p is Placement.ROOT:
+            return "root (world origin)"
+        if p is Placement.DECLARED:
+            return "declared transform" + self.via
+        if p is Placement.SNAP:
+            return f"SNAP, by mate {self.via}"
+        if p is Placement.MOVED_WITH:
+            return f"identity, moved with {self.via} (placed by {self.via2})"
+        if p is Placement.REFERENCE_BODY:
+            return f"identity: reference_body of {self.via}, placed first"
+        if p is Placement.FORCED:
+            return f"identity: forced so that SNAP can go on from mate {self.via}"
+        if p is Placement.UNPLACED:
+            return "not placed: no declared transform and no mate fixes it (identity)"
+        return ""
 
 
 @dataclass(eq=False)
@@ -267,7 +306,7 @@ class Assembler:
     def run(self, root: Obj) -> Assembly:
         owned = list(walk_owned(root))
         root_kind = "body" if self.k.isa(root, RIGID_BODY) else "system"
-        root_node = Node(root, root_kind, None, 0, IDENTITY, True, (None, None), "root (world origin)")
+        root_node = Node(root, root_kind, None, 0, IDENTITY, True, (None, None), Placement.ROOT)
         asm = Assembly(root, root_node, owned=owned)
         asm.nodes.append(root_node)
         asm.by_obj[id(root)] = root_node
@@ -333,7 +372,7 @@ class Assembler:
                 node.local = from_transform(t)
             except (Unavailable, KeyError, AttributeError):
                 node.local = IDENTITY
-            node.placed_by = "declared transform" + _where_text(self.rep, node.explicit_where)
+            node.place(Placement.DECLARED, _where_text(self.rep, node.explicit_where))
             if not np.all(np.isfinite(node.local[1])):
                 node.local = IDENTITY
 
@@ -569,7 +608,7 @@ class Assembler:
         for n in asm.nodes:
             if n.local is None:
                 n.local = IDENTITY
-                n.placed_by = "not placed: no declared transform and no mate fixes it (identity)"
+                n.place(Placement.UNPLACED)
 
     def _place(self, m: MateRec, k: int, top: Node, ch0: list, ch1: list, free: list) -> None:
         c_known, c_unknown = m.conns[k], m.conns[1 - k]
@@ -577,7 +616,7 @@ class Assembler:
         movable = free[0]
         for n in free[1:]:
             n.local = IDENTITY
-            n.placed_by = f"identity, moved with {movable.path} (placed by {m.path})"
+            n.place(Placement.MOVED_WITH, movable.path, m.path)
         f_known = compose(self._rel(ch_known), c_known.frame)
         off = m.offset()
         f_target = compose(f_known, off) if k == 0 else compose(f_known, inverse(off))
@@ -586,7 +625,7 @@ class Assembler:
         below = self._rel(ch_unknown[i + 1:])
         y = compose(below, c_unknown.frame)
         movable.local = compose(compose(inverse(x_parent), f_target), inverse(y))
-        movable.placed_by = f"SNAP, by mate {m.path}"
+        movable.place(Placement.SNAP, m.path)
         m.placed = movable.path
 
     def _force(self, asm: Assembly, todo: list, done: set, info: dict) -> bool:
@@ -606,14 +645,14 @@ class Assembler:
                 for n in chain:
                     if n.local is None:
                         n.local = IDENTITY
-                        n.placed_by = f"identity: reference_body of {top.path}, placed first"
+                        n.place(Placement.REFERENCE_BODY, top.path)
                 return True
             for ch in (ch0, ch1):
                 free = [n for n in ch if n.local is None]
                 if free:
                     for n in free:
                         n.local = IDENTITY
-                        n.placed_by = f"identity: forced so that SNAP can go on from mate {m.path}"
+                        n.place(Placement.FORCED, m.path)
                     return True
         return False
 

@@ -13,7 +13,7 @@ from itertools import combinations
 
 import numpy as np
 
-from plxtools.check.assemble import DOF_OF_MATE, Assembler, Assembly, CtrlRec, Kinds, MateRec, Node
+from plxtools.check.assemble import DOF_OF_MATE, Assembler, Assembly, CtrlRec, Kinds, MateRec, Node, Placement
 from plxtools.check.convert import Collector, GeomRec
 from plxtools.check.frames import angle_between, compose
 from plxtools.check.instance import Obj
@@ -247,6 +247,8 @@ class StaticChecks:
         for m in self.asm.mates:
             if not m.usable or m.kind not in ("hinge", "cylindrical"):
                 continue
+            if not all(c.ok for c in m.conns):
+                continue  # a zero or degenerate axis is reported once, as A010 / A011
             axis_w = self.asm.conn_world(m.conns[0])[0][:, 2]
             for c in m.conns:
                 n = c.node
@@ -298,7 +300,6 @@ class StaticChecks:
     # ------------------------------------------------------------------ overlaps at the origin
 
     def overlaps(self) -> None:
-        placed_by_snap = {id(n) for n in self.asm.nodes if n.placed_by.startswith(("SNAP", "identity"))}
         mated: set[tuple[int, int]] = set()
         for m in self.asm.mates:
             if len(m.conns) == 2 and all(c is not None for c in m.conns):
@@ -322,7 +323,7 @@ class StaticChecks:
         nodes = {id(n): n for n in self.asm.nodes}
         reported: set[int] = set()
         for n in self.asm.bodies:
-            if n.explicit or id(n) in placed_by_snap or not n.placed_by.startswith("not placed"):
+            if n.placement is not Placement.UNPLACED:
                 continue
             if id(n) not in boxes:
                 continue

@@ -6,6 +6,7 @@ import math
 import os
 from typing import Any, TextIO
 
+from plxtools.check.assemble import Placement
 from plxtools.check.pipeline import FileCheck
 from plxtools.diagnostics import Diagnostic
 
@@ -47,6 +48,8 @@ def simulation_json(fc: FileCheck) -> dict[str, Any]:
             "initial_penetrations": d.get("penetrations", []),
             "mates_pulled_apart": [m for m, r in d.get("mates", {}).items() if r.get("pulled_apart")],
             "joint_limit_violations": d.get("joint_limit_violations", []),
+            "motion_diagnostics": [{"code": x.code, "line": x.span.start.line + 1, "message": x.message}
+                                   for x in motion_diagnostics(fc)],
         },
         "energy": d.get("energy", {}),
     }
@@ -108,7 +111,7 @@ def _vec(v, nd: int = 2) -> str:
 def assembly_line(fc: FileCheck) -> str:
     asm = fc.assembly
     bodies = asm.bodies
-    snap = sum(1 for n in bodies if n.placed_by.startswith("SNAP"))
+    snap = sum(1 for n in bodies if n.placement is Placement.SNAP)
     declared = sum(1 for n in bodies if n.explicit and n is not asm.root_node)
     other = len(bodies) - snap - declared
     parts = [f"{len(bodies)} bod{'ies' if len(bodies) != 1 else 'y'} ({declared} declared, {snap} placed by SNAP, "
@@ -159,7 +162,17 @@ def findings(fc: FileCheck) -> list[str]:
         out.append(f"{p['geom1']} and {p['geom2']} start {p['depth']:.4g} m deep in each other")
     for j in s.joint_limit_violations:
         out.append(f"{j['mate']} exceeded its range by {j['violation']:.3g} at t={j['time']:.2f} s")
+    for d in motion_diagnostics(fc):
+        out.append(f"{d.code} (line {d.span.start.line + 1}): {d.message}")
     return out
+
+
+# diagnostics that explain how the scene moves (or fails to): the summary lists them with the findings
+MOTION_CODES = frozenset({"A017", "A018", "A023", "A037", "A106"})
+
+
+def motion_diagnostics(fc: FileCheck) -> list[Diagnostic]:
+    return [d for d in fc.diagnostics if d.code in MOTION_CODES]
 
 
 def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO, *, simulate: bool) -> None:

@@ -61,6 +61,7 @@ class FileCheck:
                 "position": [round(float(x), 12) + 0.0 for x in n.world[1]],
                 "quaternion": [round(x, 12) + 0.0 for x in mat_to_quat_wxyz(n.world[0])],
                 "placed_by": n.placed_by,
+                "placement": n.placement.value,
                 "dynamic": n.is_dynamic,
             }
         return out
