@@ -201,19 +201,25 @@ _TARGETS = ["inertia.mass: 1", "size: {0.1, 0.1, 0.5}", "position: {0, 0, 0.25}"
 
 
 def mutate(rng: random.Random) -> str:
-    """The control scene with one to three values replaced by absurd ones."""
-    text = CONTROL
+    """The control scene with one to three values replaced by absurd ones (whole lines are replaced,
+    so a replaced value is never edited again as text)."""
+    lines = CONTROL.splitlines()
     for _ in range(rng.randint(1, 3)):
         target = rng.choice(_TARGETS)
-        key, _, val = target.partition(": ")
+        found = [i for i, x in enumerate(lines) if x.strip() == target or x.strip().endswith(target)]
+        if not found:
+            continue  # already replaced
+        i = found[0]
+        indent, text = lines[i][: len(lines[i]) - len(lines[i].lstrip())], lines[i].strip()
+        key, _, val = text.rpartition(": ")
         if val.startswith("{"):
             parts = val.strip("{}").split(", ")
             parts[rng.randrange(3)] = rng.choice(_ABSURD)
-            new = key + ": {" + ", ".join(parts) + "}"
+            val = "{" + ", ".join(parts) + "}"
         else:
-            new = key + ": " + rng.choice(_ABSURD)
-        text = text.replace(target, new, 1)
-    return text
+            val = rng.choice(_ABSURD)
+        lines[i] = f"{indent}{key}: {val}"
+    return "\n".join(lines) + "\n"
 
 
 def check_one(path: Path, export: Path) -> None:
