@@ -238,6 +238,7 @@ class Assembly:
     conns: dict[int, Conn] = field(default_factory=dict)
     owned: list[Obj] = field(default_factory=list)
     other_interactions: list[Obj] = field(default_factory=list)
+    broken: list[Obj] = field(default_factory=list)  # mates / controllers whose connectors failed to evaluate
 
     def node_of(self, obj: Obj) -> Node | None:
         return self.by_obj.get(id(obj))
@@ -453,6 +454,7 @@ class Assembler:
         try:
             lst = self.ev.get(obj, "connectors")
         except Unavailable:
+            asm.broken.append(obj)
             return None
         except KeyError:
             lst = None

@@ -323,8 +323,8 @@ class StaticChecks:
         nodes = {id(n): n for n in self.asm.nodes}
         reported: set[int] = set()
         for n in self.asm.bodies:
-            if n.placement is not Placement.UNPLACED:
-                continue
+            if n.placement is not Placement.UNPLACED or not n.is_dynamic:
+                continue  # static geometry at its system's origin is normal (a ground); report what moves
             if id(n) not in boxes:
                 continue
             lo, hi = boxes[id(n)]
@@ -337,11 +337,15 @@ class StaticChecks:
                 depth = np.minimum(hi, ohi) - np.maximum(lo, olo)
                 if np.all(depth > 0.01) and id(n) not in reported:
                     reported.add(id(n))
+                    broken = [m for m in self.asm.broken if self.k.isa(m, "Physics3D.Interactions.Mate")]
+                    if broken:  # the cause is more likely a mate that failed than a missing transform
+                        help = (f"{broken[0].display} could not be built (see its error); fix that first: it "
+                                f"may be the mate that places {n.path}")
+                    else:
+                        help = "give it kinematics.local_transform.position, or join it to the scene with a mate"
                     self.rep.add("A037", f"{n.path} has no declared transform and no mate places it, so it stays "
                                  f"at {_v(n.world[1])}, where it overlaps {other.path} "
-                                 f"(by {float(np.min(depth)):.3g} m)", obj=n.obj,
-                                 help="give it kinematics.local_transform.position, or join it to the scene "
-                                 "with a mate")
+                                 f"(by {float(np.min(depth)):.3g} m)", obj=n.obj, help=help)
 
 
 def scan_strings(tree: ast.File, rep: Reporter) -> None:

@@ -247,3 +247,16 @@ def test_fuzz_bad_scenes(tmp_path, seed):
     rng = random.Random(seed)
     f = _write(tmp_path, mutate(rng))
     check_one(f, tmp_path / "out.xml")
+
+
+def test_connector_typo_gives_no_ground_plane_advice(tmp_path):
+    """A typo in a hinge's connector leaves a wheel unplaced: the advice points at the hinge, and the
+    static ground (where it should be) gets no warning of its own."""
+    text = (REPO / "examples" / "boxtruck" / "boxtruck.openplx").read_text(encoding="utf-8")
+    assert "connectors: [chassis.front_left_hub," in text
+    f = _write(tmp_path, text.replace("connectors: [chassis.front_left_hub,", "connectors: [chassis.front_left_hb,"))
+    _, doc = _json(str(f))
+    a037 = [d for d in doc["diagnostics"] if d["code"] == "A037"]
+    assert len(a037) == 1 and "front_left_wheel" in a037[0]["message"], a037
+    assert "front_left_hinge could not be built" in a037[0]["help"]
+    assert any(d["code"] == "N004" for d in doc["diagnostics"])
