@@ -308,6 +308,12 @@ class Evaluator:
             v = self._eval_effect(ref.value, ref.ty)
             if isinstance(v, SView) and v.sub == ():
                 v = v.obj
+            if isinstance(v, TypeObj):  # a model named where an object is needed (issue 16)
+                name = getattr(v.sym, "name", v.sym)
+                raise EvalError("A005", f"{ref.path} must refer to an object ({ref.ty.display()}), but '{name}' is "
+                                f"a model, not an object", t.expr, t.unit,
+                                help=f"a model used as a value must be declared 'const {name} is ...', or "
+                                f"instantiated ('{ref.name} is {name}')")
             if v is not None and not isinstance(v, Obj):
                 raise EvalError("A005", f"{ref.path} must refer to an object ({ref.ty.display()}), "
                                 f"not to a {type(v).__name__} value", t.expr, t.unit)

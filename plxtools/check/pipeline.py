@@ -213,10 +213,10 @@ def _span_of_source(tree: ast.File, src) -> Span:
     return Span(Pos(a, line, col), Pos(b, end_line, end_col))
 
 
-# What lint's model checks own: a missing value (M007), an unbound reference (M008), a value cycle
-# (M006), a type or name error.  When lint has found one of these in the file, the evaluator's own
+# What lint's model checks own: a missing value (M007), an unbound reference (M008) or one given a
+# value of the wrong kind (T001), a value cycle (M006), a type or name error.  When lint has found one of these in the file, the evaluator's own
 # reports of the same kinds (A004, A005, A006, A003) are consequences of it and are not made.
-_LINT_OWNED = {"A004": ("M007",), "A005": ("M008",), "A006": ("M006",), "A003": ("T", "N")}
+_LINT_OWNED = {"A004": ("M007",), "A005": ("M008", "T001"), "A006": ("M006",), "A003": ("T", "N")}
 
 
 def _owned_by_lint(lint: list[Diagnostic]) -> frozenset[str]:

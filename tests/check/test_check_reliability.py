@@ -260,3 +260,32 @@ def test_connector_typo_gives_no_ground_plane_advice(tmp_path):
     assert len(a037) == 1 and "front_left_wheel" in a037[0]["message"], a037
     assert "front_left_hinge could not be built" in a037[0]["help"]
     assert any(d["code"] == "N004" for d in doc["diagnostics"])
+
+
+MISSING_CONST = """\
+Steel is Physics.Geometries.Material:
+    density: 7800
+Box is Physics3D.Bodies.RigidBody:
+    geometry is Physics3D.Geometries.Box:
+        size: {1, 1, 1}
+        material: Steel
+Scene is Physics3D.System:
+    box is Box
+"""
+
+
+def test_model_used_as_a_value_is_one_error(tmp_path):
+    """Lint's T001 owns it; check does not add "not to a TypeObj value"."""
+    r = run_plx("check", str(_write(tmp_path, MISSING_CONST)))
+    assert r.stdout.count(" T001 ") == 1 and "A005" not in r.stdout and "TypeObj" not in r.stdout, r.stdout
+
+
+def test_model_used_as_a_value_names_const_when_check_reports_it(check_text, monkeypatch):
+    """Where check is the one to report it, the message names the user's concept, not a class."""
+    from plxtools.check import pipeline
+
+    monkeypatch.setattr(pipeline, "_owned_by_lint", lambda lint: frozenset())
+    fc = check_text(MISSING_CONST)
+    [d] = [d for d in fc.diagnostics if d.code == "A005"]
+    assert "'Steel' is a model, not an object" in d.message and "TypeObj" not in d.message
+    assert "const Steel is" in d.help and "material is Steel" in d.help
