@@ -340,8 +340,9 @@ class BodyMotion(Monitor):
             run.speed[p] = sp
             tr.min_z = min(tr.min_z, float(x[2]))
 
-    def finish(self, run: SimRun, fell: dict[str, float] | None = None) -> None:
+    def finish(self, run: SimRun) -> None:
         data = run.data
+        fell = {f["body"]: f["time"] for f in run.res.fall_through}
         for p, i, d in run.bodies:
             p0, q0 = self.start[p]
             p1, q1 = data.xpos[i].copy(), data.xquat[i].copy()
@@ -350,7 +351,7 @@ class BodyMotion(Monitor):
             run.res.bodies[p] = BodyReport(
                 p, d, _vec(p0), _vec(q0), _vec(p1), _vec(q1), _vec(disp), float(np.linalg.norm(disp)),
                 float(np.linalg.norm(disp[:2])), tr.path_length if tr else 0.0, tr.yaw_total if tr else 0.0,
-                tr.max_speed if tr else 0.0, tr.min_z if tr else float(p0[2]), (fell or {}).get(p))
+                tr.max_speed if tr else 0.0, tr.min_z if tr else float(p0[2]), fell.get(p))
 
 
 class FallThrough(Monitor):
@@ -495,6 +496,12 @@ class Energy(Monitor):
                           "max_kinetic": self.max_kinetic}
 
 
+# Everything watched during a run, in the order their findings are reported.  A new check of the
+# motion is a Monitor subclass added here.
+MONITORS: tuple[type[Monitor], ...] = (BadControl, Trace, BodyMotion, FallThrough, MateSeparation, JointLimits,
+                                       MotorTracking, Energy)
+
+
 def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options: Any) -> SimulationResult:
     """Run ``compiled`` for ``duration`` seconds, sampling every ``sample_dt`` with the monitors;
     ``options`` are the fields of :class:`SimOptions`."""
@@ -519,10 +526,7 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options:
     run = SimRun(mujoco, compiled, model, data, res, opt, float(duration), bodies)
 
     initial_penetrations(run)
-    motion, fall = BodyMotion(run), FallThrough(run)
-    bad_control = BadControl(run)
-    monitors: list[Monitor] = ([Trace(run)] if opt.record else []) + [
-        motion, fall, MateSeparation(run), JointLimits(run), MotorTracking(run), Energy(run)]
+    monitors: list[Monitor] = [m(run) for m in MONITORS if m is not Trace or opt.record]
     blowup = BlowUp(run)
 
     n_steps = max(1, int(round(duration / h)))
@@ -540,13 +544,10 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options:
         for m in monitors:
             m.sample(run, t)
     res.wall_time_s = time.perf_counter() - t_wall
-    bad_control.finish(run)
     res.steps = done
     res.simulated_time = done * h
-    motion.finish(run, fall.fell)
     for m in monitors:
-        if m is not motion:
-            m.finish(run)
+        m.finish(run)
     if res.blowup is None and res.simulated_time < duration - h / 2:
         run.add(INFO, "A108", f"simulated {res.simulated_time:.3f} of {duration:g} s", None)
     res.ok = not any(n.severity == ERROR for n in res.notes)
