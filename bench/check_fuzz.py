@@ -31,8 +31,7 @@ REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 sys.path.insert(0, str(REPO / "tests" / "check"))
 
-from tests.check.test_check_reliability import check_one, mutate  # noqa: E402
-from tests.conftest import run_plx  # noqa: E402
+from tests.check.test_check_reliability import check_one, mutate, run_plx  # noqa: E402
 
 
 def main() -> int:

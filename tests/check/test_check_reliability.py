@@ -6,13 +6,30 @@ from __future__ import annotations
 
 import json
 import random
+import tempfile
 from pathlib import Path
 
 import pytest
 
 from check_helpers import BROKEN, REPO
 
-from tests.conftest import run_plx
+from tests.conftest import run_plx as _run_plx
+
+
+def run_plx(*args: str):
+    """`plx` run outside the repository, so that MuJoCo's MUJOCO_LOG.TXT (written on a blow-up)
+    lands in a temporary folder, not in the working tree (all paths given are absolute)."""
+    return _run_plx(*args, cwd=_scratch())
+
+
+def _scratch() -> Path:
+    global _SCRATCH
+    if _SCRATCH is None:
+        _SCRATCH = Path(tempfile.mkdtemp(prefix="plx-check-tests-"))
+    return _SCRATCH
+
+
+_SCRATCH: Path | None = None
 
 # a hinged link driven by a motor (the fuzzing campaign's control scene); each case replaces one value
 CONTROL = """\
@@ -166,7 +183,7 @@ def test_wheel_on_a_cylinder_with_a_zero_axis_has_no_off_axis_warning(tmp_path):
 
 
 def test_motion_warnings_are_in_the_simulation_findings():
-    f = str(BROKEN / "mirrored_motors.openplx")
+    f = str((BROKEN / "mirrored_motors.openplx").resolve())
     r = run_plx("check", "--simulate", "--duration", "0.5", f)
     assert "findings: none" not in r.stdout and "A023 (line" in r.stdout
     _, doc = _json("--simulate", "--duration", "0.5", f)
