@@ -27,7 +27,7 @@ def _artefact_path(template: str, index: int, count: int) -> Path:
 
 
 def run_check(args) -> int:
-    from plxtools.check.pipeline import analyse, blocking_reason, run_backend
+    from plxtools.check.pipeline import Skip, analyse, blocking_reason, run_backend
     from plxtools.config import ConfigError, config_for
     from plxtools.lint.runner import UsageError, discover
 
@@ -63,14 +63,14 @@ def run_check(args) -> int:
                 if reason is None:
                     run_backend(fc, simulate=bool(args.simulate), duration=args.duration)
                 else:
-                    fc.skipped = reason
+                    fc.skip, fc.skip_detail = Skip.BLOCKED, reason
         except Exception as exc:  # a bug in plxtools: say so, go on with the other files
             print(f"plx check: internal error while checking {f}: {type(exc).__name__}: {exc}", file=sys.stderr)
             if os.environ.get("PLX_DEBUG"):
                 traceback.print_exc()
             from plxtools.check.pipeline import FileCheck
 
-            fc = FileCheck(str(f), skipped="internal error", internal_error=str(exc))
+            fc = FileCheck(str(f), skip=Skip.INTERNAL, internal_error=str(exc))
             status = 2
         results.append(fc)
     status = max(status, _artefacts(args, results))

@@ -7,7 +7,7 @@ import os
 from typing import Any, TextIO
 
 from plxtools.check.assemble import Placement
-from plxtools.check.pipeline import FileCheck
+from plxtools.check.pipeline import FileCheck, Skip
 from plxtools.diagnostics import Diagnostic
 
 
@@ -187,7 +187,7 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
         console = Console(file=stream, highlight=False, soft_wrap=True)
     for fc in results:
         if fc.assembly is None:
-            if fc.skipped and fc.skipped != "the file defines no model":
+            if fc.skip is not None and fc.skip is not Skip.NO_MODEL:
                 _line(stream, console, f"{fc.path}: not assembled: {fc.skipped}", "yellow")
             continue
         if results and (diags or len(results) > 1 or simulate):

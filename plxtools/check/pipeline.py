@@ -6,6 +6,7 @@ mujoco is imported only when a MuJoCo step is requested (inside :func:`run_backe
 
 from __future__ import annotations
 
+import enum
 import os
 import time
 from dataclasses import dataclass, field
@@ -24,6 +25,18 @@ from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast, parse_bytes
 
 
+class Skip(enum.Enum):
+    """Why a file was not (fully) checked or not simulated; the value is the text reports show."""
+
+    UNREADABLE = "the file cannot be read"
+    NOT_TEXT = "not an OpenPLX text file"
+    SYNTAX = "the file has syntax errors"
+    NO_MODEL = "the file defines no model"
+    NO_ROOT = "no root model"
+    BLOCKED = "errors make the scene unreliable"
+    INTERNAL = "internal error"
+
+
 # errors whose scene is exactly what the file says; they do not stop simulation, export or render
 SCENE_AS_WRITTEN = frozenset({"A016"})
 
@@ -38,13 +51,21 @@ class FileCheck:
     scene: Any = None  # plxtools.check.scene.Scene
     compiled: Any = None  # CompiledScene
     simulation: Any = None  # SimulationResult
-    skipped: str | None = None  # why the simulation (or the whole check) did not run
+    skip: Skip | None = None  # why the simulation (or the whole check) did not run
+    skip_detail: str = ""  # the particulars (which errors block the backend)
     internal_error: str | None = None
     timings: dict[str, float] = field(default_factory=dict)
     objects: int = 0
     rep: Reporter | None = field(default=None, repr=False)  # the check diagnostics, before merging
     raw: list[Diagnostic] = field(default_factory=list, repr=False)  # lint's, before filtering
     cfg: Any = field(default=None, repr=False)
+
+    @property
+    def skipped(self) -> str | None:
+        """Display text of ``skip`` (reports, JSON); state is ``skip``."""
+        if self.skip is None:
+            return None
+        return self.skip_detail or self.skip.value
 
     @property
     def has_errors(self) -> bool:
@@ -100,13 +121,13 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     except OSError as exc:
         fc.diagnostics = [Diagnostic("E001", f"cannot read file: {exc.strerror}", EMPTY_SPAN, Severity.ERROR,
                                      file=str(path))]
-        fc.skipped = "the file cannot be read"
+        fc.skip = Skip.UNREADABLE
         return fc
     tree = parse_bytes(data, str(path))
     fc.tree = tree
     raw: list[Diagnostic] = list(tree.diagnostics)
     if any(d.code == "S001" for d in tree.diagnostics):
-        fc.skipped = "not an OpenPLX text file"
+        fc.skip = Skip.NOT_TEXT
         fc.diagnostics = _finish(tree, raw, cfg)
         return fc
     fa = workspace.analyse(tree)
@@ -114,7 +135,7 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     fc.timings["lint"] = time.perf_counter() - t0
     rep = Reporter(fa.unit, str(path), skip_codes=_owned_by_lint(raw))
     if tree.has_errors:
-        fc.skipped = "the file has syntax errors"
+        fc.skip = Skip.SYNTAX
         fc.diagnostics = _finish(tree, raw, cfg)
         return fc
     t1 = time.perf_counter()
@@ -122,9 +143,9 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     root = _pick_root(program, fa.unit, model, rep)
     if root is None:
         if not rep.entries:
-            fc.skipped = "the file defines no model"
+            fc.skip = Skip.NO_MODEL
         else:
-            fc.skipped = "no root model"
+            fc.skip = Skip.NO_ROOT
         scan_strings(tree, rep)
         fc.diagnostics = _finish(tree, raw + rep.diagnostics(), cfg)
         return fc
