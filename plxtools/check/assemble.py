@@ -276,7 +276,7 @@ class Assembler:
         if v is None or isinstance(v, (Obj, str, bool)):
             return v
         bad = _non_finite(v)
-        if bad is not None and not (bad != "NaN" and path.rsplit(".", 1)[-1] in MAY_BE_INFINITE):
+        if bad is not None and not (bad == "infinite" and path.rsplit(".", 1)[-1] in MAY_BE_INFINITE):
             key = (id(obj), path)
             if key not in self._non_finite_seen:
                 self._non_finite_seen.add(key)
@@ -710,14 +710,21 @@ class Assembler:
                          "explicit local_transform of one side, or fix the connector positions and axes")
 
 
+_FLOAT_MAX = int(np.finfo(float).max)
+
+
 def _non_finite(v: Any, depth: int = 0) -> str | None:
     """"NaN", "infinite" or None: the first non-finite number inside a value (numbers, arrays, lists,
     and value types such as a Transform that hold them)."""
     if depth > 8 or isinstance(v, (bool, str, Obj)) or v is None:
         return None
+    if isinstance(v, int):
+        return None if abs(v) <= _FLOAT_MAX else "too large for a number (beyond 1.8e308)"
     if isinstance(v, float):
         return None if math.isfinite(v) else ("NaN" if math.isnan(v) else "infinite")
     if isinstance(v, np.ndarray):
+        if v.dtype.kind == "O":
+            return _non_finite(v.tolist(), depth + 1)
         if v.dtype.kind != "f" or bool(np.all(np.isfinite(v))):
             return None
         return "NaN" if bool(np.any(np.isnan(v))) else "infinite"

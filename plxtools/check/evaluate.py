@@ -258,6 +258,10 @@ class Evaluator:
             self._failed.add(key)
             self._emit(EvalError("A003", f"{label}: {err}", node, unit), anchor)
             raise Unavailable(label) from None
+        except OverflowError:  # an integer beyond float range used as a Real (issue 14)
+            self._failed.add(key)
+            self._emit(EvalError("A041", f"{label} is too large for a number (beyond 1.8e308)", node, unit), anchor)
+            raise Unavailable(label) from None
         except RecursionError:
             self._failed.add(key)
             self._emit(EvalError("A006", f"{label}: the values it depends on nest too deeply to evaluate",

@@ -232,6 +232,11 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
     if diags or results:
         stream.write("\n") if console is None else console.print()
     summary = _summary_line(diags, len(results))
+    broken = sum(1 for fc in results if fc.internal_error is not None)
+    if broken:  # never "All checks passed" when a file could not be checked
+        summary = (f"{summary.rstrip('.')}; {broken} file{'s' if broken != 1 else ''} could not be checked "
+                   f"(internal error).") if diags else f"{broken} of {len(results)} file(s) could not be checked " \
+            f"(internal error)."
     if console is not None:
         console.print(summary, style="bold" if diags else "green")
     else:

@@ -212,7 +212,7 @@ def test_a_missing_value_is_reported_once(tmp_path):
 # ---------------------------------------------------------------------------------------- fuzzing
 
 _ABSURD = ["(1e308 * 10)", "(1e308 * 10 - 1e308 * 10)", "-(1e308 * 10)", "0", "-1", "1e-300", "1e300", "1e30",
-           "1e-12"]
+           "1e-12", "1" + "0" * 400]
 _TARGETS = ["inertia.mass: 1", "size: {0.1, 0.1, 0.5}", "position: {0, 0, 0.25}", "velocity: {0, 0, 0}",
             "gain: 1e8", "target_speed: 1", "position: {0, 0, 3}"]
 
@@ -306,3 +306,24 @@ def test_model_used_as_a_value_names_const_when_check_reports_it(check_text, mon
     [d] = [d for d in fc.diagnostics if d.code == "A005"]
     assert "'Steel' is a model, not an object" in d.message and "TypeObj" not in d.message
     assert "const Steel is" in d.help and "material is Steel" in d.help
+
+
+def test_integer_beyond_float_range_is_a_located_error(tmp_path):
+    big = "1" + "0" * 400
+    f = _write(tmp_path, CONTROL.replace("inertia.mass: 1", f"inertia.mass: {big}").replace("gain: 1e8", f"gain: {big}"))
+    r, doc = _json("--simulate", str(f))
+    assert r.returncode == 1
+    assert [(d["code"], d["range"]["start"]["line"]) for d in doc["diagnostics"] if d["severity"] == "error"] == [
+        ("A041", 4), ("A041", 21)]
+
+
+def test_internal_error_never_ends_in_all_checks_passed():
+    import io
+
+    from plxtools.check.output import render_text
+    from plxtools.check.pipeline import FileCheck, Skip
+
+    out = io.StringIO()
+    render_text([FileCheck("a.openplx", skip=Skip.INTERNAL, internal_error="boom")], [], out, simulate=True)
+    text = out.getvalue()
+    assert "All checks passed" not in text and "could not be checked (internal error)" in text

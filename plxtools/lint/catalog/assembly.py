@@ -193,7 +193,8 @@ rule("A040", "unsupported-feature", W,
      "from AGX's.", stage=C)
 rule("A041", "non-finite-value", E,
      "A number that assembly reads is NaN or infinite: a mass, size, connector position or axis, initial "
-     "velocity, motor gain... (`1e308 * 10` overflows to infinity, `inf - inf` is NaN).",
+     "velocity, motor gain... (`1e308 * 10` overflows to infinity, `inf - inf` is NaN), or an integer "
+     "too large for a number (beyond 1.8e308).",
      "Such a value cannot be simulated and would silently turn the scene into NaN. It is reported at the "
      "line that gives it and the value is treated as unknown. Infinity is allowed only where it means "
      "\"no limit\": `min_effort`, `max_effort` and a range's `start` / `end`.",
