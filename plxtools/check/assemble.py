@@ -26,6 +26,7 @@ Decisions (spec D.5, D.6):
 
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -75,6 +76,8 @@ DOF_OF_MATE = {
     "lock": set(),
     "distance": set(),
 }
+# attributes where an infinity means "no limit" (Math.INF, Math.NEG_INF in the bundles); NaN is never allowed
+MAY_BE_INFINITE = frozenset({"min_effort", "max_effort", "start", "end"})
 POS_TOL = 1e-4  # m
 ANGLE_TOL = 1e-3  # rad
 
@@ -114,6 +117,19 @@ class Kinds:
         return m.qname.split(".")[0]
 
 
+class Placement(enum.Enum):
+    """How SNAP gave a node its pose (state, read by the checks and reports; text only for display)."""
+
+    PENDING = "pending"
+    ROOT = "root"
+    DECLARED = "declared"  # a declared transform; ``via`` = " at line N" or ""
+    SNAP = "snap"  # moved so that mate ``via`` holds
+    MOVED_WITH = "moved_with"  # identity, carried by node ``via`` that mate ``via2`` placed
+    REFERENCE_BODY = "reference_body"  # identity as the reference_body of system ``via``
+    FORCED = "forced"  # identity so that SNAP can go on from mate ``via``
+    UNPLACED = "unplaced"  # nothing places it: identity in its parent
+
+
 @dataclass(eq=False)
 class Node:
     obj: Obj
@@ -123,13 +139,38 @@ class Node:
     local: Pose | None = None
     explicit: bool = False
     explicit_where: tuple = (None, None)  # (stmt, unit) of the declaring statement
-    placed_by: str = ""
+    placement: Placement = Placement.PENDING
+    via: str = ""  # the mate, system or line the placement names
+    via2: str = ""
     world: Pose | None = None
     is_dynamic: bool = True
 
     @property
     def path(self) -> str:
         return self.obj.display
+
+    def place(self, how: Placement, via: str = "", via2: str = "") -> None:
+        self.placement, self.via, self.via2 = how, via, via2
+
+    @property
+    def placed_by(self) -> str:
+        """Display text of the placement (reports, JSON); never parsed."""
+        p = self.placement
+        if p is Placement.ROOT:
+            return "root (world origin)"
+        if p is Placement.DECLARED:
+            return "declared transform" + self.via
+        if p is Placement.SNAP:
+            return f"SNAP, by mate {self.via}"
+        if p is Placement.MOVED_WITH:
+            return f"identity, moved with {self.via} (placed by {self.via2})"
+        if p is Placement.REFERENCE_BODY:
+            return f"identity: reference_body of {self.via}, placed first"
+        if p is Placement.FORCED:
+            return f"identity: forced so that SNAP can go on from mate {self.via}"
+        if p is Placement.UNPLACED:
+            return "not placed: no declared transform and no mate fixes it (identity)"
+        return ""
 
 
 @dataclass(eq=False)
@@ -197,6 +238,7 @@ class Assembly:
     conns: dict[int, Conn] = field(default_factory=dict)
     owned: list[Obj] = field(default_factory=list)
     other_interactions: list[Obj] = field(default_factory=list)
+    broken: list[Obj] = field(default_factory=list)  # mates / controllers whose connectors failed to evaluate
 
     def node_of(self, obj: Obj) -> Node | None:
         return self.by_obj.get(id(obj))
@@ -222,12 +264,32 @@ class Assembler:
         self.ev = ev
         self.rep = rep
         self.k = kinds
+        self._non_finite_seen: set[tuple[int, str]] = set()
 
     # ------------------------------------------------------------------ helpers
 
+    def value(self, obj: Obj, path: str) -> Any:
+        """``ev.get`` for everything assembly reads: a non-finite number (``1e308 * 10``, ``inf - inf``)
+        is an error at its source line (A041) and the value is then unavailable, so no NaN or inf
+        reaches SNAP, the scene or MuJoCo.  Infinity stays allowed where it means "no limit"."""
+        v = self.ev.get(obj, path)
+        if v is None or isinstance(v, (Obj, str, bool)):
+            return v
+        bad = _non_finite(v)
+        if bad is not None and not (bad == "infinite" and path.rsplit(".", 1)[-1] in MAY_BE_INFINITE):
+            key = (id(obj), path)
+            if key not in self._non_finite_seen:
+                self._non_finite_seen.add(key)
+                node, unit = self.ev.where(obj, path)
+                self.rep.add("A041", f"{obj.display}.{path} is {bad}; a value must be a finite number",
+                             node=node, unit=unit, obj=obj,
+                             help="check the expression for an overflow (a result beyond 1.8e308) or inf - inf")
+            raise Unavailable(f"{obj.display}.{path} is {bad}")
+        return v
+
     def get(self, obj: Obj, path: str, default: Any = None) -> Any:
         try:
-            return self.ev.get(obj, path, default)
+            return self.value(obj, path)
         except Unavailable:
             return default
         except KeyError:
@@ -245,7 +307,7 @@ class Assembler:
     def run(self, root: Obj) -> Assembly:
         owned = list(walk_owned(root))
         root_kind = "body" if self.k.isa(root, RIGID_BODY) else "system"
-        root_node = Node(root, root_kind, None, 0, IDENTITY, True, (None, None), "root (world origin)")
+        root_node = Node(root, root_kind, None, 0, IDENTITY, True, (None, None), Placement.ROOT)
         asm = Assembly(root, root_node, owned=owned)
         asm.nodes.append(root_node)
         asm.by_obj[id(root)] = root_node
@@ -307,11 +369,11 @@ class Assembler:
             node.explicit = True
             node.explicit_where = self.ev.where(obj, path)
             try:
-                t = self.ev.get(obj, path)
+                t = self.value(obj, path)
                 node.local = from_transform(t)
             except (Unavailable, KeyError, AttributeError):
                 node.local = IDENTITY
-            node.placed_by = "declared transform" + _where_text(self.rep, node.explicit_where)
+            node.place(Placement.DECLARED, _where_text(self.rep, node.explicit_where))
             if not np.all(np.isfinite(node.local[1])):
                 node.local = IDENTITY
 
@@ -377,7 +439,7 @@ class Assembler:
 
     def _vec(self, obj: Obj, path: str, default):
         try:
-            v = self.ev.get(obj, path)
+            v = self.value(obj, path)
         except (Unavailable, KeyError):
             return default
         try:
@@ -392,6 +454,7 @@ class Assembler:
         try:
             lst = self.ev.get(obj, "connectors")
         except Unavailable:
+            asm.broken.append(obj)
             return None
         except KeyError:
             lst = None
@@ -547,7 +610,7 @@ class Assembler:
         for n in asm.nodes:
             if n.local is None:
                 n.local = IDENTITY
-                n.placed_by = "not placed: no declared transform and no mate fixes it (identity)"
+                n.place(Placement.UNPLACED)
 
     def _place(self, m: MateRec, k: int, top: Node, ch0: list, ch1: list, free: list) -> None:
         c_known, c_unknown = m.conns[k], m.conns[1 - k]
@@ -555,7 +618,7 @@ class Assembler:
         movable = free[0]
         for n in free[1:]:
             n.local = IDENTITY
-            n.placed_by = f"identity, moved with {movable.path} (placed by {m.path})"
+            n.place(Placement.MOVED_WITH, movable.path, m.path)
         f_known = compose(self._rel(ch_known), c_known.frame)
         off = m.offset()
         f_target = compose(f_known, off) if k == 0 else compose(f_known, inverse(off))
@@ -564,7 +627,7 @@ class Assembler:
         below = self._rel(ch_unknown[i + 1:])
         y = compose(below, c_unknown.frame)
         movable.local = compose(compose(inverse(x_parent), f_target), inverse(y))
-        movable.placed_by = f"SNAP, by mate {m.path}"
+        movable.place(Placement.SNAP, m.path)
         m.placed = movable.path
 
     def _force(self, asm: Assembly, todo: list, done: set, info: dict) -> bool:
@@ -584,14 +647,14 @@ class Assembler:
                 for n in chain:
                     if n.local is None:
                         n.local = IDENTITY
-                        n.placed_by = f"identity: reference_body of {top.path}, placed first"
+                        n.place(Placement.REFERENCE_BODY, top.path)
                 return True
             for ch in (ch0, ch1):
                 free = [n for n in ch if n.local is None]
                 if free:
                     for n in free:
                         n.local = IDENTITY
-                        n.placed_by = f"identity: forced so that SNAP can go on from mate {m.path}"
+                        n.place(Placement.FORCED, m.path)
                     return True
         return False
 
@@ -645,6 +708,40 @@ class Assembler:
                          f"{why}", obj=m.obj,
                          help="SNAP moves only bodies and systems without a declared transform; remove the "
                          "explicit local_transform of one side, or fix the connector positions and axes")
+
+
+_FLOAT_MAX = int(np.finfo(float).max)
+
+
+def _non_finite(v: Any, depth: int = 0) -> str | None:
+    """"NaN", "infinite" or None: the first non-finite number inside a value (numbers, arrays, lists,
+    and value types such as a Transform that hold them)."""
+    if depth > 8 or isinstance(v, (bool, str, Obj)) or v is None:
+        return None
+    if isinstance(v, int):
+        return None if abs(v) <= _FLOAT_MAX else "too large for a number (beyond 1.8e308)"
+    if isinstance(v, float):
+        return None if math.isfinite(v) else ("NaN" if math.isnan(v) else "infinite")
+    if isinstance(v, np.ndarray):
+        if v.dtype.kind == "O":
+            return _non_finite(v.tolist(), depth + 1)
+        if v.dtype.kind != "f" or bool(np.all(np.isfinite(v))):
+            return None
+        return "NaN" if bool(np.any(np.isnan(v))) else "infinite"
+    if isinstance(v, np.floating):
+        return _non_finite(float(v), depth + 1)
+    if isinstance(v, (list, tuple)):
+        for x in v:
+            bad = _non_finite(x, depth + 1)
+            if bad is not None:
+                return bad
+        return None
+    for attr in ("position", "rotation"):
+        if hasattr(v, attr):
+            bad = _non_finite(getattr(v, attr), depth + 1)
+            if bad is not None:
+                return bad
+    return None
 
 
 def _v(a) -> str:

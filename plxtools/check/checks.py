@@ -13,7 +13,7 @@ from itertools import combinations
 
 import numpy as np
 
-from plxtools.check.assemble import DOF_OF_MATE, Assembler, Assembly, CtrlRec, Kinds, MateRec, Node
+from plxtools.check.assemble import DOF_OF_MATE, Assembler, Assembly, CtrlRec, Kinds, MateRec, Node, Placement
 from plxtools.check.convert import Collector, GeomRec
 from plxtools.check.frames import angle_between, compose
 from plxtools.check.instance import Obj
@@ -247,6 +247,8 @@ class StaticChecks:
         for m in self.asm.mates:
             if not m.usable or m.kind not in ("hinge", "cylindrical"):
                 continue
+            if not all(c.ok for c in m.conns):
+                continue  # a zero or degenerate axis is reported once, as A010 / A011
             axis_w = self.asm.conn_world(m.conns[0])[0][:, 2]
             for c in m.conns:
                 n = c.node
@@ -298,7 +300,6 @@ class StaticChecks:
     # ------------------------------------------------------------------ overlaps at the origin
 
     def overlaps(self) -> None:
-        placed_by_snap = {id(n) for n in self.asm.nodes if n.placed_by.startswith(("SNAP", "identity"))}
         mated: set[tuple[int, int]] = set()
         for m in self.asm.mates:
             if len(m.conns) == 2 and all(c is not None for c in m.conns):
@@ -322,8 +323,8 @@ class StaticChecks:
         nodes = {id(n): n for n in self.asm.nodes}
         reported: set[int] = set()
         for n in self.asm.bodies:
-            if n.explicit or id(n) in placed_by_snap or not n.placed_by.startswith("not placed"):
-                continue
+            if n.placement is not Placement.UNPLACED or not n.is_dynamic:
+                continue  # static geometry at its system's origin is normal (a ground); report what moves
             if id(n) not in boxes:
                 continue
             lo, hi = boxes[id(n)]
@@ -336,11 +337,15 @@ class StaticChecks:
                 depth = np.minimum(hi, ohi) - np.maximum(lo, olo)
                 if np.all(depth > 0.01) and id(n) not in reported:
                     reported.add(id(n))
+                    broken = [m for m in self.asm.broken if self.k.isa(m, "Physics3D.Interactions.Mate")]
+                    if broken:  # the cause is more likely a mate that failed than a missing transform
+                        help = (f"{broken[0].display} could not be built (see its error); fix that first: it "
+                                f"may be the mate that places {n.path}")
+                    else:
+                        help = "give it kinematics.local_transform.position, or join it to the scene with a mate"
                     self.rep.add("A037", f"{n.path} has no declared transform and no mate places it, so it stays "
                                  f"at {_v(n.world[1])}, where it overlaps {other.path} "
-                                 f"(by {float(np.min(depth)):.3g} m)", obj=n.obj,
-                                 help="give it kinematics.local_transform.position, or join it to the scene "
-                                 "with a mate")
+                                 f"(by {float(np.min(depth)):.3g} m)", obj=n.obj, help=help)
 
 
 def scan_strings(tree: ast.File, rep: Reporter) -> None:

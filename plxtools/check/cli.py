@@ -7,12 +7,16 @@ requested artefact (--render / --export-mjcf) that could not be written, or an i
 from __future__ import annotations
 
 import json
+import math
 import os
 import sys
 import traceback
 from pathlib import Path
 
 from plxtools.diagnostics import Severity
+
+
+MAX_DURATION = 3600.0  # s of simulated time; a longer run is a usage error, not an hour-long job
 
 
 def _artefact_path(template: str, index: int, count: int) -> Path:
@@ -23,12 +27,13 @@ def _artefact_path(template: str, index: int, count: int) -> Path:
 
 
 def run_check(args) -> int:
-    from plxtools.check.pipeline import analyse, blocking_reason, run_backend
+    from plxtools.check.pipeline import Skip, analyse, blocking_reason, run_backend
     from plxtools.config import ConfigError, config_for
     from plxtools.lint.runner import UsageError, discover
 
-    if args.duration is not None and not (args.duration > 0):
-        print("plx check: --duration must be a positive number of seconds", file=sys.stderr)
+    if args.duration is not None and not (math.isfinite(args.duration) and 0 < args.duration <= MAX_DURATION):
+        print(f"plx check: --duration must be a number of seconds in (0, {MAX_DURATION:g}]; got {args.duration:g}",
+              file=sys.stderr)
         return 2
     want_backend = bool(args.simulate or args.render or args.export_mjcf)
     try:
@@ -55,18 +60,17 @@ def run_check(args) -> int:
             fc = analyse(f, workspace, cfg, model=args.model)
             if want_backend and fc.scene is not None:
                 reason = blocking_reason(fc)
-                sim = bool(args.simulate) and reason is None
-                if sim or args.render or args.export_mjcf:
-                    run_backend(fc, simulate=sim, duration=args.duration)
-                if args.simulate and reason is not None:
-                    fc.skipped = reason
+                if reason is None:
+                    run_backend(fc, simulate=bool(args.simulate), duration=args.duration)
+                else:
+                    fc.skip, fc.skip_detail = Skip.BLOCKED, reason
         except Exception as exc:  # a bug in plxtools: say so, go on with the other files
             print(f"plx check: internal error while checking {f}: {type(exc).__name__}: {exc}", file=sys.stderr)
             if os.environ.get("PLX_DEBUG"):
                 traceback.print_exc()
             from plxtools.check.pipeline import FileCheck
 
-            fc = FileCheck(str(f), skipped="internal error", internal_error=str(exc))
+            fc = FileCheck(str(f), skip=Skip.INTERNAL, internal_error=str(exc))
             status = 2
         results.append(fc)
     status = max(status, _artefacts(args, results))
@@ -119,15 +123,21 @@ def _artefacts(args, results) -> int:
         for i, fc in enumerate(targets):
             out = _artefact_path(template, i, len(targets))
             if fc.compiled is None or not fc.compiled.ok:
-                print(f"plx check: {fc.path}: cannot write {out}: the scene did not compile to MuJoCo",
-                      file=sys.stderr)
+                why = fc.skipped if fc.compiled is None and fc.skipped else "the scene did not compile to MuJoCo"
+                print(f"plx check: {fc.path}: cannot write {out}: {why}", file=sys.stderr)
                 status = 2
                 continue
             try:
                 if kind == "export":
-                    from plxtools.check.mujoco_backend import export_mjcf
+                    from plxtools.check.mujoco_backend import ExportError, export_mjcf
 
-                    export_mjcf(fc.compiled, str(out))
+                    try:
+                        export_mjcf(fc.compiled, str(out))
+                    except ExportError as exc:
+                        _report_note(fc, exc.note)
+                        print(f"plx check: {fc.path}: did not write {out}: MuJoCo cannot load it back "
+                              f"(see {exc.note.code})", file=sys.stderr)
+                        status = 2
                 else:
                     from plxtools.check.mujoco_backend import RenderUnavailable, render_png
 
@@ -140,3 +150,11 @@ def _artefacts(args, results) -> int:
                 print(f"plx check: cannot write {out}: {exc.strerror or exc}", file=sys.stderr)
                 status = 2
     return status
+
+
+def _report_note(fc, note) -> None:
+    """A located diagnostic for a backend note met after the check (an export that does not reload)."""
+    from plxtools.check.pipeline import add_backend_notes, refresh
+
+    add_backend_notes(fc.rep, fc.tree, [note])
+    refresh(fc)

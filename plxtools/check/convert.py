@@ -258,7 +258,7 @@ class Collector:
 
     def _num(self, obj: Obj, path: str) -> float | None:
         try:
-            v = self.ev.get(obj, path)
+            v = self.a.value(obj, path)
         except (Unavailable, KeyError):
             return None
         try:
@@ -348,150 +348,169 @@ def _t3(v) -> tuple[float, float, float]:
 
 
 def to_scene(asm: Assembly, col: Collector, rep: Reporter, base_dir: str | None) -> S.Scene:
-    a, ev, k = col.a, col.ev, col.k
+    """The scene IR of an assembled tree: bodies with their geometry, then mates, controllers,
+    contact models, excluded pairs, gravity and what is not supported."""
     scene = S.Scene(asm.root.model.name, base_dir=base_dir, source=_source(rep, asm.root))
+    scene.bodies = _bodies(asm, col, rep)
+    conns = _Connectors(asm, rep, {b.path for b in scene.bodies})
+    scene.mates = [S.Mate(m.path, m.kind, (conns.get(m.conns[0]), conns.get(m.conns[1])), m.initial_angle,
+                          m.initial_position, m.initial_distance, m.enabled, _source(rep, m.obj))
+                   for m in asm.mates if m.usable and m.kind != "unknown"]
+    scene.controllers = [_controller(col, c, conns, rep) for c in asm.controllers
+                         if len(c.conns) == 2 and all(x is not None for x in c.conns)
+                         and c.mate is not None and c.mate.usable]
+    scene.contact_models = [S.ContactModel(cr.obj.display, cr.key1, cr.key2, cr.friction, cr.friction_model,
+                                           cr.restitution, cr.tangential_restitution, cr.enabled, _source(rep, cr.obj))
+                            for cr in col.contacts if cr.key1 is not None and cr.key2 is not None]
+    scene.excludes = _excludes(col, rep)
+    gravity = _gravity(asm, col)
+    if gravity is not None:
+        scene.gravity = gravity
+    scene.unsupported = [S.Unsupported(what, obj.display, _source(rep, obj), msg) for what, obj, msg in col.unsupported]
+    return scene
+
+
+def _geoms(recs: list[GeomRec], rep: Reporter) -> list[S.Geom]:
+    out = []
+    for g in recs:
+        if not g.valid:
+            continue
+        sg = S.Geom(g.path, "mesh" if g.kind.endswith("mesh") else g.kind, pos=_t3(g.pose[1]),
+                    quat=mat_to_quat_wxyz(g.pose[0]), visual_only=g.visual, source=_source(rep, g.obj))
+        if g.kind == "box":
+            sg.size = _t3(g.size)
+        elif g.kind in ("sphere", "cylinder", "capsule"):
+            sg.radius, sg.height = g.radius, g.height
+        else:
+            sg.mesh_file = g.mesh_file
+            sg.mesh_scale = _t3(g.mesh_scale)
+            sg.mesh_vertices = tuple(g.vertices) if g.vertices else None
+            sg.mesh_indices = tuple(g.indices) if g.indices else None
+            sg.convex = g.kind == "convex_mesh"
+        if not g.visual:
+            sg.material = g.material_key
+            sg.density = g.density
+            sg.enable_collisions = g.enable_collisions
+            sg.include_in_mass = g.include_in_mass
+        out.append(sg)
+    return out
+
+
+def _bodies(asm: Assembly, col: Collector, rep: Reporter) -> list[S.Body]:
+    """Rigid bodies, and systems that own geometry directly (as static bodies)."""
     by_node: dict[int, list[GeomRec]] = {}
     for g in col.geoms:
         by_node.setdefault(id(g.node), []).append(g)
-
-    def geoms_of(n: Node) -> list[S.Geom]:
-        out = []
-        for g in by_node.get(id(n), []):
-            if not g.valid:
-                continue
-            sg = S.Geom(g.path, "mesh" if g.kind.endswith("mesh") else g.kind, pos=_t3(g.pose[1]),
-                        quat=mat_to_quat_wxyz(g.pose[0]), visual_only=g.visual, source=_source(rep, g.obj))
-            if g.kind == "box":
-                sg.size = _t3(g.size)
-            elif g.kind in ("sphere", "cylinder", "capsule"):
-                sg.radius, sg.height = g.radius, g.height
-            else:
-                sg.mesh_file = g.mesh_file
-                sg.mesh_scale = _t3(g.mesh_scale)
-                sg.mesh_vertices = tuple(g.vertices) if g.vertices else None
-                sg.mesh_indices = tuple(g.indices) if g.indices else None
-                sg.convex = g.kind == "convex_mesh"
-            if not g.visual:
-                sg.material = g.material_key
-                sg.density = g.density
-                sg.enable_collisions = g.enable_collisions
-                sg.include_in_mass = g.include_in_mass
-            out.append(sg)
-        return out
-
-    parent_world: dict[int, Pose] = {}
+    out = []
     for n in asm.nodes:
+        geoms = _geoms(by_node.get(id(n), []), rep)
         if n.kind == "body":
-            obj = n.obj
-            mass = a.real(obj, "inertia.mass", 0.0)
-            tensor = None
-            t = a.get(obj, "inertia.tensor", None)
-            if isinstance(t, np.ndarray) and t.shape == (3, 3) and np.all(np.isfinite(t)) and np.any(np.diag(t) != 0):
-                tensor = tuple(tuple(float(x) for x in row) for row in t)
-            cm = None
-            cmo = ev.child(obj, "kinematics.local_cm_transform")
-            if isinstance(cmo, Obj) and cmo.explicit:
-                tr = a.get(obj, "kinematics.local_cm_transform", None)
-                if tr is not None and hasattr(tr, "position"):
-                    cm = _t3(tr.position)
-            pw = n.parent.world if n.parent is not None else IDENTITY
-            lv = a._vec(obj, "kinematics.initial_local_linear_velocity", np.zeros(3))
-            av = a._vec(obj, "kinematics.initial_local_angular_velocity", np.zeros(3))
-            body = S.Body(n.path, _t3(n.world[1]), mat_to_quat_wxyz(n.world[0]), mass=mass,
-                          inertia_tensor=tensor, cm_pos=cm, is_dynamic=n.is_dynamic, geoms=geoms_of(n),
-                          lin_vel=_t3(pw[0] @ lv), ang_vel=_t3(pw[0] @ av), source=_source(rep, obj))
-            scene.bodies.append(body)
-        else:
-            gs = geoms_of(n)
-            if gs:
-                scene.bodies.append(S.Body(n.path, _t3(n.world[1]), mat_to_quat_wxyz(n.world[0]), is_dynamic=False,
-                                           geoms=gs, source=_source(rep, n.obj)))
-        parent_world[id(n)] = n.world
-    body_paths = {b.path for b in scene.bodies}
+            out.append(_body(n, col, geoms, rep))
+        elif geoms:
+            out.append(S.Body(n.path, _t3(n.world[1]), mat_to_quat_wxyz(n.world[0]), is_dynamic=False, geoms=geoms,
+                              source=_source(rep, n.obj)))
+    return out
 
-    conns: dict[int, S.Connector] = {}
 
-    def conn(c: Conn) -> S.Connector:
-        sc = conns.get(id(c.obj))
-        if sc is not None:
-            return sc
-        src = _source(rep, c.obj)
+def _body(n: Node, col: Collector, geoms: list[S.Geom], rep: Reporter) -> S.Body:
+    a, obj = col.a, n.obj
+    mass = a.real(obj, "inertia.mass", 0.0)
+    tensor = None
+    t = a.get(obj, "inertia.tensor", None)
+    if isinstance(t, np.ndarray) and t.shape == (3, 3) and np.all(np.isfinite(t)) and np.any(np.diag(t) != 0):
+        tensor = tuple(tuple(float(x) for x in row) for row in t)
+    cm = None
+    cmo = col.ev.child(obj, "kinematics.local_cm_transform")
+    if isinstance(cmo, Obj) and cmo.explicit:
+        tr = a.get(obj, "kinematics.local_cm_transform", None)
+        if tr is not None and hasattr(tr, "position"):
+            cm = _t3(tr.position)
+    pw = n.parent.world if n.parent is not None else IDENTITY
+    lv = a._vec(obj, "kinematics.initial_local_linear_velocity", np.zeros(3))
+    av = a._vec(obj, "kinematics.initial_local_angular_velocity", np.zeros(3))
+    return S.Body(n.path, _t3(n.world[1]), mat_to_quat_wxyz(n.world[0]), mass=mass, inertia_tensor=tensor, cm_pos=cm,
+                  is_dynamic=n.is_dynamic, geoms=geoms, lin_vel=_t3(pw[0] @ lv), ang_vel=_t3(pw[0] @ av),
+                  source=_source(rep, obj))
+
+
+class _Connectors:
+    """Scene connectors, one per connector object, in the frame of the body they move with (a
+    redirected connector: its ``redirected_parent``), or in world coordinates."""
+
+    def __init__(self, asm: Assembly, rep: Reporter, body_paths: set[str]):
+        self.asm, self.rep, self.body_paths = asm, rep, body_paths
+        self.made: dict[int, S.Connector] = {}
+
+    def get(self, c: Conn) -> S.Connector:
+        sc = self.made.get(id(c.obj))
+        if sc is None:
+            sc = self.made[id(c.obj)] = self._make(c)
+        return sc
+
+    def _make(self, c: Conn) -> S.Connector:
+        src = _source(self.rep, c.obj)
         owner: Node = c.node
-        attach = None
-        if c.redirected_parent is not None:
-            attach = asm.node_of(c.redirected_parent)
+        attach = self.asm.node_of(c.redirected_parent) if c.redirected_parent is not None else None
         if attach is None:
             attach = owner if owner.kind == "body" else None
         frame_world = compose(owner.world, c.frame)
-        if attach is None or attach.path not in body_paths:
-            sc = S.Connector(c.obj.display, None, _t3(frame_world[1]), _t3(frame_world[0][:, 2]),
-                             _t3(frame_world[0][:, 0]), src)
-        else:
-            local = compose(inverse(attach.world), frame_world)
-            sc = S.Connector(c.obj.display, attach.path, _t3(local[1]), _t3(local[0][:, 2]), _t3(local[0][:, 0]),
-                             src)
-        conns[id(c.obj)] = sc
-        return sc
+        if attach is None or attach.path not in self.body_paths:
+            return S.Connector(c.obj.display, None, _t3(frame_world[1]), _t3(frame_world[0][:, 2]),
+                               _t3(frame_world[0][:, 0]), src)
+        local = compose(inverse(attach.world), frame_world)
+        return S.Connector(c.obj.display, attach.path, _t3(local[1]), _t3(local[0][:, 2]), _t3(local[0][:, 0]), src)
 
-    for m in asm.mates:
-        if not m.usable or m.kind == "unknown":
-            continue
-        scene.mates.append(S.Mate(m.path, m.kind, (conn(m.conns[0]), conn(m.conns[1])), m.initial_angle,
-                                  m.initial_position, m.initial_distance, m.enabled, _source(rep, m.obj)))
-    for c in asm.controllers:
-        if len(c.conns) != 2 or any(x is None for x in c.conns):
-            continue
-        if c.mate is None or not c.mate.usable:
-            continue
-        obj = c.obj
-        sc = S.Controller(c.path, c.kind, c.dof, (conn(c.conns[0]), conn(c.conns[1])), source=_source(rep, obj))
-        sc.enabled = bool(a.get(obj, "enabled", True))
-        sc.min_effort = a.real(obj, "min_effort", -math.inf)
-        sc.max_effort = a.real(obj, "max_effort", math.inf)
-        if c.kind == "velocity_motor":
-            sc.target_speed = a.real(obj, "target_speed", 0.0)
-            sc.gain = a.real(obj, "gain", 1e8)
-        elif c.kind == "torque_motor":
-            sc.effort = a.real(obj, "default_torque", 0.0)
-        elif c.kind == "force_motor":
-            sc.effort = a.real(obj, "default_force", 0.0)
-        elif c.kind == "range":
-            sc.start = a.real(obj, "start", math.nan)
-            sc.end = a.real(obj, "end", math.nan)
-            if not math.isfinite(sc.start) or not math.isfinite(sc.end):
-                sc.start = sc.end = None
-        elif c.kind == "spring":
-            sc.rest = a.real(obj, "angle" if c.dof == "rotational" else "position", 0.0)
-            fl = ev.child(obj, "flexibility")
-            if isinstance(fl, Obj) and k.isa(fl, LINEAR_ELASTIC):
-                sc.stiffness = a.real(fl, "stiffness", 1e6)
-            ds = ev.child(obj, "dissipation")
-            if isinstance(ds, Obj) and k.isa(ds, MECH_DAMPING):
-                sc.damping = a.real(ds, "damping_constant", 0.0)
-        scene.controllers.append(sc)
-    for cr in col.contacts:
-        if cr.key1 is None or cr.key2 is None:
-            continue
-        scene.contact_models.append(S.ContactModel(cr.obj.display, cr.key1, cr.key2, cr.friction, cr.friction_model,
-                                                   cr.restitution, cr.tangential_restitution, cr.enabled,
-                                                   _source(rep, cr.obj)))
+
+def _controller(col: Collector, c: CtrlRec, conns: _Connectors, rep: Reporter) -> S.Controller:
+    a, obj = col.a, c.obj
+    sc = S.Controller(c.path, c.kind, c.dof, (conns.get(c.conns[0]), conns.get(c.conns[1])), source=_source(rep, obj))
+    sc.enabled = bool(a.get(obj, "enabled", True))
+    sc.min_effort = a.real(obj, "min_effort", -math.inf)
+    sc.max_effort = a.real(obj, "max_effort", math.inf)
+    if c.kind == "velocity_motor":
+        sc.target_speed = a.real(obj, "target_speed", 0.0)
+        sc.gain = a.real(obj, "gain", 1e8)
+    elif c.kind == "torque_motor":
+        sc.effort = a.real(obj, "default_torque", 0.0)
+    elif c.kind == "force_motor":
+        sc.effort = a.real(obj, "default_force", 0.0)
+    elif c.kind == "range":
+        sc.start = a.real(obj, "start", math.nan)
+        sc.end = a.real(obj, "end", math.nan)
+        if not math.isfinite(sc.start) or not math.isfinite(sc.end):
+            sc.start = sc.end = None
+    elif c.kind == "spring":
+        sc.rest = a.real(obj, "angle" if c.dof == "rotational" else "position", 0.0)
+        fl = col.ev.child(obj, "flexibility")
+        if isinstance(fl, Obj) and col.k.isa(fl, LINEAR_ELASTIC):
+            sc.stiffness = a.real(fl, "stiffness", 1e6)
+        ds = col.ev.child(obj, "dissipation")
+        if isinstance(ds, Obj) and col.k.isa(ds, MECH_DAMPING):
+            sc.damping = a.real(ds, "damping_constant", 0.0)
+    return sc
+
+
+def _excludes(col: Collector, rep: Reporter) -> list[S.ExcludePair]:
+    out = []
     seen: set[tuple[str, str]] = set()
     for x, y, pair in col.exclude_pairs():
         key = tuple(sorted((x.path, y.path)))
-        if key in seen:
-            continue
-        seen.add(key)
-        scene.excludes.append(S.ExcludePair(x.path, y.path, _source(rep, pair)))
-    root = asm.root
-    if k.isa(root, ENVIRONMENT):
-        g = ev.child(root, "gravity")
-        if isinstance(g, Obj) and k.isa(g, UNIFORM_GRAVITY):
-            vec = a._vec(g, "vector", None)
-            if vec is not None:
-                scene.gravity = _t3(vec)
-    for what, obj, msg in col.unsupported:
-        scene.unsupported.append(S.Unsupported(what, obj.display, _source(rep, obj), msg))
-    return scene
+        if key not in seen:
+            seen.add(key)
+            out.append(S.ExcludePair(x.path, y.path, _source(rep, pair)))
+    return out
+
+
+def _gravity(asm: Assembly, col: Collector) -> tuple[float, float, float] | None:
+    """The uniform gravity of a Simulation.Environment root, or None (the scene's default)."""
+    if not col.k.isa(asm.root, ENVIRONMENT):
+        return None
+    g = col.ev.child(asm.root, "gravity")
+    if isinstance(g, Obj) and col.k.isa(g, UNIFORM_GRAVITY):
+        vec = col.a._vec(g, "vector", None)
+        if vec is not None:
+            return _t3(vec)
+    return None
 
 
 __all__ = ["Collector", "ContactRec", "GeomRec", "to_scene", "span_of", "MateRec", "CtrlRec"]

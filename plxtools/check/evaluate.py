@@ -257,6 +257,10 @@ class Evaluator:
             self._failed.add(key)
             self._emit(EvalError("A003", f"{label}: {err}", node, unit), anchor)
             raise Unavailable(label) from None
+        except OverflowError:  # an integer beyond float range used as a Real (issue 14)
+            self._failed.add(key)
+            self._emit(EvalError("A041", f"{label} is too large for a number (beyond 1.8e308)", node, unit), anchor)
+            raise Unavailable(label) from None
         except RecursionError:
             self._failed.add(key)
             self._emit(EvalError("A006", f"{label}: the values it depends on nest too deeply to evaluate",
@@ -307,12 +311,12 @@ class Evaluator:
             v = self._eval_effect(ref.value, ref.ty)
             if isinstance(v, SView) and v.sub == ():
                 v = v.obj
-            if isinstance(v, TypeObj) and isinstance(v.sym, ModelSym):
-                raise EvalError("A005", f"{ref.path} must refer to an object ({ref.ty.display()}), but "
-                                f"{v.sym.qname} is a model: a model used as a value must be declared "
-                                f"'const' (or instantiated)", t.expr, t.unit,
-                                help=f"write 'const {v.sym.name} ...' where it is defined, or declare "
-                                     f"'{ref.name} is {v.sym.qname}' to create one")
+            if isinstance(v, TypeObj):  # a model named where an object is needed (issue 16)
+                name = getattr(v.sym, "name", v.sym)
+                raise EvalError("A005", f"{ref.path} must refer to an object ({ref.ty.display()}), but '{name}' is "
+                                f"a model, not an object", t.expr, t.unit,
+                                help=f"a model used as a value must be declared 'const {name} is ...', or "
+                                f"instantiated ('{ref.name} is {name}')")
             if v is not None and not isinstance(v, Obj):
                 raise EvalError("A005", f"{ref.path} must refer to an object ({ref.ty.display()}), "
                                 f"not to {_kind(v)}", t.expr, t.unit)

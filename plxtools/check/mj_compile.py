@@ -30,12 +30,13 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.mj_controllers import ControllerMixin
-from plxtools.check.mj_geoms import GeomMixin
+from plxtools.check.mj_context import BuildContext, CompileFailed
+from plxtools.check.mj_controllers import add_controllers, add_keyframe
+from plxtools.check.mj_geoms import add_contact_pairs, add_excludes, add_geoms, set_inertials
 from plxtools.check.mj_math import angle_between, quat_normalize, quat_to_mat, relative_pose, unit
-from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote, note_from_compile_error
+from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
 from plxtools.check.mj_types import VISUAL_GROUP, ActuatorInfo, CompiledScene, MateMonitor
-from plxtools.check.scene import Body, Connector, Mate, Scene, default_normal, orthogonalize
+from plxtools.check.scene import Connector, Mate, Scene, default_normal, orthogonalize
 
 __all__ = ["VISUAL_GROUP", "ActuatorInfo", "BackendNote", "CompiledScene", "MateMonitor", "compile_scene"]
 
@@ -51,493 +52,456 @@ def compile_scene(scene: Scene) -> CompiledScene:
     import time
 
     t0 = time.perf_counter()
-    b = _Builder(scene)
+    ctx = BuildContext.for_scene(scene)
     try:
-        b.build()
-    except _CompileFailed:
+        build(ctx)
+    except CompileFailed:
         pass
-    b.out.compile_ms = (time.perf_counter() - t0) * 1e3
-    return b.out
+    ctx.out.compile_ms = (time.perf_counter() - t0) * 1e3
+    return ctx.out
 
 
-class _CompileFailed(Exception):
-    pass
+# -- helpers ---------------------------------------------------------------------------------
+def node(ctx: BuildContext, c: Connector) -> str | None:
+    """Graph node of a connector: WORLD for world/system/static owners, else the body path."""
+    if c.body is None:
+        return WORLD
+    body = ctx.bodies.get(c.body)
+    if body is None:
+        return None
+    return c.body if body.is_dynamic else WORLD
 
 
-class _Builder(GeomMixin, ControllerMixin):
-    def __init__(self, scene: Scene) -> None:
-        import mujoco
+def owner_mj_name(ctx: BuildContext, c: Connector) -> str:
+    if c.body is None:
+        return "world"
+    return ctx.names.name("body", c.body) or "world"
 
-        self.mj = mujoco
-        self.scene = scene
-        self.out = CompiledScene(scene=scene)
-        self.notes = self.out.notes
-        self.names = self.out.names
-        self.bodies: dict[str, Body] = {}
-        self.body_index: dict[str, int] = {}
-        self.mj_bodies: dict[str, Any] = {}  # body path -> MjsBody
-        self.spec = mujoco.MjSpec()
-        self.out.spec = self.spec
-        self.excluded: set[frozenset[str]] = set()
-        self.mated: set[frozenset[str]] = set()
-        self.geoms_by_material: dict[str, list[tuple[str, str]]] = {}  # material -> [(geom name, body path)]
-        self.joint_limits: dict[str, list[float]] = {}
-        self.spring_count: dict[str, int] = {}
 
-    # -- helpers ---------------------------------------------------------------------------------
-    def note(self, severity: str, code: str, message: str, item: Any = None, path: str | None = None) -> None:
-        src = getattr(item, "source", None) if item is not None else None
-        if path is None and item is not None:
-            path = getattr(item, "path", None)
-        if src is None and path is not None:
-            src = self.names.sources.get(path)
-        self.notes.append(BackendNote(severity, code, message, src, path))
+def local_frame(ctx: BuildContext, c: Connector) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    axis = unit(c.main_axis)
+    normal = np.array(
+        orthogonalize(c.normal if c.normal is not None else default_normal(tuple(axis)), tuple(axis))
+    )
+    return np.asarray(c.local_pos, dtype=float), axis, normal
 
-    def node(self, c: Connector) -> str | None:
-        """Graph node of a connector: WORLD for world/system/static owners, else the body path."""
-        if c.body is None:
-            return WORLD
-        body = self.bodies.get(c.body)
-        if body is None:
-            return None
-        return c.body if body.is_dynamic else WORLD
 
-    def owner_mj_name(self, c: Connector) -> str:
-        if c.body is None:
-            return "world"
-        return self.names.name("body", c.body) or "world"
+def world_pose(ctx: BuildContext, path: str | None) -> tuple[np.ndarray, np.ndarray]:
+    if path is None:
+        return np.zeros(3), np.array([1.0, 0, 0, 0])
+    b = ctx.bodies[path]
+    return np.asarray(b.world_pos, dtype=float), quat_normalize(b.world_quat)
 
-    def local_frame(self, c: Connector) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        axis = unit(c.main_axis)
-        normal = np.array(
-            orthogonalize(c.normal if c.normal is not None else default_normal(tuple(axis)), tuple(axis))
-        )
-        return np.asarray(c.local_pos, dtype=float), axis, normal
 
-    def world_pose(self, path: str | None) -> tuple[np.ndarray, np.ndarray]:
-        if path is None:
-            return np.zeros(3), np.array([1.0, 0, 0, 0])
-        b = self.bodies[path]
-        return np.asarray(b.world_pos, dtype=float), quat_normalize(b.world_quat)
+# -- main ------------------------------------------------------------------------------------
+def build(ctx: BuildContext) -> None:
+    mj, spec, scene = ctx.mj, ctx.spec, ctx.scene
+    spec.modelname = ctx.names.add("model", scene.name or "scene")
+    spec.compiler.degree = False
+    spec.option.timestep = float(scene.timestep)
+    spec.option.gravity = [float(g) for g in scene.gravity]
+    spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
+    spec.option.enableflags |= int(mj.mjtEnableBit.mjENBL_ENERGY)
+    spec.visual.global_.offwidth = 1280
+    spec.visual.global_.offheight = 960
+    spec.worldbody.add_light(
+        name="plx_sun",
+        pos=[0, 0, 30],
+        dir=[0.3, 0.2, -1],
+        castshadow=0,
+        type=int(mj.mjtLightType.mjLIGHT_DIRECTIONAL),
+    )
 
-    def compile(self, stage: str) -> Any:
-        try:
-            return self.spec.compile()
-        except Exception as err:  # ValueError (compile) or mujoco.FatalError
-            self.notes.append(note_from_compile_error(err, self.names))
-            self.out.model = None
-            raise _CompileFailed(stage) from err
+    # scene.unsupported: reported by the static checks (A040), which own it; nothing to build
+    for i, body in enumerate(scene.bodies):
+        if body.path in ctx.bodies:
+            ctx.note(
+                ERROR,
+                "A131",
+                f"duplicate body path {body.path}; the second one is ignored",
+                body,
+            )
+            continue
+        ctx.bodies[body.path] = body
+        ctx.body_index[body.path] = i
+        ctx.names.add("body", body.path, body.source)
+        if body.mass < 0:
+            ctx.invariant("A032",
+                f"{body.path}: negative mass {body.mass}; using the geometry mass",
+                body,
+            )
 
-    # -- main ------------------------------------------------------------------------------------
-    def build(self) -> None:
-        mj, spec, scene = self.mj, self.spec, self.scene
-        spec.modelname = self.names.add("model", scene.name or "scene")
-        spec.compiler.degree = False
-        spec.option.timestep = float(scene.timestep)
-        spec.option.gravity = [float(g) for g in scene.gravity]
-        spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
-        spec.option.enableflags |= int(mj.mjtEnableBit.mjENBL_ENERGY)
-        spec.visual.global_.offwidth = 1280
-        spec.visual.global_.offheight = 960
-        spec.worldbody.add_light(
-            name="plx_sun",
-            pos=[0, 0, 30],
-            dir=[0.3, 0.2, -1],
-            castshadow=0,
-            type=int(mj.mjtLightType.mjLIGHT_DIRECTIONAL),
-        )
+    tree, loops, distances = classify_mates(ctx)
+    parents, roots = orient(ctx, tree)
+    add_static_bodies(ctx)
+    add_dynamic_bodies(ctx, parents, roots)
+    add_loop_closures(ctx, loops)
+    add_distance_mates(ctx, distances)
+    add_excludes(ctx)
+    add_contact_pairs(ctx)
 
-        for u in scene.unsupported:
-            msg = u.message or f"{u.what} is not supported by the MuJoCo backend and is ignored"
-            self.note(WARNING, "unsupported-feature", msg, u)
-        for i, body in enumerate(scene.bodies):
-            if body.path in self.bodies:
-                self.note(
-                    ERROR,
-                    "duplicate-body",
-                    f"duplicate body path {body.path}; the second one is ignored",
-                    body,
-                )
-                continue
-            self.bodies[body.path] = body
-            self.body_index[body.path] = i
-            self.names.add("body", body.path, body.source)
-            if body.mass < 0:
-                self.note(
-                    ERROR,
-                    "negative-mass",
-                    f"{body.path}: negative mass {body.mass}; using the geometry mass",
-                    body,
-                )
+    # pass 1: geometry mass properties (bounded so massless bodies still compile)
+    spec.compiler.boundmass = 1e-9
+    spec.compiler.boundinertia = 1e-12
+    model = ctx.compile("mass-properties")
+    set_inertials(ctx, model)
+    spec.compiler.boundmass = 0.0
+    spec.compiler.boundinertia = 0.0
+    # pass 2: effective joint inertias for gains / stiffness caps
+    model = ctx.compile("inertia")
+    add_controllers(ctx, model)
+    add_keyframe(ctx, model)
+    # pass 3: final
+    ctx.out.model = ctx.compile("final")
 
-        tree, loops, distances = self.classify_mates()
-        parents, roots = self.orient(tree)
-        self.add_static_bodies()
-        self.add_dynamic_bodies(parents, roots)
-        self.add_loop_closures(loops)
-        self.add_distance_mates(distances)
-        self.add_excludes()
-        self.add_contact_pairs()
 
-        # pass 1: geometry mass properties (bounded so massless bodies still compile)
-        spec.compiler.boundmass = 1e-9
-        spec.compiler.boundinertia = 1e-12
-        model = self.compile("mass-properties")
-        self.set_inertials(model)
-        spec.compiler.boundmass = 0.0
-        spec.compiler.boundinertia = 0.0
-        # pass 2: effective joint inertias for gains / stiffness caps
-        model = self.compile("inertia")
-        self.add_controllers(model)
-        self.add_keyframe(model)
-        # pass 3: final
-        self.out.model = self.compile("final")
-
-    # -- mates -> tree ---------------------------------------------------------------------------
-    def classify_mates(self) -> tuple[list[Mate], list[Mate], list[Mate]]:
-        usable: list[tuple[int, int, Mate]] = []
-        distances: list[Mate] = []
-        for idx, m in enumerate(self.scene.mates):
-            self.names.add("mate", m.path, m.source)
-            if not m.enabled:
-                self.note(INFO, "mate-disabled", f"{m.path} is disabled and not simulated", m)
-                continue
-            if m.kind not in TREE_PRIORITY and m.kind != "distance":
-                self.note(ERROR, "unknown-mate-kind", f"{m.path}: unknown mate kind {m.kind!r}; ignored", m)
-                continue
-            if len(m.connectors) != 2:
-                self.note(ERROR, "mate-connector-count", f"{m.path}: a mate needs exactly 2 connectors", m)
-                continue
-            c0, c1 = m.connectors
-            n0, n1 = self.node(c0), self.node(c1)
-            bad = [c for c, n in ((c0, n0), (c1, n1)) if n is None]
-            if bad:
-                self.note(
-                    ERROR,
-                    "unknown-body",
-                    f"{m.path}: connector {bad[0].path} belongs to unknown body {bad[0].body}",
-                    m,
-                )
-                continue
-            if c0.body is not None and c0.body == c1.body:
-                self.note(
-                    ERROR, "mate-same-body", f"{m.path}: both connectors belong to {c0.body}; ignored", m
-                )
-                continue
-            if n0 == WORLD and n1 == WORLD:
-                self.note(
-                    WARNING,
-                    "mate-no-dynamic-body",
-                    f"{m.path} joins two static/world frames and has no effect",
-                    m,
-                )
-                continue
-            for c in (c0, c1):
-                if float(np.linalg.norm(c.main_axis)) == 0.0:
-                    self.note(ERROR, "zero-main-axis", f"connector {c.path} has a zero main_axis", c)
-            self.check_alignment(m)
-            if c0.body and c1.body:
-                self.mated.add(frozenset((c0.body, c1.body)))
-            if m.kind == "distance":
-                distances.append(m)
-            else:
-                usable.append((TREE_PRIORITY[m.kind], idx, m))
-        usable.sort(key=lambda t: (t[0], t[1]))
-        parent: dict[str, str] = {}
-
-        def find(x: str) -> str:
-            while parent.setdefault(x, x) != x:
-                parent[x] = parent[parent[x]]
-                x = parent[x]
-            return x
-
-        tree: list[Mate] = []
-        loops: list[Mate] = []
-        for _, _, m in usable:
-            a, b = find(self.node(m.connectors[0]) or WORLD), find(self.node(m.connectors[1]) or WORLD)
-            if a != b:
-                parent[a] = b
-                tree.append(m)
-            else:
-                loops.append(m)
-        order = {m.path: i for i, m in enumerate(self.scene.mates)}
-        tree.sort(key=lambda m: order[m.path])
-        loops.sort(key=lambda m: order[m.path])
-        self.out.tree_mates = [m.path for m in tree]
-        self.out.loop_mates = [m.path for m in loops]
-        return tree, loops, distances
-
-    def check_alignment(self, m: Mate) -> None:
-        """Rule 43: both sides placed but frames do not coincide (SNAP offsets removed)."""
-        (p0, a0, _), (p1, a1, _) = (self.world_connector(c) for c in m.connectors)
-        d = p1 - p0
-        if m.kind in ("prismatic", "cylindrical"):
-            d = d - np.dot(d, a0) * a0
-        sep = float(np.linalg.norm(d)) if m.kind != "distance" else 0.0
-        ang = angle_between(a0, a1) if m.kind not in ("ball", "distance") else 0.0
-        if sep > ALIGN_POS_TOL or ang > ALIGN_ANGLE_TOL:
-            self.note(
-                WARNING,
-                "mate-initially-violated",
-                f"{m.path}: connector frames do not coincide after assembly (offset {sep:.4g} m, axis angle "
-                f"{math.degrees(ang):.3g} deg); the MuJoCo joint uses the child connector and keeps the offset",
+# -- mates -> tree ---------------------------------------------------------------------------
+def classify_mates(ctx: BuildContext) -> tuple[list[Mate], list[Mate], list[Mate]]:
+    usable: list[tuple[int, int, Mate]] = []
+    distances: list[Mate] = []
+    for idx, m in enumerate(ctx.scene.mates):
+        ctx.names.add("mate", m.path, m.source)
+        if not m.enabled:
+            ctx.note(INFO, "A129", f"{m.path} is disabled and not simulated", m)
+            continue
+        if m.kind not in TREE_PRIORITY and m.kind != "distance":
+            ctx.invariant("A040", f"{m.path}: unknown mate kind {m.kind!r}; ignored", m)
+            continue
+        if len(m.connectors) != 2:
+            ctx.invariant("A013", f"{m.path}: a mate needs exactly 2 connectors", m)
+            continue
+        c0, c1 = m.connectors
+        n0, n1 = node(ctx, c0), node(ctx, c1)
+        bad = [c for c, n in ((c0, n0), (c1, n1)) if n is None]
+        if bad:
+            ctx.note(
+                ERROR,
+                "A131",
+                f"{m.path}: connector {bad[0].path} belongs to unknown body {bad[0].body}",
                 m,
             )
-
-    def world_connector(self, c: Connector) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        p, a, n = self.local_frame(c)
-        if c.body is None:
-            return p, a, n
-        bp, bq = self.world_pose(c.body)
-        r = quat_to_mat(bq)
-        return bp + r @ p, r @ a, r @ n
-
-    def orient(self, tree: list[Mate]) -> tuple[dict[str, tuple[str, Mate]], list[str]]:
-        adj: dict[str, list[Mate]] = {}
-        for m in tree:
-            for c in m.connectors:
-                adj.setdefault(self.node(c) or WORLD, []).append(m)
-        parents: dict[str, tuple[str, Mate]] = {}
-        visited = {WORLD}
-        roots: list[str] = []
-
-        def bfs(start: str) -> list[str]:
-            seen_order = [start]
-            queue = [start]
-            while queue:
-                u = queue.pop(0)
-                for m in adj.get(u, []):
-                    for c in m.connectors:
-                        v = self.node(c) or WORLD
-                        if v not in visited:
-                            visited.add(v)
-                            parents[v] = (u, m)
-                            queue.append(v)
-                            seen_order.append(v)
-            return seen_order
-
-        bfs(WORLD)
-        dynamic = [p for p, b in self.bodies.items() if b.is_dynamic]
-        for path in dynamic:
-            if path in visited:
-                continue
-            # collect the component without marking it, then choose its root
-            comp, stack = {path}, [path]
-            while stack:
-                u = stack.pop()
-                for m in adj.get(u, []):
-                    for c in m.connectors:
-                        v = self.node(c) or WORLD
-                        if v not in comp:
-                            comp.add(v)
-                            stack.append(v)
-            root = max(comp, key=lambda p: (len(adj.get(p, [])), -self.body_index[p]))
-            visited.add(root)
-            roots.append(root)
-            bfs(root)
-        self.out.free_roots = roots
-        return parents, roots
-
-    # -- bodies ----------------------------------------------------------------------------------
-    def add_static_bodies(self) -> None:
-        for path, body in self.bodies.items():
-            if body.is_dynamic:
-                continue
-            name = self.names.name("body", path)
-            mb = self.spec.worldbody.add_body(
-                name=name, pos=list(body.world_pos), quat=list(quat_normalize(body.world_quat))
+            continue
+        if c0.body is not None and c0.body == c1.body:
+            ctx.invariant("A015", f"{m.path}: both connectors belong to {c0.body}; ignored", m
             )
-            self.mj_bodies[path] = mb
-            if any(abs(v) > 0 for v in (*body.lin_vel, *body.ang_vel)):
-                self.note(
-                    WARNING,
-                    "kinematic-motion-ignored",
-                    f"{path} is not dynamic; its initial velocity is ignored (held fixed)",
-                    body,
-                )
-            self.add_geoms(mb, body)
+            continue
+        if n0 == WORLD and n1 == WORLD:
+            continue  # no effect; the static checks own this finding (A017)
+        for c in (c0, c1):
+            if float(np.linalg.norm(c.main_axis)) == 0.0:
+                ctx.invariant("A010", f"connector {c.path} has a zero main_axis", c)
+        check_alignment(ctx, m)
+        if c0.body and c1.body:
+            ctx.mated.add(frozenset((c0.body, c1.body)))
+        if m.kind == "distance":
+            distances.append(m)
+        else:
+            usable.append((TREE_PRIORITY[m.kind], idx, m))
+    usable.sort(key=lambda t: (t[0], t[1]))
+    parent: dict[str, str] = {}
 
-    def add_dynamic_bodies(self, parents: dict[str, tuple[str, Mate]], roots: list[str]) -> None:
-        # breadth-first order: parents are created first
-        order: list[str] = []
-        children: dict[str, list[str]] = {}
-        for child, (par, _) in parents.items():
-            children.setdefault(par, []).append(child)
-        queue = [WORLD, *roots]
+    def find(x: str) -> str:
+        while parent.setdefault(x, x) != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    tree: list[Mate] = []
+    loops: list[Mate] = []
+    for _, _, m in usable:
+        a, b = find(node(ctx, m.connectors[0]) or WORLD), find(node(ctx, m.connectors[1]) or WORLD)
+        if a != b:
+            parent[a] = b
+            tree.append(m)
+        else:
+            loops.append(m)
+    order = {m.path: i for i, m in enumerate(ctx.scene.mates)}
+    tree.sort(key=lambda m: order[m.path])
+    loops.sort(key=lambda m: order[m.path])
+    ctx.out.tree_mates = [m.path for m in tree]
+    ctx.out.loop_mates = [m.path for m in loops]
+    return tree, loops, distances
+
+
+def check_alignment(ctx: BuildContext, m: Mate) -> None:
+    """Rule 43: both sides placed but frames do not coincide (SNAP offsets removed)."""
+    (p0, a0, _), (p1, a1, _) = (world_connector(ctx, c) for c in m.connectors)
+    d = p1 - p0
+    if m.kind in ("prismatic", "cylindrical"):
+        d = d - np.dot(d, a0) * a0
+    sep = float(np.linalg.norm(d)) if m.kind != "distance" else 0.0
+    ang = angle_between(a0, a1) if m.kind not in ("ball", "distance") else 0.0
+    if sep > ALIGN_POS_TOL or ang > ALIGN_ANGLE_TOL:
+        ctx.invariant("A016",
+            f"{m.path}: connector frames do not coincide after assembly (offset {sep:.4g} m, axis angle "
+            f"{math.degrees(ang):.3g} deg); the MuJoCo joint uses the child connector and keeps the offset",
+            m,
+        )
+
+
+def world_connector(ctx: BuildContext, c: Connector) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    p, a, n = local_frame(ctx, c)
+    if c.body is None:
+        return p, a, n
+    bp, bq = world_pose(ctx, c.body)
+    r = quat_to_mat(bq)
+    return bp + r @ p, r @ a, r @ n
+
+
+def orient(ctx: BuildContext, tree: list[Mate]) -> tuple[dict[str, tuple[str, Mate]], list[str]]:
+    adj: dict[str, list[Mate]] = {}
+    for m in tree:
+        for c in m.connectors:
+            adj.setdefault(node(ctx, c) or WORLD, []).append(m)
+    parents: dict[str, tuple[str, Mate]] = {}
+    visited = {WORLD}
+    roots: list[str] = []
+
+    def bfs(start: str) -> list[str]:
+        seen_order = [start]
+        queue = [start]
         while queue:
             u = queue.pop(0)
-            if u != WORLD:
-                order.append(u)
-            kids = sorted(children.get(u, []), key=lambda p: self.body_index[p])
-            queue.extend(kids)
-        for path in order:
-            body = self.bodies[path]
-            if path in parents:
-                par, mate = parents[path]
-                cc, pc = (
-                    (mate.connectors[1], mate.connectors[0])
-                    if self.node(mate.connectors[1]) == path
-                    else mate.connectors
-                )
-                parent_path = pc.body if par == WORLD else par
-                mj_parent = self.mj_bodies[parent_path] if parent_path is not None else self.spec.worldbody
-                ppos, pquat = self.world_pose(parent_path)
-            else:
-                mate = None
-                mj_parent = self.spec.worldbody
-                ppos, pquat = np.zeros(3), np.array([1.0, 0, 0, 0])
-            cpos, cquat = self.world_pose(path)
-            rpos, rquat = relative_pose(ppos, pquat, cpos, cquat)
-            mb = mj_parent.add_body(name=self.names.name("body", path), pos=list(rpos), quat=list(rquat))
-            self.mj_bodies[path] = mb
-            if mate is None:
-                mb.add_freejoint(name=self.names.add("joint", path, body.source, ":free"))
-            else:
-                self.add_joint(mb, mate, cc)
-            self.add_geoms(mb, body)
+            for m in adj.get(u, []):
+                for c in m.connectors:
+                    v = node(ctx, c) or WORLD
+                    if v not in visited:
+                        visited.add(v)
+                        parents[v] = (u, m)
+                        queue.append(v)
+                        seen_order.append(v)
+        return seen_order
 
-    def add_joint(self, mb: Any, m: Mate, cc: Connector) -> None:
-        mj = self.mj
-        sign = 1 if cc is m.connectors[1] else -1
-        pos, axis, _ = self.local_frame(cc)
-        self.out.joint_sign[m.path] = sign
-        names: list[str] = []
-        # a cylindrical mate is a hinge and a slide on the same axis
-        for kinds, jtype, suffix, offset in (
-            (("hinge", "cylindrical"), mj.mjtJoint.mjJNT_HINGE, ":rot", m.initial_angle),
-            (("prismatic", "cylindrical"), mj.mjtJoint.mjJNT_SLIDE, ":slide", m.initial_position),
-        ):
-            if m.kind in kinds:
-                n = self.names.add("joint", m.path, m.source, suffix if m.kind == "cylindrical" else "")
-                mb.add_joint(name=n, type=jtype, pos=list(pos), axis=list(axis), ref=sign * float(offset))
-                names.append(n)
-        if m.kind == "ball":
-            n = self.names.add("joint", m.path, m.source)
-            mb.add_joint(name=n, type=mj.mjtJoint.mjJNT_BALL, pos=list(pos))
-            names.append(n)
-        self.out.joints[m.path] = names
-        self.add_monitor(m, "tree")
+    bfs(WORLD)
+    dynamic = [p for p, b in ctx.bodies.items() if b.is_dynamic]
+    for path in dynamic:
+        if path in visited:
+            continue
+        # collect the component without marking it, then choose its root
+        comp, stack = {path}, [path]
+        while stack:
+            u = stack.pop()
+            for m in adj.get(u, []):
+                for c in m.connectors:
+                    v = node(ctx, c) or WORLD
+                    if v not in comp:
+                        comp.add(v)
+                        stack.append(v)
+        root = max(comp, key=lambda p: (len(adj.get(p, [])), -ctx.body_index[p]))
+        visited.add(root)
+        roots.append(root)
+        bfs(root)
+    ctx.out.free_roots = roots
+    return parents, roots
 
-    def add_monitor(self, m: Mate, role: str) -> None:
-        c0, c1 = m.connectors
-        p0, a0, n0 = self.monitor_frame(c0)
-        p1, a1, n1 = self.monitor_frame(c1)
-        self.out.monitors.append(
-            MateMonitor(
-                m.path,
-                m.kind,
-                self.owner_mj_name(c0),
-                p0,
-                a0,
-                n0,
-                self.owner_mj_name(c1),
-                p1,
-                a1,
-                n1,
-                float(m.initial_distance),
-                role,
-            )
+
+# -- bodies ----------------------------------------------------------------------------------
+def add_static_bodies(ctx: BuildContext) -> None:
+    for path, body in ctx.bodies.items():
+        if body.is_dynamic:
+            continue
+        name = ctx.names.name("body", path)
+        mb = ctx.spec.worldbody.add_body(
+            name=name, pos=list(body.world_pos), quat=list(quat_normalize(body.world_quat))
         )
-
-    def monitor_frame(self, c: Connector) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        return self.local_frame(c)
-
-    # -- loops, distances, filtering, friction ----------------------------------------------------
-    def add_loop_closures(self, loops: list[Mate]) -> None:
-        mj = self.mj
-        for m in loops:
-            c0, c1 = m.connectors
-            b0, b1 = self.owner_mj_name(c0), self.owner_mj_name(c1)
-            p0, a0, _ = self.local_frame(c0)
-            p1 = self.local_frame(c1)[0]
-            if m.kind == "ball":
-                self.connect(m.path, "", b0, b1, p0, m)
-            elif m.kind == "hinge":
-                self.connect(m.path, ":a", b0, b1, p0 + HINGE_LOOP_HALF_LENGTH * a0, m)
-                self.connect(m.path, ":b", b0, b1, p0 - HINGE_LOOP_HALF_LENGTH * a0, m)
-                self.note(
-                    INFO,
-                    "loop-closure",
-                    f"{m.path} closes a kinematic loop: two connect equalities on its axis (free rotation kept)",
-                    m,
-                )
-            elif m.kind == "lock":
-                e = self.spec.add_equality(
-                    name=self.names.add("equality", m.path, m.source), type=mj.mjtEq.mjEQ_WELD
-                )
-                e.objtype = mj.mjtObj.mjOBJ_BODY
-                e.name1, e.name2 = b0, b1
-                data = np.zeros(len(e.data))
-                data[0:3] = p1  # anchor in body2; relpose zeros -> taken from the assembled pose
-                data[10] = 1.0
-                e.data = data
-                self.note(INFO, "loop-closure", f"{m.path} closes a kinematic loop: weld equality", m)
-            else:
-                self.note(
-                    WARNING,
-                    "loop-closure-unsupported",
-                    f"{m.path}: a loop-closing {m.kind} mate cannot be expressed in MuJoCo; it is NOT enforced",
-                    m,
-                )
-                self.add_monitor(m, "open")
-                continue
-            if m.kind == "ball":
-                self.note(INFO, "loop-closure", f"{m.path} closes a kinematic loop: connect equality", m)
-            self.add_monitor(m, "loop")
-
-    def connect(self, path: str, suffix: str, b0: str, b1: str, anchor: np.ndarray, m: Mate) -> None:
-        mj = self.mj
-        e = self.spec.add_equality(
-            name=self.names.add("equality", path, m.source, suffix), type=mj.mjtEq.mjEQ_CONNECT
-        )
-        e.objtype = mj.mjtObj.mjOBJ_BODY
-        e.name1, e.name2 = b0, b1
-        data = np.zeros(len(e.data))
-        data[0:3] = anchor
-        data[10] = 1.0
-        e.data = data
-
-    def add_distance_mates(self, mates: list[Mate]) -> None:
-        mj = self.mj
-        for m in mates:
-            c0, c1 = m.connectors
-            (w0, _, _), (w1, _, _) = self.world_connector(c0), self.world_connector(c1)
-            length0 = float(np.linalg.norm(w1 - w0))
-            target = float(m.initial_distance)
-            if target < 1e-6 and length0 < 1e-6:
-                self.connect(
-                    m.path, "", self.owner_mj_name(c0), self.owner_mj_name(c1), self.local_frame(c0)[0], m
-                )
-                self.note(
-                    WARNING,
-                    "distance-mate-approximated",
-                    f"{m.path}: Distance mate with zero distance approximated as a ball (connect) constraint",
-                    m,
-                )
-                self.add_monitor(m, "distance")
-                continue
-            sites = []
-            for c, suffix in ((c0, ":site0"), (c1, ":site1")):
-                owner = self.mj_bodies.get(c.body) if c.body is not None else self.spec.worldbody
-                s = owner.add_site(
-                    name=self.names.add("site", m.path, m.source, suffix), pos=list(self.local_frame(c)[0])
-                )
-                sites.append(s.name)
-            t = self.spec.add_tendon(name=self.names.add("tendon", m.path, m.source))
-            t.wrap_site(sites[0])
-            t.wrap_site(sites[1])
-            e = self.spec.add_equality(
-                name=self.names.add("equality", m.path, m.source), type=mj.mjtEq.mjEQ_TENDON
-            )
-            e.objtype = mj.mjtObj.mjOBJ_TENDON
-            e.name1 = t.name
-            data = np.zeros(len(e.data))
-            data[0] = target - length0  # MuJoCo holds length - length(qpos0) at data[0]
-            e.data = data
-            self.note(
+        ctx.mj_bodies[path] = mb
+        if any(abs(v) > 0 for v in (*body.lin_vel, *body.ang_vel)):
+            ctx.note(
                 WARNING,
-                "distance-mate-approximated",
-                f"{m.path}: Distance mate approximated by a tendon-length equality (target {target:g} m)",
+                "A121",
+                f"{path} is not dynamic; its initial velocity is ignored (held fixed)",
+                body,
+            )
+        add_geoms(ctx, mb, body)
+
+
+def add_dynamic_bodies(ctx: BuildContext, parents: dict[str, tuple[str, Mate]], roots: list[str]) -> None:
+    # breadth-first order: parents are created first
+    order: list[str] = []
+    children: dict[str, list[str]] = {}
+    for child, (par, _) in parents.items():
+        children.setdefault(par, []).append(child)
+    queue = [WORLD, *roots]
+    while queue:
+        u = queue.pop(0)
+        if u != WORLD:
+            order.append(u)
+        kids = sorted(children.get(u, []), key=lambda p: ctx.body_index[p])
+        queue.extend(kids)
+    for path in order:
+        body = ctx.bodies[path]
+        if path in parents:
+            par, mate = parents[path]
+            cc, pc = (
+                (mate.connectors[1], mate.connectors[0])
+                if node(ctx, mate.connectors[1]) == path
+                else mate.connectors
+            )
+            parent_path = pc.body if par == WORLD else par
+            mj_parent = ctx.mj_bodies[parent_path] if parent_path is not None else ctx.spec.worldbody
+            ppos, pquat = world_pose(ctx, parent_path)
+        else:
+            mate = None
+            mj_parent = ctx.spec.worldbody
+            ppos, pquat = np.zeros(3), np.array([1.0, 0, 0, 0])
+        cpos, cquat = world_pose(ctx, path)
+        rpos, rquat = relative_pose(ppos, pquat, cpos, cquat)
+        mb = mj_parent.add_body(name=ctx.names.name("body", path), pos=list(rpos), quat=list(rquat))
+        ctx.mj_bodies[path] = mb
+        if mate is None:
+            mb.add_freejoint(name=ctx.names.add("joint", path, body.source, ":free"))
+        else:
+            add_joint(ctx, mb, mate, cc)
+        add_geoms(ctx, mb, body)
+
+
+def add_joint(ctx: BuildContext, mb: Any, m: Mate, cc: Connector) -> None:
+    mj = ctx.mj
+    sign = 1 if cc is m.connectors[1] else -1
+    pos, axis, _ = local_frame(ctx, cc)
+    ctx.out.joint_sign[m.path] = sign
+    names: list[str] = []
+    # a cylindrical mate is a hinge and a slide on the same axis
+    for kinds, jtype, suffix, offset in (
+        (("hinge", "cylindrical"), mj.mjtJoint.mjJNT_HINGE, ":rot", m.initial_angle),
+        (("prismatic", "cylindrical"), mj.mjtJoint.mjJNT_SLIDE, ":slide", m.initial_position),
+    ):
+        if m.kind in kinds:
+            n = ctx.names.add("joint", m.path, m.source, suffix if m.kind == "cylindrical" else "")
+            mb.add_joint(name=n, type=jtype, pos=list(pos), axis=list(axis), ref=sign * float(offset))
+            names.append(n)
+    if m.kind == "ball":
+        n = ctx.names.add("joint", m.path, m.source)
+        mb.add_joint(name=n, type=mj.mjtJoint.mjJNT_BALL, pos=list(pos))
+        names.append(n)
+    ctx.out.joints[m.path] = names
+    add_monitor(ctx, m, "tree")
+
+
+def add_monitor(ctx: BuildContext, m: Mate, role: str) -> None:
+    c0, c1 = m.connectors
+    p0, a0, n0 = monitor_frame(ctx, c0)
+    p1, a1, n1 = monitor_frame(ctx, c1)
+    ctx.out.monitors.append(
+        MateMonitor(
+            m.path,
+            m.kind,
+            owner_mj_name(ctx, c0),
+            p0,
+            a0,
+            n0,
+            owner_mj_name(ctx, c1),
+            p1,
+            a1,
+            n1,
+            float(m.initial_distance),
+            role,
+        )
+    )
+
+
+def monitor_frame(ctx: BuildContext, c: Connector) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    return local_frame(ctx, c)
+
+
+# -- loops, distances, filtering, friction ----------------------------------------------------
+def add_loop_closures(ctx: BuildContext, loops: list[Mate]) -> None:
+    mj = ctx.mj
+    for m in loops:
+        c0, c1 = m.connectors
+        b0, b1 = owner_mj_name(ctx, c0), owner_mj_name(ctx, c1)
+        p0, a0, _ = local_frame(ctx, c0)
+        p1 = local_frame(ctx, c1)[0]
+        if m.kind == "ball":
+            connect(ctx, m.path, "", b0, b1, p0, m)
+        elif m.kind == "hinge":
+            connect(ctx, m.path, ":a", b0, b1, p0 + HINGE_LOOP_HALF_LENGTH * a0, m)
+            connect(ctx, m.path, ":b", b0, b1, p0 - HINGE_LOOP_HALF_LENGTH * a0, m)
+            ctx.note(
+                INFO,
+                "A114",
+                f"{m.path} closes a kinematic loop: two connect equalities on its axis (free rotation kept)",
                 m,
             )
-            self.add_monitor(m, "distance")
+        elif m.kind == "lock":
+            e = ctx.spec.add_equality(
+                name=ctx.names.add("equality", m.path, m.source), type=mj.mjtEq.mjEQ_WELD
+            )
+            e.objtype = mj.mjtObj.mjOBJ_BODY
+            e.name1, e.name2 = b0, b1
+            data = np.zeros(len(e.data))
+            data[0:3] = p1  # anchor in body2; relpose zeros -> taken from the assembled pose
+            data[10] = 1.0
+            e.data = data
+            ctx.note(INFO, "A114", f"{m.path} closes a kinematic loop: weld equality", m)
+        else:
+            ctx.note(
+                WARNING,
+                "A115",
+                f"{m.path}: a loop-closing {m.kind} mate cannot be expressed in MuJoCo; it is NOT enforced",
+                m,
+            )
+            add_monitor(ctx, m, "open")
+            continue
+        if m.kind == "ball":
+            ctx.note(INFO, "A114", f"{m.path} closes a kinematic loop: connect equality", m)
+        add_monitor(ctx, m, "loop")
+
+
+def connect(ctx: BuildContext, path: str, suffix: str, b0: str, b1: str, anchor: np.ndarray, m: Mate) -> None:
+    mj = ctx.mj
+    e = ctx.spec.add_equality(
+        name=ctx.names.add("equality", path, m.source, suffix), type=mj.mjtEq.mjEQ_CONNECT
+    )
+    e.objtype = mj.mjtObj.mjOBJ_BODY
+    e.name1, e.name2 = b0, b1
+    data = np.zeros(len(e.data))
+    data[0:3] = anchor
+    data[10] = 1.0
+    e.data = data
+
+
+def add_distance_mates(ctx: BuildContext, mates: list[Mate]) -> None:
+    mj = ctx.mj
+    for m in mates:
+        c0, c1 = m.connectors
+        (w0, _, _), (w1, _, _) = world_connector(ctx, c0), world_connector(ctx, c1)
+        length0 = float(np.linalg.norm(w1 - w0))
+        target = float(m.initial_distance)
+        if target < 1e-6 and length0 < 1e-6:
+            connect(ctx, 
+                m.path, "", owner_mj_name(ctx, c0), owner_mj_name(ctx, c1), local_frame(ctx, c0)[0], m
+            )
+            ctx.note(
+                WARNING,
+                "A116",
+                f"{m.path}: Distance mate with zero distance approximated as a ball (connect) constraint",
+                m,
+            )
+            add_monitor(ctx, m, "distance")
+            continue
+        sites = []
+        for c, suffix in ((c0, ":site0"), (c1, ":site1")):
+            owner = ctx.mj_bodies.get(c.body) if c.body is not None else ctx.spec.worldbody
+            s = owner.add_site(
+                name=ctx.names.add("site", m.path, m.source, suffix), pos=list(local_frame(ctx, c)[0])
+            )
+            sites.append(s.name)
+        t = ctx.spec.add_tendon(name=ctx.names.add("tendon", m.path, m.source))
+        t.wrap_site(sites[0])
+        t.wrap_site(sites[1])
+        e = ctx.spec.add_equality(
+            name=ctx.names.add("equality", m.path, m.source), type=mj.mjtEq.mjEQ_TENDON
+        )
+        e.objtype = mj.mjtObj.mjOBJ_TENDON
+        e.name1 = t.name
+        data = np.zeros(len(e.data))
+        data[0] = target - length0  # MuJoCo holds length - length(qpos0) at data[0]
+        e.data = data
+        ctx.note(
+            WARNING,
+            "A116",
+            f"{m.path}: Distance mate approximated by a tendon-length equality (target {target:g} m)",
+            m,
+        )
+        add_monitor(ctx, m, "distance")

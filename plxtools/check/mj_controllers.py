@@ -1,4 +1,4 @@
-"""Controllers (motors, ranges, springs) and the initial keyframe (mixin of the MjSpec builder).
+"""Controllers (motors, ranges, springs) and the initial keyframe (steps of the MjSpec build, on a :class:`BuildContext`).
 
 Velocity motors: ``kv = min(gain, KV_STEPS * I_eff / timestep)`` with ``I_eff = 1 / dof_invweight0``;
 ``KV_STEPS`` is 10 for unlimited motors (a servo time constant of a tenth of a step: tight tracking)
@@ -15,10 +15,11 @@ from typing import Any
 
 import numpy as np
 
+from plxtools.check.mj_context import BuildContext
 from plxtools.check.mj_math import quat_to_mat
 from plxtools.check.mj_notes import ERROR, INFO, WARNING
-from plxtools.check.mj_types import ActuatorInfo, CompiledScene
-from plxtools.check.scene import Body, Controller, Mate
+from plxtools.check.mj_types import ActuatorInfo
+from plxtools.check.scene import Controller, Mate
 
 KV_STEPS = 10.0
 KV_STEPS_LIMITED = 1.0
@@ -26,275 +27,257 @@ SPRING_OMEGA_H = 0.2  # spring stiffness cap: natural frequency * timestep <= 0.
 BIG_FORCE = 1e9
 
 
-class ControllerMixin:
-    """Needs from the builder: mj, spec, scene, names, bodies, out, joint_limits, spring_count, note()."""
-
-    mj: Any
-    spec: Any
-    scene: Any
-    names: Any
-    bodies: dict[str, Body]
-    out: CompiledScene
-    joint_limits: dict[str, list[float]]
-    spring_count: dict[str, int]
-
-    def note(self, severity: str, code: str, message: str, item: Any = None, path: str | None = None) -> None:
-        raise NotImplementedError
-
-    # -- controllers -----------------------------------------------------------------------------
-    def add_controllers(self, model: Any) -> None:
-        mates: dict[tuple[str, str], Mate] = {}
-        for m in self.scene.mates:
-            if len(m.connectors) == 2:
-                mates.setdefault((m.connectors[0].path, m.connectors[1].path), m)
-        for ctl in self.scene.controllers:
-            self.names.add("controller", ctl.path, ctl.source)
-            if not ctl.enabled:
-                self.note(INFO, "controller-disabled", f"{ctl.path} is disabled", ctl)
-                continue
-            if len(ctl.connectors) != 2:
-                self.note(ERROR, "controller-connector-count", f"{ctl.path}: needs exactly 2 connectors", ctl)
-                continue
-            a, b = ctl.connectors[0].path, ctl.connectors[1].path
-            mate, reversed_ = mates.get((a, b)), False
-            if mate is None and (b, a) in mates:
-                mate, reversed_ = mates[(b, a)], True
-            if mate is None:
-                self.note(
-                    ERROR,
-                    "controller-without-mate",
-                    f"{ctl.path}: no mate uses the connector pair ({a}, {b}); controller ignored",
-                    ctl,
-                )
-                continue
-            joint = self.controller_joint(ctl, mate)
-            if joint is None:
-                continue
-            sign = self.out.joint_sign[mate.path] * (-1 if reversed_ else 1)
-            if reversed_:
-                self.note(
-                    INFO,
-                    "controller-reversed",
-                    f"{ctl.path} lists the connectors of {mate.path} in the opposite order: its coordinate is the negated mate coordinate",
-                    ctl,
-                )
-            jid = model.joint(joint).id
-            ieff = 1.0 / max(float(model.dof_invweight0[model.jnt_dofadr[jid]]), 1e-12)
-            if ctl.kind == "velocity_motor":
-                self.add_velocity_motor(ctl, mate, joint, sign, ieff)
-            elif ctl.kind in ("torque_motor", "force_motor"):
-                self.add_effort_motor(ctl, mate, joint, sign)
-            elif ctl.kind == "range":
-                self.add_range(ctl, joint, sign)
-            elif ctl.kind == "spring":
-                self.add_spring(ctl, joint, sign, ieff)
-            else:
-                self.note(
-                    WARNING,
-                    "unsupported-controller",
-                    f"{ctl.path}: controller kind {ctl.kind!r} unsupported; ignored",
-                    ctl,
-                )
-
-    def controller_joint(self, ctl: Controller, mate: Mate) -> str | None:
-        if not mate.enabled:
-            self.note(
-                WARNING, "controller-on-disabled-mate", f"{ctl.path}: its mate {mate.path} is disabled", ctl
-            )
-            return None
-        joints = self.out.joints.get(mate.path)
-        fits = {
-            "hinge": ("rotational",),
-            "prismatic": ("linear",),
-            "cylindrical": ("rotational", "linear"),
-        }.get(mate.kind, ())
-        if ctl.dof not in fits:
-            self.note(
-                ERROR,
-                "controller-dof-mismatch",
-                f"{ctl.path}: a {ctl.dof} controller cannot drive the {mate.kind} mate {mate.path}",
+# -- controllers -----------------------------------------------------------------------------
+def add_controllers(ctx: BuildContext, model: Any) -> None:
+    mates: dict[tuple[str, str], Mate] = {}
+    for m in ctx.scene.mates:
+        if len(m.connectors) == 2:
+            mates.setdefault((m.connectors[0].path, m.connectors[1].path), m)
+    for ctl in ctx.scene.controllers:
+        ctx.names.add("controller", ctl.path, ctl.source)
+        if not ctl.enabled:
+            ctx.note(INFO, "A129", f"{ctl.path} is disabled", ctl)
+            continue
+        if len(ctl.connectors) != 2:
+            ctx.invariant("A013", f"{ctl.path}: needs exactly 2 connectors", ctl)
+            continue
+        a, b = ctl.connectors[0].path, ctl.connectors[1].path
+        mate, reversed_ = mates.get((a, b)), False
+        if mate is None and (b, a) in mates:
+            mate, reversed_ = mates[(b, a)], True
+        if mate is None:
+            ctx.invariant("A020",
+                f"{ctl.path}: no mate uses the connector pair ({a}, {b}); controller ignored",
                 ctl,
             )
-            return None
-        if not joints:
-            self.note(
-                WARNING,
-                "controller-on-loop-mate",
-                f"{ctl.path}: {mate.path} closes a kinematic loop (equality constraint); controllers on it are not supported",
-                ctl,
-            )
-            return None
-        if mate.kind == "cylindrical":
-            return joints[0] if ctl.dof == "rotational" else joints[1]
-        return joints[0]
-
-    def effort_range(self, ctl: Controller, act: Any) -> None:
-        lo, hi = float(ctl.min_effort), float(ctl.max_effort)
-        if lo > hi:
-            self.note(
-                ERROR,
-                "effort-range-inverted",
-                f"{ctl.path}: min_effort {lo:g} > max_effort {hi:g}; effort left unlimited",
-                ctl,
-            )
-            return
-        if math.isfinite(lo) or math.isfinite(hi):
-            act.forcelimited = self.mj.mjtLimited.mjLIMITED_TRUE
-            act.forcerange = [max(lo, -BIG_FORCE), min(hi, BIG_FORCE)]
-
-    def add_velocity_motor(self, ctl: Controller, mate: Mate, joint: str, sign: int, ieff: float) -> None:
-        h = float(self.scene.timestep)
-        if ctl.gain <= 0:
-            self.note(
-                ERROR,
-                "non-positive-gain",
-                f"{ctl.path}: gain {ctl.gain:g} must be positive; motor ignored",
-                ctl,
-            )
-            return
-        limited = math.isfinite(ctl.min_effort) or math.isfinite(ctl.max_effort)
-        steps = KV_STEPS_LIMITED if limited else KV_STEPS
-        cap = steps * ieff / h
-        kv = min(float(ctl.gain), cap)
-        if kv < ctl.gain:
-            why = (
-                "effort-limited servo: a larger kv would chatter between the effort limits (MuJoCo ignores the implicit damping of a saturated actuator)"
-                if limited
-                else "integrated implicitly, nearly rigid speed tracking"
-            )
-            self.note(
+            continue
+        joint = controller_joint(ctx, ctl, mate)
+        if joint is None:
+            continue
+        sign = ctx.out.joint_sign[mate.path] * (-1 if reversed_ else 1)
+        if reversed_:
+            ctx.note(
                 INFO,
-                "velocity-motor-gain-clamped",
-                f"{ctl.path}: gain {ctl.gain:g} is far too stiff for MuJoCo; kv clamped to {kv:.4g} "
-                f"(= {steps:g} x effective inertia {ieff:.4g} / timestep {h:g}; {why})",
+                "A122",
+                f"{ctl.path} lists the connectors of {mate.path} in the opposite order: its coordinate is the negated mate coordinate",
                 ctl,
             )
-        name = self.names.add("actuator", ctl.path, ctl.source)
-        act = self.spec.add_actuator(name=name, target=joint, trntype=self.mj.mjtTrn.mjTRN_JOINT)
-        act.set_to_velocity(kv=kv)
-        act.gear = [float(sign), 0, 0, 0, 0, 0]
-        act.ctrllimited = self.mj.mjtLimited.mjLIMITED_FALSE
-        self.effort_range(ctl, act)
-        self.out.actuators.append(
-            ActuatorInfo(
-                ctl.path,
-                name,
-                ctl.kind,
-                mate.path,
-                joint,
-                float(sign),
-                float(ctl.target_speed),
-                kv,
-                float(ctl.target_speed),
+        jid = model.joint(joint).id
+        ieff = 1.0 / max(float(model.dof_invweight0[model.jnt_dofadr[jid]]), 1e-12)
+        if ctl.kind == "velocity_motor":
+            add_velocity_motor(ctx, ctl, mate, joint, sign, ieff)
+        elif ctl.kind in ("torque_motor", "force_motor"):
+            add_effort_motor(ctx, ctl, mate, joint, sign)
+        elif ctl.kind == "range":
+            add_range(ctx, ctl, joint, sign)
+        elif ctl.kind == "spring":
+            add_spring(ctx, ctl, joint, sign, ieff)
+        else:
+            ctx.invariant("A040",
+                f"{ctl.path}: controller kind {ctl.kind!r} unsupported; ignored",
+                ctl,
             )
+
+
+def controller_joint(ctx: BuildContext, ctl: Controller, mate: Mate) -> str | None:
+    if not mate.enabled:
+        ctx.note(
+            WARNING, "A123", f"{ctl.path}: its mate {mate.path} is disabled", ctl
+        )
+        return None
+    joints = ctx.out.joints.get(mate.path)
+    fits = {
+        "hinge": ("rotational",),
+        "prismatic": ("linear",),
+        "cylindrical": ("rotational", "linear"),
+    }.get(mate.kind, ())
+    if ctl.dof not in fits:
+        ctx.invariant("A021",
+            f"{ctl.path}: a {ctl.dof} controller cannot drive the {mate.kind} mate {mate.path}",
+            ctl,
+        )
+        return None
+    if not joints:
+        ctx.note(
+            WARNING,
+            "A124",
+            f"{ctl.path}: {mate.path} closes a kinematic loop (equality constraint); controllers on it are not supported",
+            ctl,
+        )
+        return None
+    if mate.kind == "cylindrical":
+        return joints[0] if ctl.dof == "rotational" else joints[1]
+    return joints[0]
+
+
+def effort_range(ctx: BuildContext, ctl: Controller, act: Any) -> None:
+    lo, hi = float(ctl.min_effort), float(ctl.max_effort)
+    if lo > hi:
+        ctx.invariant("A024",
+            f"{ctl.path}: min_effort {lo:g} > max_effort {hi:g}; effort left unlimited",
+            ctl,
+        )
+        return
+    if math.isfinite(lo) or math.isfinite(hi):
+        act.forcelimited = ctx.mj.mjtLimited.mjLIMITED_TRUE
+        act.forcerange = [max(lo, -BIG_FORCE), min(hi, BIG_FORCE)]
+
+
+def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str, sign: int, ieff: float) -> None:
+    h = float(ctx.scene.timestep)
+    if ctl.gain <= 0:
+        ctx.note(
+            ERROR,
+            "A130",
+            f"{ctl.path}: gain {ctl.gain:g} must be positive; motor ignored",
+            ctl,
+        )
+        return
+    limited = math.isfinite(ctl.min_effort) or math.isfinite(ctl.max_effort)
+    steps = KV_STEPS_LIMITED if limited else KV_STEPS
+    cap = steps * ieff / h
+    kv = min(float(ctl.gain), cap)
+    if kv < ctl.gain:
+        why = (
+            "effort-limited servo: a larger kv would chatter between the effort limits (MuJoCo ignores the implicit damping of a saturated actuator)"
+            if limited
+            else "integrated implicitly, nearly rigid speed tracking"
+        )
+        ctx.note(
+            INFO,
+            "A111",
+            f"{ctl.path}: gain {ctl.gain:g} is far too stiff for MuJoCo; kv clamped to {kv:.4g} "
+            f"(= {steps:g} x effective inertia {ieff:.4g} / timestep {h:g}; {why})",
+            ctl,
+        )
+    name = ctx.names.add("actuator", ctl.path, ctl.source)
+    act = ctx.spec.add_actuator(name=name, target=joint, trntype=ctx.mj.mjtTrn.mjTRN_JOINT)
+    act.set_to_velocity(kv=kv)
+    act.gear = [float(sign), 0, 0, 0, 0, 0]
+    act.ctrllimited = ctx.mj.mjtLimited.mjLIMITED_FALSE
+    effort_range(ctx, ctl, act)
+    ctx.out.actuators.append(
+        ActuatorInfo(
+            ctl.path,
+            name,
+            ctl.kind,
+            mate.path,
+            joint,
+            float(sign),
+            float(ctl.target_speed),
+            kv,
+            float(ctl.target_speed),
+        )
+    )
+
+
+def add_effort_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str, sign: int) -> None:
+    name = ctx.names.add("actuator", ctl.path, ctl.source)
+    act = ctx.spec.add_actuator(name=name, target=joint, trntype=ctx.mj.mjtTrn.mjTRN_JOINT)
+    act.set_to_motor()
+    act.gear = [float(sign), 0, 0, 0, 0, 0]
+    act.ctrllimited = ctx.mj.mjtLimited.mjLIMITED_FALSE
+    effort_range(ctx, ctl, act)
+    lo, hi = float(ctl.min_effort), float(ctl.max_effort)
+    ctrl = float(ctl.effort) if lo > hi else float(np.clip(ctl.effort, lo, hi))
+    ctx.out.actuators.append(ActuatorInfo(ctl.path, name, ctl.kind, mate.path, joint, float(sign), ctrl))
+
+
+def add_range(ctx: BuildContext, ctl: Controller, joint: str, sign: int) -> None:
+    if ctl.start is None or ctl.end is None:
+        ctx.note(ERROR, "A130", f"{ctl.path}: range needs start and end", ctl)
+        return
+    if ctl.start > ctl.end:
+        ctx.invariant("A024",
+            f"{ctl.path}: start {ctl.start:g} > end {ctl.end:g}; range ignored",
+            ctl,
+        )
+        return
+    lo, hi = sorted((sign * float(ctl.start), sign * float(ctl.end)))
+    if joint in ctx.joint_limits:
+        plo, phi = ctx.joint_limits[joint]
+        lo, hi = max(lo, plo), min(hi, phi)
+        ctx.note(INFO, "A125", f"{ctl.path}: several ranges on one DOF are intersected", ctl)
+    ctx.joint_limits[joint] = [lo, hi]
+    j = ctx.spec.joint(joint)
+    j.limited = ctx.mj.mjtLimited.mjLIMITED_TRUE
+    j.range = [lo, hi]
+    if math.isfinite(ctl.max_effort) or (math.isfinite(ctl.min_effort) and ctl.min_effort != 0):
+        ctx.note(
+            INFO,
+            "A119",
+            f"{ctl.path}: range effort limits are not modelled (hard MuJoCo joint limit)",
+            ctl,
         )
 
-    def add_effort_motor(self, ctl: Controller, mate: Mate, joint: str, sign: int) -> None:
-        name = self.names.add("actuator", ctl.path, ctl.source)
-        act = self.spec.add_actuator(name=name, target=joint, trntype=self.mj.mjtTrn.mjTRN_JOINT)
-        act.set_to_motor()
-        act.gear = [float(sign), 0, 0, 0, 0, 0]
-        act.ctrllimited = self.mj.mjtLimited.mjLIMITED_FALSE
-        self.effort_range(ctl, act)
-        lo, hi = float(ctl.min_effort), float(ctl.max_effort)
-        ctrl = float(ctl.effort) if lo > hi else float(np.clip(ctl.effort, lo, hi))
-        self.out.actuators.append(ActuatorInfo(ctl.path, name, ctl.kind, mate.path, joint, float(sign), ctrl))
 
-    def add_range(self, ctl: Controller, joint: str, sign: int) -> None:
-        if ctl.start is None or ctl.end is None:
-            self.note(ERROR, "range-incomplete", f"{ctl.path}: range needs start and end", ctl)
-            return
-        if ctl.start > ctl.end:
-            self.note(
-                ERROR,
-                "range-inverted",
-                f"{ctl.path}: start {ctl.start:g} > end {ctl.end:g}; range ignored",
-                ctl,
-            )
-            return
-        lo, hi = sorted((sign * float(ctl.start), sign * float(ctl.end)))
-        if joint in self.joint_limits:
-            plo, phi = self.joint_limits[joint]
-            lo, hi = max(lo, plo), min(hi, phi)
-            self.note(INFO, "multiple-ranges", f"{ctl.path}: several ranges on one DOF are intersected", ctl)
-        self.joint_limits[joint] = [lo, hi]
-        j = self.spec.joint(joint)
-        j.limited = self.mj.mjtLimited.mjLIMITED_TRUE
-        j.range = [lo, hi]
-        if math.isfinite(ctl.max_effort) or (math.isfinite(ctl.min_effort) and ctl.min_effort != 0):
-            self.note(
+def add_spring(ctx: BuildContext, ctl: Controller, joint: str, sign: int, ieff: float) -> None:
+    h = float(ctx.scene.timestep)
+    if ctl.stiffness <= 0:
+        ctx.note(
+            ERROR,
+            "A130",
+            f"{ctl.path}: stiffness {ctl.stiffness:g} must be positive; spring ignored",
+            ctl,
+        )
+        return
+    if ctl.damping < 0:
+        ctx.note(
+            ERROR,
+            "A130",
+            f"{ctl.path}: damping {ctl.damping:g} must not be negative; spring ignored",
+            ctl,
+        )
+        return
+    cap = ieff * (SPRING_OMEGA_H / h) ** 2
+    k = min(float(ctl.stiffness), cap)
+    if k < ctl.stiffness:
+        ctx.note(
+            INFO,
+            "A112",
+            f"{ctl.path}: stiffness {ctl.stiffness:g} would be unstable at timestep {h:g}; clamped to {k:.4g} "
+            f"(natural frequency x timestep <= {SPRING_OMEGA_H:g} for effective inertia {ieff:.4g})",
+            ctl,
+        )
+    j = ctx.spec.joint(joint)
+    n = ctx.spring_count.get(joint, 0)
+    if n:
+        ctx.note(
+            WARNING,
+            "A125",
+            f"{ctl.path}: several springs on one DOF; stiffness and damping are summed, the last rest value wins",
+            ctl,
+        )
+    ctx.spring_count[joint] = n + 1
+    stiffness = [float(v) for v in j.stiffness]  # [linear, polynomial terms...] in MuJoCo 4
+    damping = [float(v) for v in j.damping]
+    stiffness[0] = stiffness[0] + k if n else k
+    damping[0] = damping[0] + float(ctl.damping) if n else float(ctl.damping)
+    j.stiffness = stiffness
+    j.damping = damping
+    j.springref = sign * float(ctl.rest)
+
+
+# -- initial state ---------------------------------------------------------------------------
+def add_keyframe(ctx: BuildContext, model: Any) -> None:
+    qvel = np.zeros(model.nv)
+    roots = set(ctx.out.free_roots)
+    for path, body in ctx.bodies.items():
+        if not body.is_dynamic:
+            continue
+        v, w = np.asarray(body.lin_vel, dtype=float), np.asarray(body.ang_vel, dtype=float)
+        if path in roots:
+            jid = model.joint(ctx.names.name("joint", path, ":free")).id
+            adr = model.jnt_dofadr[jid]
+            r = quat_to_mat(body.world_quat)
+            qvel[adr : adr + 3] = v
+            qvel[adr + 3 : adr + 6] = r.T @ w  # free-joint angular velocity is in the body frame
+        elif np.any(v != 0) or np.any(w != 0):
+            ctx.note(
                 INFO,
-                "range-effort-ignored",
-                f"{ctl.path}: range effort limits are not modelled (hard MuJoCo joint limit)",
-                ctl,
+                "A120",
+                f"{path}: initial velocity of a body attached by a mate is ignored (it follows its joints)",
+                body,
             )
-
-    def add_spring(self, ctl: Controller, joint: str, sign: int, ieff: float) -> None:
-        h = float(self.scene.timestep)
-        if ctl.stiffness <= 0:
-            self.note(
-                ERROR,
-                "non-positive-stiffness",
-                f"{ctl.path}: stiffness {ctl.stiffness:g} must be positive; spring ignored",
-                ctl,
-            )
-            return
-        if ctl.damping < 0:
-            self.note(
-                ERROR,
-                "negative-damping",
-                f"{ctl.path}: damping {ctl.damping:g} must not be negative; spring ignored",
-                ctl,
-            )
-            return
-        cap = ieff * (SPRING_OMEGA_H / h) ** 2
-        k = min(float(ctl.stiffness), cap)
-        if k < ctl.stiffness:
-            self.note(
-                INFO,
-                "spring-stiffness-clamped",
-                f"{ctl.path}: stiffness {ctl.stiffness:g} would be unstable at timestep {h:g}; clamped to {k:.4g} "
-                f"(natural frequency x timestep <= {SPRING_OMEGA_H:g} for effective inertia {ieff:.4g})",
-                ctl,
-            )
-        j = self.spec.joint(joint)
-        n = self.spring_count.get(joint, 0)
-        if n:
-            self.note(
-                WARNING,
-                "multiple-springs",
-                f"{ctl.path}: several springs on one DOF; stiffness and damping are summed, the last rest value wins",
-                ctl,
-            )
-        self.spring_count[joint] = n + 1
-        stiffness = [float(v) for v in j.stiffness]  # [linear, polynomial terms...] in MuJoCo 4
-        damping = [float(v) for v in j.damping]
-        stiffness[0] = stiffness[0] + k if n else k
-        damping[0] = damping[0] + float(ctl.damping) if n else float(ctl.damping)
-        j.stiffness = stiffness
-        j.damping = damping
-        j.springref = sign * float(ctl.rest)
-
-    # -- initial state ---------------------------------------------------------------------------
-    def add_keyframe(self, model: Any) -> None:
-        qvel = np.zeros(model.nv)
-        roots = set(self.out.free_roots)
-        for path, body in self.bodies.items():
-            if not body.is_dynamic:
-                continue
-            v, w = np.asarray(body.lin_vel, dtype=float), np.asarray(body.ang_vel, dtype=float)
-            if path in roots:
-                jid = model.joint(self.names.name("joint", path, ":free")).id
-                adr = model.jnt_dofadr[jid]
-                r = quat_to_mat(body.world_quat)
-                qvel[adr : adr + 3] = v
-                qvel[adr + 3 : adr + 6] = r.T @ w  # free-joint angular velocity is in the body frame
-            elif np.any(v != 0) or np.any(w != 0):
-                self.note(
-                    INFO,
-                    "initial-velocity-ignored",
-                    f"{path}: initial velocity of a body attached by a mate is ignored (it follows its joints)",
-                    body,
-                )
-        ctrl = [a.ctrl for a in self.out.actuators]  # actuators compile in the order they were added
-        self.spec.add_key(name="initial", qpos=list(model.qpos0), qvel=list(qvel), ctrl=ctrl)
+    ctrl = [a.ctrl for a in ctx.out.actuators]  # actuators compile in the order they were added
+    ctx.spec.add_key(name="initial", qpos=list(model.qpos0), qvel=list(qvel), ctrl=ctrl)

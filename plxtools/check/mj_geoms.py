@@ -1,4 +1,4 @@
-"""Geometry, mass properties, collision filtering and contact pairs (mixin of the MjSpec builder)."""
+"""Geometry, mass properties, collision filtering and contact pairs (steps of the MjSpec build, on a :class:`BuildContext`)."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from plxtools.check.mj_context import BuildContext
 from plxtools.check.mj_math import Z_TO_Y_QUAT, quat_mul, quat_normalize
 from plxtools.check.mj_notes import ERROR, INFO, WARNING
 from plxtools.check.mj_types import VISUAL_GROUP
@@ -24,355 +25,315 @@ PALETTE = [
 STATIC_RGBA = (0.55, 0.6, 0.55, 1.0)
 
 
-class GeomMixin:
-    """Needs from the builder: mj, spec, scene, names, bodies, body_index, mj_bodies, excluded,
-    geoms_by_material and note()."""
+# -- geoms -----------------------------------------------------------------------------------
+def add_geoms(ctx: BuildContext, mb: Any, body: Body) -> None:
+    for g in body.geoms:
+        add_geom(ctx, mb, body, g)
 
-    mj: Any
-    spec: Any
-    scene: Any
-    names: Any
-    bodies: dict[str, Body]
-    body_index: dict[str, int]
-    mj_bodies: dict[str, Any]
-    excluded: set[frozenset[str]]
-    geoms_by_material: dict[str, list[tuple[str, str]]]
 
-    def note(self, severity: str, code: str, message: str, item: Any = None, path: str | None = None) -> None:
-        raise NotImplementedError
+def geom_size_ok(ctx: BuildContext, g: Geom) -> bool:
+    k = g.kind
+    bad = ""
+    if k == "box" and min(g.size) <= 0:
+        bad = f"box size {tuple(g.size)} must be positive (full edge lengths; the default is 0,0,0)"
+    elif k in ("sphere", "cylinder", "capsule") and g.radius <= 0:
+        bad = f"{k} radius {g.radius} must be positive"
+    elif k == "cylinder" and g.height <= 0:
+        bad = f"cylinder height {g.height} must be positive"
+    elif k == "capsule" and g.height < 0:
+        bad = f"capsule height {g.height} must not be negative"
+    elif k == "mesh" and min(g.mesh_scale) <= 0:
+        bad = f"mesh scale {tuple(g.mesh_scale)} must be positive"
+    if bad:
+        ctx.invariant("A030", f"{g.path}: {bad}; geometry skipped", g)
+        return False
+    return True
 
-    # -- geoms -----------------------------------------------------------------------------------
-    def add_geoms(self, mb: Any, body: Body) -> None:
-        for g in body.geoms:
-            self.add_geom(mb, body, g)
 
-    def geom_size_ok(self, g: Geom) -> bool:
-        k = g.kind
-        bad = ""
-        if k == "box" and min(g.size) <= 0:
-            bad = f"box size {tuple(g.size)} must be positive (full edge lengths; the default is 0,0,0)"
-        elif k in ("sphere", "cylinder", "capsule") and g.radius <= 0:
-            bad = f"{k} radius {g.radius} must be positive"
-        elif k == "cylinder" and g.height <= 0:
-            bad = f"cylinder height {g.height} must be positive"
-        elif k == "capsule" and g.height < 0:
-            bad = f"capsule height {g.height} must not be negative"
-        elif k == "mesh" and min(g.mesh_scale) <= 0:
-            bad = f"mesh scale {tuple(g.mesh_scale)} must be positive"
-        if bad:
-            self.note(ERROR, "invalid-geometry-size", f"{g.path}: {bad}; geometry skipped", g)
-            return False
-        return True
-
-    def add_geom(self, mb: Any, body: Body, g: Geom) -> None:
-        mj = self.mj
-        if g.kind not in ("box", "sphere", "cylinder", "capsule", "mesh", "plane"):
-            self.note(
+def add_geom(ctx: BuildContext, mb: Any, body: Body, g: Geom) -> None:
+    mj = ctx.mj
+    if g.kind not in ("box", "sphere", "cylinder", "capsule", "mesh", "plane"):
+        ctx.invariant("A040",
+            f"{g.path}: geometry kind {g.kind!r} is not supported; skipped",
+            g,
+        )
+        return
+    if not geom_size_ok(ctx, g):
+        return
+    name = ctx.names.add("geom", g.path, g.source)
+    quat = quat_normalize(g.quat)
+    kw: dict[str, Any] = {"name": name, "pos": list(g.pos)}
+    if g.kind == "box":
+        kw.update(type=mj.mjtGeom.mjGEOM_BOX, size=[s / 2.0 for s in g.size])
+    elif g.kind == "sphere":
+        kw.update(type=mj.mjtGeom.mjGEOM_SPHERE, size=[g.radius, 0, 0])
+    elif g.kind == "cylinder":
+        kw.update(type=mj.mjtGeom.mjGEOM_CYLINDER, size=[g.radius, g.height / 2.0, 0])
+        quat = quat_mul(quat, Z_TO_Y_QUAT)
+    elif g.kind == "capsule":
+        if g.height == 0:
+            kw.update(type=mj.mjtGeom.mjGEOM_SPHERE, size=[g.radius, 0, 0])
+        else:
+            kw.update(type=mj.mjtGeom.mjGEOM_CAPSULE, size=[g.radius, g.height / 2.0, 0])
+            quat = quat_mul(quat, Z_TO_Y_QUAT)
+    elif g.kind == "plane":
+        if body.is_dynamic:
+            ctx.note(
                 WARNING,
-                "unsupported-geometry",
-                f"{g.path}: geometry kind {g.kind!r} is not supported; skipped",
+                "A127",
+                f"{g.path}: planes can only be static in MuJoCo; skipped",
                 g,
             )
             return
-        if not self.geom_size_ok(g):
+        kw.update(type=mj.mjtGeom.mjGEOM_PLANE, size=[g.size[0] / 2.0, g.size[1] / 2.0, 1.0])
+    elif g.kind == "mesh":
+        mesh = add_mesh(ctx, g)
+        if mesh is None:
             return
-        name = self.names.add("geom", g.path, g.source)
-        quat = quat_normalize(g.quat)
-        kw: dict[str, Any] = {"name": name, "pos": list(g.pos)}
-        if g.kind == "box":
-            kw.update(type=mj.mjtGeom.mjGEOM_BOX, size=[s / 2.0 for s in g.size])
-        elif g.kind == "sphere":
-            kw.update(type=mj.mjtGeom.mjGEOM_SPHERE, size=[g.radius, 0, 0])
-        elif g.kind == "cylinder":
-            kw.update(type=mj.mjtGeom.mjGEOM_CYLINDER, size=[g.radius, g.height / 2.0, 0])
-            quat = quat_mul(quat, Z_TO_Y_QUAT)
-        elif g.kind == "capsule":
-            if g.height == 0:
-                kw.update(type=mj.mjtGeom.mjGEOM_SPHERE, size=[g.radius, 0, 0])
-            else:
-                kw.update(type=mj.mjtGeom.mjGEOM_CAPSULE, size=[g.radius, g.height / 2.0, 0])
-                quat = quat_mul(quat, Z_TO_Y_QUAT)
-        elif g.kind == "plane":
-            if body.is_dynamic:
-                self.note(
-                    WARNING,
-                    "plane-on-dynamic-body",
-                    f"{g.path}: planes can only be static in MuJoCo; skipped",
-                    g,
-                )
-                return
-            kw.update(type=mj.mjtGeom.mjGEOM_PLANE, size=[g.size[0] / 2.0, g.size[1] / 2.0, 1.0])
-        elif g.kind == "mesh":
-            mesh = self.add_mesh(g)
-            if mesh is None:
-                return
-            kw.update(type=mj.mjtGeom.mjGEOM_MESH, meshname=mesh)
-        kw["quat"] = list(quat_normalize(quat))
-        collide = g.enable_collisions and not g.visual_only
-        kw["contype"] = 1 if collide else 0
-        kw["conaffinity"] = 1 if collide else 0
-        in_mass = g.include_in_mass and not g.visual_only
-        kw["density"] = float(g.density) if in_mass else 0.0
-        if in_mass and g.density <= 0:
-            self.note(
-                WARNING, "non-positive-density", f"{g.path}: material density {g.density} gives no mass", g
-            )
-            kw["density"] = 0.0
-        if g.visual_only:
-            kw["group"] = VISUAL_GROUP
-        if g.rgba is not None:
-            kw["rgba"] = list(g.rgba)
-        elif not body.is_dynamic:
-            kw["rgba"] = list(STATIC_RGBA)
-        else:
-            kw["rgba"] = list(PALETTE[self.body_index[body.path] % len(PALETTE)])
-        if self.scene.default_friction is not None:
-            kw["friction"] = [float(self.scene.default_friction), 0.005, 0.0001]
-        mb.add_geom(**kw)
-        if collide and g.material:
-            self.geoms_by_material.setdefault(g.material, []).append((name, body.path))
+        kw.update(type=mj.mjtGeom.mjGEOM_MESH, meshname=mesh)
+    kw["quat"] = list(quat_normalize(quat))
+    collide = g.enable_collisions and not g.visual_only
+    kw["contype"] = 1 if collide else 0
+    kw["conaffinity"] = 1 if collide else 0
+    in_mass = g.include_in_mass and not g.visual_only
+    kw["density"] = float(g.density) if in_mass else 0.0
+    if in_mass and g.density <= 0:
+        kw["density"] = 0.0  # gives no mass; the static checks own this finding (A038)
+    if g.visual_only:
+        kw["group"] = VISUAL_GROUP
+    if g.rgba is not None:
+        kw["rgba"] = list(g.rgba)
+    elif not body.is_dynamic:
+        kw["rgba"] = list(STATIC_RGBA)
+    else:
+        kw["rgba"] = list(PALETTE[ctx.body_index[body.path] % len(PALETTE)])
+    if ctx.scene.default_friction is not None:
+        kw["friction"] = [float(ctx.scene.default_friction), 0.005, 0.0001]
+    mb.add_geom(**kw)
+    if collide and g.material:
+        ctx.geoms_by_material.setdefault(g.material, []).append((name, body.path))
 
-    def add_mesh(self, g: Geom) -> str | None:
-        name = self.names.add("mesh", g.path, g.source)
-        kw: dict[str, Any] = {"name": name, "scale": list(g.mesh_scale)}
-        if g.mesh_file:
-            f = g.mesh_file
-            if not os.path.isabs(f) and self.scene.base_dir:
-                f = os.path.join(self.scene.base_dir, f)
-            if not os.path.isfile(f):
-                self.note(
-                    WARNING, "mesh-file-missing", f"{g.path}: mesh file not found: {f}; geometry skipped", g
-                )
-                return None
-            if not f.lower().endswith(MESH_EXTENSIONS):
-                self.note(
-                    WARNING,
-                    "mesh-format-unsupported",
-                    f"{g.path}: MuJoCo reads only {', '.join(MESH_EXTENSIONS)} meshes, not {f}; skipped",
-                    g,
-                )
-                return None
-            kw["file"] = os.path.abspath(f)
-        elif g.mesh_vertices:
-            kw["uservert"] = [float(x) for v in g.mesh_vertices for x in v]
-            if g.mesh_indices:
-                kw["userface"] = [int(i) for i in g.mesh_indices]
-        else:
-            self.note(ERROR, "mesh-empty", f"{g.path}: mesh has neither a file nor vertices; skipped", g)
+
+def add_mesh(ctx: BuildContext, g: Geom) -> str | None:
+    name = ctx.names.add("mesh", g.path, g.source)
+    kw: dict[str, Any] = {"name": name, "scale": list(g.mesh_scale)}
+    if g.mesh_file:
+        f = g.mesh_file
+        if not os.path.isabs(f) and ctx.scene.base_dir:
+            f = os.path.join(ctx.scene.base_dir, f)
+        if not os.path.isfile(f):
+            ctx.invariant("A031", f"{g.path}: mesh file not found: {f}; geometry skipped", g
+            )
             return None
-        if not g.convex and g.enable_collisions and not g.visual_only:
-            self.note(
-                INFO, "concave-mesh-hull", f"{g.path}: MuJoCo collides with the convex hull of this mesh", g
+        if not f.lower().endswith(MESH_EXTENSIONS):
+            ctx.note(
+                WARNING,
+                "A118",
+                f"{g.path}: MuJoCo reads only {', '.join(MESH_EXTENSIONS)} meshes, not {f}; skipped",
+                g,
             )
-        self.spec.add_mesh(**kw)
-        return name
+            return None
+        kw["file"] = os.path.abspath(f)
+    elif g.mesh_vertices:
+        kw["uservert"] = [float(x) for v in g.mesh_vertices for x in v]
+        if g.mesh_indices:
+            kw["userface"] = [int(i) for i in g.mesh_indices]
+    else:
+        ctx.invariant("A030", f"{g.path}: mesh has neither a file nor vertices; skipped", g)
+        return None
+    if not g.convex and g.enable_collisions and not g.visual_only:
+        ctx.note(
+            INFO, "A117", f"{g.path}: MuJoCo collides with the convex hull of this mesh", g
+        )
+    ctx.spec.add_mesh(**kw)
+    return name
 
-    def add_excludes(self) -> None:
-        pairs: list[tuple[str, str, Any]] = []
-        for ex in self.scene.excludes:
-            pairs.append((ex.body1, ex.body2, ex))
-        for m in self.scene.mates:
-            c0, c1 = m.connectors if len(m.connectors) == 2 else (None, None)
-            if m.enabled and c0 is not None and c1 is not None and c0.body and c1.body:
-                pairs.append((c0.body, c1.body, None))
-        done: set[frozenset[str]] = set()
-        for a, b, item in pairs:
-            if a == b:
-                continue
-            ba, bb = self.bodies.get(a), self.bodies.get(b)
-            if ba is None or bb is None:
-                if item is not None:
-                    self.note(
-                        ERROR,
-                        "unknown-body",
-                        f"collision exclusion names an unknown body: {a if ba is None else b}",
-                        item,
-                        path=a if ba is None else b,
-                    )
-                continue
-            key = frozenset((a, b))
-            self.excluded.add(key)
-            if key in done or (not ba.is_dynamic and not bb.is_dynamic):
-                continue
-            done.add(key)
-            self.spec.add_exclude(bodyname1=self.names.name("body", a), bodyname2=self.names.name("body", b))
 
-    def add_contact_pairs(self) -> None:
-        seen: dict[frozenset[str], str] = {}
-        for cm in self.scene.contact_models:
-            self.names.add("contact", cm.path, cm.source)
-            if not cm.enabled:
-                self.note(INFO, "contact-model-disabled", f"{cm.path} is disabled", cm)
-                continue
-            key = frozenset((cm.material1, cm.material2))
-            if key in seen:
-                self.note(
+def add_excludes(ctx: BuildContext) -> None:
+    pairs: list[tuple[str, str, Any]] = []
+    for ex in ctx.scene.excludes:
+        pairs.append((ex.body1, ex.body2, ex))
+    for m in ctx.scene.mates:
+        c0, c1 = m.connectors if len(m.connectors) == 2 else (None, None)
+        if m.enabled and c0 is not None and c1 is not None and c0.body and c1.body:
+            pairs.append((c0.body, c1.body, None))
+    done: set[frozenset[str]] = set()
+    for a, b, item in pairs:
+        if a == b:
+            continue
+        ba, bb = ctx.bodies.get(a), ctx.bodies.get(b)
+        if ba is None or bb is None:
+            if item is not None:
+                ctx.note(
                     ERROR,
-                    "duplicate-contact-model",
-                    f"{cm.path}: material pair already has contact model {seen[key]}; ignored",
-                    cm,
+                    "A131",
+                    f"collision exclusion names an unknown body: {a if ba is None else b}",
+                    item,
+                    path=a if ba is None else b,
                 )
-                continue
-            seen[key] = cm.path
-            mu = (
-                cm.friction
-                if cm.friction is not None
-                else (self.scene.default_friction if self.scene.default_friction is not None else 1.0)
-            )
-            if mu < 0:
-                self.note(
-                    ERROR, "negative-friction", f"{cm.path}: friction coefficient {mu} < 0; using 0", cm
-                )
-                mu = 0.0
-            if cm.friction_model not in ("dry", "dry_cone"):
-                if cm.friction_model.startswith("dry"):
-                    self.note(
-                        INFO,
-                        "friction-model-approximated",
-                        f"{cm.path}: {cm.friction_model} friction approximated by MuJoCo's Coulomb cone with mu={mu:g}",
-                        cm,
-                    )
-                else:
-                    self.note(
-                        WARNING,
-                        "friction-model-unsupported",
-                        f"{cm.path}: friction model {cm.friction_model!r} unsupported; Coulomb mu={mu:g} used",
-                        cm,
-                    )
-            for what, val in (
-                ("normal_restitution", cm.restitution),
-                ("tangential_restitution", cm.tangential_restitution),
-            ):
-                if val is not None and val != 0:
-                    self.note(
-                        WARNING,
-                        "restitution-unsupported",
-                        f"{cm.path}: {what} {val:g} is not supported by MuJoCo (contacts are inelastic)",
-                        cm,
-                    )
-            g1 = self.geoms_by_material.get(cm.material1, [])
-            g2 = self.geoms_by_material.get(cm.material2, [])
-            if not g1 or not g2:
-                missing = cm.material1 if not g1 else cm.material2
-                self.note(
-                    INFO,
-                    "contact-model-unused",
-                    f"{cm.path}: no colliding geometry uses material {missing}",
-                    cm,
-                )
-            made: set[frozenset[str]] = set()
-            for n1, b1 in g1:
-                for n2, b2 in g2:
-                    k = frozenset((n1, n2))
-                    if n1 == n2 or k in made or b1 == b2 or frozenset((b1, b2)) in self.excluded:
-                        continue
-                    if not self.bodies[b1].is_dynamic and not self.bodies[b2].is_dynamic:
-                        continue
-                    made.add(k)
-                    self.spec.add_pair(
-                        name=self.names.add("pair", cm.path, cm.source, f":{len(made)}"),
-                        geomname1=n1,
-                        geomname2=n2,
-                        condim=3,
-                        friction=[mu, mu, 0.005, 0.0001, 0.0001],
-                    )
+            continue
+        key = frozenset((a, b))
+        ctx.excluded.add(key)
+        if key in done or (not ba.is_dynamic and not bb.is_dynamic):
+            continue
+        done.add(key)
+        ctx.spec.add_exclude(bodyname1=ctx.names.name("body", a), bodyname2=ctx.names.name("body", b))
 
-    # -- mass properties -------------------------------------------------------------------------
-    def set_inertials(self, model: Any) -> None:
-        for path, body in self.bodies.items():
-            if not body.is_dynamic:
-                continue
-            name = self.names.name("body", path)
-            bid = model.body(name).id
-            m0 = float(model.body_mass[bid])
-            geom_mass = m0 if m0 > 1e-8 else 0.0
-            inertia0 = np.array(model.body_inertia[bid])
-            iquat0 = np.array(model.body_iquat[bid])
-            ipos0 = np.array(model.body_ipos[bid])
-            mb = self.mj_bodies[path]
-            mass = float(body.mass) if body.mass > 0 else 0.0
-            tensor = self.valid_tensor(body)
-            cm = np.asarray(body.cm_pos, dtype=float) if body.cm_pos is not None else None
-            if tensor is None and mass == 0.0 and cm is None:
-                if geom_mass == 0.0:
-                    self.note(
-                        ERROR,
-                        "zero-mass",
-                        f"{path}: dynamic body with mass 0 and no mass-contributing geometry; simulated with 1 kg",
-                        body,
-                    )
-                    self.fallback_inertial(mb, body, 1.0, model, bid)
-                continue  # MuJoCo computes from the geoms, same as AGX
-            if mass == 0.0:
-                mass = geom_mass
-                if mass == 0.0:
-                    self.note(
-                        ERROR,
-                        "zero-mass",
-                        f"{path}: dynamic body with mass 0 and no mass-contributing geometry; simulated with 1 kg",
-                        body,
-                    )
-                    mass = 1.0
-            mb.explicitinertial = True
-            mb.mass = mass
-            if tensor is not None:
-                mb.fullinertia = [
-                    tensor[0, 0],
-                    tensor[1, 1],
-                    tensor[2, 2],
-                    tensor[0, 1],
-                    tensor[0, 2],
-                    tensor[1, 2],
-                ]
-                mb.ipos = list(cm if cm is not None else (ipos0 if geom_mass > 0 else np.zeros(3)))
-                mb.iquat = [1.0, 0, 0, 0]
-            elif geom_mass > 0:
-                # inertia shape from the geometry, scaled to the given mass (AGX behaviour)
-                mb.inertia = list(inertia0 * (mass / geom_mass))
-                mb.iquat = list(iquat0)
-                mb.ipos = list(cm if cm is not None else ipos0)
-            else:
-                self.note(
-                    WARNING,
-                    "mass-without-geometry",
-                    f"{path}: mass {mass:g} kg given but no geometry to shape the inertia; using a 0.1 m solid sphere",
+
+def add_contact_pairs(ctx: BuildContext) -> None:
+    seen: dict[frozenset[str], str] = {}
+    for cm in ctx.scene.contact_models:
+        ctx.names.add("contact", cm.path, cm.source)
+        if not cm.enabled:
+            ctx.note(INFO, "A129", f"{cm.path} is disabled", cm)
+            continue
+        key = frozenset((cm.material1, cm.material2))
+        if key in seen:
+            ctx.invariant("A035",
+                f"{cm.path}: material pair already has contact model {seen[key]}; ignored",
+                cm,
+            )
+            continue
+        seen[key] = cm.path
+        mu = (
+            cm.friction
+            if cm.friction is not None
+            else (ctx.scene.default_friction if ctx.scene.default_friction is not None else 1.0)
+        )
+        if mu < 0:
+            ctx.invariant("A036", f"{cm.path}: friction coefficient {mu} < 0; using 0", cm
+            )
+            mu = 0.0
+        if cm.friction_model not in ("dry", "dry_cone"):
+            if cm.friction_model.startswith("dry"):
+                ctx.note(
+                    INFO,
+                    "A113",
+                    f"{cm.path}: {cm.friction_model} friction approximated by MuJoCo's Coulomb cone with mu={mu:g}",
+                    cm,
+                )
+            # other models: Coulomb mu is used; the static checks own that finding (A040)
+        # restitution is not simulated; the static checks own that finding (A040)
+        g1 = ctx.geoms_by_material.get(cm.material1, [])
+        g2 = ctx.geoms_by_material.get(cm.material2, [])
+        if not g1 or not g2:
+            missing = cm.material1 if not g1 else cm.material2
+            ctx.note(
+                INFO,
+                "A128",
+                f"{cm.path}: no colliding geometry uses material {missing}",
+                cm,
+            )
+        made: set[frozenset[str]] = set()
+        for n1, b1 in g1:
+            for n2, b2 in g2:
+                k = frozenset((n1, n2))
+                if n1 == n2 or k in made or b1 == b2 or frozenset((b1, b2)) in ctx.excluded:
+                    continue
+                if not ctx.bodies[b1].is_dynamic and not ctx.bodies[b2].is_dynamic:
+                    continue
+                made.add(k)
+                ctx.spec.add_pair(
+                    name=ctx.names.add("pair", cm.path, cm.source, f":{len(made)}"),
+                    geomname1=n1,
+                    geomname2=n2,
+                    condim=3,
+                    friction=[mu, mu, 0.005, 0.0001, 0.0001],
+                )
+
+
+# -- mass properties -------------------------------------------------------------------------
+def set_inertials(ctx: BuildContext, model: Any) -> None:
+    for path, body in ctx.bodies.items():
+        if not body.is_dynamic:
+            continue
+        name = ctx.names.name("body", path)
+        bid = model.body(name).id
+        m0 = float(model.body_mass[bid])
+        geom_mass = m0 if m0 > 1e-8 else 0.0
+        inertia0 = np.array(model.body_inertia[bid])
+        iquat0 = np.array(model.body_iquat[bid])
+        ipos0 = np.array(model.body_ipos[bid])
+        mb = ctx.mj_bodies[path]
+        mass = float(body.mass) if body.mass > 0 else 0.0
+        tensor = valid_tensor(ctx, body)
+        cm = np.asarray(body.cm_pos, dtype=float) if body.cm_pos is not None else None
+        if tensor is None and mass == 0.0 and cm is None:
+            if geom_mass == 0.0:
+                ctx.invariant("A033",
+                    f"{path}: dynamic body with mass 0 and no mass-contributing geometry; simulated with 1 kg",
                     body,
                 )
-                self.fallback_inertial(mb, body, mass, model, bid)
-                if cm is not None:
-                    mb.ipos = list(cm)
-
-    def fallback_inertial(self, mb: Any, body: Body, mass: float, model: Any, bid: int) -> None:
-        i = 0.4 * mass * 0.1**2
+                fallback_inertial(ctx, mb, body, 1.0, model, bid)
+            continue  # MuJoCo computes from the geoms, same as AGX
+        if mass == 0.0:
+            mass = geom_mass
+            if mass == 0.0:
+                ctx.invariant("A033",
+                    f"{path}: dynamic body with mass 0 and no mass-contributing geometry; simulated with 1 kg",
+                    body,
+                )
+                mass = 1.0
         mb.explicitinertial = True
         mb.mass = mass
-        mb.inertia = [i, i, i]
-        mb.iquat = [1.0, 0, 0, 0]
-        mb.ipos = [0.0, 0.0, 0.0]
-
-    def valid_tensor(self, body: Body) -> np.ndarray | None:
-        if body.inertia_tensor is None:
-            return None
-        t = np.asarray(body.inertia_tensor, dtype=float).reshape(3, 3)
-        if not np.any(np.diag(t) != 0):
-            return None  # AGX: tensor counts as set only when a diagonal element is non-zero
-        problem = ""
-        if not np.allclose(t, t.T, rtol=1e-9, atol=1e-12):
-            problem = "is not symmetric"
+        if tensor is not None:
+            mb.fullinertia = [
+                tensor[0, 0],
+                tensor[1, 1],
+                tensor[2, 2],
+                tensor[0, 1],
+                tensor[0, 2],
+                tensor[1, 2],
+            ]
+            mb.ipos = list(cm if cm is not None else (ipos0 if geom_mass > 0 else np.zeros(3)))
+            mb.iquat = [1.0, 0, 0, 0]
+        elif geom_mass > 0:
+            # inertia shape from the geometry, scaled to the given mass (AGX behaviour)
+            mb.inertia = list(inertia0 * (mass / geom_mass))
+            mb.iquat = list(iquat0)
+            mb.ipos = list(cm if cm is not None else ipos0)
         else:
-            ev = np.linalg.eigvalsh(t)
-            if ev.min() <= 0:
-                problem = f"is not positive definite (eigenvalues {[round(float(x), 6) for x in ev]})"
-            else:
-                a, b, c = sorted(float(x) for x in ev)
-                if a + b < c * (1 - 1e-9):
-                    problem = f"breaks the triangle inequality (principal moments {[round(x, 6) for x in (a, b, c)]})"
-        if problem:
-            self.note(
-                ERROR,
-                "invalid-inertia",
-                f"{body.path}: inertia tensor {problem}; computed from geometry instead",
+            ctx.note(
+                WARNING,
+                "A126",
+                f"{path}: mass {mass:g} kg given but no geometry to shape the inertia; using a 0.1 m solid sphere",
                 body,
             )
-            return None
-        return t
+            fallback_inertial(ctx, mb, body, mass, model, bid)
+            if cm is not None:
+                mb.ipos = list(cm)
+
+
+def fallback_inertial(ctx: BuildContext, mb: Any, body: Body, mass: float, model: Any, bid: int) -> None:
+    i = 0.4 * mass * 0.1**2
+    mb.explicitinertial = True
+    mb.mass = mass
+    mb.inertia = [i, i, i]
+    mb.iquat = [1.0, 0, 0, 0]
+    mb.ipos = [0.0, 0.0, 0.0]
+
+
+def valid_tensor(ctx: BuildContext, body: Body) -> np.ndarray | None:
+    if body.inertia_tensor is None:
+        return None
+    t = np.asarray(body.inertia_tensor, dtype=float).reshape(3, 3)
+    if not np.any(np.diag(t) != 0):
+        return None  # AGX: tensor counts as set only when a diagonal element is non-zero
+    problem = ""
+    if not np.allclose(t, t.T, rtol=1e-9, atol=1e-12):
+        problem = "is not symmetric"
+    else:
+        ev = np.linalg.eigvalsh(t)
+        if ev.min() <= 0:
+            problem = f"is not positive definite (eigenvalues {[round(float(x), 6) for x in ev]})"
+        else:
+            a, b, c = sorted(float(x) for x in ev)
+            if a + b < c * (1 - 1e-9):
+                problem = f"breaks the triangle inequality (principal moments {[round(x, 6) for x in (a, b, c)]})"
+    if problem:
+        ctx.invariant("A034",
+            f"{body.path}: inertia tensor {problem}; computed from geometry instead",
+            body,
+        )
+        return None
+    return t

@@ -112,4 +112,4 @@ def note_from_compile_error(err: Exception, names: NameMap) -> BackendNote:
     src = names.sources.get(path) if path else None
     where = f" (OpenPLX element {path})" if path else ""
     text = msg.replace("\n", " ")
-    return BackendNote(ERROR, "mujoco-compile-error", f"MuJoCo rejected the model{where}: {text}", src, path)
+    return BackendNote(ERROR, "A110", f"MuJoCo rejected the model{where}: {text}", src, path)

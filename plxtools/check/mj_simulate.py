@@ -170,277 +170,385 @@ def _monitor_measure(mon: MateMonitor, ids: tuple[int, int], data: Any) -> tuple
     return sep, mis
 
 
-def simulate_compiled(
-    compiled: CompiledScene,
-    duration: float = 5.0,
-    *,
-    sample_dt: float = 0.01,
-    penetration_tol: float = 0.005,
-    max_speed: float = 1e3,
-    fall_margin: float = 0.01,
-    mate_tol: float = 5e-3,
-    angle_tol: float = 0.05,
-    limit_tol: float = 0.02,
-    record: bool = False,
-) -> SimulationResult:
+@dataclass(frozen=True, slots=True)
+class SimOptions:
+    """Thresholds of the monitors (see :func:`plxtools.check.mujoco_backend.simulate`)."""
+
+    sample_dt: float = 0.01
+    penetration_tol: float = 0.005
+    max_speed: float = 1e3
+    fall_margin: float = 0.01
+    mate_tol: float = 5e-3
+    angle_tol: float = 0.05
+    limit_tol: float = 0.02
+    record: bool = False
+
+
+@dataclass
+class SimRun:
+    """What every monitor sees: the MuJoCo model and data, the result being filled, and ``add``
+    for the backend's findings (A1xx notes)."""
+
+    mujoco: Any
+    compiled: CompiledScene
+    model: Any
+    data: Any
+    res: SimulationResult
+    opt: SimOptions
+    duration: float
+    bodies: list[tuple[str, int, bool]]  # (path, MuJoCo body id, dynamic)
+    speed: dict[str, float] = field(default_factory=dict)  # body path -> speed at the last sample
+
+    @property
+    def dyn(self) -> list[tuple[str, int]]:
+        return [(p, i) for p, i, d in self.bodies if d]
+
+    def add(self, sev: str, code: str, msg: str, path: str | None) -> None:
+        src = self.compiled.names.sources.get(path) if path else None
+        self.res.notes.append(BackendNote(sev, code, msg, src, path))
+
+
+class Monitor:
+    """One thing watched during the run: set up at t=0, ``sample`` after every chunk of steps,
+    ``finish`` writes its part of the result.  A new check of the motion is a new Monitor."""
+
+    def sample(self, run: SimRun, t: float) -> None:
+        pass
+
+    def finish(self, run: SimRun) -> None:
+        pass
+
+
+def initial_penetrations(run: SimRun) -> None:
+    """Geometries that start deeper than ``penetration_tol`` in each other (A104)."""
+    model, data, names = run.model, run.data, run.compiled.names
+    deepest: dict[tuple[int, int], tuple[float, int, list[float]]] = {}
+    for k in range(data.ncon):
+        c = data.contact[k]
+        if c.dist < -run.opt.penetration_tol:
+            key = (int(c.geom[0]), int(c.geom[1]))
+            depth, count, pos = deepest.get(key, (0.0, 0, []))
+            deepest[key] = (max(depth, float(-c.dist)), count + 1, _vec(c.pos) if -c.dist > depth else pos)
+    for (ga, gb), (depth, count, pos) in deepest.items():
+        g1, g2 = (names.path("geom", model.geom(g).name) for g in (ga, gb))
+        run.res.penetrations.append({"geom1": g1, "geom2": g2, "depth": depth, "contacts": count, "pos": pos})
+        run.add(WARNING, "A104", f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
+
+
+class BlowUp:
+    """NaN/Inf, MuJoCo's bad-state warnings or a generalised velocity above ``max_speed`` (A101)."""
+
+    def __init__(self, run: SimRun) -> None:
+        mj = run.mujoco
+        self.warn_ids = [mj.mjtWarning.mjWARN_BADQPOS, mj.mjtWarning.mjWARN_BADQVEL, mj.mjtWarning.mjWARN_BADQACC]
+        self.warn0 = self._warnings(run)
+
+    def _warnings(self, run: SimRun) -> int:
+        return sum(int(run.data.warning[w].number) for w in self.warn_ids)
+
+    def happened(self, run: SimRun, t: float, step: int) -> bool:
+        data, model = run.data, run.model
+        warns = self._warnings(run)
+        finite = bool(np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel)))
+        vel_max = float(np.max(np.abs(data.qvel))) if finite and model.nv else 0.0
+        if not (warns > self.warn0 or not finite or vel_max > run.opt.max_speed):
+            return False
+        if warns > self.warn0:
+            reason = "MuJoCo reported a NaN/Inf/huge state (mjWARN_BADQPOS/QVEL/QACC) and reset"
+        elif not finite:
+            reason = "NaN or Inf in the state"
+        else:
+            reason = f"generalised velocity {vel_max:.3g} exceeds {run.opt.max_speed:g}"
+        worst = max(run.speed, key=lambda p: run.speed[p]) if run.speed else None
+        run.res.blowup = {"time": t, "step": step, "reason": reason, "fastest_body": worst}
+        run.add(ERROR, "A101", f"numerical blow-up at t={t:.3f} s: {reason}"
+                + (f" (fastest body before: {worst})" if worst else ""), worst)
+        return True
+
+
+class BadControl(Monitor):
+    """MuJoCo zeroing NaN or huge controls (A107)."""
+
+    def __init__(self, run: SimRun) -> None:
+        self.count0 = self._count(run)
+
+    @staticmethod
+    def _count(run: SimRun) -> int:
+        return int(run.data.warning[run.mujoco.mjtWarning.mjWARN_BADCTRL].number)
+
+    def finish(self, run: SimRun) -> None:
+        if self._count(run) > self.count0:
+            run.add(ERROR, "A107", "MuJoCo rejected a NaN/huge actuator control (> 1e10) and zeroed the controls", None)
+
+
+class Trace(Monitor):
+    """``record=True``: the joint coordinates of every mate at every sample, in OpenPLX's sign."""
+
+    def __init__(self, run: SimRun) -> None:
+        model, compiled = run.model, run.compiled
+        self.traced: list[tuple[str, int, int]] = []  # (key, qpos address, sign)
+        for mate_path, jnames in compiled.joints.items():
+            for jn in jnames:
+                j = model.joint(jn)
+                if model.jnt_type[j.id] in (2, 3):
+                    key = mate_path + (jn[jn.rfind(":") :] if len(jnames) > 1 else "")
+                    self.traced.append((key, int(model.jnt_qposadr[j.id]), compiled.joint_sign[mate_path]))
+        run.res.trace = {"time": [0.0], "joints": {k: [s * float(run.data.qpos[a])] for k, a, s in self.traced}}
+
+    def sample(self, run: SimRun, t: float) -> None:
+        run.res.trace["time"].append(t)
+        for key, adr, sgn in self.traced:
+            run.res.trace["joints"][key].append(sgn * float(run.data.qpos[adr]))
+
+
+@dataclass
+class _BodyTrack:
+    initial_pos: np.ndarray
+    initial_quat: np.ndarray
+    last_pos: np.ndarray
+    yaw_last: float
+    min_z: float
+    path_length: float = 0.0
+    yaw_total: float = 0.0
+    max_speed: float = 0.0
+
+
+class BodyMotion(Monitor):
+    """Per dynamic body: path length, heading change, top speed, lowest point; the body reports."""
+
+    def __init__(self, run: SimRun) -> None:
+        data = run.data
+        self.start = {p: (data.xpos[i].copy(), data.xquat[i].copy()) for p, i, _ in run.bodies}
+        self.track = {p: _BodyTrack(data.xpos[i].copy(), data.xquat[i].copy(), data.xpos[i].copy(),
+                                    yaw_of_mat(data.xmat[i].reshape(3, 3)), float(data.xpos[i][2]))
+                      for p, i in run.dyn}
+        self.vel6 = np.zeros(6)
+
+    def sample(self, run: SimRun, t: float) -> None:
+        data = run.data
+        for p, i in run.dyn:
+            tr = self.track[p]
+            x = data.xpos[i]
+            tr.path_length += float(np.linalg.norm(x - tr.last_pos))
+            tr.last_pos = x.copy()
+            y = yaw_of_mat(data.xmat[i].reshape(3, 3))
+            tr.yaw_total += (y - tr.yaw_last + math.pi) % (2 * math.pi) - math.pi
+            tr.yaw_last = y
+            run.mujoco.mj_objectVelocity(run.model, data, run.mujoco.mjtObj.mjOBJ_BODY, i, self.vel6, 0)
+            sp = float(np.linalg.norm(self.vel6[3:]))
+            tr.max_speed = max(tr.max_speed, sp)
+            run.speed[p] = sp
+            tr.min_z = min(tr.min_z, float(x[2]))
+
+    def finish(self, run: SimRun) -> None:
+        data = run.data
+        fell = {f["body"]: f["time"] for f in run.res.fall_through}
+        for p, i, d in run.bodies:
+            p0, q0 = self.start[p]
+            p1, q1 = data.xpos[i].copy(), data.xquat[i].copy()
+            disp = p1 - p0
+            tr = self.track.get(p)
+            run.res.bodies[p] = BodyReport(
+                p, d, _vec(p0), _vec(q0), _vec(p1), _vec(q1), _vec(disp), float(np.linalg.norm(disp)),
+                float(np.linalg.norm(disp[:2])), tr.path_length if tr else 0.0, tr.yaw_total if tr else 0.0,
+                tr.max_speed if tr else 0.0, tr.min_z if tr else float(p0[2]), fell.get(p))
+
+
+class FallThrough(Monitor):
+    """A dynamic body whose centre of mass sinks through static geometry it started above (A102)."""
+
+    def __init__(self, run: SimRun) -> None:
+        self.supports = _Supports(run.model, run.data)
+        self.below_of = {p: self.supports.above(run.data.xipos[i]) for p, i in run.dyn}  # by centre of mass
+        self.fell: dict[str, float] = {}
+
+    def sample(self, run: SimRun, t: float) -> None:
+        data = run.data
+        for p, i in run.dyn:
+            if p in self.fell:
+                continue
+            for g in self.below_of[p]:
+                if self.supports.below(g, data.xipos[i], run.opt.fall_margin):
+                    self.fell[p] = t
+                    gp = run.compiled.names.path("geom", run.model.geom(g).name)
+                    run.res.fall_through.append({"body": p, "time": t, "ground": gp, "com": _vec(data.xipos[i])})
+                    run.add(ERROR, "A102", f"{p} fell through static geometry {gp} at t={t:.3f} s", p)
+                    break
+
+
+@dataclass
+class _MateTrack:
+    initial_separation: float
+    initial_misalignment: float
+    max_separation: float
+    max_misalignment: float
+    max_separation_time: float = 0.0
+    max_misalignment_time: float = 0.0
+
+
+class MateSeparation(Monitor):
+    """How far each mate's connectors drift apart, in position and axis (A103)."""
+
+    def __init__(self, run: SimRun) -> None:
+        self.mons = [(m, (run.model.body(m.body0).id, run.model.body(m.body1).id)) for m in run.compiled.monitors]
+        self.track: dict[str, _MateTrack] = {}
+        for m, ids in self.mons:
+            sep, mis = _monitor_measure(m, ids, run.data)
+            mis = mis if mis is not None else 0.0
+            self.track[m.path] = _MateTrack(sep, mis, sep, mis)
+
+    def sample(self, run: SimRun, t: float) -> None:
+        for m, ids in self.mons:
+            sep, mis = _monitor_measure(m, ids, run.data)
+            tr = self.track[m.path]
+            if sep > tr.max_separation:
+                tr.max_separation, tr.max_separation_time = sep, t
+            if mis is not None and mis > tr.max_misalignment:
+                tr.max_misalignment, tr.max_misalignment_time = mis, t
+
+    def finish(self, run: SimRun) -> None:
+        for m, _ in self.mons:
+            tr = self.track[m.path]
+            pulled = tr.max_separation > run.opt.mate_tol or tr.max_misalignment > run.opt.angle_tol
+            run.res.mates[m.path] = MateReport(
+                m.path, m.kind, m.role, tr.initial_separation, tr.max_separation, tr.max_separation_time,
+                tr.initial_misalignment, tr.max_misalignment, tr.max_misalignment_time, pulled)
+            if pulled:
+                run.add(WARNING, "A103",
+                        f"{m.path} came apart: max separation {tr.max_separation:.4g} m at t="
+                        f"{tr.max_separation_time:.3f} s, max axis misalignment "
+                        f"{math.degrees(tr.max_misalignment):.3g} deg at t={tr.max_misalignment_time:.3f} s", m.path)
+
+
+class JointLimits(Monitor):
+    """The largest excursion of each limited hinge / slide joint beyond its range (A105)."""
+
+    def __init__(self, run: SimRun) -> None:
+        model = run.model
+        self.limited = [j for j in range(model.njnt) if model.jnt_limited[j] and model.jnt_type[j] in (2, 3)]
+        self.worst: dict[int, tuple[float, float]] = {}  # joint -> (violation, time)
+
+    def sample(self, run: SimRun, t: float) -> None:
+        model, data = run.model, run.data
+        for j in self.limited:
+            q = float(data.qpos[model.jnt_qposadr[j]])
+            lo, hi = model.jnt_range[j]
+            v = max(lo - q, q - hi, 0.0)
+            if v > self.worst.get(j, (0.0, 0.0))[0]:
+                self.worst[j] = (v, t)
+
+    def finish(self, run: SimRun) -> None:
+        for j, (v, t) in self.worst.items():
+            if v > run.opt.limit_tol:
+                jp = run.compiled.names.path("joint", run.model.joint(j).name)
+                run.res.joint_limit_violations.append({"mate": jp, "violation": v, "time": t})
+                run.add(WARNING, "A105", f"{jp} exceeded its range by {v:.4g} at t={t:.3f} s", jp)
+
+
+@dataclass
+class _MotorTrack:
+    speed_sum: float = 0.0
+    force_sum: float = 0.0
+    samples: int = 0
+
+
+class MotorTracking(Monitor):
+    """Mean speed and effort of every actuator over the last 20 % of the run (A106)."""
+
+    def __init__(self, run: SimRun) -> None:
+        self.acts = [(a, run.model.actuator(a.name).id) for a in run.compiled.actuators]
+        self.track = {a.path: _MotorTrack() for a, _ in self.acts}
+
+    def sample(self, run: SimRun, t: float) -> None:
+        if t < 0.8 * run.duration:
+            return
+        for a, aid in self.acts:
+            tr = self.track[a.path]
+            tr.speed_sum += float(run.data.actuator_velocity[aid])
+            tr.force_sum += float(run.data.actuator_force[aid])
+            tr.samples += 1
+
+    def finish(self, run: SimRun) -> None:
+        for a, _ in self.acts:
+            tr = self.track[a.path]
+            n = max(tr.samples, 1)
+            mean_v, mean_f = tr.speed_sum / n, tr.force_sum / n
+            err = abs(mean_v - a.target_speed) if a.target_speed is not None else None
+            run.res.motors[a.path] = MotorReport(
+                a.path, a.kind, a.target_speed if a.target_speed is not None else a.ctrl, mean_v, mean_f, a.kv, err)
+            if err is not None and tr.samples and err > 0.1 * abs(a.target_speed) + 0.05:
+                run.add(WARNING, "A106", f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g} over the "
+                        f"last 20 % of the run", a.path)
+
+
+class Energy(Monitor):
+    """Total energy at the start and the end, and the largest kinetic energy."""
+
+    def __init__(self, run: SimRun) -> None:
+        self.initial = float(run.data.energy[0] + run.data.energy[1])
+        self.max_kinetic = float(run.data.energy[1])
+
+    def sample(self, run: SimRun, t: float) -> None:
+        self.max_kinetic = max(self.max_kinetic, float(run.data.energy[1]))
+
+    def finish(self, run: SimRun) -> None:
+        run.res.energy = {"initial_total": self.initial, "final_total": float(run.data.energy[0] + run.data.energy[1]),
+                          "max_kinetic": self.max_kinetic}
+
+
+# Everything watched during a run, in the order their findings are reported.  A new check of the
+# motion is a Monitor subclass added here.
+MONITORS: tuple[type[Monitor], ...] = (BadControl, Trace, BodyMotion, FallThrough, MateSeparation, JointLimits,
+                                       MotorTracking, Energy)
+
+
+def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options: Any) -> SimulationResult:
+    """Run ``compiled`` for ``duration`` seconds, sampling every ``sample_dt`` with the monitors;
+    ``options`` are the fields of :class:`SimOptions`."""
     import mujoco
 
+    opt = SimOptions(**options)
     scene = compiled.scene
-    notes = list(compiled.notes)
     h = float(scene.timestep)
-    res = SimulationResult(
-        False, scene.name, float(duration), 0.0, 0, h, 0.0, compiled.compile_ms, notes=notes
-    )
+    res = SimulationResult(False, scene.name, float(duration), 0.0, 0, h, 0.0, compiled.compile_ms,
+                           notes=list(compiled.notes))
     if not compiled.ok:
         return res
     model, names = compiled.model, compiled.names
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, model.key("initial").id)
     mujoco.mj_forward(model, data)
-
-    def src(path: str | None) -> Any:
-        return names.sources.get(path) if path else None
-
-    def add(sev: str, code: str, msg: str, path: str | None) -> None:
-        notes.append(BackendNote(sev, code, msg, src(path), path))
-
-    # bodies
     bodies: list[tuple[str, int, bool]] = []
     for b in scene.bodies:
         n = names.name("body", b.path)
         if n is not None and n not in [x[0] for x in bodies]:
             bodies.append((b.path, model.body(n).id, b.is_dynamic))
-    init = {p: (data.xpos[i].copy(), data.xquat[i].copy()) for p, i, _ in bodies}
-    dyn = [(p, i) for p, i, d in bodies if d]
+    run = SimRun(mujoco, compiled, model, data, res, opt, float(duration), bodies)
 
-    # initial penetration
-    deepest: dict[tuple[int, int], tuple[float, int, list[float]]] = {}
-    for k in range(data.ncon):
-        c = data.contact[k]
-        if c.dist < -penetration_tol:
-            key = (int(c.geom[0]), int(c.geom[1]))
-            depth, count, pos = deepest.get(key, (0.0, 0, []))
-            deepest[key] = (max(depth, float(-c.dist)), count + 1, _vec(c.pos) if -c.dist > depth else pos)
-    for (ga, gb), (depth, count, pos) in deepest.items():
-        g1, g2 = (names.path("geom", model.geom(g).name) for g in (ga, gb))
-        res.penetrations.append({"geom1": g1, "geom2": g2, "depth": depth, "contacts": count, "pos": pos})
-        add(WARNING, "sim-initial-penetration", f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
-
-    supports = _Supports(model, data)
-    below_of = {p: supports.above(data.xipos[i]) for p, i in dyn}  # by centre of mass
-    fell: dict[str, float] = {}
-
-    mons = []
-    for m in compiled.monitors:
-        mons.append((m, (model.body(m.body0).id, model.body(m.body1).id)))
-    mate_state: dict[str, list[float]] = {}
-    for m, ids in mons:
-        sep, mis = _monitor_measure(m, ids, data)
-        mate_state[m.path] = [
-            sep,
-            sep,
-            0.0,
-            mis if mis is not None else 0.0,
-            mis if mis is not None else 0.0,
-            0.0,
-        ]
-
-    limited = [j for j in range(model.njnt) if model.jnt_limited[j] and model.jnt_type[j] in (2, 3)]
-    limit_max: dict[int, tuple[float, float]] = {}
-
-    path_len = {p: 0.0 for p, _ in dyn}
-    last_pos = {p: data.xpos[i].copy() for p, i in dyn}
-    yaw_last = {p: yaw_of_mat(data.xmat[i].reshape(3, 3)) for p, i in dyn}
-    yaw_total = {p: 0.0 for p, _ in dyn}
-    vmax = {p: 0.0 for p, _ in dyn}
-    zmin = {p: float(data.xpos[i][2]) for p, i in dyn}
-    act_ids = [(a, model.actuator(a.name).id) for a in compiled.actuators]
-    act_sum = {a.path: [0.0, 0.0, 0] for a, _ in act_ids}
-    energy0 = float(data.energy[0] + data.energy[1])
-    ke_max = float(data.energy[1])
-
-    traced: list[tuple[str, int, int]] = []  # (key, qpos address, sign) in the OpenPLX coordinate
-    if record:
-        for mate_path, jnames in compiled.joints.items():
-            for jn in jnames:
-                j = model.joint(jn)
-                if model.jnt_type[j.id] in (2, 3):
-                    key = mate_path + (jn[jn.rfind(":") :] if len(jnames) > 1 else "")
-                    traced.append((key, int(model.jnt_qposadr[j.id]), compiled.joint_sign[mate_path]))
-        res.trace = {"time": [0.0], "joints": {k: [s * float(data.qpos[a])] for k, a, s in traced}}
+    initial_penetrations(run)
+    monitors: list[Monitor] = [m(run) for m in MONITORS if m is not Trace or opt.record]
+    blowup = BlowUp(run)
 
     n_steps = max(1, int(round(duration / h)))
-    chunk = max(1, int(round(sample_dt / h)))
-    warn_ids = [
-        mujoco.mjtWarning.mjWARN_BADQPOS,
-        mujoco.mjtWarning.mjWARN_BADQVEL,
-        mujoco.mjtWarning.mjWARN_BADQACC,
-    ]
-    warn0 = sum(int(data.warning[w].number) for w in warn_ids)
-    badctrl0 = int(data.warning[mujoco.mjtWarning.mjWARN_BADCTRL].number)
+    chunk = max(1, int(round(opt.sample_dt / h)))
     done = 0
     t_wall = time.perf_counter()
-    last_good_speed: dict[str, float] = {}
-    vel6 = np.zeros(6)
     while done < n_steps:
         k = min(chunk, n_steps - done)
         mujoco.mj_step(model, data, nstep=k)
         mujoco.mj_forward(model, data)  # mj_step leaves positions-derived data one step behind
         done += k
         t = done * h
-        warns = sum(int(data.warning[w].number) for w in warn_ids)
-        finite = bool(np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel)))
-        vel_max = float(np.max(np.abs(data.qvel))) if finite and model.nv else 0.0
-        if warns > warn0 or not finite or vel_max > max_speed:
-            reason = (
-                "MuJoCo reported a NaN/Inf/huge state (mjWARN_BADQPOS/QVEL/QACC) and reset"
-                if warns > warn0
-                else (
-                    "NaN or Inf in the state"
-                    if not finite
-                    else f"generalised velocity {vel_max:.3g} exceeds {max_speed:g}"
-                )
-            )
-            worst = max(last_good_speed, key=lambda p: last_good_speed[p]) if last_good_speed else None
-            res.blowup = {"time": t, "step": done, "reason": reason, "fastest_body": worst}
-            add(
-                ERROR,
-                "sim-blowup",
-                f"numerical blow-up at t={t:.3f} s: {reason}"
-                + (f" (fastest body before: {worst})" if worst else ""),
-                worst,
-            )
+        if blowup.happened(run, t, done):
             break
-        # samples
-        if res.trace is not None:
-            res.trace["time"].append(t)
-            for key, adr, sgn in traced:
-                res.trace["joints"][key].append(sgn * float(data.qpos[adr]))
-        for p, i in dyn:
-            x = data.xpos[i]
-            path_len[p] += float(np.linalg.norm(x - last_pos[p]))
-            last_pos[p] = x.copy()
-            y = yaw_of_mat(data.xmat[i].reshape(3, 3))
-            dy = (y - yaw_last[p] + math.pi) % (2 * math.pi) - math.pi
-            yaw_total[p] += dy
-            yaw_last[p] = y
-            mujoco.mj_objectVelocity(model, data, mujoco.mjtObj.mjOBJ_BODY, i, vel6, 0)
-            sp = float(np.linalg.norm(vel6[3:]))
-            vmax[p] = max(vmax[p], sp)
-            last_good_speed[p] = sp
-            zmin[p] = min(zmin[p], float(x[2]))
-            if p not in fell:
-                for g in below_of[p]:
-                    if supports.below(g, data.xipos[i], fall_margin):
-                        fell[p] = t
-                        gp = names.path("geom", model.geom(g).name)
-                        res.fall_through.append(
-                            {"body": p, "time": t, "ground": gp, "com": _vec(data.xipos[i])}
-                        )
-                        add(
-                            ERROR,
-                            "sim-fell-through",
-                            f"{p} fell through static geometry {gp} at t={t:.3f} s",
-                            p,
-                        )
-                        break
-        for m, ids in mons:
-            sep, mis = _monitor_measure(m, ids, data)
-            st = mate_state[m.path]
-            if sep > st[1]:
-                st[1], st[2] = sep, t
-            if mis is not None and mis > st[4]:
-                st[4], st[5] = mis, t
-        for j in limited:
-            q = float(data.qpos[model.jnt_qposadr[j]])
-            lo, hi = model.jnt_range[j]
-            v = max(lo - q, q - hi, 0.0)
-            if v > limit_max.get(j, (0.0, 0.0))[0]:
-                limit_max[j] = (v, t)
-        if t >= 0.8 * duration:
-            for a, aid in act_ids:
-                s = act_sum[a.path]
-                s[0] += float(data.actuator_velocity[aid])
-                s[1] += float(data.actuator_force[aid])
-                s[2] += 1
-        ke_max = max(ke_max, float(data.energy[1]))
+        for m in monitors:
+            m.sample(run, t)
     res.wall_time_s = time.perf_counter() - t_wall
-    if int(data.warning[mujoco.mjtWarning.mjWARN_BADCTRL].number) > badctrl0:
-        add(
-            ERROR,
-            "sim-bad-control",
-            "MuJoCo rejected a NaN/huge actuator control (> 1e10) and zeroed the controls",
-            None,
-        )
     res.steps = done
     res.simulated_time = done * h
-
-    for p, i, d in bodies:
-        p0, q0 = init[p]
-        p1, q1 = data.xpos[i].copy(), data.xquat[i].copy()
-        disp = p1 - p0
-        res.bodies[p] = BodyReport(
-            p,
-            d,
-            _vec(p0),
-            _vec(q0),
-            _vec(p1),
-            _vec(q1),
-            _vec(disp),
-            float(np.linalg.norm(disp)),
-            float(np.linalg.norm(disp[:2])),
-            path_len.get(p, 0.0),
-            yaw_total.get(p, 0.0),
-            vmax.get(p, 0.0),
-            zmin.get(p, float(p0[2])),
-            fell.get(p),
-        )
-    for m, _ in mons:
-        st = mate_state[m.path]
-        pulled = st[1] > mate_tol or st[4] > angle_tol
-        res.mates[m.path] = MateReport(
-            m.path, m.kind, m.role, st[0], st[1], st[2], st[3], st[4], st[5], pulled
-        )
-        if pulled:
-            add(
-                WARNING,
-                "sim-mate-separated",
-                f"{m.path} came apart: max separation {st[1]:.4g} m at t={st[2]:.3f} s, "
-                f"max axis misalignment {math.degrees(st[4]):.3g} deg at t={st[5]:.3f} s",
-                m.path,
-            )
-    for j, (v, t) in limit_max.items():
-        if v > limit_tol:
-            jp = names.path("joint", model.joint(j).name)
-            res.joint_limit_violations.append({"mate": jp, "violation": v, "time": t})
-            add(WARNING, "sim-joint-limit-exceeded", f"{jp} exceeded its range by {v:.4g} at t={t:.3f} s", jp)
-    for a, _ in act_ids:
-        s = act_sum[a.path]
-        n = max(s[2], 1)
-        mean_v, mean_f = s[0] / n, s[1] / n
-        err = abs(mean_v - a.target_speed) if a.target_speed is not None else None
-        res.motors[a.path] = MotorReport(
-            a.path,
-            a.kind,
-            a.target_speed if a.target_speed is not None else a.ctrl,
-            mean_v,
-            mean_f,
-            a.kv,
-            err,
-        )
-        if err is not None and s[2] and err > 0.1 * abs(a.target_speed) + 0.05:
-            add(
-                WARNING,
-                "sim-motor-not-tracking",
-                f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g} over the last 20 % of the run",
-                a.path,
-            )
-    res.energy = {
-        "initial_total": energy0,
-        "final_total": float(data.energy[0] + data.energy[1]),
-        "max_kinetic": ke_max,
-    }
+    for m in monitors:
+        m.finish(run)
     if res.blowup is None and res.simulated_time < duration - h / 2:
-        add(INFO, "sim-incomplete", f"simulated {res.simulated_time:.3f} of {duration:g} s", None)
-    res.ok = not any(n.severity == ERROR for n in notes)
+        run.add(INFO, "A108", f"simulated {res.simulated_time:.3f} of {duration:g} s", None)
+    res.ok = not any(n.severity == ERROR for n in res.notes)
     return res

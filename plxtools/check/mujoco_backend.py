@@ -47,6 +47,7 @@ __all__ = [
     "BackendNote",
     "BodyReport",
     "CompiledScene",
+    "ExportError",
     "MateMonitor",
     "MateReport",
     "MotorReport",
@@ -75,14 +76,50 @@ def simulate(
     return simulate_compiled(_compiled(scene_or_compiled), duration, **options)
 
 
+class ExportError(Exception):
+    """The MJCF text MuJoCo wrote for the scene does not load back; ``note`` says where and why."""
+
+    def __init__(self, note: BackendNote):
+        super().__init__(note.message)
+        self.note = note
+
+
 def export_mjcf(compiled: CompiledScene, path: str | None = None) -> str:
-    """MJCF text of the compiled scene (written to ``path`` when given)."""
+    """MJCF text of the compiled scene (written to ``path`` when given).
+
+    MuJoCo's XML writer rounds numbers, so a scene it simulates can still give a file it refuses
+    (a size of 0.25 next to 1e30 is written as 0).  The text is therefore loaded back first, and
+    the file is written (atomically, next to its final place) only when that succeeds; otherwise
+    :class:`ExportError` names the element and its OpenPLX source."""
+    import mujoco
+
+    from plxtools.check.mj_notes import note_from_compile_error
+
     if compiled.spec is None:
         raise ValueError("nothing to export: the scene has no MjSpec")
     xml = compiled.spec.to_xml()
-    if path is not None:
-        with open(path, "w", encoding="utf-8") as f:
+    if path is None:
+        return xml
+    import os
+    import tempfile
+
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".plx-export-", suffix=".xml", dir=folder)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
             f.write(xml)
+        try:
+            mujoco.MjModel.from_xml_path(tmp)
+        except ValueError as exc:
+            note = note_from_compile_error(exc, compiled.names)
+            note.code = "A132"
+            note.message = note.message.replace("MuJoCo rejected the model", "MuJoCo cannot load the exported MJCF", 1)
+            raise ExportError(note) from None
+        os.replace(tmp, path)
+        tmp = None
+    finally:
+        if tmp is not None and os.path.exists(tmp):
+            os.unlink(tmp)
     return xml
 
 

@@ -6,7 +6,8 @@ import math
 import os
 from typing import Any, TextIO
 
-from plxtools.check.pipeline import FileCheck
+from plxtools.check.assemble import Placement
+from plxtools.check.pipeline import FileCheck, Skip
 from plxtools.diagnostics import Diagnostic
 
 
@@ -47,6 +48,8 @@ def simulation_json(fc: FileCheck) -> dict[str, Any]:
             "initial_penetrations": d.get("penetrations", []),
             "mates_pulled_apart": [m for m, r in d.get("mates", {}).items() if r.get("pulled_apart")],
             "joint_limit_violations": d.get("joint_limit_violations", []),
+            "motion_diagnostics": [{"code": x.code, "line": x.span.start.line + 1, "message": x.message}
+                                   for x in motion_diagnostics(fc)],
         },
         "energy": d.get("energy", {}),
     }
@@ -61,7 +64,32 @@ def document(results: list[FileCheck], diags: list[Diagnostic], simulate: bool) 
     }
     if simulate:
         doc["simulation"] = {fc.path: simulation_json(fc) for fc in results}
+        for path, sim in doc["simulation"].items():
+            bad: list[str] = []
+            doc["simulation"][path] = _finite_json(sim, "", bad)
+            if bad and "findings" in sim:
+                doc["simulation"][path]["findings"]["non_finite_values"] = bad
+    found: list[str] = []
+    doc = _finite_json(doc, "", found)
     return doc
+
+
+def _finite_json(v: Any, where: str, found: list[str]) -> Any:
+    """The value with every NaN / infinity replaced by None (JSON has no such numbers); the JSON
+    paths of the replaced numbers are appended to ``found``."""
+    if isinstance(v, float) or (hasattr(v, "dtype") and getattr(v, "shape", None) == ()):
+        f = float(v)
+        if not math.isfinite(f):
+            found.append(where or "/")
+            return None
+        return f if isinstance(v, float) else v
+    if hasattr(v, "tolist") and hasattr(v, "shape"):
+        return _finite_json(v.tolist(), where, found)
+    if isinstance(v, dict):
+        return {k: _finite_json(x, f"{where}/{k}", found) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_finite_json(x, f"{where}/{i}", found) for i, x in enumerate(v)]
+    return v
 
 
 # ---------------------------------------------------------------------- text
@@ -83,7 +111,7 @@ def _vec(v, nd: int = 2) -> str:
 def assembly_line(fc: FileCheck) -> str:
     asm = fc.assembly
     bodies = asm.bodies
-    snap = sum(1 for n in bodies if n.placed_by.startswith("SNAP"))
+    snap = sum(1 for n in bodies if n.placement is Placement.SNAP)
     declared = sum(1 for n in bodies if n.explicit and n is not asm.root_node)
     other = len(bodies) - snap - declared
     parts = [f"{len(bodies)} bod{'ies' if len(bodies) != 1 else 'y'} ({declared} declared, {snap} placed by SNAP, "
@@ -134,7 +162,17 @@ def findings(fc: FileCheck) -> list[str]:
         out.append(f"{p['geom1']} and {p['geom2']} start {p['depth']:.4g} m deep in each other")
     for j in s.joint_limit_violations:
         out.append(f"{j['mate']} exceeded its range by {j['violation']:.3g} at t={j['time']:.2f} s")
+    for d in motion_diagnostics(fc):
+        out.append(f"{d.code} (line {d.span.start.line + 1}): {d.message}")
     return out
+
+
+# diagnostics that explain how the scene moves (or fails to): the summary lists them with the findings
+MOTION_CODES = frozenset({"A017", "A018", "A023", "A037", "A106"})
+
+
+def motion_diagnostics(fc: FileCheck) -> list[Diagnostic]:
+    return [d for d in fc.diagnostics if d.code in MOTION_CODES]
 
 
 def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO, *, simulate: bool) -> None:
@@ -149,7 +187,7 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
         console = Console(file=stream, highlight=False, soft_wrap=True)
     for fc in results:
         if fc.assembly is None:
-            if fc.skipped and fc.skipped != "the file defines no model":
+            if fc.skip is not None and fc.skip is not Skip.NO_MODEL:
                 _line(stream, console, f"{fc.path}: not assembled: {fc.skipped}", "yellow")
             continue
         if results and (diags or len(results) > 1 or simulate):
@@ -194,6 +232,11 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
     if diags or results:
         stream.write("\n") if console is None else console.print()
     summary = _summary_line(diags, len(results))
+    broken = sum(1 for fc in results if fc.internal_error is not None)
+    if broken:  # never "All checks passed" when a file could not be checked
+        summary = (f"{summary.rstrip('.')}; {broken} file{'s' if broken != 1 else ''} could not be checked "
+                   f"(internal error).") if diags else f"{broken} of {len(results)} file(s) could not be checked " \
+            f"(internal error)."
     if console is not None:
         console.print(summary, style="bold" if diags else "green")
     else:

@@ -6,6 +6,7 @@ mujoco is imported only when a MuJoCo step is requested (inside :func:`run_backe
 
 from __future__ import annotations
 
+import enum
 import os
 import time
 from dataclasses import dataclass, field
@@ -23,9 +24,21 @@ from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Pos, Severity, Span
 from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast, parse_bytes
 
-# codes whose errors make a simulation meaningless (the scene is not what the file says)
-_BLOCKING_PREFIXES = ("S", "N", "T", "M", "B", "E")
-_BLOCKING_CODES = {"A001", "A002", "A003", "A004", "A005", "A006", "A009", "A030", "A032", "A033", "A034"}
+
+class Skip(enum.Enum):
+    """Why a file was not (fully) checked or not simulated; the value is the text reports show."""
+
+    UNREADABLE = "the file cannot be read"
+    NOT_TEXT = "not an OpenPLX text file"
+    SYNTAX = "the file has syntax errors"
+    NO_MODEL = "the file defines no model"
+    NO_ROOT = "no root model"
+    BLOCKED = "errors make the scene unreliable"
+    INTERNAL = "internal error"
+
+
+# errors whose scene is exactly what the file says; they do not stop simulation, export or render
+SCENE_AS_WRITTEN = frozenset({"A016"})
 
 
 @dataclass
@@ -38,13 +51,21 @@ class FileCheck:
     scene: Any = None  # plxtools.check.scene.Scene
     compiled: Any = None  # CompiledScene
     simulation: Any = None  # SimulationResult
-    skipped: str | None = None  # why the simulation (or the whole check) did not run
+    skip: Skip | None = None  # why the simulation (or the whole check) did not run
+    skip_detail: str = ""  # the particulars (which errors block the backend)
     internal_error: str | None = None
     timings: dict[str, float] = field(default_factory=dict)
     objects: int = 0
     rep: Reporter | None = field(default=None, repr=False)  # the check diagnostics, before merging
     raw: list[Diagnostic] = field(default_factory=list, repr=False)  # lint's, before filtering
     cfg: Any = field(default=None, repr=False)
+
+    @property
+    def skipped(self) -> str | None:
+        """Display text of ``skip`` (reports, JSON); state is ``skip``."""
+        if self.skip is None:
+            return None
+        return self.skip_detail or self.skip.value
 
     @property
     def has_errors(self) -> bool:
@@ -61,6 +82,7 @@ class FileCheck:
                 "position": [round(float(x), 12) + 0.0 for x in n.world[1]],
                 "quaternion": [round(x, 12) + 0.0 for x in mat_to_quat_wxyz(n.world[0])],
                 "placed_by": n.placed_by,
+                "placement": n.placement.value,
                 "dynamic": n.is_dynamic,
             }
         return out
@@ -99,21 +121,21 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     except OSError as exc:
         fc.diagnostics = [Diagnostic("E001", f"cannot read file: {exc.strerror}", EMPTY_SPAN, Severity.ERROR,
                                      file=str(path))]
-        fc.skipped = "the file cannot be read"
+        fc.skip = Skip.UNREADABLE
         return fc
     tree = parse_bytes(data, str(path))
     fc.tree = tree
     raw: list[Diagnostic] = list(tree.diagnostics)
     if any(d.code == "S001" for d in tree.diagnostics):
-        fc.skipped = "not an OpenPLX text file"
+        fc.skip = Skip.NOT_TEXT
         fc.diagnostics = _finish(tree, raw, cfg)
         return fc
     fa = workspace.analyse(tree)
     raw.extend(fa.diagnostics)
     fc.timings["lint"] = time.perf_counter() - t0
-    rep = Reporter(fa.unit, str(path))
+    rep = Reporter(fa.unit, str(path), skip_codes=_owned_by_lint(raw))
     if tree.has_errors:
-        fc.skipped = "the file has syntax errors"
+        fc.skip = Skip.SYNTAX
         fc.diagnostics = _finish(tree, raw, cfg)
         return fc
     t1 = time.perf_counter()
@@ -121,9 +143,9 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     root = _pick_root(program, fa.unit, model, rep)
     if root is None:
         if not rep.entries:
-            fc.skipped = "the file defines no model"
+            fc.skip = Skip.NO_MODEL
         else:
-            fc.skipped = "no root model"
+            fc.skip = Skip.NO_ROOT
         scan_strings(tree, rep)
         fc.diagnostics = _finish(tree, raw + rep.diagnostics(), cfg)
         return fc
@@ -147,20 +169,25 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     fc.scene = to_scene(asm, col, rep, os.path.dirname(os.path.abspath(str(path))))
     fc.timings["assemble"] = time.perf_counter() - t1
     fc.rep, fc.raw, fc.cfg = rep, raw, cfg
-    fc.diagnostics = _finish(tree, raw + _dedupe_missing(rep.diagnostics(), raw), cfg)
+    fc.diagnostics = _finish(tree, raw + rep.diagnostics(), cfg)
     return fc
 
 
 def blocking_reason(fc: FileCheck) -> str | None:
+    """Why the MuJoCo backend (simulation, export, render) must not run on this file, or None.
+
+    One rule: any error blocks it, because the scene then differs from the file (a value replaced by
+    a fallback, an element dropped), so a motion, an exported model or a picture of it would
+    mislead.  The exceptions are the errors whose scene is built exactly as written (A016: mates
+    that do not coincide): simulating shows what they do."""
     if fc.skipped:
         return fc.skipped
     if fc.scene is None:
         return "no scene"
-    bad = [d for d in fc.diagnostics if d.severity == Severity.ERROR and
-           (d.code.startswith(_BLOCKING_PREFIXES) or d.code in _BLOCKING_CODES)]
+    bad = [d for d in fc.diagnostics if d.severity == Severity.ERROR and d.code not in SCENE_AS_WRITTEN]
     if bad:
         codes = ", ".join(sorted({d.code for d in bad}))
-        return f"{len(bad)} error{'s' if len(bad) != 1 else ''} make the scene unreliable ({codes})"
+        return f"{len(bad)} error{'s make' if len(bad) != 1 else ' makes'} the scene unreliable ({codes})"
     return None
 
 
@@ -178,20 +205,19 @@ def run_backend(fc: FileCheck, *, simulate: bool, duration: float, compile_only:
         fc.timings["simulate"] = time.perf_counter() - t1
         notes = list(fc.simulation.notes)
     add_backend_notes(fc.rep, fc.tree, notes)
-    fc.diagnostics = _finish(fc.tree, fc.raw + _dedupe_missing(fc.rep.diagnostics(), fc.raw), fc.cfg)
+    refresh(fc)
+
+
+def refresh(fc: FileCheck) -> None:
+    """Recompute the file's diagnostics after check added some (lint's and check's, filtered)."""
+    fc.diagnostics = _finish(fc.tree, fc.raw + fc.rep.diagnostics(), fc.cfg)
 
 
 def add_backend_notes(rep: Reporter, tree: ast.File, notes: list) -> None:
-    from plxtools.lint.catalog.assembly import BACKEND_CODES
-
-    static = [(e.diag.code, e.path) for e in rep.entries]
+    """The backend's notes carry their rule codes (A1xx): each is reported as it is."""
     for n in notes:
-        code = BACKEND_CODES.get(n.code, "A199")
-        if code < "A100" and any(c == code and (n.path is None or p == n.path) for c, p in static):
-            continue  # the static check already said this
         span = _span_of_source(tree, n.source) if n.source is not None else rep.anchor(None)
-        msg = n.message if code != "A199" else f"[{n.code}] {n.message}"
-        rep.add(code, msg, span=span, severity=n.severity, path=n.path)
+        rep.add(n.code, n.message, span=span, severity=n.severity, path=n.path)
 
 
 def _span_of_source(tree: ast.File, src) -> Span:
@@ -208,16 +234,17 @@ def _span_of_source(tree: ast.File, src) -> Span:
     return Span(Pos(a, line, col), Pos(b, end_line, end_col))
 
 
-_LINT_TWIN = {"A004": "M007", "A005": "M008", "A006": "M006"}
+# What lint's model checks own: a missing value (M007), an unbound reference (M008) or one given a
+# value of the wrong kind (T001), a value cycle (M006), a type or name error.  When lint has found one of these in the file, the evaluator's own
+# reports of the same kinds (A004, A005, A006, A003) are consequences of it and are not made.
+_LINT_OWNED = {"A004": ("M007",), "A005": ("M008", "T001"), "A006": ("M006",), "A003": ("T", "N")}
 
 
-def _dedupe_missing(mine: list[Diagnostic], lint: list[Diagnostic]) -> list[Diagnostic]:
-    """Drop our missing-value / unbound-reference / cycle errors where lint's M007 / M008 / M006
-    already reports the same line, and evaluation errors on a line with a type or name error."""
-    covered = {(d.code, d.span.start.line) for d in lint if d.code in _LINT_TWIN.values()}
-    typed = {d.span.start.line for d in lint if d.severity == Severity.ERROR and d.code[0] in "TN"}
-    return [d for d in mine if (_LINT_TWIN.get(d.code), d.span.start.line) not in covered
-            and not (d.code == "A003" and d.span.start.line in typed)]
+def _owned_by_lint(lint: list[Diagnostic]) -> frozenset[str]:
+    """The evaluation codes that lint's errors in this file already own."""
+    errors = [d.code for d in lint if d.severity == Severity.ERROR]
+    return frozenset(code for code, owners in _LINT_OWNED.items()
+                     if any(c.startswith(owners) for c in errors))
 
 
 def _finish(tree: ast.File, diags: list[Diagnostic], cfg) -> list[Diagnostic]:

@@ -40,6 +40,7 @@ class Reporter:
     file: str
     root_stmt: Any = None
     entries: list[Entry] = field(default_factory=list)
+    skip_codes: frozenset[str] = frozenset()  # codes another owner (lint) already reports for this file
 
     def anchor(self, obj: Obj | None) -> Span:
         seen = 0
@@ -66,6 +67,8 @@ class Reporter:
             span: Span | None = None) -> Diagnostic:
         if span is None:
             span = self.locate(node, unit, obj)
+        if code in self.skip_codes:
+            return Diagnostic(code, message, span, Severity.INFO, file=self.file, help=help)  # not reported
         if severity is None:
             sev = _rule_severity(code)
         else:

@@ -235,13 +235,13 @@ def test_boxtruck_tutorial_motors_spin_the_truck_clockwise() -> None:
         assert p0 == pytest.approx(p1) and a0 == pytest.approx(a1) and n0 == pytest.approx(n1)
     compiled = compile_scene(scene)
     assert compiled.ok, [n.message for n in compiled.notes]
-    assert not any(n.code == "mate-initially-violated" for n in compiled.notes)
+    assert not any(n.code == "A131" for n in compiled.notes)  # SNAP result: no broken invariant
     assert compiled.model.nbody == 7 and compiled.model.njnt == 5 and compiled.model.nu == 2
     assert compiled.free_roots == ["boxTruck.chassis"]  # chassis carries 4 mates: it is the root
     assert sorted(compiled.joint_sign.values()) == [1, 1, 1, 1]  # wheels (connectors[1]) are children
     codes = {n.code for n in compiled.notes}
-    assert "velocity-motor-gain-clamped" in codes and "friction-model-approximated" in codes
-    assert "restitution-unsupported" not in codes  # restitution 0 is what MuJoCo does anyway
+    assert "A111" in codes and "A113" in codes
+    assert codes <= {"A111", "A113"}  # restitution and the like are the static checks' findings
     assert compiled.model.npair == 4  # one wheel/ground pair per wheel
     assert compiled.model.nexclude == 10  # the self-disabled collision group: 5 bodies -> 10 pairs
 
@@ -326,7 +326,7 @@ def test_initial_penetration_is_reported() -> None:
     p = res.penetrations[0]
     assert {p["geom1"], p["geom2"]} == {"drop.ground.geometry", "drop.box.geometry"}
     assert p["depth"] == pytest.approx(0.05, abs=1e-6) and p["contacts"] == 4
-    assert any(n.code == "sim-initial-penetration" for n in res.notes)
+    assert any(n.code == "A104" for n in res.notes)
 
 
 def test_initial_velocities_and_heading() -> None:
@@ -395,7 +395,7 @@ def test_motor_sign_follows_connector_order(
     assert compiled.ok and compiled.joint_sign["m.hinge"] == sign
     assert compiled.model.body_parentid[compiled.model.body("m.disc").id] == compiled.model.body("m.base").id
     assert compiled.model.actuator_forcerange[0] == pytest.approx([-50.0, 50.0])
-    assert ("controller-reversed" in {n.code for n in compiled.notes}) == (mate_order != motor_order)
+    assert ("A122" in {n.code for n in compiled.notes}) == (mate_order != motor_order)
     res = simulate(compiled, 1.0, record=True)
     # 50 N m on I = 0.636 kg m^2: 1 rad/s after ~13 ms, then 1 rad/s (effort-limited kv = I / h: no chatter)
     assert compiled.actuators[0].kv == pytest.approx(0.6362 / 0.002, rel=1e-3)
@@ -411,7 +411,7 @@ def test_box_falls_through_ground_without_collisions() -> None:
     assert [f["body"] for f in res.fall_through] == ["drop.box"]
     # free fall from z 1.0 to below the ground top (0.05 - 0.01 margin): t = sqrt(2*0.96/g) = 0.44 s
     assert res.fall_through[0]["time"] == pytest.approx(math.sqrt(2 * 0.96 / G), abs=0.015)
-    note = next(n for n in res.notes if n.code == "sim-fell-through")
+    note = next(n for n in res.notes if n.code == "A102")
     assert note.severity == "error" and note.source == Source("drop.openplx", 3, 5)
 
 
@@ -429,7 +429,7 @@ def test_blowup_is_detected_and_timed() -> None:
     res = simulate(scene, 1.0)
     assert not res.ok and res.blowup is not None
     assert 0.0 < res.blowup["time"] <= 0.05
-    assert any(n.code == "sim-blowup" and n.severity == "error" for n in res.notes)
+    assert any(n.code == "A101" and n.severity == "error" for n in res.notes)
 
 
 def test_loop_closing_hinge_becomes_equality() -> None:
@@ -442,7 +442,7 @@ def test_loop_closing_hinge_becomes_equality() -> None:
     import mujoco
 
     assert all(m.eq_type[i] == mujoco.mjtEq.mjEQ_CONNECT for i in range(m.neq))
-    assert any(n.code == "loop-closure" and n.path == "fb.hinge_b" for n in compiled.notes)
+    assert any(n.code == "A114" and n.path == "fb.hinge_b" for n in compiled.notes)
     res = simulate(compiled, 2.0)
     assert res.ok and res.blowup is None
     loop = res.mates["fb.hinge_b"]
@@ -518,22 +518,17 @@ def test_unsupported_and_invalid_features_become_notes(tmp_path) -> None:
     )
     compiled = compile_scene(scene)
     assert compiled.ok  # problems are reported, not fatal
-    codes = {n.code: n for n in compiled.notes}
-    for code in (
-        "unsupported-feature",
-        "distance-mate-approximated",
-        "controller-dof-mismatch",
-        "controller-without-mate",
-        "restitution-unsupported",
-        "mesh-file-missing",
-        "invalid-geometry-size",
-    ):
-        assert code in codes, code
-    assert codes["unsupported-feature"].source == src and codes["unsupported-feature"].path == "bad.gear"
-    assert codes["mesh-file-missing"].source == src
-    assert codes["controller-without-mate"].path == "bad.orphan"
-    assert codes["invalid-geometry-size"].severity == "error"
-    assert codes["mate-initially-violated"].path == "bad.slider"  # 0.5 m apart across the axis
+    by_path = {n.path: n for n in compiled.notes if n.code == "A131"}
+    # what the static checks own reaches the backend only as a broken invariant (A131), naming the owner
+    assert "A021" in by_path["bad.motor"].message and "A020" in by_path["bad.orphan"].message
+    assert "A030" in by_path["bad.b.flat"].message and by_path["bad.b.flat"].severity == "error"
+    assert "A031" in by_path["bad.b.visual"].message and by_path["bad.b.visual"].source == src
+    assert "A016" in by_path["bad.slider"].message  # 0.5 m apart across the axis
+    assert by_path["bad.orphan"].source == src
+    codes = {n.code for n in compiled.notes}
+    assert "A116" in codes  # the distance mate approximation is the backend's own finding
+    assert not any(n.path == "bad.gear" for n in compiled.notes)  # the static checks own A040
+    assert {n.code for n in compiled.notes if n.path == "bad.contact"} <= {"A128"}  # restitution: A040 too
     res = simulate(compiled, 0.5)
     assert res.blowup is None
     assert json.loads(json.dumps(res.to_dict()))["notes"]
@@ -551,7 +546,7 @@ def test_mujoco_compile_error_points_at_openplx_element(tmp_path) -> None:
     )
     compiled = compile_scene(Scene("Mesh", [body], base_dir=str(tmp_path)))
     assert not compiled.ok
-    err = next(n for n in compiled.notes if n.code == "mujoco-compile-error")
+    err = next(n for n in compiled.notes if n.code == "A110")
     assert err.path == "m.body.shape" and err.source == src
     res = simulate(compiled, 1.0)
     assert not res.ok and res.steps == 0
@@ -573,7 +568,7 @@ def test_mesh_geometry_from_file_and_vertices(tmp_path) -> None:
     compiled = compile_scene(Scene("Mesh", [body, ground], base_dir=str(tmp_path)))
     assert compiled.ok, [n.message for n in compiled.notes]
     assert compiled.model.nmesh == 2
-    assert any(n.code == "concave-mesh-hull" for n in compiled.notes)
+    assert any(n.code == "A117" for n in compiled.notes)
     # density 1000: tetrahedra of edge 0.3 and 0.2 -> (0.027 + 0.008) / 6 m^3
     assert compiled.model.body("m.body").mass[0] == pytest.approx(1000 * (0.027 + 0.008) / 6, rel=1e-6)
     res = simulate(compiled, 1.0)
@@ -614,7 +609,7 @@ def test_linear_spring_equilibrium_and_stiffness_clamp() -> None:
         spring = Controller("s.spring", "spring", "linear", (w, mc), stiffness=k, damping=20.0)
         compiled = compile_scene(Scene("Spring", [m], [Mate("s.p", "prismatic", (w, mc))], [spring]))
         assert compiled.model.jnt_stiffness[0] == pytest.approx(k_used)
-        assert ("spring-stiffness-clamped" in {n.code for n in compiled.notes}) == (k != k_used)
+        assert ("A112" in {n.code for n in compiled.notes}) == (k != k_used)
         res = simulate(compiled, 3.0, record=True)
         assert res.trace["joints"]["s.p"][-1] == pytest.approx(-G / k_used, rel=1e-4)
 
@@ -657,8 +652,8 @@ def test_mass_properties_follow_agx_rules() -> None:
     )
     compiled = compile_scene(scene)
     m = compiled.model
-    notes = {n.path: n.code for n in compiled.notes}
-    assert notes == {"a": "zero-mass", "c": "invalid-inertia"}
+    notes = {n.path: n.message for n in compiled.notes if n.code == "A131"}
+    assert set(notes) == {"a", "c"} and "A033" in notes["a"] and "A034" in notes["c"]
     assert m.body("a").mass[0] == pytest.approx(1.0)
     assert m.body("b").mass[0] == pytest.approx(3.0)
     # box inertia with the given mass: m/12 (y^2+z^2, x^2+z^2, x^2+y^2)

@@ -3,9 +3,9 @@
 A0xx: instantiation, evaluation and static assembly checks (stage "check").
 A1xx: findings of the MuJoCo backend and of the simulation (stage "simulate", only with --simulate).
 
-``BACKEND_CODES`` maps the MuJoCo backend's note codes to these rule codes; a backend note that
-repeats a static finding maps to the static code and is dropped when that finding was already
-reported for the same object.
+Each problem has one owner: the static checks own assembly problems; the MuJoCo backend emits only
+A1xx codes, for what is specific to it, and treats what the static checks guarantee as invariants
+(A131 when one is broken).
 """
 
 from plxtools.diagnostics import Severity
@@ -191,6 +191,14 @@ rule("A040", "unsupported-feature", W,
      "models, PointGravitationalField, unknown mate or interaction types.",
      "It is named, never dropped silently: the simulation runs without it, so its results may differ "
      "from AGX's.", stage=C)
+rule("A041", "non-finite-value", E,
+     "A number that assembly reads is NaN or infinite: a mass, size, connector position or axis, initial "
+     "velocity, motor gain... (`1e308 * 10` overflows to infinity, `inf - inf` is NaN), or an integer "
+     "too large for a number (beyond 1.8e308).",
+     "Such a value cannot be simulated and would silently turn the scene into NaN. It is reported at the "
+     "line that gives it and the value is treated as unknown. Infinity is allowed only where it means "
+     "\"no limit\": `min_effort`, `max_effort` and a range's `start` / `end`.",
+     example="inertia.mass: 1e308 * 10", use_instead="inertia.mass: 1e3", stage=C)
 
 # ---------------------------------------------------------------- simulation (MuJoCo backend)
 
@@ -284,75 +292,13 @@ rule("A130", "invalid-controller-parameter", E,
      "A controller parameter is unusable: a non-positive gain or stiffness, a negative damping, a range "
      "without start or end.", "The controller is ignored in the simulation.", stage=SIM)
 rule("A131", "scene-inconsistent", E,
-     "The scene handed to the MuJoCo backend names an unknown or duplicate body.",
-     "This points at a plxtools bug; please report it with the model.", stage=SIM)
-rule("A199", "backend-note", W, "Another note from the MuJoCo backend (its own code is in the message).",
-     "Reported so that nothing the backend says is lost.", stage=SIM)
-
-BACKEND_CODES: dict[str, str] = {
-    # repeats of static checks (dropped when the static check already reported the same object)
-    "negative-mass": "A032",
-    "mate-connector-count": "A013",
-    "controller-connector-count": "A013",
-    "mate-same-body": "A015",
-    "mate-no-dynamic-body": "A017",
-    "zero-main-axis": "A010",
-    "mate-initially-violated": "A016",
-    "controller-without-mate": "A020",
-    "controller-dof-mismatch": "A021",
-    "effort-range-inverted": "A024",
-    "range-inverted": "A024",
-    "invalid-geometry-size": "A030",
-    "mesh-empty": "A030",
-    "mesh-file-missing": "A031",
-    "zero-mass": "A033",
-    "invalid-inertia": "A034",
-    "duplicate-contact-model": "A035",
-    "negative-friction": "A036",
-    "non-positive-density": "A038",
-    "unsupported-feature": "A040",
-    "unsupported-geometry": "A040",
-    "unsupported-controller": "A040",
-    "unknown-mate-kind": "A040",
-    "restitution-unsupported": "A040",
-    "friction-model-unsupported": "A040",
-    # the backend's own findings
-    "sim-blowup": "A101",
-    "sim-fell-through": "A102",
-    "sim-mate-separated": "A103",
-    "sim-initial-penetration": "A104",
-    "sim-joint-limit-exceeded": "A105",
-    "sim-motor-not-tracking": "A106",
-    "sim-bad-control": "A107",
-    "sim-incomplete": "A108",
-    "mujoco-compile-error": "A110",
-    "velocity-motor-gain-clamped": "A111",
-    "spring-stiffness-clamped": "A112",
-    "friction-model-approximated": "A113",
-    "loop-closure": "A114",
-    "loop-closure-unsupported": "A115",
-    "distance-mate-approximated": "A116",
-    "concave-mesh-hull": "A117",
-    "mesh-format-unsupported": "A118",
-    "range-effort-ignored": "A119",
-    "initial-velocity-ignored": "A120",
-    "kinematic-motion-ignored": "A121",
-    "controller-reversed": "A122",
-    "controller-on-disabled-mate": "A123",
-    "controller-on-loop-mate": "A124",
-    "multiple-ranges": "A125",
-    "multiple-springs": "A125",
-    "mass-without-geometry": "A126",
-    "plane-on-dynamic-body": "A127",
-    "contact-model-unused": "A128",
-    "mate-disabled": "A129",
-    "controller-disabled": "A129",
-    "contact-model-disabled": "A129",
-    "non-positive-gain": "A130",
-    "non-positive-stiffness": "A130",
-    "negative-damping": "A130",
-    "range-incomplete": "A130",
-    "duplicate-body": "A131",
-    "unknown-body": "A131",
-}
-"""MuJoCo backend note code -> rule code (anything else maps to A199)."""
+     "The scene handed to the MuJoCo backend names an unknown or duplicate body, or breaks a condition "
+     "that a static check (named in the message) guarantees.",
+     "The backend runs only on scenes without errors, so this points at a plxtools bug; please report it "
+     "with the model.", stage=SIM)
+rule("A132", "mjcf-export-unloadable", E,
+     "`--export-mjcf`: the MJCF that MuJoCo writes for the scene does not load back into MuJoCo (its XML "
+     "writer rounds numbers, so a box of 0.25 m next to one of 1e30 m is written with size 0).",
+     "The file is not written (the command exits with 2); the message names the MuJoCo element and "
+     "the line of the OpenPLX object it comes from. Bring the sizes or masses of the scene into a "
+     "physical range.", stage=SIM)

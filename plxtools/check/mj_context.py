@@ -1,0 +1,70 @@
+"""The state shared by the steps that build a MuJoCo model from a scene (:mod:`mj_compile`,
+:mod:`mj_geoms`, :mod:`mj_controllers`): one object with named fields, passed to plain functions."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from plxtools.check.mj_notes import ERROR, BackendNote, NameMap, note_from_compile_error
+from plxtools.check.mj_types import CompiledScene
+from plxtools.check.scene import Body, Scene
+
+
+class CompileFailed(Exception):
+    """MuJoCo refused the spec; the reason is already a note (A110)."""
+
+
+@dataclass(eq=False)
+class BuildContext:
+    mj: Any  # the mujoco module
+    scene: Scene
+    out: CompiledScene
+    spec: Any  # mujoco.MjSpec
+    bodies: dict[str, Body] = field(default_factory=dict)  # body path -> scene body
+    body_index: dict[str, int] = field(default_factory=dict)  # body path -> index in scene.bodies
+    mj_bodies: dict[str, Any] = field(default_factory=dict)  # body path -> MjsBody
+    excluded: set[frozenset[str]] = field(default_factory=set)  # body pairs that do not collide
+    mated: set[frozenset[str]] = field(default_factory=set)  # body pairs joined by a mate
+    geoms_by_material: dict[str, list[tuple[str, str]]] = field(default_factory=dict)  # -> [(geom, body path)]
+    joint_limits: dict[str, list[float]] = field(default_factory=dict)  # joint name -> [lo, hi]
+    spring_count: dict[str, int] = field(default_factory=dict)  # joint name -> springs on it
+
+    @classmethod
+    def for_scene(cls, scene: Scene) -> "BuildContext":
+        import mujoco
+
+        out = CompiledScene(scene=scene)
+        out.spec = mujoco.MjSpec()
+        return cls(mujoco, scene, out, out.spec)
+
+    @property
+    def notes(self) -> list[BackendNote]:
+        return self.out.notes
+
+    @property
+    def names(self) -> NameMap:
+        return self.out.names
+
+    def note(self, severity: str, code: str, message: str, item: Any = None, path: str | None = None) -> None:
+        """A backend finding (an A1xx rule code), placed at ``item``'s source."""
+        src = getattr(item, "source", None) if item is not None else None
+        if path is None and item is not None:
+            path = getattr(item, "path", None)
+        if src is None and path is not None:
+            src = self.names.sources.get(path)
+        self.notes.append(BackendNote(severity, code, message, src, path))
+
+    def invariant(self, owner: str, message: str, item: Any = None) -> None:
+        """A condition the static checks own (rule ``owner``) met in the scene: the checks reject such
+        a scene before it reaches the backend, so meeting it here is an inconsistency (A131).  The
+        backend still copes (skips or replaces the element) so that a hand-built scene compiles."""
+        self.note(ERROR, "A131", f"{message} (the static check {owner} should have rejected this scene)", item)
+
+    def compile(self, stage: str) -> Any:
+        try:
+            return self.spec.compile()
+        except Exception as err:  # ValueError (compile) or mujoco.FatalError
+            self.notes.append(note_from_compile_error(err, self.names))
+            self.out.model = None
+            raise CompileFailed(stage) from err
