@@ -409,7 +409,6 @@ def resolve_bundle_set(
         stop = {s.path for s in sources}
         if inst is not None:
             stop.add(inst[0].resolve())
-        stop.add(_versions_dir().resolve())
         found = discover_bundles(([workspace_root] if workspace_root else []) + list(targets), stop)
 
     version: str | None = None
@@ -440,6 +439,8 @@ def resolve_bundle_set(
     for r in found:
         if r.parent.resolve() in seen or r in seen:
             continue
+        if official[0] is not None and official[0].resolve() in r.parents:
+            continue  # linting the very bundles in use: they are already the official set
         sources.append(BundleSource(r, "found in the linted tree" if workspace_root is None or
                                     workspace_root.resolve() not in (r, *r.parents) else "found in the workspace"))
         seen.add(r)

@@ -169,6 +169,9 @@ class Workspace:
                 self.program = state["program"]
                 self.bundles = state["bundles"]
                 self.known_annotations = state["annotations"]
+                why = {root: w for root, w, _v in plan}
+                for b in self.bundles.values():  # the reason is this run's, not the cached run's
+                    b.origin = why.get(b.root, b.origin)
                 return
         trees = {str(p): parse_file(p) for p in files}
         for b in bundles:

@@ -128,3 +128,21 @@ def test_two_versions_in_one_process(fetched, tmp_path):
     assert old.bundles["Physics3D"].version == "0.15.0" and new.bundles["Physics3D"].version == "0.19.0"
     pickles = list((cache_dir()).glob("official-*.pickle"))
     assert len({p.name.split("-")[1] for p in pickles}) >= 2  # one cache per bundle set, both kept
+
+
+def test_a_native_function_with_another_signature_is_reported_not_a_crash(tmp_path):
+    """A bundle version whose `fn` differs from what plxtools implements natively: a diagnostic, no traceback."""
+    agx = tmp_path / "agx"
+    shutil.copytree(bundle_root() / "Math", agx / "Math")
+    vec3 = agx / "Math" / "Vec3.openplx"
+    text = vec3.read_text(encoding="utf-8")
+    assert "    fn length() -> Real" in text
+    vec3.write_text(text.replace("    fn length() -> Real", "    fn length(scale: Real) -> Real"), encoding="utf-8")
+    scene = _write(tmp_path / "scene.openplx",
+                   "Scene is Physics3D.System:\n    v is Math.Vec3:\n        x: 3\n"
+                   "    b is Physics3D.Bodies.RigidBody:\n        inertia.mass: v.length(2)\n"
+                   "        geometry is Physics3D.Geometries.Sphere:\n            radius: 0.1\n")
+    r = run_plx("check", str(scene), "--bundle-path", str(agx), "--output-format", "json")
+    assert r.returncode in (0, 1) and "Traceback" not in r.stderr and "internal error" not in r.stderr, r.stderr
+    found = [d for d in json.loads(r.stdout)["diagnostics"] if d["code"] in ("A003", "A008")]
+    assert found and "Math.Vec3.length" in found[0]["message"], r.stdout
