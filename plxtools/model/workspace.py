@@ -106,7 +106,10 @@ class Workspace:
         self._loose_ns: dict[str, Namespace] = {}
         self._nearby: dict[Path, dict[str, Path]] = {}
         if bundle_set is None:
-            bundle_set = explicit_bundle_set([Path(p) for p in bundle_paths or []])
+            try:
+                bundle_set = explicit_bundle_set([Path(p) for p in bundle_paths or []])
+            except BundleSetError as exc:  # callers of the library API catch WorkspaceError
+                raise WorkspaceError(str(exc)) from None
         self.bundle_set = bundle_set
         official, user = self._plan(bundle_set)
         root = bundle_set.official_root or (official[0][0].parent if official else None)

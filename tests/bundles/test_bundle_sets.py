@@ -146,3 +146,23 @@ def test_a_native_function_with_another_signature_is_reported_not_a_crash(tmp_pa
     assert r.returncode in (0, 1) and "Traceback" not in r.stderr and "internal error" not in r.stderr, r.stderr
     found = [d for d in json.loads(r.stdout)["diagnostics"] if d["code"] in ("A003", "A008")]
     assert found and "Math.Vec3.length" in found[0]["message"], r.stdout
+
+
+def test_the_language_server_entry_uses_the_same_order(tmp_path, fetched):
+    """workspace_for_folder: what the server calls per workspace folder; same set, same Workspace object."""
+    from plxtools.config import _config_for_dir
+    from plxtools.model.workspace import describe_bundle_set, workspace_for_folder
+
+    fetched("0.15.0")
+    parts = _bundle(tmp_path / "lib" / "MyParts", "MyParts")
+    _write(parts / "Wheel.openplx", "Wheel is Physics3D.Bodies.RigidBody\n")
+    _write(tmp_path / "plx.toml", 'openplx-version = "0.15.0"\n')
+    ws = workspace_for_folder(tmp_path)
+    rows = {r["name"]: r for r in describe_bundle_set(ws)}
+    assert rows["Physics3D"]["version"] == "0.15.0" and "openplx-version in" in rows["Physics3D"]["why"]
+    assert rows["MyParts"]["why"] == "found in the workspace" and not rows["MyParts"]["official"]
+    assert workspace_for_folder(tmp_path) is ws  # unchanged config: the loaded set is reused
+    (tmp_path / "plx.toml").write_text('openplx-version = "0.19.0"\n', encoding="utf-8")
+    _config_for_dir.cache_clear()  # the server clears it when a config file changes
+    ws2 = workspace_for_folder(tmp_path)
+    assert ws2 is not ws and ws2.bundles["Physics3D"].version == "0.19.0"
