@@ -43,6 +43,9 @@ def run_check(args) -> int:
     except (UsageError, ConfigError, ValueError) as exc:
         print(f"plx check: {exc}", file=sys.stderr)
         return 2
+    note = workspace.bundle_set.announcement()
+    if note and args.output_format == "text":
+        print(f"plx check: {note}", file=sys.stderr)
     results = []
     status = 0
     for f in files:
