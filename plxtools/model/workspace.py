@@ -308,13 +308,19 @@ class Workspace:
         if not unknown or not tree.path or _URI_NAME.match(tree.path):
             return
         nearby = self.nearby_bundles(Path(tree.path).resolve().parent)
+        home = self.bundle_of(Path(tree.path))
+        wanted = set(home.dependencies) if home is not None else set()
         for d in unknown:
             m = re.search(r"'([A-Za-z_][A-Za-z0-9_]*)[.']", d.message)
-            if not m or m.group(1) in self.bundles or m.group(1) not in nearby:
+            if not m or m.group(1) in self.bundles:
                 continue
-            folder = nearby[m.group(1)]
-            d.help = (f"a bundle named '{m.group(1)}' is in {folder} but is not loaded: pass "
-                      f"--bundle-path {folder} or add it to bundle-path in plx.toml / [tool.plx]")
+            name = m.group(1)
+            if name in nearby:
+                d.help = (f"a bundle named '{name}' is in {nearby[name]} but is not loaded: pass "
+                          f"--bundle-path {nearby[name]} or add it to bundle-path in plx.toml / [tool.plx]")
+            elif name in wanted:
+                d.help = (f"'{name}' is a dependency in {home.root / 'config.openplx'} but no bundle of that "
+                          f"name is loaded: add its folder with --bundle-path or bundle-path in plx.toml")
 
     def nearby_bundles(self, folder: Path, levels: int = 3) -> dict[str, Path]:
         """Bundles (by config name) in `folder`, its parents up to `levels` up, and their subfolders."""

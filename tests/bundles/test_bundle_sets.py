@@ -166,3 +166,11 @@ def test_the_language_server_entry_uses_the_same_order(tmp_path, fetched):
     _config_for_dir.cache_clear()  # the server clears it when a config file changes
     ws2 = workspace_for_folder(tmp_path)
     assert ws2 is not ws and ws2.bundles["Physics3D"].version == "0.19.0"
+
+
+def test_unknown_name_of_a_missing_dependency_gets_a_help_line(tmp_path):
+    bot = _bundle(tmp_path / "MyBot", "MyBot", '    dependencies: ["Physics3D", "Gears"]\n')
+    _write(bot / "Arm.openplx", "Arm is Gears.Spur\n")
+    r = run_plx("lint", str(bot / "Arm.openplx"), "--output-format", "json")
+    n001 = [d for d in json.loads(r.stdout) if d["code"] == "N001"]
+    assert n001 and "'Gears' is a dependency in" in (n001[0].get("help") or ""), r.stdout
