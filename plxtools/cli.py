@@ -37,6 +37,9 @@ def _add_lint(sub) -> None:
                    help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
     p.add_argument("--no-cache", action="store_true", help="do not read or write the bundle symbol cache")
     p.add_argument("-q", "--quiet", action="store_true", help="print diagnostics only, no summary line")
+    _add_bundle_options(p)
+    p.add_argument("--show-settings", action="store_true",
+                   help="print the bundles in use (name, version, folder, why) and exit")
     p.set_defaults(func=_run_lint)
 
 
@@ -81,7 +84,20 @@ def _add_check(sub) -> None:
     p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
                    help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
     p.add_argument("--exit-zero", action="store_true", help="exit 0 even when errors are found")
+    _add_bundle_options(p)
     p.set_defaults(func=_run_check)
+
+
+def _add_bundle_options(p) -> None:
+    p.add_argument("--openplx-version", metavar="VERSION",
+                   help="lint against this openplx-bundles release (fetched into plx's cache on first use); "
+                   "overrides openplx-version in the config")
+
+
+def _add_bundles(sub) -> None:
+    from plxtools.bundles_cli import add_parser
+
+    add_parser(sub)
 
 
 def _add_lsp(sub) -> None:
@@ -106,6 +122,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_check(sub)
     _add_lsp(sub)
     _add_rule(sub)
+    _add_bundles(sub)
     return parser
 
 

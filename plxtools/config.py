@@ -1,7 +1,7 @@
 """Project configuration: `[tool.plx]` in pyproject.toml or a `plx.toml`; the closest file wins.
 
 Keys (kebab-case): select, ignore, extend-select, per-file-ignores, exclude, extend-exclude,
-bundle-path, fmt.exclude. A `plx.toml` holds the keys at its top level.
+bundle-path, openplx-version, fmt.exclude. A `plx.toml` holds the keys at its top level.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from pathlib import Path
 
 DEFAULT_EXCLUDE = (".git", ".hg", ".venv", "venv", "node_modules", "__pycache__", ".tox", "build", "dist")
 KNOWN_KEYS = {"select", "ignore", "extend-select", "per-file-ignores", "exclude", "extend-exclude",
-              "bundle-path", "fmt"}
+              "bundle-path", "openplx-version", "fmt"}
 
 
 class ConfigError(Exception):
@@ -32,6 +32,7 @@ class Config:
     per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
     exclude: list[str] = field(default_factory=list)
     bundle_paths: list[Path] = field(default_factory=list)
+    openplx_version: str | None = None  # official openplx-bundles release to lint against
     fmt_exclude: list[str] = field(default_factory=list)
 
     def rule_enabled(self, code: str, path: str | None = None) -> bool:
@@ -138,6 +139,13 @@ def parse_config(path: Path, table: dict) -> Config:
         path, "extend-exclude", table.get("extend-exclude", []))
     bp = table.get("bundle-path", [])
     cfg.bundle_paths = [(path.parent / p).resolve() for p in _str_list(path, "bundle-path", bp)]
+    ov = table.get("openplx-version")
+    if ov is not None:
+        import re
+
+        if not isinstance(ov, str) or not re.match(r"^\d+\.\d+\.\d+$", ov):
+            raise ConfigError(f"{path}: 'openplx-version' must be a version string such as \"0.17.26\"")
+        cfg.openplx_version = ov
     fmt = table.get("fmt", {})
     if not isinstance(fmt, dict):
         raise ConfigError(f"{path}: 'fmt' must be a table")

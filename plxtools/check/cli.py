@@ -44,10 +44,13 @@ def run_check(args) -> int:
     try:
         from plxtools.model.workspace import workspace_for_cli
 
-        workspace = workspace_for_cli(args.bundle_path, files)
+        workspace = workspace_for_cli(args.bundle_path, files, openplx_version=getattr(args, "openplx_version", None))
     except (UsageError, ConfigError, ValueError) as exc:
         print(f"plx check: {exc}", file=sys.stderr)
         return 2
+    note = workspace.bundle_set.announcement()
+    if note and args.output_format == "text":
+        print(f"plx check: {note}", file=sys.stderr)
     results = []
     status = 0
     for f in files:

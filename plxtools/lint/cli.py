@@ -29,10 +29,18 @@ def run_lint(args) -> int:
         workspace_for_cli = None
     if workspace_for_cli is not None:
         try:
-            workspace = workspace_for_cli(args.bundle_path, files, use_cache=not args.no_cache)
+            workspace = workspace_for_cli(args.bundle_path, files, use_cache=not args.no_cache,
+                                          openplx_version=getattr(args, "openplx_version", None))
         except (UsageError, ConfigError, ValueError) as exc:
             print(f"plx lint: {exc}", file=sys.stderr)
             return 2
+    if getattr(args, "show_settings", False) and workspace is not None:
+        from plxtools.bundles_cli import print_settings
+
+        return print_settings(workspace)
+    note = workspace.bundle_set.announcement() if workspace is not None else None
+    if note and not args.quiet and args.output_format == "text":
+        print(f"plx lint: {note}", file=sys.stderr)
     all_diags = []
     fixed_files = 0
     fixes_applied = 0

@@ -27,6 +27,7 @@ class Bundle:
     config_tree: ast.File | None = None
     diagnostics: list[Diagnostic] = field(default_factory=list)
     dep_spans: dict[str, Span] = field(default_factory=dict)
+    origin: str = ""  # why this bundle is loaded (shown by --show-settings)
 
     def files(self) -> list[Path]:
         out = []
@@ -43,27 +44,6 @@ class Bundle:
         except ValueError:
             rel = path.resolve().parent.relative_to(self.root.resolve())
         return (self.name, *[p for p in rel.parts if p not in ("", ".")])
-
-
-def official_bundle_root(extra: list[Path] | None = None) -> Path | None:
-    """The folder that holds Math/, Physics/, ...: config, then OPENPLX_BUNDLE_PATH, then the package."""
-    for p in extra or []:
-        if (p / "Math" / "config.openplx").is_file():
-            return p
-    env = os.environ.get("OPENPLX_BUNDLE_PATH")
-    if env:
-        for part in env.split(os.pathsep):
-            if part and (Path(part) / "Math" / "config.openplx").is_file():
-                return Path(part)
-    try:
-        import openplxbundles
-
-        root = Path(openplxbundles.package_dir())
-        if (root / "Math" / "config.openplx").is_file():
-            return root
-    except ImportError:
-        pass
-    return None
 
 
 def read_config(bundle: Bundle, tree: ast.File) -> None:

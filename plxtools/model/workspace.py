@@ -16,17 +16,18 @@ from pathlib import Path
 
 from plxtools import __version__
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity
-from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, official_bundle_root, read_config
+from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
 from plxtools.model.checker import Checker, Occurrence
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
+from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, cache_dir, explicit_bundle_set
 from plxtools.syntax import ast, parse_file
 
 
 _URI_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]+:")  # a scheme of 2+ letters: not a drive letter
 
 
-class WorkspaceError(ValueError):
+class WorkspaceError(BundleSetError):
     """A bundle setup that cannot be used (missing bundle folder, folder without config)."""
 
 
@@ -38,11 +39,10 @@ class FileAnalysis:
 
 
 def _cache_dir() -> Path:
-    base = os.environ.get("PLX_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "plxtools"
+    return cache_dir()
 
 
-_CACHE_FORMAT = 5  # bump when the pickled classes change shape
+_CACHE_FORMAT = 6  # bump when the pickled classes change shape
 
 
 def _cache_key(paths: list[Path]) -> str:
@@ -94,43 +94,87 @@ def _store_cached(name: str, value, prefix: str) -> None:
 
 
 class Workspace:
-    def __init__(self, bundle_paths: list[Path] | None = None, use_cache: bool = True):
+    """One bundle set loaded into one Program. Several can live side by side (one per version)."""
+
+    def __init__(self, bundle_paths: list[Path] | None = None, use_cache: bool = True,
+                 bundle_set: BundleSet | None = None):
         self.program = Program()
         self.bundles: dict[str, Bundle] = {}
         self.use_cache = use_cache
         self.errors: list[str] = []
         self.known_annotations: set[str] = set()
         self._loose_ns: dict[str, Namespace] = {}
-        extra = [Path(p) for p in bundle_paths or []]
-        root = official_bundle_root(extra)
+        self._nearby: dict[Path, dict[str, Path]] = {}
+        if bundle_set is None:
+            try:
+                bundle_set = explicit_bundle_set([Path(p) for p in bundle_paths or []])
+            except BundleSetError as exc:  # callers of the library API catch WorkspaceError
+                raise WorkspaceError(str(exc)) from None
+        self.bundle_set = bundle_set
+        official, user = self._plan(bundle_set)
+        root = bundle_set.official_root or (official[0][0].parent if official else None)
         if root is None:
             raise WorkspaceError("cannot find the OpenPLX bundles: install openplx-bundles, set "
                                  "OPENPLX_BUNDLE_PATH, or pass --bundle-path")
         self.official_root = root.resolve()
-        self._load_official(self.official_root)
-        for p in extra:
-            if p.resolve() == self.official_root:
-                continue
-            self.add_bundle_folder(p)
+        self._load_official(official)
+        for folder, why in user:
+            b = self._load_user_bundle(folder)
+            b.origin = b.origin or why
         self._compute_visibility()
 
     # ------------------------------------------------------------------ loading
 
-    def _load_official(self, root: Path) -> None:
-        """Parse the official bundles and build their symbols, or load both from the disk cache."""
-        folders = sorted(d for d in root.iterdir() if (d / "config.openplx").is_file())
-        bundles = [Bundle(d.name, d.resolve(), official=True) for d in folders]
+    def _plan(self, bs: BundleSet) -> tuple[list[tuple[Path, str, str | None]], list[tuple[Path, str]]]:
+        """Official bundles (root, why, version) after replacements by name, and the user bundle folders."""
+        from plxtools.model.versions import _config_name
+
+        official: dict[str, tuple[Path, str, str | None]] = {}
+        if bs.official_root is not None:
+            for d in bundle_roots_in(bs.official_root):
+                official[_config_name(d)] = (d.resolve(), bs.official_why, bs.official_version)
+        base_names = set(official) or {"Math", "Physics", "Physics1D", "Physics3D", "DriveTrain", "Robotics",
+                                       "Simulation", "Terrain", "Urdf", "Vehicles", "Visuals"}
+        replaced: set[str] = set()
+        user: list[tuple[Path, str]] = []
+        for src in bs.sources:
+            for d in bundle_roots_in(src.path):
+                name = _config_name(d)
+                if name in base_names:
+                    if name in replaced:
+                        continue  # an earlier source already replaced it: first wins, as in the order
+                    replaced.add(name)
+                    official[name] = (d.resolve(), f"replaces the official bundle: {src.why}", None)
+                else:
+                    user.append((d, src.why))
+        if {"Math", "Physics"} <= replaced:
+            # a whole official set (an AGX installation, a copy of a release): drop the base's other
+            # bundles too, they belong to another version
+            official = {n: v for n, v in official.items() if n in replaced}
+        return sorted(official.values(), key=lambda t: str(t[0])), user
+
+    def _load_official(self, plan: list[tuple[Path, str, str | None]]) -> None:
+        """Parse the official bundles and build their symbols, or load both from the disk cache.
+
+        The pickle is named by the set of bundle folders, so switching between versions or sets keeps
+        each one's cache warm, and by every file's size and mtime, so an edited bundle invalidates it.
+        """
+        bundles = [Bundle(root.name, root, official=True, origin=why) for root, why, _v in plan]
         files: list[Path] = []
         for b in bundles:
             files.append(b.root / "config.openplx")
             files.extend(b.files())
-        name = f"official-{_cache_key(files)}.pickle"
+        set_id = f"{zlib.crc32(chr(0).join(str(b.root) for b in bundles).encode()):08x}"
+        name = f"official-{set_id}-{_cache_key(files)}.pickle"
         if self.use_cache:
             state = _load_cached(name)
             if isinstance(state, dict) and state.get("files") == len(files):
                 self.program = state["program"]
                 self.bundles = state["bundles"]
                 self.known_annotations = state["annotations"]
+                why = {root: w for root, w, _v in plan}
+                for b in self.bundles.values():  # the reason is this run's, not the cached run's
+                    b.origin = why.get(b.root, b.origin)
                 return
         trees = {str(p): parse_file(p) for p in files}
         for b in bundles:
@@ -150,7 +194,7 @@ class Workspace:
             sys.setrecursionlimit(max(limit, 20000))  # the namespace tree links parents and children
             try:
                 _store_cached(name, {"files": len(files), "program": self.program, "bundles": self.bundles,
-                                     "annotations": self.known_annotations}, "official-")
+                                     "annotations": self.known_annotations}, f"official-{set_id}-")
             finally:
                 sys.setrecursionlimit(limit)
 
@@ -255,7 +299,41 @@ class Workspace:
         diags += style_diagnostics(self.program, unit, checker)
         for d in diags:
             d.file = tree.path
+        self._help_for_unloaded_bundles(tree, diags)
         return FileAnalysis(unit, diags, checker.occurrences)
+
+    def _help_for_unloaded_bundles(self, tree: ast.File, diags: list[Diagnostic]) -> None:
+        """`Name.X` unknown and a bundle called Name sits nearby but is not loaded: say how to load it."""
+        unknown = [d for d in diags if d.code in ("N001", "N003") and not d.help]
+        if not unknown or not tree.path or _URI_NAME.match(tree.path):
+            return
+        nearby = self.nearby_bundles(Path(tree.path).resolve().parent)
+        home = self.bundle_of(Path(tree.path))
+        wanted = set(home.dependencies) if home is not None else set()
+        for d in unknown:
+            m = re.search(r"'([A-Za-z_][A-Za-z0-9_]*)[.']", d.message)
+            if not m or m.group(1) in self.bundles:
+                continue
+            name = m.group(1)
+            if name in nearby:
+                d.help = (f"a bundle named '{name}' is in {nearby[name]} but is not loaded: pass "
+                          f"--bundle-path {nearby[name]} or add it to bundle-path in plx.toml / [tool.plx]")
+            elif name in wanted:
+                d.help = (f"'{name}' is a dependency in {home.root / 'config.openplx'} but no bundle of that "
+                          f"name is loaded: add its folder with --bundle-path or bundle-path in plx.toml")
+
+    def nearby_bundles(self, folder: Path, levels: int = 3) -> dict[str, Path]:
+        """Bundles (by config name) in `folder`, its parents up to `levels` up, and their subfolders."""
+        if folder in self._nearby:
+            return self._nearby[folder]
+        from plxtools.model.versions import _config_name
+
+        out: dict[str, Path] = {}
+        for d in [folder, *list(folder.parents)[:levels]]:
+            for r in bundle_roots_in(d):
+                out.setdefault(_config_name(r), r)
+        self._nearby[folder] = out
+        return out
 
     def _bundle_config_diagnostics(self, tree: ast.File) -> list[Diagnostic]:
         if not tree.path or Path(tree.path).name != "config.openplx":
@@ -281,19 +359,42 @@ class Workspace:
 _CLI_WORKSPACES: dict[tuple, Workspace] = {}
 
 
-def workspace_for_cli(bundle_paths: list[str], files: list[Path], use_cache: bool = True) -> Workspace:
-    """One workspace for a CLI run: official bundles plus configured and command-line bundle paths."""
-    from plxtools.config import config_for
+def workspace_for_cli(bundle_paths: list[str], files: list[Path], use_cache: bool = True,
+                      openplx_version: str | None = None) -> Workspace:
+    """The workspace for a CLI run over `files`: their bundle set (see model/versions.py), loaded once."""
+    from plxtools.model.versions import resolve_bundle_set
 
-    paths: list[Path] = [Path(p) for p in bundle_paths]
-    for folder in sorted({f.parent for f in files} or {Path(".")}):
-        for p in config_for(folder / "x.openplx").bundle_paths:
-            if p not in paths:
-                paths.append(p)
-    for p in paths:
-        if not p.exists():
-            raise WorkspaceError(f"bundle path {p} does not exist")
-    key = (tuple(str(p) for p in paths), use_cache)
+    bs = resolve_bundle_set(list(files), bundle_paths, openplx_version)
+    return workspace_for_set(bs, use_cache)
+
+
+def workspace_for_set(bs: BundleSet, use_cache: bool = True) -> Workspace:
+    """One Workspace per bundle set and process: several sets (versions) can be loaded side by side."""
+    key = (bs.key(), use_cache)
     if key not in _CLI_WORKSPACES:
-        _CLI_WORKSPACES[key] = Workspace(paths, use_cache=use_cache)
+        _CLI_WORKSPACES[key] = Workspace(use_cache=use_cache, bundle_set=bs)
     return _CLI_WORKSPACES[key]
+
+
+def workspace_for_folder(folder: Path | None, bundle_paths: list[str] = (), openplx_version: str | None = None,
+                         use_cache: bool = True) -> Workspace:
+    """The language server's entry: the workspace of an editor workspace folder (same order as the CLI).
+
+    Raises BundleSetError (a ValueError) with a one-line message when the setup cannot be used. Call
+    again after a config file (plx.toml, pyproject.toml, config.openplx) changes: an unchanged set
+    returns the same Workspace, a changed one a new Workspace.
+    """
+    from plxtools.model.versions import resolve_bundle_set
+
+    root = Path(folder) if folder is not None else None
+    bs = resolve_bundle_set([], list(bundle_paths), openplx_version, workspace_root=root)
+    return workspace_for_set(bs, use_cache)
+
+
+def describe_bundle_set(ws: Workspace) -> list[dict]:
+    """The bundles in use, for --show-settings and the server: name, version, folder, why."""
+    out = []
+    for b in sorted(ws.bundles.values(), key=lambda b: (not b.official, b.name)):
+        out.append({"name": b.name, "version": b.version or "", "folder": str(b.root),
+                    "official": b.official, "why": b.origin})
+    return out

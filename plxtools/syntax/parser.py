@@ -134,6 +134,10 @@ class _Build(Transformer):
     def param(self, c):
         return ast.Param(_cover(c), c[0], c[2])
 
+    def param_kw(self, c):
+        t = c[0]  # a keyword used as a parameter name is an ordinary name there
+        return ast.Ident(_sp(t), str(t), False)
+
     def params(self, c):
         seq = _Seq(x for x in c if isinstance(x, ast.Param))
         seq.span = _cover(c)

@@ -1,0 +1,458 @@
+"""Which bundles a project loads (the bundle set), and official `openplx-bundles` versions in plx's cache.
+
+Order, the same for the CLI, the language server and check:
+
+1. bundle folders: `--bundle-path`, `bundle-path` in the config, `OPENPLX_BUNDLE_PATH`, then bundles
+   found in the linted tree / workspace root. A bundle found there replaces the official bundle of the
+   same name, so a copy of the official bundles (an AGX installation) is read instead of the package.
+2. `--openplx-version` / `openplx-version` in the config: that `openplx-bundles` release, fetched with
+   pip into the cache on first use.
+3. with nothing configured, a version pinned by a user bundle's `config.openplx`.
+4. the installed `openplx-bundles` package.
+
+A `BundleSet` is a plain value (hashable `key()`), so several sets, hence several versions, can be
+loaded side by side in one process, each into its own `Workspace`.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+import zipfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+VERSION_RE = re.compile(r"^\d+\.\d+\.\d+$")
+DEP_PIN_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:==|@)(\d+(?:\.\d+)*)$")
+PACKAGE = "openplx-bundles"
+
+# Releases of openplx-bundles on PyPI when this was written (a fact list, used to tell a bundle's own
+# `version:` apart from an OpenPLX version pin, and by `plx bundles list`; the registry stays the judge).
+KNOWN_VERSIONS: tuple[str, ...] = tuple(
+    [f"0.15.{i}" for i in range(23)] + [f"0.16.{i}" for i in range(11)] + [f"0.17.{i}" for i in range(34)]
+    + [f"0.18.{i}" for i in range(12)] + ["0.19.0"]
+)
+# every minor's latest patch, plus the one users pin: what the slow test and the docs cover
+SUPPORTED_LATEST = ("0.15.22", "0.16.10", "0.17.26", "0.17.33", "0.18.11", "0.19.0")
+
+
+class BundleSetError(ValueError):
+    """A bundle setup plx cannot use; the message names the path, key or version involved."""
+
+
+def cache_dir() -> Path:
+    base = os.environ.get("PLX_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "plxtools"
+
+
+def version_key(v: str) -> tuple[int, ...]:
+    return tuple(int(x) for x in v.split(".") if x.isdigit())
+
+
+# ---------------------------------------------------------------------------- official versions
+
+
+def installed() -> tuple[Path, str | None] | None:
+    """The installed openplx-bundles package: (folder holding Math/, Physics/..., version)."""
+    try:
+        import openplxbundles
+    except ImportError:
+        return None
+    root = Path(openplxbundles.package_dir())
+    if not (root / "Math" / "config.openplx").is_file():
+        return None
+    try:
+        from importlib.metadata import version
+
+        v: str | None = version(PACKAGE)
+    except Exception:  # metadata missing: the bundles still work, the version is just unknown
+        v = _version_in(root)
+    return root, v
+
+
+def _version_in(root: Path) -> str | None:
+    try:
+        text = (root / "Math" / "config.openplx").read_text(encoding="utf-8")
+    except OSError:
+        return None
+    m = re.search(r'version:\s*"([^"]+)"', text)
+    return m.group(1) if m else None
+
+
+def _versions_dir() -> Path:
+    return cache_dir() / "bundles"
+
+
+def cached_root(version: str) -> Path | None:
+    root = _versions_dir() / version / "openplxbundles"
+    if (_versions_dir() / version / ".complete").is_file() and (root / "Math" / "config.openplx").is_file():
+        return root
+    return None
+
+
+def cached_versions() -> list[str]:
+    d = _versions_dir()
+    if not d.is_dir():
+        return []
+    return sorted((p.name for p in d.iterdir() if cached_root(p.name) is not None), key=version_key)
+
+
+def version_root(version: str, fetch: bool = True) -> Path:
+    """The bundle folder of an official version: installed package, cache, or fetched now."""
+    if not VERSION_RE.match(version):
+        raise BundleSetError(f"'{version}' is not an OpenPLX version (write it as 0.17.26)")
+    inst = installed()
+    if inst is not None and inst[1] == version:
+        return inst[0]
+    root = cached_root(version)
+    if root is not None:
+        return root
+    if not fetch:
+        raise BundleSetError(f"openplx-bundles {version} is not in the cache; run 'plx bundles install {version}'")
+    return install(version)
+
+
+def _wheel_dir() -> Path:
+    return cache_dir() / "wheels"
+
+
+def _cached_wheel(version: str) -> Path | None:
+    d = _wheel_dir()
+    if not d.is_dir():
+        return None
+    found = sorted(d.glob(f"openplx_bundles-{version}-*.whl"))
+    return found[0] if found else None
+
+
+def install(version: str, force: bool = False) -> Path:
+    """Fetch `openplx-bundles==version` with pip (no dependencies) and unpack its bundles into the cache."""
+    if not VERSION_RE.match(version):
+        raise BundleSetError(f"'{version}' is not an OpenPLX version (write it as 0.17.26)")
+    if not force:
+        root = cached_root(version)
+        if root is not None:
+            return root
+    wheel = None if force else _cached_wheel(version)
+    corrupt_note = ""
+    if wheel is not None:
+        try:
+            return _unpack(wheel, version)
+        except BundleSetError as exc:
+            corrupt_note = f"{exc}; it was removed. "
+            wheel.unlink(missing_ok=True)
+            wheel = None
+    try:
+        wheel = _download(version)
+    except BundleSetError as exc:
+        raise BundleSetError(corrupt_note + str(exc)) from None
+    return _unpack(wheel, version)
+
+
+def _download(version: str) -> Path:
+    target = _wheel_dir()
+    tmp = target / f".download-{os.getpid()}"
+    try:
+        tmp.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise BundleSetError(f"cannot create the cache folder {target}: {exc.strerror}") from None
+    cmd = [sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:", "--disable-pip-version-check",
+           "--no-input", "--timeout", os.environ.get("PLX_PIP_TIMEOUT", "15"), "--retries", "1",
+           "-d", str(tmp), f"{PACKAGE}=={version}"]
+    try:
+        try:
+            proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+        except (OSError, subprocess.TimeoutExpired) as exc:
+            raise BundleSetError(f"cannot run pip to fetch {PACKAGE} {version}: {exc}") from None
+        wheels = sorted(tmp.glob("openplx_bundles-*.whl"))
+        if proc.returncode != 0 or not wheels:
+            raise BundleSetError(_pip_failure(version, proc.stdout + proc.stderr))
+        dest = target / wheels[0].name
+        os.replace(wheels[0], dest)
+        return dest
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _pip_failure(version: str, out: str) -> str:
+    lines = [ln.strip() for ln in out.splitlines() if ln.strip() and not ln.startswith("WARNING: Location")]
+    network = any(w in out for w in ("NewConnectionError", "Connection refused", "Max retries exceeded",
+                                      "Temporary failure in name resolution", "Network is unreachable",
+                                      "Could not fetch URL", "ConnectTimeout", "timed out"))
+    m = re.search(r"\(from versions: ([^)]*)\)", out)
+    available = [v.strip() for v in m.group(1).split(",") if v.strip() and v.strip() != "none"] if m else []
+    if available and version not in available:
+        near = [v for v in available if v.rsplit(".", 1)[0] == version.rsplit(".", 1)[0]]
+        hint = f"; {version.rsplit('.', 1)[0]}.x releases: {', '.join(near)}" if near else \
+            f"; releases go from {available[0]} to {available[-1]}"
+        return f"{PACKAGE} {version} is not on the package index{hint}"
+    if network:
+        return (f"cannot fetch {PACKAGE} {version}: the package index cannot be reached (no network?); "
+                f"install it once with network ('plx bundles install {version}') or use --bundle-path")
+    if "No matching distribution" in out:
+        return f"{PACKAGE} {version} is not on the package index (pip found no matching distribution)"
+    last = lines[-1] if lines else "no output"
+    return f"cannot fetch {PACKAGE} {version}: pip failed: {last}"
+
+
+def _unpack(wheel: Path, version: str) -> Path:
+    """Unzip the wheel's bundle files into cache/bundles/VERSION (atomically: all or nothing)."""
+    final = _versions_dir() / version
+    tmp = _versions_dir() / f".{version}.{os.getpid()}.tmp"
+    shutil.rmtree(tmp, ignore_errors=True)
+    try:
+        with zipfile.ZipFile(wheel) as zf:
+            names = [n for n in zf.namelist() if n.startswith("openplxbundles/") and not n.endswith("/")]
+            for n in names:
+                parts = Path(n).parts
+                if ".." in parts or Path(n).is_absolute():
+                    raise BundleSetError(f"the wheel {wheel} has an unsafe member {n}")
+                out = tmp / n
+                out.parent.mkdir(parents=True, exist_ok=True)
+                out.write_bytes(zf.read(n))
+        if not (tmp / "openplxbundles" / "Math" / "config.openplx").is_file():
+            raise BundleSetError(f"the wheel {wheel} holds no OpenPLX bundles (no openplxbundles/Math/config.openplx)")
+        (tmp / ".complete").write_text(f"{version}\n{wheel.name}\n", encoding="utf-8")
+        shutil.rmtree(final, ignore_errors=True)
+        os.replace(tmp, final)
+    except (zipfile.BadZipFile, zipfile.LargeZipFile, EOFError, ValueError, KeyError) as exc:
+        if isinstance(exc, BundleSetError):
+            raise
+        raise BundleSetError(f"the cached wheel {wheel} is corrupt ({exc})") from None
+    except OSError as exc:
+        raise BundleSetError(f"cannot unpack {wheel} into {final}: {exc.strerror or exc}") from None
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    return final / "openplxbundles"
+
+
+# ---------------------------------------------------------------------------- the bundle set
+
+
+@dataclass(slots=True)
+class BundleSource:
+    """A folder of bundles (or one bundle) and why it is in the set."""
+
+    path: Path
+    why: str
+
+
+@dataclass(slots=True)
+class BundleSet:
+    """What a project loads: an official base folder plus bundle folders that add or replace bundles."""
+
+    official_root: Path | None
+    official_version: str | None
+    official_why: str
+    sources: list[BundleSource] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)  # said once by --show-settings / the server
+
+    def key(self) -> tuple:
+        return (str(self.official_root), tuple(str(s.path) for s in self.sources))
+
+    def announcement(self) -> str | None:
+        """A line to print when the version was chosen for the user rather than by them."""
+        if self.official_why.startswith("pinned"):
+            return f"using openplx-bundles {self.official_version} ({self.official_why})"
+        return None
+
+
+def bundle_roots_in(folder: Path) -> list[Path]:
+    """A bundle folder itself, or the bundle folders directly inside a folder of bundles."""
+    if (folder / "config.openplx").is_file():
+        return [folder]
+    try:
+        return [d for d in sorted(folder.iterdir()) if d.is_dir() and (d / "config.openplx").is_file()]
+    except OSError:
+        return []
+
+
+def _config_name(root: Path) -> str:
+    try:
+        text = (root / "config.openplx").read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return root.name
+    m = re.search(r'^\s*name:\s*"([^"]+)"', text, re.M)
+    return m.group(1) if m else root.name
+
+
+def check_unique_names(folder: Path) -> None:
+    """Two bundles of one name in one folder of bundles: plx cannot tell which one is meant."""
+    seen: dict[str, Path] = {}
+    for r in bundle_roots_in(folder):
+        n = _config_name(r)
+        if n in seen:
+            raise BundleSetError(f"{folder}: two bundles are named '{n}' ({seen[n].name}/config.openplx and "
+                                 f"{r.name}/config.openplx); rename one or keep them in separate folders")
+        seen[n] = r
+
+
+def discover_bundles(paths: list[Path], stop_at: set[Path] | None = None, max_depth: int = 6) -> list[Path]:
+    """Bundle roots (folders with a config.openplx) inside the given folders or holding the given files."""
+    from plxtools.config import DEFAULT_EXCLUDE
+
+    stop = {p.resolve() for p in stop_at or set()}
+    found: list[Path] = []
+    seen: set[Path] = set()
+
+    def add(root: Path) -> None:
+        r = root.resolve()
+        if r not in seen and not any(s == r or s in r.parents for s in stop):
+            seen.add(r)
+            found.append(r)
+
+    for p in paths:
+        if p.is_file() or not p.exists():
+            folder = p.resolve().parent
+            for d in (folder, *folder.parents):
+                if d in stop:
+                    break
+                if (d / "config.openplx").is_file():
+                    add(d)
+                    break
+            continue
+        base = p.resolve()
+        for d in (base, *base.parents):  # a folder inside a bundle belongs to it
+            if d in stop:
+                break
+            if (d / "config.openplx").is_file():
+                add(d)
+                break
+        for dirpath, dirnames, filenames in os.walk(base):
+            depth = len(Path(dirpath).relative_to(base).parts)
+            dirnames[:] = sorted(d for d in dirnames if d not in DEFAULT_EXCLUDE and not d.startswith(".")
+                                 and depth < max_depth)
+            if "config.openplx" in filenames:
+                add(Path(dirpath))
+    return found
+
+
+def _pins(roots: list[Path], official_names: set[str]) -> list[tuple[str, str]]:
+    """OpenPLX versions pinned by user bundles' config.openplx: (version, 'file:line: text')."""
+    out: list[tuple[str, str]] = []
+    for r in roots:
+        cfg = r / "config.openplx"
+        name = _config_name(r)
+        if name in official_names:
+            continue  # a copy of an official bundle: it replaces that bundle, it pins nothing
+        try:
+            lines = cfg.read_text(encoding="utf-8", errors="replace").splitlines()
+        except OSError:
+            continue
+        for i, line in enumerate(lines, 1):
+            m = re.match(r'\s*version:\s*"([^"]+)"', line)
+            if m and m.group(1) in KNOWN_VERSIONS:
+                out.append((m.group(1), f"{cfg}:{i}:{m.start(1)}: version \"{m.group(1)}\""))
+            for sm in re.finditer(r'"([^"]+)"', line) if "dependencies" in line or line.strip().startswith('"') else ():
+                dm = DEP_PIN_RE.match(sm.group(1))
+                if dm and dm.group(1) in official_names:
+                    out.append((dm.group(2), f"{cfg}:{i}:{sm.start(0) + 1}: dependency \"{sm.group(1)}\""))
+    return out
+
+
+def resolve_bundle_set(
+    targets: list[Path],
+    cli_paths: list[str | Path] = (),
+    cli_version: str | None = None,
+    workspace_root: Path | None = None,
+    use_env: bool = True,
+    discover: bool = True,
+    use_config: bool = True,
+) -> BundleSet:
+    """The bundle set for files/folders `targets` (and an editor's workspace root), in the documented order."""
+    from plxtools.config import config_for
+
+    sources: list[BundleSource] = []
+    seen: set[Path] = set()
+
+    def add(p: Path, why: str, must_exist: bool = True) -> None:
+        if not p.exists():
+            if must_exist:
+                raise BundleSetError(f"bundle path {p} does not exist ({why})")
+            return
+        if not p.is_dir():
+            raise BundleSetError(f"bundle path {p} is not a folder ({why})")
+        rp = p.resolve()
+        if rp in seen:
+            return
+        if not bundle_roots_in(rp):
+            raise BundleSetError(f"bundle path {p} holds no bundle: no config.openplx in it or in its "
+                                 f"subfolders ({why})")
+        check_unique_names(rp)
+        seen.add(rp)
+        sources.append(BundleSource(rp, why))
+
+    for p in cli_paths:
+        add(Path(p), "--bundle-path")
+    anchors = [workspace_root] if workspace_root is not None else []
+    anchors += sorted({(t if t.is_dir() else t.parent) for t in targets}) or [Path(".")]
+    cfg_version: tuple[str, str] | None = None
+    for a in anchors if use_config else []:
+        cfg = config_for(a / "x.openplx")
+        for p in cfg.bundle_paths:
+            add(p, f"bundle-path in {cfg.source}")
+        if cfg.openplx_version and cfg_version is None:
+            cfg_version = (cfg.openplx_version, f"openplx-version in {cfg.source}")
+    if use_env:
+        for part in (os.environ.get("OPENPLX_BUNDLE_PATH") or "").split(os.pathsep):
+            if part:
+                add(Path(part), "OPENPLX_BUNDLE_PATH")
+    configured = bool(sources)
+    inst = installed()
+    official_names = {d.name for d in inst[0].iterdir() if (d / "config.openplx").is_file()} if inst else set()
+    official_names |= {"Math", "Physics", "Physics1D", "Physics3D", "DriveTrain", "Robotics", "Simulation",
+                       "Terrain", "Urdf", "Vehicles", "Visuals"}
+    found: list[Path] = []
+    if discover:
+        stop = {s.path for s in sources}
+        if inst is not None:
+            stop.add(inst[0].resolve())
+        found = discover_bundles(([workspace_root] if workspace_root else []) + list(targets), stop)
+
+    version: str | None = None
+    why = ""
+    notes: list[str] = []
+    if cli_version:
+        version, why = cli_version, "--openplx-version"
+    elif cfg_version:
+        version, why = cfg_version
+    elif not configured:
+        pins = _pins(found, official_names)
+        if pins:
+            version, where = pins[0]
+            why = f"pinned by {where}"
+            others = sorted({v for v, _w in pins if v != version})
+            if others:
+                notes.append(f"other pins ignored: {', '.join(others)} (the first pin, {where}, wins)")
+    if version is not None:
+        try:
+            root = version_root(version)
+        except BundleSetError as exc:
+            raise BundleSetError(f"{exc} (the version comes from {why})") from None
+        official = (root, version, why)
+    elif inst is not None:
+        official = (inst[0], inst[1], f"the installed {PACKAGE} package")
+    else:
+        official = (None, None, f"{PACKAGE} is not installed")
+    for r in found:
+        if r.parent.resolve() in seen or r in seen:
+            continue
+        if official[0] is not None and official[0].resolve() in r.parents:
+            continue  # linting the very bundles in use: they are already the official set
+        sources.append(BundleSource(r, "found in the linted tree" if workspace_root is None or
+                                    workspace_root.resolve() not in (r, *r.parents) else "found in the workspace"))
+        seen.add(r)
+    bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources, notes)
+    if bs.official_root is None and not any((s.path / "Math" / "config.openplx").is_file() or
+                                            (s.path / "config.openplx").is_file() and _config_name(s.path) == "Math"
+                                            for s in sources):
+        raise BundleSetError("cannot find the OpenPLX bundles: install openplx-bundles, set openplx-version, "
+                             "OPENPLX_BUNDLE_PATH, or pass --bundle-path")
+    return bs
+
+
+def explicit_bundle_set(paths: list[Path], use_env: bool = True) -> BundleSet:
+    """The set for an explicit list of bundle folders (the library API): no config, no discovery."""
+    return resolve_bundle_set([], list(paths), None, None, use_env=use_env, discover=False, use_config=False)
