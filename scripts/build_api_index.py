@@ -145,27 +145,45 @@ def index_program(ws, root: Path) -> dict:
     return out
 
 
-def build_version(version: str, wheels: Path) -> dict:
+def index_folder(root: Path, version: str) -> dict:
+    """The index record of one version from its bundle folder (the one holding Math/, Physics/, ...)."""
     from plxtools.model.workspace import Workspace
 
+    root = root.resolve()
+    ws = Workspace([root], use_cache=False)
+    if ws.official_root != root:
+        raise SystemExit(f"build_api_index: {version}: the bundles were not loaded from {root}")
+    bundles = {b.name: b.version for b in ws.bundles.values()}
+    return {"format": FORMAT, "version": version, "bundles": dict(sorted(bundles.items())),
+            "models": index_program(ws, root)}
+
+
+def build_version(version: str, wheels: Path) -> dict:
     wheel = wheel_for(version, wheels)
     with tempfile.TemporaryDirectory(prefix="plx-apiindex-") as tmp:
         with zipfile.ZipFile(wheel) as zf:
             zf.extractall(tmp)
-        root = (Path(tmp) / "openplxbundles").resolve()
-        ws = Workspace([root], use_cache=False)
-        if ws.official_root != root:
-            raise SystemExit(f"build_api_index: {version}: the bundles were not loaded from the wheel")
-        bundles = {b.name: b.version for b in ws.bundles.values()}
-        models = index_program(ws, root)
-    return {"format": FORMAT, "version": version, "bundles": dict(sorted(bundles.items())), "models": models}
+        return index_folder(Path(tmp) / "openplxbundles", version)
 
 
 def write_index(data: dict, folder: Path) -> Path:
     """Deterministic bytes: sorted keys, compact separators, gzip without a timestamp or name."""
     folder.mkdir(parents=True, exist_ok=True)
     raw = json.dumps(data, sort_keys=True, separators=(",", ":"), ensure_ascii=False).encode()
-    path = folder / f"{data['version']}.json.gz"
+    return _write_gz(raw, folder / f"{data['version']}.json.gz")
+
+
+def write_names() -> Path:
+    """The name -> versions summary (`names.json.gz`) from the version files now in the package."""
+    from plxtools.model import apiindex
+
+    apiindex.versions.cache_clear()
+    apiindex.load.cache_clear()
+    raw = json.dumps(apiindex.build_names(), sort_keys=True, separators=(",", ":")).encode()
+    return _write_gz(raw, apiindex.NAMES)
+
+
+def _write_gz(raw: bytes, path: Path) -> Path:
     tmp = path.with_suffix(".tmp")
     with open(tmp, "wb") as fh:
         with gzip.GzipFile(filename="", mode="wb", fileobj=fh, mtime=0, compresslevel=9) as gz:
@@ -180,8 +198,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--all", action="store_true", help="index every released version (asks pip for the list)")
     ap.add_argument("--wheels", type=Path, default=Path(os.environ.get("PLX_CACHE_DIR", Path.home() / ".cache"))
                     / "apiindex-wheels", help="folder where the wheels are downloaded and kept")
+    ap.add_argument("--names-only", action="store_true",
+                    help="only rewrite names.json.gz (the name -> versions summary) from the stored version files")
     ap.add_argument("--out", type=Path, default=DATA, help=f"output folder (default {DATA.relative_to(REPO)})")
     args = ap.parse_args(argv)
+    if args.names_only:
+        print(f"wrote {write_names()}", file=sys.stderr)
+        return 0
     versions = released_versions() if args.all else args.versions
     if not versions:
         ap.error("name versions or pass --all")
@@ -194,6 +217,8 @@ def main(argv: list[str] | None = None) -> int:
         t = time.perf_counter()
         path = write_index(build_version(v, args.wheels), args.out)
         print(f"{v}: {path.stat().st_size} bytes in {time.perf_counter() - t:.2f} s", file=sys.stderr)
+    if args.out == DATA:
+        write_names()
     print(f"{len(versions)} versions in {time.perf_counter() - t0:.1f} s", file=sys.stderr)
     return 0
 

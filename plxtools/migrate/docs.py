@@ -57,6 +57,7 @@ When a new `openplx-bundles` version is released:
 
 ```console
 $ python scripts/build_api_index.py --all        # downloads missing wheels with pip, rewrites the index
+                                                 # and the name -> versions summary (names.json.gz)
 $ python -m plxtools.migrate.docs                 # rewrites this page
 ```
 

@@ -286,8 +286,9 @@ def changes(from_v: str, to_v: str) -> list[Change]:
         return len(out) - 1
 
     for _a, _b, cs in steps(from_v, to_v):
+        before = dict(orig)  # a step names models as its older version does
         for c in cs:
-            m = orig.get(c.model, c.model)
+            m = before.get(c.model, c.model)
             if c.kind in ("model-moved", "model-renamed"):
                 if c.old in model_at:
                     i = model_at.pop(c.old)

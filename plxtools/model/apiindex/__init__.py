@@ -112,18 +112,53 @@ def load(version: str) -> ApiIndex:
         return ApiIndex(json.loads(fh.read()))
 
 
+NAMES = DATA / "names.json.gz"
+
+
+def build_names() -> dict:
+    """Every qualified name (models, traits, globals, and `Model.attr` with inherited attributes) and
+    the versions that have it, as runs of indices into the version list: the data of `names.json.gz`."""
+    vs = versions()
+    seen: dict[str, list[int]] = {}
+    for i, v in enumerate(vs):
+        idx = load(v)
+        for q in idx.models:
+            seen.setdefault(q, []).append(i)
+            for a in idx.all_attrs(q):
+                seen.setdefault(f"{q}.{a}", []).append(i)
+    names = {}
+    for q, idxs in seen.items():
+        runs: list[list[int]] = []
+        for i in idxs:
+            if runs and i == runs[-1][1] + 1:
+                runs[-1][1] = i
+            else:
+                runs.append([i, i])
+        names[q] = ",".join(str(a) if a == b else f"{a}-{b}" for a, b in runs)
+    return {"versions": list(vs), "names": dict(sorted(names.items()))}
+
+
+@lru_cache(maxsize=1)
+def _names() -> dict:
+    with gzip.open(NAMES, "rb") as fh:
+        data = json.loads(fh.read())
+    if data.get("versions") != list(versions()):  # stale summary: fall back to the version files
+        return build_names()
+    return data
+
+
 def where_defined(qname: str) -> list[str]:
     """The indexed versions in which a model, trait or global `qname` exists, or `Model.attr` is an
-    attribute of that model (inherited ones count), oldest first."""
+    attribute of that model (inherited ones count), oldest first. Reads one small summary file."""
+    data = _names() if NAMES.is_file() else build_names()
+    runs = data["names"].get(qname)
+    if not runs:
+        return []
+    vs = data["versions"]
     out = []
-    for v in versions():
-        idx = load(v)
-        if qname in idx.models:
-            out.append(v)
-            continue
-        model, _, attr = qname.rpartition(".")
-        if model in idx.models and attr in idx.all_attrs(model):
-            out.append(v)
+    for run in runs.split(","):
+        a, _, b = run.partition("-")
+        out.extend(vs[int(a): int(b or a) + 1])
     return out
 
 
