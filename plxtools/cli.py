@@ -108,6 +108,17 @@ def _add_lsp(sub) -> None:
     p.set_defaults(func=_run_lsp)
 
 
+def _add_migrate(sub) -> None:
+    p = sub.add_parser("migrate", help="explain the API changes between two official OpenPLX versions",
+                       description="Explain what changed in the official OpenPLX bundles between two versions "
+                       "(moved, renamed and removed models and attributes, changed types, new required "
+                       "attributes), from plx's built-in API index. Exit 2 for a version plx does not know.")
+    p.add_argument("--explain", nargs=2, required=True, metavar=("FROM", "TO"),
+                   help="print the changes from version FROM to version TO (e.g. 0.17.26 0.19.0)")
+    p.add_argument("--output-format", choices=("text", "json"), default="text", help="text (default) or json")
+    p.set_defaults(func=_run_migrate)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="plx",
@@ -123,6 +134,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_lsp(sub)
     _add_rule(sub)
     _add_bundles(sub)
+    _add_migrate(sub)
     return parser
 
 
@@ -159,6 +171,12 @@ def _run_rule(args) -> int:
     else:
         print(r.page())
     return 0
+
+
+def _run_migrate(args) -> int:
+    from plxtools.migrate.explain import run_explain
+
+    return run_explain(args.explain[0], args.explain[1], args.output_format)
 
 
 def _run_fmt(args) -> int:

@@ -1,0 +1,73 @@
+"""`plx migrate --explain FROM TO`: the API changes between two official versions, grouped and readable."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+from plxtools.model.apichanges import AUTO, INFO, KIND_ORDER, KIND_TITLES, PERSON, TABLE, Change, between, changes, summary
+
+HANDLING_TEXT = {AUTO: "automatic", TABLE: "reviewed table", PERSON: "needs a person", INFO: "nothing to migrate"}
+
+
+def describe(c: Change) -> str:
+    """One line for a change (without its group title)."""
+    if c.kind in ("model-moved", "model-renamed"):
+        text = f"{c.old} -> {c.new}"
+    elif c.kind == "attr-renamed":
+        text = f"{c.model}.{c.old} -> {c.new}"
+    elif c.kind in ("attr-type-changed", "fn-changed", "base-changed"):
+        text = f"{c.subject()}: {c.old} -> {c.new}"
+    elif c.kind in ("attr-added", "attr-added-required", "attr-removed"):
+        text = f"{c.subject()} ({c.new or c.old})"
+    elif c.kind == "fn-removed":
+        text = f"{c.model}: {c.old}"
+    elif c.kind == "fn-added":
+        text = f"{c.model}: {c.new}"
+    elif c.kind == "deprecated":
+        text = f"{c.subject()}: {c.detail}"
+    else:
+        text = c.subject()
+    return f"{text}  [{c.since}]"
+
+
+def render_text(from_v: str, to_v: str, cs: list[Change]) -> str:
+    counts = summary(cs)
+    lines = [f"OpenPLX API changes from {from_v} to {to_v} ({len(between(from_v, to_v)) - 1} indexed versions apart)",
+             f"{counts[AUTO]} automatic, {counts[TABLE]} from the reviewed table, {counts[PERSON]} need a person, "
+             f"{counts[INFO]} additions or notes. [V] is the first version with the change."]
+    for kind in KIND_ORDER:
+        group = [c for c in cs if c.kind == kind]
+        if not group:
+            continue
+        handling = {c.handling for c in group}
+        how = ", ".join(HANDLING_TEXT[h] for h in (AUTO, TABLE, PERSON, INFO) if h in handling)
+        lines.append("")
+        lines.append(f"{KIND_TITLES[kind]} ({len(group)}; {how}):")
+        for c in group:
+            mark = " (table)" if c.handling == TABLE else ""
+            lines.append(f"  {describe(c)}{mark}")
+    if not cs:
+        lines.append("")
+        lines.append("No API changes.")
+    return "\n".join(lines) + "\n"
+
+
+def render_json(from_v: str, to_v: str, cs: list[Change]) -> str:
+    return json.dumps({"from": from_v, "to": to_v, "counts": summary(cs), "changes": [c.to_json() for c in cs]},
+                      indent=2) + "\n"
+
+
+def run_explain(from_v: str, to_v: str, output_format: str = "text") -> int:
+    """Print the change list; exit 2 with one clear line for an unknown version or a backward range."""
+    from plxtools.model.apichanges import RenameTableError
+    from plxtools.model.apiindex import UnknownVersion
+
+    try:
+        cs = changes(from_v, to_v)
+        text = render_json(from_v, to_v, cs) if output_format == "json" else render_text(from_v, to_v, cs)
+    except (UnknownVersion, RenameTableError, ValueError) as exc:
+        print(f"plx migrate: {exc}", file=sys.stderr)
+        return 2
+    sys.stdout.write(text)
+    return 0

@@ -1,0 +1,356 @@
+"""What changed in the OpenPLX API between two official versions, computed from the API index.
+
+A step compares two consecutive indexed versions. Models that vanish and reappear with the same
+simple name elsewhere are *moved*; an attribute replaced by exactly one new attribute of the same
+type (after moves), the same flags and the same documentation, or named by a deprecation note, is
+*renamed*. Anything the data cannot prove comes from the reviewed table `apiindex/renames.toml`
+(each entry cites the bundle files and lines in both versions) or is reported as needing a person.
+`changes(a, b)` composes the steps between a and b (a rename followed by a move is one change).
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from dataclasses import asdict, dataclass, field, replace
+from functools import lru_cache
+from pathlib import Path
+
+from plxtools.model.apiindex import ApiIndex, check_version, load, version_key, versions
+
+RENAMES = Path(__file__).resolve().parent / "apiindex" / "renames.toml"
+
+# how a change is handled when migrating a model
+AUTO = "automatic"  # inferred from the index, one to one
+TABLE = "table"  # from the reviewed table
+PERSON = "person"  # a person must decide
+INFO = "info"  # nothing to migrate (an addition, a deprecation note)
+
+KIND_TITLES = {
+    "model-moved": "Moved models",
+    "model-renamed": "Renamed models",
+    "model-removed": "Removed models",
+    "attr-renamed": "Renamed attributes",
+    "attr-removed": "Removed attributes",
+    "attr-type-changed": "Changed attribute types",
+    "attr-now-required": "Attributes that lost their default",
+    "attr-added-required": "New attributes without a default",
+    "base-changed": "Changed bases",
+    "fn-removed": "Removed functions",
+    "fn-changed": "Changed function signatures",
+    "deprecated": "New deprecation notes",
+    "model-added": "Added models",
+    "attr-added": "Added attributes (with a default)",
+    "fn-added": "Added functions",
+}
+KIND_ORDER = list(KIND_TITLES)
+
+_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*")
+
+
+@dataclass(slots=True)
+class Change:
+    kind: str
+    since: str  # the first version that has the change
+    model: str  # qualified name (the old one for moves, renames and removals)
+    handling: str
+    attr: str | None = None
+    old: str | None = None  # old name / type / signature
+    new: str | None = None
+    detail: str | None = None
+    where: list[str] = field(default_factory=list)  # "VERSION FILE:LINE" in the old and new version
+
+    def subject(self) -> str:
+        return f"{self.model}.{self.attr}" if self.attr else self.model
+
+    def to_json(self) -> dict:
+        return {k: v for k, v in asdict(self).items() if v not in (None, [])}
+
+
+@dataclass(slots=True)
+class TableEntry:
+    kind: str  # "model" | "attribute"
+    version: str
+    old: str
+    new: str
+    model: str | None
+    evidence: list[str]
+    note: str
+
+
+class RenameTableError(ValueError):
+    pass
+
+
+@lru_cache(maxsize=1)
+def rename_table() -> tuple[TableEntry, ...]:
+    """The reviewed renames; a malformed table is an error, never silently skipped."""
+    try:
+        data = tomllib.loads(RENAMES.read_text(encoding="utf-8"))
+    except (OSError, tomllib.TOMLDecodeError) as exc:
+        raise RenameTableError(f"{RENAMES}: {exc}") from exc
+    out = []
+    for kind in ("model", "attribute"):
+        for i, e in enumerate(data.get(kind, [])):
+            missing = [k for k in ("version", "old", "new", "evidence", "note") if k not in e]
+            if kind == "attribute" and "model" not in e:
+                missing.append("model")
+            if missing:
+                raise RenameTableError(f"{RENAMES}: [[{kind}]] #{i + 1} lacks {', '.join(missing)}")
+            out.append(TableEntry(kind, e["version"], e["old"], e["new"], e.get("model"), list(e["evidence"]),
+                                  e["note"]))
+    return tuple(out)
+
+
+def _where(idx: ApiIndex, qname: str, attr: str | None = None) -> str:
+    rec = idx.models[qname]
+    line = rec["l"]
+    if attr is not None:
+        line = idx.all_attrs(qname)[attr][2]
+        rec = idx.models[idx.declaring(qname, attr)]
+    return f"{idx.version} {rec['f']}:{line}"
+
+
+def _map_type(text: str, mapping: dict[str, str]) -> str:
+    return _NAME.sub(lambda m: mapping.get(m.group(0), m.group(0)), text)
+
+
+def _table_for(old_v: str, new_v: str) -> list[TableEntry]:
+    lo, hi = version_key(old_v), version_key(new_v)
+    return [e for e in rename_table() if lo < version_key(e.version) <= hi]
+
+
+def diff(old: ApiIndex, new: ApiIndex) -> list[Change]:
+    """The changes from one version's index to another's (normally consecutive versions)."""
+    v = new.version
+    out: list[Change] = []
+    table = _table_for(old.version, v)
+    removed = sorted(set(old.models) - set(new.models))
+    added = sorted(set(new.models) - set(old.models))
+    mapping: dict[str, str] = {}
+    for e in table:
+        if e.kind == "model" and e.old in removed and e.new in new.models:  # the new one may already exist
+            mapping[e.old] = e.new
+            out.append(Change("model-renamed", v, e.old, TABLE, old=e.old, new=e.new, detail=e.note,
+                              where=[_where(old, e.old), _where(new, e.new)]))
+    by_name_old: dict[tuple[str, str], list[str]] = {}
+    by_name_new: dict[tuple[str, str], list[str]] = {}
+    for q in removed:
+        if q not in mapping:
+            by_name_old.setdefault((q.rsplit(".", 1)[-1], old.models[q]["k"]), []).append(q)
+    taken = set(mapping.values())
+    for q in added:
+        if q not in taken:
+            by_name_new.setdefault((q.rsplit(".", 1)[-1], new.models[q]["k"]), []).append(q)
+    for key, olds in by_name_old.items():
+        news = by_name_new.get(key, [])
+        pairs = [(olds[0], news[0])] if len(olds) == 1 and len(news) == 1 else []
+        if not pairs:  # several of one name: pair them within their bundle when that is one to one
+            for o in olds:
+                same = [n for n in news if n.split(".")[0] == o.split(".")[0]]
+                if len(same) == 1 and sum(x.split(".")[0] == o.split(".")[0] for x in olds) == 1:
+                    pairs.append((o, same[0]))
+        for o, n in pairs:
+            mapping[o] = n
+            out.append(Change("model-moved", v, o, AUTO, old=o, new=n, where=[_where(old, o), _where(new, n)]))
+    for q in removed:
+        if q not in mapping:
+            out.append(Change("model-removed", v, q, PERSON, where=[_where(old, q)]))
+    mapped_new = set(mapping.values())
+    for q in added:
+        if q not in mapped_new:
+            out.append(Change("model-added", v, q, INFO, where=[_where(new, q)]))
+    full_map = {q: mapping.get(q, q) for q in old.models if q in mapping or q in new.models}
+
+    # attributes: first the renames of every model (so subtypes can follow their base's rename)
+    renames: dict[str, dict[str, tuple[str, str, str]]] = {}  # new model -> old attr -> (new attr, handling, why)
+    pending: dict[str, tuple[list[str], list[str]]] = {}
+    for q, n in sorted(full_map.items()):
+        o_own, n_own = old.models[q].get("a", {}), new.models[n].get("a", {})
+        o_all, n_all = old.all_attrs(q), new.all_attrs(n)
+        gone = [a for a in o_own if a not in n_all]
+        fresh = [a for a in n_own if a not in o_all]
+        found: dict[str, tuple[str, str, str]] = {}
+        for e in table:
+            if e.kind == "attribute" and e.model == n and e.old in gone and e.new in n_all:
+                found[e.old] = (e.new, TABLE, e.note)
+        rest_gone = [a for a in gone if a not in found]
+        rest_fresh = [a for a in fresh if a not in {x[0] for x in found.values()}]
+        dep = old.models[q].get("dep", {})
+        for a in list(rest_gone):
+            note = dep.get(a, "")
+            named = [b for b in rest_fresh if re.search(rf"\b{re.escape(b)}\b", note)]
+            if len(named) == 1:
+                found[a] = (named[0], AUTO, f"deprecation note: {note}")
+                rest_gone.remove(a)
+                rest_fresh.remove(named[0])
+        if len(rest_gone) == 1 and len(rest_fresh) == 1:
+            a, b = rest_gone[0], rest_fresh[0]
+            ra, rb = o_own[a], n_own[b]
+            if _map_type(ra[0], full_map) == rb[0] and ra[1] == rb[1] and ra[3] and ra[3] == rb[3]:
+                found[a] = (b, AUTO, "same type, flags and documentation")
+                rest_gone, rest_fresh = [], []
+        renames[n] = found
+        pending[q] = (rest_gone, rest_fresh)
+    for q, n in sorted(full_map.items()):
+        rest_gone, rest_fresh = pending[q]
+        found = renames[n]
+        for a in list(rest_gone):  # a subtype redeclaring (`becomes`) an attribute its base renamed
+            for anc in new.ancestors(n)[1:]:
+                hit = renames.get(anc, {}).get(a)
+                if hit and hit[0] in rest_fresh:
+                    found[a] = (hit[0], hit[1], f"follows {anc}.{a}")
+                    rest_gone.remove(a)
+                    rest_fresh.remove(hit[0])
+                    break
+        o_all, n_all = old.all_attrs(q), new.all_attrs(n)
+        for a, (b, how, why) in sorted(found.items()):
+            out.append(Change("attr-renamed", v, q, how, attr=a, old=a, new=b, detail=why,
+                              where=[_where(old, q, a), _where(new, n, b)]))
+        for a in rest_gone:
+            inherited = any(a in old.models[anc].get("a", {}) and renames.get(full_map.get(anc, ""), {}).get(a)
+                            for anc in old.ancestors(q)[1:])
+            if not inherited:
+                out.append(Change("attr-removed", v, q, PERSON, attr=a, old=o_all[a][0], where=[_where(old, q, a)]))
+        for b in rest_fresh:
+            rec = n_all[b]
+            if "b" in rec[1]:
+                continue  # a `becomes` of an attribute that is new in a base: reported there
+            required = "d" not in rec[1] and "o" not in rec[1]
+            out.append(Change("attr-added-required" if required else "attr-added", v, n,
+                              PERSON if required else INFO, attr=b, new=rec[0], where=[_where(new, n, b)]))
+        own = set(old.models[q].get("a", {})) | set(new.models[n].get("a", {}))
+        back = {b: a for a, (b, _h, _w) in found.items()}
+        for b in sorted(own):
+            a = back.get(b, b)
+            if a not in o_all or b not in n_all:
+                continue
+            t_old, t_new = _map_type(o_all[a][0], full_map), n_all[b][0]
+            if t_old != t_new and (b in new.models[n].get("a", {})):
+                out.append(Change("attr-type-changed", v, q, PERSON, attr=a, old=o_all[a][0], new=t_new,
+                                  where=[_where(old, q, a), _where(new, n, b)]))
+            if "d" in o_all[a][1] and "d" not in n_all[b][1] and "o" not in n_all[b][1] \
+                    and b in new.models[n].get("a", {}):
+                out.append(Change("attr-now-required", v, q, PERSON, attr=a, where=[_where(new, n, b)]))
+        ob, nb = old.base(q), new.base(n)
+        if (ob and _map_type(ob, full_map)) != nb and old.models[q]["k"] != "g":
+            out.append(Change("base-changed", v, q, PERSON, old=ob, new=nb))
+        o_fn, n_fn = old.models[q].get("fn", {}), new.models[n].get("fn", {})
+        for f in sorted(set(o_fn) | set(n_fn)):
+            if f not in n_fn:
+                out.append(Change("fn-removed", v, q, PERSON, attr=f, old=o_fn[f]))
+            elif f not in o_fn:
+                out.append(Change("fn-added", v, n, INFO, attr=f, new=n_fn[f]))
+            elif _map_type(o_fn[f], full_map) != n_fn[f]:
+                out.append(Change("fn-changed", v, q, PERSON, attr=f, old=o_fn[f], new=n_fn[f]))
+        o_dep, n_dep = old.models[q].get("dep", {}), new.models[n].get("dep", {})
+        for a in sorted(set(n_dep) - set(o_dep)):
+            out.append(Change("deprecated", v, n, INFO, attr=a or None, detail=n_dep[a], where=[_where(new, n)]))
+    return out
+
+
+@lru_cache(maxsize=None)
+def step(old_v: str, new_v: str) -> tuple[Change, ...]:
+    return tuple(diff(load(old_v), load(new_v)))
+
+
+def between(from_v: str, to_v: str) -> list[str]:
+    """The indexed versions from `from_v` to `to_v` inclusive (either order is an error if equal)."""
+    allv = versions()
+    a, b = allv.index(check_version(from_v)), allv.index(check_version(to_v))
+    if a > b:
+        raise ValueError(f"'{from_v}' is newer than '{to_v}': plx migrates forward only")
+    return list(allv[a:b + 1])
+
+
+def steps(from_v: str, to_v: str) -> list[tuple[str, str, tuple[Change, ...]]]:
+    chain = between(from_v, to_v)
+    return [(a, b, step(a, b)) for a, b in zip(chain, chain[1:])]
+
+
+def changes(from_v: str, to_v: str) -> list[Change]:
+    """The changes from `from_v` to `to_v`, composed over the consecutive steps between them.
+
+    A chain of renames and moves becomes one change from the first name to the last; something
+    added and later removed in the range disappears; a type changed twice shows first and last.
+    """
+    out: list[Change | None] = []
+    model_at: dict[str, int] = {}  # current model name -> composed move/rename
+    added_at: dict[str, int] = {}  # current name of a model added in the range
+    orig: dict[str, str] = {}  # current model name -> its name in from_v
+    attr_at: dict[tuple[str, str], int] = {}  # (orig model, current attr) -> composed attribute change
+    type_at: dict[tuple[str, str], int] = {}
+
+    def push(c: Change) -> int:
+        out.append(c)
+        return len(out) - 1
+
+    for _a, _b, cs in steps(from_v, to_v):
+        before = dict(orig)  # a step names models as its older version does
+        for c in cs:
+            m = before.get(c.model, c.model)
+            if c.kind in ("model-moved", "model-renamed"):
+                if c.old in model_at:
+                    i = model_at.pop(c.old)
+                    e = out[i]
+                    assert e is not None
+                    simple = e.old.rsplit(".", 1)[-1] == c.new.rsplit(".", 1)[-1]
+                    out[i] = replace(e, kind="model-moved" if simple else "model-renamed", new=c.new,
+                                     handling=TABLE if TABLE in (e.handling, c.handling) else AUTO,
+                                     where=[e.where[0], c.where[-1]])
+                    model_at[c.new] = i
+                elif c.old in added_at:
+                    i = added_at.pop(c.old)
+                    out[i] = replace(out[i], model=c.new)
+                    added_at[c.new] = i
+                else:
+                    model_at[c.new] = push(c)
+                orig[c.new] = orig.pop(c.old, c.old)
+            elif c.kind == "model-removed":
+                if c.model in model_at:
+                    i = model_at.pop(c.model)
+                    e = out[i]
+                    out[i] = replace(c, model=e.old, where=e.where[:1])
+                elif c.model in added_at:
+                    out[added_at.pop(c.model)] = None
+                else:
+                    push(c)
+            elif c.kind == "model-added":
+                added_at[c.model] = push(c)
+            elif c.kind in ("attr-renamed", "attr-added", "attr-added-required", "attr-removed"):
+                key = (m, c.attr or "")
+                if c.kind == "attr-renamed" and key in attr_at:
+                    i = attr_at.pop(key)
+                    e = out[i]
+                    if e.kind == "attr-renamed":
+                        out[i] = replace(e, new=c.new, where=[e.where[0], c.where[-1]],
+                                         handling=TABLE if TABLE in (e.handling, c.handling) else AUTO)
+                    else:
+                        out[i] = replace(e, attr=c.new)
+                    attr_at[(m, c.new or "")] = i
+                elif c.kind == "attr-removed" and key in attr_at:
+                    i = attr_at.pop(key)
+                    e = out[i]
+                    out[i] = None if e.kind != "attr-renamed" else replace(c, model=m, attr=e.old,
+                                                                           where=e.where[:1])
+                else:
+                    i = push(replace(c, model=m))
+                    attr_at[(m, c.new if c.kind == "attr-renamed" else c.attr or "")] = i
+            elif c.kind == "attr-type-changed":
+                key = (m, c.attr or "")
+                if key in type_at and out[type_at[key]] is not None:
+                    i = type_at[key]
+                    e = out[i]
+                    out[i] = None if e.old == c.new else replace(e, new=c.new, where=[e.where[0], c.where[-1]])
+                else:
+                    type_at[key] = push(replace(c, model=m))
+            else:
+                push(replace(c, model=m))
+    return [c for c in out if c is not None]
+
+
+def summary(cs: list[Change]) -> dict[str, int]:
+    counts = {AUTO: 0, TABLE: 0, PERSON: 0, INFO: 0}
+    for c in cs:
+        counts[c.handling] += 1
+    return counts
