@@ -955,6 +955,15 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
         """Recent server-side timings (wall and CPU ms) of checks and completions, for bench/lsp_bench.py."""
         return {kind: [list(x) for x in vals] for kind, vals in ls.timings.items()}
 
+    @server.feature("plx/documentText")
+    def document_text(ls: PlxServer, params) -> dict | None:
+        """The text and version the server holds for an open document (for sync checks and bug reports)."""
+        uri = getattr(params, "uri", None) if not isinstance(params, dict) else params.get("uri")
+        doc = ls.documents.get(uri) if isinstance(uri, str) else None
+        if doc is None:
+            return None
+        return {"version": doc.version, "text": doc.text}
+
     # -------------------------------------------------------------- presentation
 
     @server_feature(types.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL,
