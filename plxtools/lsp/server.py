@@ -2,7 +2,9 @@
 
 Every feature is a call into `plxtools.ide` (offsets in, data out); this module converts positions
 (`convert.Positions`, the one place that knows the client's encoding), shapes LSP objects to the
-client's capabilities, debounces diagnostics and keeps errors inside the request that caused them.
+client's capabilities, schedules checks without a fixed delay and keeps errors inside the request that
+caused them. The wire (framing, validation, cancellation) is `transport.py`; the text model is
+`convert.py` plus `Documents`.
 """
 
 from __future__ import annotations
@@ -26,11 +28,9 @@ from plxtools import __version__, ide
 from plxtools.diagnostics import Diagnostic, Severity
 from plxtools.ide.host import AnalysisHost, Settings
 from plxtools.lsp.convert import Positions
-from plxtools.syntax.source import LineIndex
 
 log = logging.getLogger("plxtools.lsp")
 
-DEFAULT_DEBOUNCE_MS = 150
 CONFIG_SECTION = "openplx"
 
 
@@ -44,20 +44,119 @@ class RequestFailed(JsonRpcException):
 
 
 class PlxProtocol(LanguageServerProtocol):
+    """pygls' protocol with the server's own text model (`Documents`), quiet writes and cancellation
+    of requests that were running when the client cancelled them."""
+
+    def _send_raw(self, body: str) -> None:
+        if self.writer is None:
+            return
+        data = body.encode("utf-8")
+        self.writer.write(b"Content-Length: %d\r\n\r\n" % len(data) + data)
+
+    def _send_data(self, data) -> None:
+        if not data:
+            return
+        import json
+
+        try:
+            body = json.dumps(data, default=self._serialize_message)
+        except Exception:  # noqa: BLE001 - an unserialisable result is a bug in a handler
+            log.exception("could not serialise a message")
+            msg_id = data.get("id") if isinstance(data, dict) else getattr(data, "id", None)
+            if msg_id is not None:
+                self._send_raw(json.dumps({"jsonrpc": "2.0", "id": msg_id,
+                                           "error": {"code": -32603, "message": "internal error"}}))
+            return
+        self._send_raw(body)
+
+    def _send_handler_result(self, future, *, msg_id):
+        dispatcher = getattr(self._server, "dispatcher", None)
+        if dispatcher is not None and dispatcher.cancelled.take(msg_id):
+            self._request_futures.pop(msg_id, None)
+            if not future.cancelled() and future.exception() is not None:
+                log.debug("request %r failed after it was cancelled: %s", msg_id, future.exception())
+            dispatcher.reply_error(msg_id, -32800, f"request {msg_id!r} was cancelled")
+            return
+        if not future.cancelled() and isinstance(future.exception(), JsonRpcException):
+            # an expected refusal (RequestFailed, InvalidParams): the reply says it, no traceback
+            exc = future.exception()
+            self._request_futures.pop(msg_id, None)
+            log.info("request %r refused: %s", msg_id, exc)
+            self._send_response(msg_id, error=exc.to_response_error())
+            return
+        super()._send_handler_result(future, msg_id=msg_id)
+
+    @lsp_method(types.TEXT_DOCUMENT_DID_OPEN)
+    def lsp_text_document__did_open(self, params: types.DidOpenTextDocumentParams):
+        td = params.text_document
+        self._server.documents.open(td.uri, td.text, td.version)
+        if (handler := self.fm.features.get(types.TEXT_DOCUMENT_DID_OPEN)) is not None:
+            yield handler, (params,), None
+
     @lsp_method(types.TEXT_DOCUMENT_DID_CHANGE)
     def lsp_text_document__did_change(self, params: types.DidChangeTextDocumentParams):
-        """An edit to a document that was never opened is ignored (or, if it carries the whole
-        text, treated as an open) instead of failing inside pygls."""
-        uri = params.text_document.uri
-        if unquote(uri) not in self.workspace.text_documents:
-            whole = [c for c in params.content_changes if isinstance(c, types.TextDocumentContentChangeWholeDocument)]
+        """Edits are applied by `convert.apply_change` (LSP's line breaks, clamping). An edit to a
+        document that was never opened is ignored (or, if it carries the whole text, treated as an
+        open)."""
+        if not self._server.documents.change(params.text_document.uri, params.text_document.version,
+                                             params.content_changes, self._server.encoding):
+            return
+        if (handler := self.fm.features.get(types.TEXT_DOCUMENT_DID_CHANGE)) is not None:
+            yield handler, (params,), None
+
+    @lsp_method(types.TEXT_DOCUMENT_DID_CLOSE)
+    def lsp_text_document__did_close(self, params: types.DidCloseTextDocumentParams):
+        self._server.documents.close(params.text_document.uri)
+        if (handler := self.fm.features.get(types.TEXT_DOCUMENT_DID_CLOSE)) is not None:
+            yield handler, (params,), None
+
+
+class OpenDocument:
+    __slots__ = ("uri", "text", "version")
+
+    def __init__(self, uri: str, text: str, version):
+        self.uri = uri
+        self.text = text
+        self.version = version
+
+
+class Documents:
+    """The editor's buffers as the server sees them (keyed by the unquoted URI)."""
+
+    def __init__(self) -> None:
+        self.by_key: dict[str, OpenDocument] = {}
+
+    def get(self, uri: str) -> OpenDocument | None:
+        return self.by_key.get(unquote(uri))
+
+    def __iter__(self):
+        return iter([d.uri for d in self.by_key.values()])
+
+    def open(self, uri: str, text: str, version) -> None:
+        self.by_key[unquote(uri)] = OpenDocument(uri, text, version)
+
+    def change(self, uri: str, version, changes, encoding) -> bool:
+        from plxtools.lsp.convert import apply_change
+
+        doc = self.get(uri)
+        if doc is None:
+            whole = [c for c in changes if getattr(c, "range", None) is None]
             if not whole:
                 log.warning("didChange for %s, which is not open: ignored", uri)
-                return
-            self.workspace.put_text_document(types.TextDocumentItem(
-                uri=uri, language_id="openplx", version=params.text_document.version, text=whole[-1].text))
-            params = types.DidChangeTextDocumentParams(text_document=params.text_document, content_changes=[])
-        yield from super().lsp_text_document__did_change(params)
+                return False
+            self.open(uri, whole[-1].text, version)
+            return True
+        if isinstance(version, int) and isinstance(doc.version, int) and version <= doc.version:
+            log.warning("document version of %s went from %s to %s: edits out of order?", uri, doc.version, version)
+        text = doc.text
+        for change in changes:
+            text = apply_change(text, change, encoding)
+        doc.text = text
+        doc.version = version
+        return True
+
+    def close(self, uri: str) -> None:
+        self.by_key.pop(unquote(uri), None)
 
 
 # ------------------------------------------------------------------ the server
@@ -67,12 +166,22 @@ class PlxServer(LanguageServer):
     def __init__(self) -> None:
         super().__init__("plx", __version__, protocol_cls=PlxProtocol,
                          text_document_sync_kind=types.TextDocumentSyncKind.Incremental)
+        from plxtools.lsp.transport import Dispatcher
+
         self.host = AnalysisHost()
-        self.debounce = DEFAULT_DEBOUNCE_MS / 1000
+        self.documents = Documents()
+        self.dispatcher = Dispatcher(self)
+        self.loop: asyncio.AbstractEventLoop | None = None
+        self.writer = None
         self.rule_docs_url: str | None = None
         self.init_options: dict = {}
+        self.diagnostic_mode = "auto"
+        self.pull_diagnostics = False  # decided in `initialize` (client support and `diagnosticMode`)
         self.uris: dict[str, str] = {}  # path -> the client's URI for open documents
-        self._timers: dict[str, asyncio.TimerHandle] = {}
+        self._dirty: dict[str, bool] = {}  # uri -> cascade: documents waiting for a check, oldest first
+        self._check_pending = False
+        self._published: dict[str, tuple] = {}  # uri -> (version, diagnostics) last pushed
+        self._positions: dict[str, Positions] = {}
         self._completion_keys: list = []
         self._shown: set[str] = set()
         self.timings: dict[str, list[tuple[float, float]]] = {}  # kind -> recent (wall ms, CPU ms)
@@ -80,9 +189,11 @@ class PlxServer(LanguageServer):
     def report_server_error(self, error: Exception, source) -> None:
         """Errors outside a request (a failing notification, a bad message) are logged; the editor is
         told once per distinct error, and the server keeps running."""
+        if getattr(source, "__name__", "") == "FeatureRequestError":
+            return  # the request's own error reply says it; its handler logged what deserved logging
         log.error("server error (%s): %s", getattr(source, "__name__", source), error)
         key = f"{type(error).__name__}: {error}"
-        if key in self._shown or getattr(source, "__name__", "") == "FeatureRequestError":
+        if key in self._shown:
             return
         self._shown.add(key)
         try:
@@ -116,12 +227,19 @@ class PlxServer(LanguageServer):
             return types.PositionEncodingKind.Utf16
 
     def positions(self, path: str, st=None) -> Positions:
+        """Position conversions for the text a result was computed on (cached per text)."""
         if st is not None:
-            return Positions(st.tree.index, self.encoding)
-        tree = self.host.tree_of(path)
-        if tree is not None:
-            return Positions(tree.index, self.encoding)
-        return Positions(LineIndex(self.host.text_of(path) or ""), self.encoding)
+            text, index = st.tree.text, st.tree.index
+        else:
+            tree = self.host.tree_of(path)
+            text, index = (tree.text, tree.index) if tree is not None else (self.host.text_of(path) or "", None)
+        got = self._positions.get(path)
+        if got is not None and got.text is text and got.encoding == Positions("", self.encoding).encoding:
+            return got
+        got = Positions(text, self.encoding, index)
+        if path in self.host.docs:
+            self._positions[path] = got
+        return got
 
     def cap(self, dotted: str, default=None):
         """A client capability by dotted attribute path (None-safe)."""
@@ -146,17 +264,23 @@ class PlxServer(LanguageServer):
 
     # -------------------------------------------------------------- state
 
+    def sync(self, uri: str) -> str | None:
+        """Hand the host the buffer's current text; returns the document's path (None if not open)."""
+        doc = self.documents.get(uri)
+        path = self.path_of(uri)
+        if doc is None:
+            return None
+        if path not in self.host.docs:
+            self.uris[path] = uri
+            self.host.open_document(path, doc.text, doc.version)
+        elif self.host.docs[path].text is not doc.text or self.host.docs[path].version != doc.version:
+            self.host.update_document(path, doc.text, doc.version)
+        return path
+
     def state(self, uri: str, quick: bool = False):
         """The analysis of a document; `quick` (completion, signature help) skips the checker when the
         buffer changed since the last check, so typing does not wait for the diagnostics."""
-        path = self.path_of(uri)
-        doc = self.workspace.text_documents.get(unquote(uri))
-        if doc is not None:
-            if path not in self.host.docs:
-                self.uris[path] = uri
-                self.host.open_document(path, doc.source, doc.version)
-            elif self.host.docs[path].text != doc.source:
-                self.host.update_document(path, doc.source, doc.version)
+        path = self.sync(uri) or self.path_of(uri)
         return self.host.quick_state(path) if quick else self.host.state(path)
 
     def notify_messages(self) -> None:
@@ -196,21 +320,36 @@ class PlxServer(LanguageServer):
                                 "edits": [[e.start, e.end, e.text] for e in d.fix.edits]}}
         return out
 
-    def publish(self, uri: str) -> None:
-        """Check a document now and publish its diagnostics for the version they were computed for."""
-        doc = self.workspace.text_documents.get(unquote(uri))
+    def diagnostics_of(self, uri: str):
+        """(version, LSP diagnostics) of a document's current text, checked now."""
+        doc = self.documents.get(uri)
         if doc is None:
-            return
+            return None
         t0, c0 = time.perf_counter(), time.process_time()
         with no_gc():
             st = self.state(uri)
             if st is None:
-                return
-            pos = Positions(st.tree.index, self.encoding)
+                return None
+            pos = self.positions(st.path, st)
             diags = [self.lsp_diagnostic(d, pos) for d in st.diagnostics]
             self._record("check", t0, c0)
+        return doc.version, diags
+
+    def publish(self, uri: str) -> None:
+        """Check a document now and push its diagnostics for the version they were computed for;
+        the same diagnostics for the same version are not sent twice."""
+        got = self.diagnostics_of(uri)
+        if got is None:
+            return
+        version, diags = got
+        if self.pull_diagnostics:
+            self.notify_messages()
+            return
+        key = (version, [(d.range, d.code, d.message, d.severity) for d in diags])
+        if self._published.get(uri) != key:
+            self._published[uri] = key
             self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
-                uri=uri, version=doc.version, diagnostics=diags))
+                uri=uri, version=version, diagnostics=diags))
         self.notify_messages()
 
     def _record(self, kind: str, t0: float, c0: float) -> None:
@@ -218,28 +357,48 @@ class PlxServer(LanguageServer):
         got.append(((time.perf_counter() - t0) * 1000, (time.process_time() - c0) * 1000))
         del got[:-200]
 
+    # -------------------------------------------------------------- the analysis scheduler
+
     def schedule(self, uri: str, delay: float | None = None, cascade: bool = True) -> None:
-        """Debounce: (re)start the timer for a document; a newer edit replaces the pending check.
-
-        With `cascade`, the open documents that depend on this one (same user bundle) are checked
-        after it; their own checks do not cascade further.
-        """
-        old = self._timers.pop(uri, None)
-        if old is not None:
-            old.cancel()
-        doc = self.workspace.text_documents.get(unquote(uri))
-        if doc is None:
+        """Queue a document for checking. No fixed delay: the check runs as soon as no message is
+        waiting to be handled, so a burst of edits is checked once, at its last version (older
+        versions are superseded before they start), and requests are answered first."""
+        if self.documents.get(uri) is None:
             return
-        version = doc.version
-        loop = asyncio.get_running_loop()
-        self._timers[uri] = loop.call_later(self.debounce if delay is None else delay, self._fire, uri, version,
-                                            cascade)
+        self._dirty[uri] = self._dirty.pop(uri, False) or cascade
+        self._wake()
 
-    def _fire(self, uri: str, version, cascade: bool) -> None:
-        self._timers.pop(uri, None)
-        doc = self.workspace.text_documents.get(unquote(uri))
-        if doc is None or doc.version != version:
-            return  # stale: a newer edit has its own timer
+    def _wake(self) -> None:
+        if self._check_pending or self.loop is None:
+            if self.loop is None:
+                self._drain_now()
+            return
+        self._check_pending = True
+        self.loop.call_soon(self._run_checks)
+
+    def _drain_now(self) -> None:
+        while self._dirty:
+            uri, cascade = next(iter(self._dirty.items()))
+            del self._dirty[uri]
+            self._check_one(uri, cascade)
+
+    def _run_checks(self) -> None:
+        """One document per turn of the event loop; messages that arrived meanwhile go first."""
+        self._check_pending = False
+        if not self._dirty:
+            return
+        if self.dispatcher.inbox > 0:
+            # edits and requests are waiting: handle them first (a newer version supersedes this)
+            self._check_pending = True
+            self.loop.call_soon(self._run_checks)
+            return
+        uri, cascade = next(iter(self._dirty.items()))
+        del self._dirty[uri]
+        self._check_one(uri, cascade)
+        if self._dirty:
+            self._wake()
+
+    def _check_one(self, uri: str, cascade: bool) -> None:
         try:
             self.publish(uri)
             if cascade:
@@ -248,14 +407,23 @@ class PlxServer(LanguageServer):
             log.exception("checking %s failed", uri)
 
     def schedule_dependents(self, path: str, deps: list[str] | None = None) -> None:
-        for dep in self.host.dependents(path) if deps is None else deps:
+        deps = self.host.dependents(path) if deps is None else deps
+        if self.pull_diagnostics:
+            if deps and self.cap("workspace.diagnostics.refresh_support"):
+                self.workspace_diagnostic_refresh(None)
+            return
+        for dep in deps:
             dep_uri = self.uri_of(dep)
-            if dep_uri not in self._timers:
-                self.schedule(dep_uri, 0, cascade=False)
+            if dep_uri not in self._dirty:
+                self.schedule(dep_uri, cascade=False)
 
     def recheck_all(self) -> None:
-        for uri in list(self.workspace.text_documents):
-            self.schedule(uri, 0, cascade=False)
+        if self.pull_diagnostics:
+            if self.cap("workspace.diagnostics.refresh_support"):
+                self.workspace_diagnostic_refresh(None)
+            return
+        for uri in list(self.documents):
+            self.schedule(uri, cascade=False)
 
     # -------------------------------------------------------------- settings
 
@@ -285,9 +453,8 @@ class PlxServer(LanguageServer):
         if isinstance(ign, str):
             ign = [c.strip() for c in ign.split(",") if c.strip()]
         s.ignore = [c.upper() for c in ign]
-        delay = merged.get("diagnosticsDelayMs")
-        if isinstance(delay, (int, float)) and delay >= 0:
-            self.debounce = delay / 1000
+        mode = merged.get("diagnosticMode")
+        self.diagnostic_mode = mode if mode in ("auto", "push", "pull") else "auto"
         url = merged.get("ruleDocsUrl")
         self.rule_docs_url = url if isinstance(url, str) and url else None
         if self.host.configure(s):  # a new bundle path: the old model is garbage now
@@ -424,6 +591,11 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
             root = params.root_path
         ls.host.root = root
         ls.apply_settings(None)
+        # pull diagnostics when the client can pull them (as ruff's server does), push otherwise;
+        # never both, or editors show every diagnostic twice
+        ls.pull_diagnostics = ls.cap("text_document.diagnostic") is not None and ls.diagnostic_mode != "push"
+        if not ls.pull_diagnostics:
+            ls.protocol.fm.features.pop(types.TEXT_DOCUMENT_DIAGNOSTIC, None)
 
     @server_feature(types.INITIALIZED)
     async def initialized(ls: PlxServer, params: types.InitializedParams) -> None:
@@ -460,33 +632,45 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
         ls.uris[path] = uri
         before = ls.host.text_of(path)  # what the model knew: the file on disk, if any
         ls.host.open_document(path, params.text_document.text, params.text_document.version)
-        ls.publish(uri)
-        if before is not None and before != params.text_document.text:
-            ls.schedule_dependents(path)
+        ls._published.pop(uri, None)
+        ls.schedule(uri, cascade=before is not None and before != params.text_document.text)
 
     @server_feature(types.TEXT_DOCUMENT_DID_CHANGE)
     def did_change(ls: PlxServer, params: types.DidChangeTextDocumentParams) -> None:
         uri = params.text_document.uri
-        doc = ls.workspace.text_documents.get(unquote(uri))
-        if doc is None:
+        if ls.sync(uri) is None:
             return
-        path = ls.path_of(uri)
-        ls.uris.setdefault(path, uri)
-        ls.host.update_document(path, doc.source, doc.version)
         ls.schedule(uri)
 
     @server_feature(types.TEXT_DOCUMENT_DID_CLOSE)
     def did_close(ls: PlxServer, params: types.DidCloseTextDocumentParams) -> None:
         uri = params.text_document.uri
         path = ls.path_of(uri)
-        timer = ls._timers.pop(uri, None)
-        if timer is not None:
-            timer.cancel()
+        ls._dirty.pop(uri, None)
+        ls._positions.pop(path, None)
         deps = ls.host.dependents(path)
         ls.host.close_document(path)
         ls.uris.pop(path, None)
-        ls.text_document_publish_diagnostics(types.PublishDiagnosticsParams(uri=uri, diagnostics=[]))
+        if ls._published.pop(uri, None) is not None:
+            ls.text_document_publish_diagnostics(types.PublishDiagnosticsParams(uri=uri, diagnostics=[]))
         ls.schedule_dependents(path, deps)
+
+    @server_feature(types.TEXT_DOCUMENT_DIAGNOSTIC,
+                    types.DiagnosticOptions(inter_file_dependencies=True, workspace_diagnostics=False,
+                                            identifier="plx"))
+    def document_diagnostic(ls: PlxServer, params: types.DocumentDiagnosticParams):
+        """Pull diagnostics: the current version's, computed now (or unchanged since `previous_result_id`)."""
+        uri = params.text_document.uri
+        ls._dirty.pop(uri, None)
+        got = ls.diagnostics_of(uri)
+        if got is None:
+            return types.RelatedFullDocumentDiagnosticReport(items=[])
+        version, diags = got
+        result_id = f"{version}:{hash(tuple((d.range.start.line, d.range.start.character, d.code, d.message) for d in diags)) & 0xffffffff:x}"
+        ls.notify_messages()
+        if params.previous_result_id == result_id:
+            return types.RelatedUnchangedDocumentDiagnosticReport(result_id=result_id)
+        return types.RelatedFullDocumentDiagnosticReport(items=diags, result_id=result_id)
 
     @server_feature(types.TEXT_DOCUMENT_DID_SAVE)
     def did_save(ls: PlxServer, params: types.DidSaveTextDocumentParams) -> None:
@@ -771,6 +955,15 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
         """Recent server-side timings (wall and CPU ms) of checks and completions, for bench/lsp_bench.py."""
         return {kind: [list(x) for x in vals] for kind, vals in ls.timings.items()}
 
+    @server.feature("plx/documentText")
+    def document_text(ls: PlxServer, params) -> dict | None:
+        """The text and version the server holds for an open document (for sync checks and bug reports)."""
+        uri = getattr(params, "uri", None) if not isinstance(params, dict) else params.get("uri")
+        doc = ls.documents.get(uri) if isinstance(uri, str) else None
+        if doc is None:
+            return None
+        return {"version": doc.version, "text": doc.text}
+
     # -------------------------------------------------------------- presentation
 
     @server_feature(types.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL,
@@ -839,10 +1032,12 @@ def run_server(args) -> int:
     _configure_logging(getattr(args, "log_file", None))
     server = create_server()
     log.info("plx lsp %s starting (python %s)", __version__, sys.version.split()[0])
-    server.start_io()
-    # pygls closes stdout when the client says exit; later flushes must not fail on it
+    from plxtools.lsp.transport import serve
+
+    code = serve(server, sys.stdin.buffer, sys.stdout.buffer)
+    # stdout is closed when the client says exit; later flushes must not fail on it
     for name in ("stdout", "stderr"):
         stream = getattr(sys, name)
         if stream is None or stream.closed:
             setattr(sys, name, open(os.devnull, "w"))
-    return 0
+    return code

@@ -29,7 +29,7 @@ async def client(request, lsp_client: LanguageClient):
     result = await lsp_client.initialize_session(types.InitializeParams(
         capabilities=client_capabilities(request.param),
         root_uri=REPO.as_uri(),
-        initialization_options={"diagnosticsDelayMs": 50},
+        initialization_options={"diagnosticMode": "push"},
     ))
     lsp_client.name = request.param
     lsp_client.server_capabilities = result.capabilities

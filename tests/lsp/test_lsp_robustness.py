@@ -31,7 +31,8 @@ FAULTY = "textDocument/foldingRange"  # made to fail on purpose in this module's
     server_command=[sys.executable, "-m", "plxtools", "lsp"], server_env={**os.environ, "PLX_LSP_FAULT": FAULTY}))
 async def client(request, lsp_client: LanguageClient):
     result = await lsp_client.initialize_session(types.InitializeParams(
-        capabilities=client_capabilities(request.param), root_uri=REPO.as_uri()))
+        capabilities=client_capabilities(request.param), root_uri=REPO.as_uri(),
+        initialization_options={"diagnosticMode": "push"}))
     lsp_client.server_capabilities = result.capabilities
     record_diagnostics(lsp_client)
     lsp_client.name = request.param

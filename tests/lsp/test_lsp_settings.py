@@ -22,7 +22,7 @@ TEXT = "a_scene is Physics3D.System:\n    is_dynamc: 1\n"
 async def client(request, lsp_client: LanguageClient):
     result = await lsp_client.initialize_session(types.InitializeParams(
         capabilities=client_capabilities(request.param), root_uri=REPO.as_uri(),
-        initialization_options={"ignore": ["C001"], "diagnosticsDelayMs": 0}))
+        initialization_options={"ignore": ["C001"], "diagnosticMode": "push"}))
     lsp_client.server_capabilities = result.capabilities
     record_diagnostics(lsp_client)
     yield

@@ -1,0 +1,134 @@
+"""Every request gets an answer, bad frames do not deafen the server, cancellation is honoured,
+and routine events are not logged as errors (issue 14 items 3, 11, 12; issue 16 log noise)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from tests.lsp.rawclient import RawServer, frame
+
+URI = "file:///proto/doc.openplx"
+TEXT = "Scene is Physics3D.System:\n    x is Real: 1\n"
+
+
+@pytest.fixture(scope="module")
+def server():
+    s = RawServer()
+    pre = s.request("textDocument/hover", {"textDocument": {"uri": URI}, "position": {"line": 0, "character": 0}})
+    s.pre_init = pre
+    s.initialize()
+    s.open(URI, TEXT)
+    yield s
+    assert s.close() == 0
+    assert not [line for line in s.stderr if b"ERROR" in line or b"Traceback" in line], s.stderr
+
+
+def hover(s: RawServer, line=1, character=4) -> dict:
+    return s.request("textDocument/hover", {"textDocument": {"uri": URI},
+                                            "position": {"line": line, "character": character}})
+
+
+def test_request_before_initialize_is_refused_with_32002(server):
+    assert server.pre_init["error"]["code"] == -32002
+
+
+@pytest.mark.parametrize("params", [
+    {"textDocument": {"uri": URI}, "position": {"line": -1, "character": 0}},
+    {"textDocument": {"uri": URI}, "position": {"line": 2 ** 32, "character": 0}},
+    {"textDocument": {"uri": URI}, "position": {"line": 0, "character": -3}},
+    {},
+    {"textDocument": {"uri": 5}, "position": {"line": "a", "character": 0}},
+    [1, 2],
+    None,
+])
+def test_invalid_params_get_32602_and_the_server_keeps_serving(server, params):
+    got = server.request("textDocument/hover", params)
+    assert got["error"]["code"] == -32602, got
+    assert "textDocument/hover" in got["error"]["message"]
+    ok = hover(server)
+    assert "error" not in ok and "Real" in json.dumps(ok["result"])
+
+
+def test_unknown_method_gets_32601(server):
+    assert server.request("plx/noSuchThing", {})["error"]["code"] == -32601
+
+
+def test_second_initialize_is_refused(server):
+    got = server.request("initialize", {"processId": None, "capabilities": {}})
+    assert got["error"]["code"] == -32600
+
+
+def test_content_length_shorter_than_the_body_does_not_deafen_the_server(server):
+    body = json.dumps({"jsonrpc": "2.0", "id": 77, "method": "textDocument/hover",
+                       "params": {"textDocument": {"uri": URI}, "position": {"line": 1, "character": 4}}}).encode()
+    server.write(b"Content-Length: %d\r\n\r\n" % (len(body) - 10) + body)
+    assert "Real" in json.dumps(hover(server)["result"])
+    # a Content-Length longer than what follows eats the next frame, then the server resynchronises
+    server.write(b"Content-Length: 5\r\n\r\n{}")
+    server.write(frame({"jsonrpc": "2.0", "method": "$/noop"}))
+    assert "Real" in json.dumps(hover(server)["result"])
+
+
+def test_queued_and_running_requests_are_cancelled():
+    s = RawServer()
+    try:
+        s.initialize(options={"diagnosticMode": "push"})
+        uri = "file:///proto/big.openplx"
+        big = "".join(f"M{i} is Physics3D.System:\n    x is Real: {i}\n    y is Real: x * 2\n" for i in range(3000))
+        s.open(uri, big)
+        # one write: a slow request, its cancel, then a queue of requests each cancelled at once
+        slow_id, data = s.request_bytes("textDocument/documentSymbol", {"textDocument": {"uri": uri}})
+        data += frame({"jsonrpc": "2.0", "method": "$/cancelRequest", "params": {"id": slow_id}})
+        ids = []
+        for i in range(200):
+            rid, req = s.request_bytes("textDocument/hover", {"textDocument": {"uri": uri},
+                                                              "position": {"line": i, "character": 0}})
+            ids.append(rid)
+            data += req + frame({"jsonrpc": "2.0", "method": "$/cancelRequest", "params": {"id": rid}})
+        # cancels for ids that were answered long ago or never existed: routine, not errors
+        for i in range(20):
+            data += frame({"jsonrpc": "2.0", "method": "$/cancelRequest", "params": {"id": 10 ** 6 + i}})
+        s.write(data)
+        assert s.response(slow_id, timeout=120)["error"]["code"] == -32800
+        codes = [s.response(i)["error"]["code"] for i in ids]
+        assert codes == [-32800] * len(ids)
+        # not cancelled: answered normally
+        got = s.request("textDocument/documentSymbol", {"textDocument": {"uri": uri}}, timeout=120)
+        assert len(got["result"]) == 9000  # flat: each model and its two attributes
+        assert s.close() == 0
+    finally:
+        if s.proc.poll() is None:
+            s.proc.kill()
+    assert not [line for line in s.stderr if b"ERROR" in line or b"Traceback" in line], s.stderr
+
+
+def test_editor_quitting_right_after_open_leaves_no_traceback():
+    s = RawServer()
+    s.initialize(options={"diagnosticMode": "push"})
+    s.open(URI, TEXT)
+    s.proc.stdout.close()  # the editor is gone: the diagnostics cannot be written
+    s.proc.stdin.close()
+    assert s.proc.wait(timeout=60) in (0, 1)
+    err = b"".join(s.stderr)
+    assert b"Traceback" not in err and b"BrokenPipe" not in err, err
+
+
+def test_malformed_messages_are_answered_or_ignored(server):
+    junk = [
+        b"{this is not json", b"[]", b"42", b'"x"', b"null",
+        json.dumps({"id": 5, "method": "textDocument/hover"}).encode(),  # no jsonrpc
+        json.dumps({"jsonrpc": "2.0", "id": 6, "method": 12}).encode(),
+        json.dumps({"jsonrpc": "2.0", "id": [1], "method": "textDocument/hover"}).encode(),
+        json.dumps({"jsonrpc": "2.0", "method": "textDocument/didChange", "params": {"x": 1}}).encode(),
+        json.dumps({"jsonrpc": "2.0", "method": "textDocument/didOpen", "params": []}).encode(),
+        json.dumps({"jsonrpc": "2.0", "id": 99999, "result": {"unexpected": True}}).encode(),
+        "Content-Length: x\r\n\r\n".encode(),
+        b"\xff\xfe garbage \r\n\r\n",
+    ]
+    for j in junk:
+        server.write(frame(j))
+    invalid = server.request("textDocument/completion", {"textDocument": {"uri": URI}})
+    assert invalid["error"]["code"] == -32602
+    assert "Real" in json.dumps(hover(server)["result"])
