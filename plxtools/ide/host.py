@@ -99,6 +99,7 @@ class _Precomputed:
 @dataclass(slots=True)
 class Settings:
     bundle_paths: list[str] = field(default_factory=list)
+    openplx_version: str | None = None
     select: list[str] | None = None
     ignore: list[str] = field(default_factory=list)
 
@@ -113,6 +114,8 @@ class AnalysisHost:
         self._parsers: dict[str, IncrementalParser] = {}
         self._trees: dict[str, ast.File] = {}  # the last parse of each open buffer
         self._ws = None
+        self._ws_before: tuple | None = None  # (bundle-set key, workspace) while choosing the set again
+        self._set_key: tuple | None = None
         self._loaded_once = False
         self.workspace_error: str | None = None
         self.generation = 0
@@ -122,32 +125,60 @@ class AnalysisHost:
 
     @property
     def workspace(self):
+        """The semantic model of the workspace folder: the bundle set chosen as the CLI chooses it
+        (settings' bundle paths, then plx.toml / pyproject.toml, OPENPLX_BUNDLE_PATH, an
+        openplx-version pin, user bundles found nearby, else the installed official bundles)."""
         if self._ws is None and self.workspace_error is None:
-            from plxtools.model.workspace import Workspace, WorkspaceError
+            from plxtools.model.versions import BundleSetError
+            from plxtools.model.workspace import Workspace, WorkspaceError, bundle_set_for_folder
 
-            paths = [Path(p) for p in self.settings.bundle_paths]
-            if self.root and is_file_path(self.root):
-                try:
-                    paths.extend(config_for(Path(self.root) / "x.openplx").bundle_paths)
-                except ConfigError as exc:
-                    self.messages.append(str(exc))
             good = []
-            for p in paths:
+            for p in (Path(p) for p in self.settings.bundle_paths):
                 if p.exists():
                     good.append(p)
                 else:
                     self.messages.append(f"bundle path {p} does not exist")
+            root = Path(self.root) if self.root and is_file_path(self.root) else None
             self._loaded_once = True
             try:
-                self._ws = Workspace(good, use_cache=self.use_cache)
-            except (WorkspaceError, OSError) as exc:
-                try:  # retry without the user's folders so the official bundles still work
+                bs = bundle_set_for_folder(root, [str(p) for p in good], self.settings.openplx_version)
+                if self._ws_before is not None and self._ws_before[0] == bs.key():
+                    self._ws = self._ws_before[1]  # the same set: keep the loaded model and its buffers
+                else:
+                    self._ws = Workspace(use_cache=self.use_cache, bundle_set=bs)
+                self._set_key = bs.key()
+            except (BundleSetError, ConfigError, WorkspaceError, OSError) as exc:
+                self.messages.append(str(exc))
+                try:  # the official bundles still work without the user's setup
                     self._ws = Workspace([], use_cache=self.use_cache)
-                    self.messages.append(str(exc))
                 except (WorkspaceError, OSError) as exc2:
                     self.workspace_error = str(exc2)
                     self.messages.append(str(exc2))
         return self._ws
+
+    def config_changed(self) -> bool:
+        """A plx.toml, pyproject.toml or config.openplx changed: choose the bundle set again.
+        Returns True when the set is a different one (everything must be checked again)."""
+        from plxtools.config import _config_for_dir
+
+        _config_for_dir.cache_clear()
+        if self._ws is None:
+            return False
+        before = self._ws
+        self._ws_before = (self._set_key, before)
+        self._ws = None
+        self.workspace_error = None
+        try:
+            after = self.workspace
+        finally:
+            self._ws_before = None
+        if after is before:
+            return False
+        self._parsers.clear()
+        self._trees.clear()
+        self._states.clear()
+        self.generation += 1
+        return True
 
     @property
     def program(self):
@@ -156,7 +187,8 @@ class AnalysisHost:
 
     def configure(self, settings: Settings) -> bool:
         """New settings; a different bundle path rebuilds the semantic model (returns True then)."""
-        rebuild = [str(p) for p in settings.bundle_paths] != [str(p) for p in self.settings.bundle_paths]
+        rebuild = ([str(p) for p in settings.bundle_paths] != [str(p) for p in self.settings.bundle_paths]
+                   or settings.openplx_version != self.settings.openplx_version)
         self.settings = settings
         if rebuild:
             self._ws = None

@@ -32,6 +32,7 @@ from plxtools.lsp.convert import Positions
 log = logging.getLogger("plxtools.lsp")
 
 CONFIG_SECTION = "openplx"
+CONFIG_FILES = ("plx.toml", "pyproject.toml", "config.openplx")  # a change may choose another bundle set
 
 
 class RequestFailed(JsonRpcException):
@@ -445,6 +446,8 @@ class PlxServer(LanguageServer):
         if isinstance(bp, str):
             bp = [p for p in bp.split(os.pathsep) if p.strip()]
         s.bundle_paths = [self._resolve_setting_path(str(p)) for p in bp if isinstance(p, str)]
+        version = merged.get("openplxVersion") or merged.get("openplx_version")
+        s.openplx_version = version.strip() if isinstance(version, str) and version.strip() else None
         sel = merged.get("select")
         if isinstance(sel, str):
             sel = [c.strip() for c in sel.split(",") if c.strip()]
@@ -601,9 +604,23 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
     async def initialized(ls: PlxServer, params: types.InitializedParams) -> None:
         if ls.cap("workspace.configuration"):
             await _pull_configuration(ls)
+        if ls.cap("workspace.did_change_watched_files.dynamic_registration"):
+            await _watch_files(ls)
         _ = ls.host.workspace  # load the bundles now, not on the first keystroke
         freeze_loaded()
         ls.notify_messages()
+
+    async def _watch_files(ls: PlxServer) -> None:
+        """Ask the editor to report model and config files changed on disk (a changed config may
+        choose another bundle set)."""
+        globs = ["**/*.openplx", *(f"**/{name}" for name in CONFIG_FILES if not name.endswith(".openplx"))]
+        try:
+            await ls.client_register_capability_async(types.RegistrationParams(registrations=[types.Registration(
+                id="plx-watched-files", method=types.WORKSPACE_DID_CHANGE_WATCHED_FILES,
+                register_options=types.DidChangeWatchedFilesRegistrationOptions(
+                    watchers=[types.FileSystemWatcher(glob_pattern=g) for g in globs]))]))
+        except Exception as exc:  # noqa: BLE001 - without watchers the editor's own events still arrive
+            log.info("could not register file watchers: %s", exc)
 
     async def _pull_configuration(ls: PlxServer) -> None:
         try:
@@ -679,11 +696,19 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
     @server_feature(types.WORKSPACE_DID_CHANGE_WATCHED_FILES)
     def did_change_watched(ls: PlxServer, params: types.DidChangeWatchedFilesParams) -> None:
         changed = False
+        config = False
         for ev in params.changes:
             path = ls.path_of(ev.uri)
+            config = config or os.path.basename(path) in CONFIG_FILES
             if path.endswith(".openplx"):
                 changed = ls.host.file_changed_on_disk(path) or changed
-        if changed:
+        if config and ls.host.config_changed():  # a new bundle set: the old model is garbage now
+            gc.unfreeze()
+            _ = ls.host.workspace
+            freeze_loaded()
+            ls.notify_messages()
+            changed = True
+        if changed or config:
             ls.recheck_all()
 
     # -------------------------------------------------------------- hover and navigation

@@ -384,11 +384,18 @@ def workspace_for_folder(folder: Path | None, bundle_paths: list[str] = (), open
     again after a config file (plx.toml, pyproject.toml, config.openplx) changes: an unchanged set
     returns the same Workspace, a changed one a new Workspace.
     """
+    return workspace_for_set(bundle_set_for_folder(folder, bundle_paths, openplx_version), use_cache)
+
+
+def bundle_set_for_folder(folder: Path | None, bundle_paths: list[str] = (), openplx_version: str | None = None):
+    """The bundle set of an editor workspace folder, in the CLI's order (raises BundleSetError).
+
+    A server that edits its model (open buffers, added bundle folders) builds its own Workspace
+    from this set, so two servers or hosts in one process never share mutable state."""
     from plxtools.model.versions import resolve_bundle_set
 
     root = Path(folder) if folder is not None else None
-    bs = resolve_bundle_set([], list(bundle_paths), openplx_version, workspace_root=root)
-    return workspace_for_set(bs, use_cache)
+    return resolve_bundle_set([], list(bundle_paths), openplx_version, workspace_root=root)
 
 
 def describe_bundle_set(ws: Workspace) -> list[dict]:

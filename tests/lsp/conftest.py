@@ -26,6 +26,7 @@ def example_text() -> str:
 
 @pytest_lsp.fixture(scope="module", params=CLIENTS, config=SERVER)
 async def client(request, lsp_client: LanguageClient):
+    accept_registrations(lsp_client)
     result = await lsp_client.initialize_session(types.InitializeParams(
         capabilities=client_capabilities(request.param),
         root_uri=REPO.as_uri(),
@@ -36,6 +37,15 @@ async def client(request, lsp_client: LanguageClient):
     record_diagnostics(lsp_client)
     yield
     await lsp_client.shutdown_session()
+
+
+def accept_registrations(client: LanguageClient) -> None:
+    """Answer client/registerCapability as editors do (pytest-lsp's client has no handler for it)."""
+    client.registrations = []
+
+    @client.feature(types.CLIENT_REGISTER_CAPABILITY)
+    def _register(params: types.RegistrationParams) -> None:
+        client.registrations.extend(params.registrations)
 
 
 def record_diagnostics(client: LanguageClient) -> None:

@@ -24,6 +24,7 @@ class RawServer:
                                      env={**os.environ, **(env or {})})
         self.out: queue.Queue = queue.Queue()
         self.pending: list[dict] = []
+        self.server_requests: list[dict] = []
         self.next_id = 1000
         threading.Thread(target=self._read, daemon=True).start()
         self.stderr: list[bytes] = []
@@ -75,8 +76,8 @@ class RawServer:
                 return self.pending.pop(i)
         while True:
             m = self.out.get(timeout=timeout)
-            if "method" in m and "id" in m:  # a server request (workspace/configuration): answer it
-                self.send({"jsonrpc": "2.0", "id": m["id"], "result": [{}]})
+            if "method" in m and "id" in m:  # a server request: answer it, keep it for the test
+                self._answer(m)
                 continue
             if m.get("id") == msg_id and "method" not in m:
                 return m
@@ -89,11 +90,41 @@ class RawServer:
         while True:
             m = self.out.get(timeout=timeout)
             if "method" in m and "id" in m:
-                self.send({"jsonrpc": "2.0", "id": m["id"], "result": [{}]})
+                self._answer(m)
                 continue
             if m.get("method") == method and where(m.get("params")):
                 return m["params"]
             self.pending.append(m)
+
+    def _answer(self, m: dict) -> None:
+        """Answer a request from the server as an editor would, and remember it."""
+        if m["method"] == "workspace/configuration":
+            result = [{} for _ in (m.get("params") or {}).get("items", [])]
+        else:
+            result = None
+        self.send({"jsonrpc": "2.0", "id": m["id"], "result": result})
+        self.server_requests.append(m)
+
+    def notification_request(self, method: str, timeout: float = 30) -> dict:
+        """The params of the first request `method` the server sent (answered already)."""
+        import time
+
+        deadline = time.monotonic() + timeout
+        while True:
+            for m in self.server_requests:
+                if m["method"] == method:
+                    return m.get("params")
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise TimeoutError(f"the server sent no {method} request")
+            try:
+                m = self.out.get(timeout=left)
+            except queue.Empty:
+                continue
+            if "method" in m and "id" in m:
+                self._answer(m)
+            else:
+                self.pending.append(m)
 
     def initialize(self, capabilities: dict | None = None, options: dict | None = None) -> dict:
         got = self.request("initialize", {"processId": None, "rootUri": None, "capabilities": capabilities or {},

@@ -13,6 +13,7 @@ from pytest_lsp import ClientServerConfig, LanguageClient, client_capabilities
 
 from tests.lsp.conftest import (
     EXAMPLE_URI,
+    accept_registrations,
     REPO,
     example_text,
     open_and_wait,
@@ -30,6 +31,7 @@ FAULTY = "textDocument/foldingRange"  # made to fail on purpose in this module's
 @pytest_lsp.fixture(scope="module", params=["neovim", "visual-studio-code"], config=ClientServerConfig(
     server_command=[sys.executable, "-m", "plxtools", "lsp"], server_env={**os.environ, "PLX_LSP_FAULT": FAULTY}))
 async def client(request, lsp_client: LanguageClient):
+    accept_registrations(lsp_client)
     result = await lsp_client.initialize_session(types.InitializeParams(
         capabilities=client_capabilities(request.param), root_uri=REPO.as_uri(),
         initialization_options={"diagnosticMode": "push"}))
