@@ -151,7 +151,7 @@ def _run_lint(args) -> int:
 def _run_rule(args) -> int:
     import json
 
-    from plxtools.lint.registry import all_rules, get
+    from plxtools.rules.registry import all_rules, get
 
     if args.all or not args.code:
         rules = all_rules()
@@ -180,20 +180,14 @@ def _run_migrate(args) -> int:
 
 
 def _run_fmt(args) -> int:
-    try:
-        from plxtools.fmt.cli import run_fmt
-    except ImportError:
-        print("plx fmt: the formatter is not available in this build", file=sys.stderr)
-        return 2
+    from plxtools.fmt.cli import run_fmt
+
     return run_fmt(args)
 
 
 def _run_check(args) -> int:
-    try:
-        from plxtools.check.cli import run_check
-    except ImportError:
-        print("plx check: the checker is not available in this build", file=sys.stderr)
-        return 2
+    from plxtools.check.cli import run_check
+
     return run_check(args)
 
 
@@ -201,7 +195,9 @@ def _run_lsp(args) -> int:
     try:
         from plxtools.lsp.server import run_server
     except ImportError as exc:
-        print(f"plx lsp: the language server is not available: {exc}", file=sys.stderr)
+        if (exc.name or "").startswith("plxtools"):
+            raise  # our own code is never optional
+        print(f"plx lsp: the language server needs {exc.name}, which is not installed: {exc}", file=sys.stderr)
         return 2
     return run_server(args)
 

@@ -176,7 +176,7 @@ def motion_diagnostics(fc: FileCheck) -> list[Diagnostic]:
 
 
 def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO, *, simulate: bool) -> None:
-    from plxtools.lint.reporters import _summary_line, render_text as lint_text
+    from plxtools.rules.reporters import _summary_line, render_text as lint_text
 
     rich = _use_rich(stream)
     lint_text(diags, stream, summary=False)

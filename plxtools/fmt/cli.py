@@ -15,7 +15,8 @@ from pathlib import Path
 from plxtools.config import ConfigError, config_for
 from plxtools.fileio import write_atomic
 from plxtools.fmt.api import FormatResult, format_bytes
-from plxtools.lint.runner import UsageError, discover, unified_diff
+from plxtools.discovery import UsageError, discover
+from plxtools.fileio import unified_diff
 
 
 @dataclass(slots=True)

@@ -15,30 +15,26 @@ def _codes(s: str | None) -> list[str]:
 
 
 def run_lint(args) -> int:
-    from plxtools.lint.reporters import render
+    from plxtools.rules.reporters import render
 
     try:
         files = discover(args.paths)
     except (UsageError, ConfigError) as exc:
         print(f"plx lint: {exc}", file=sys.stderr)
         return 2
-    workspace = None
+    from plxtools.model.workspace import workspace_for_cli
+
     try:
-        from plxtools.model.workspace import workspace_for_cli
-    except ImportError:
-        workspace_for_cli = None
-    if workspace_for_cli is not None:
-        try:
-            workspace = workspace_for_cli(args.bundle_path, files, use_cache=not args.no_cache,
-                                          openplx_version=getattr(args, "openplx_version", None))
-        except (UsageError, ConfigError, ValueError) as exc:
-            print(f"plx lint: {exc}", file=sys.stderr)
-            return 2
-    if getattr(args, "show_settings", False) and workspace is not None:
+        workspace = workspace_for_cli(args.bundle_path, files, use_cache=not args.no_cache,
+                                      openplx_version=getattr(args, "openplx_version", None))
+    except (UsageError, ConfigError, ValueError) as exc:
+        print(f"plx lint: {exc}", file=sys.stderr)
+        return 2
+    if getattr(args, "show_settings", False):
         from plxtools.bundles_cli import print_settings
 
         return print_settings(workspace)
-    note = workspace.bundle_set.announcement() if workspace is not None else None
+    note = workspace.bundle_set.announcement()
     if note and not args.quiet and args.output_format == "text":
         print(f"plx lint: {note}", file=sys.stderr)
     all_diags = []
@@ -80,7 +76,7 @@ def run_lint(args) -> int:
         for (code, sev), n in sorted(counts.items(), key=lambda kv: (-kv[1], kv[0])):
             print(f"{n:6}  {code:6} {sev}")
     elif args.output_format == "text" and args.quiet:
-        from plxtools.lint.reporters import render_text
+        from plxtools.rules.reporters import render_text
 
         render_text(all_diags, sys.stdout, summary=False)
     else:

@@ -193,7 +193,7 @@ def test_motion_warnings_are_in_the_simulation_findings():
 
 def test_backend_notes_are_registered_rule_codes(tmp_path):
     """One naming scheme: everything the backend says is a registered A1xx code."""
-    from plxtools.lint.registry import get
+    from plxtools.rules.registry import get
 
     _, doc = _json("--simulate", "--duration", "0.5", str(REPO / "examples" / "boxtruck" / "boxtruck.openplx"))
     backend = [d for d in doc["diagnostics"] if d["code"].startswith("A1")]

@@ -20,7 +20,7 @@ def test_case_file(path: Path, workspace):
 
 
 def test_every_semantic_code_has_a_case_or_a_dedicated_test():
-    from plxtools.lint.registry import all_rules
+    from plxtools.rules.registry import all_rules
 
     covered = set()
     for p in (CASES / "lint").glob("*.expected"):

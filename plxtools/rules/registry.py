@@ -52,7 +52,7 @@ def rule(code: str, name: str, severity: Severity, summary: str, why: str, *, ex
 
 def _load() -> None:
     # importing the catalogues registers their rules
-    from plxtools.lint import catalog  # noqa: F401
+    from plxtools.rules import catalog  # noqa: F401
 
 
 def all_rules() -> list[Rule]:

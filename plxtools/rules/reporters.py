@@ -164,7 +164,7 @@ def render(diags: list[Diagnostic], fmt: str, stream: TextIO | None = None, *,
     elif fmt == "github":
         render_github(diags, stream)
     elif fmt == "sarif":
-        from plxtools.lint.registry import describe_codes
+        from plxtools.rules.registry import describe_codes
 
         json.dump(sarif_document(diags, describe_codes({d.code for d in diags})), stream, indent=2)
         stream.write("\n")

@@ -1,7 +1,7 @@
 """Semantic rules: names (N), types (T), model structure (M), bundles (B), conventions (C)."""
 
 from plxtools.diagnostics import Severity
-from plxtools.lint.registry import rule
+from plxtools.rules.registry import rule
 
 E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
 
