@@ -22,10 +22,14 @@ def _add_lint(sub) -> None:
         "report coded diagnostics. Exit 0 when there is no error-severity diagnostic, 1 when there "
         "is, 2 on usage or internal errors.",
     )
-    p.add_argument("paths", nargs="*", default=["."], metavar="PATH", help="files or folders (default: .)")
+    p.add_argument("paths", nargs="*", default=["."], metavar="PATH",
+                   help="files or folders (default: .); '-' lints stdin")
+    p.add_argument("--stdin-filename", metavar="PATH",
+                   help="the path of the file given on stdin (for config, bundles and messages)")
     p.add_argument("--output-format", choices=OUTPUT_FORMATS, default="text",
                    help="text (default), json, github (workflow annotations) or sarif (SARIF 2.1.0)")
-    p.add_argument("--fix", action="store_true", help="apply safe fixes in place")
+    p.add_argument("--fix", action="store_true",
+                   help="apply safe fixes in place (with '-': print the fixed text, diagnostics to stderr)")
     p.add_argument("--unsafe-fixes", action="store_true", help="with --fix or --diff, also apply unsafe fixes")
     p.add_argument("--diff", action="store_true",
                    help="print the fixes (safe ones; all with --unsafe-fixes) as a unified diff; write nothing (exit 0)")

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 from hypothesis import settings
+from hypothesis.configuration import set_hypothesis_home_dir
 from hypothesis.database import DirectoryBasedExampleDatabase
 
 REPO = Path(__file__).resolve().parent.parent
@@ -17,6 +18,7 @@ CASES = REPO / "tests" / "cases"
 # does) and hypothesis' example database; pytest's own cache is off (pyproject's addopts).
 _TMP = Path(tempfile.gettempdir()) / f"plxtools-tests-{os.getuid() if hasattr(os, 'getuid') else 'user'}"
 os.environ.setdefault("PLX_CACHE_DIR", str(_TMP / "cache"))
+set_hypothesis_home_dir(str(_TMP / "hypothesis-home"))
 settings.register_profile("plxtools", database=DirectoryBasedExampleDatabase(str(_TMP / "hypothesis")))
 settings.load_profile("plxtools")
 
