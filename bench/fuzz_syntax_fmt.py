@@ -80,7 +80,7 @@ def main() -> int:
 
     from plxtools.config import Config
     from plxtools.fmt import format_text
-    from plxtools.lint.runner import analyse_tree
+    from plxtools.rules.analysis import analyse_tree
     from plxtools.syntax import parse_text
     from tests.fmt.helpers import lint_signature, oracle_tokens
 

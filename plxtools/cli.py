@@ -22,10 +22,14 @@ def _add_lint(sub) -> None:
         "report coded diagnostics. Exit 0 when there is no error-severity diagnostic, 1 when there "
         "is, 2 on usage or internal errors.",
     )
-    p.add_argument("paths", nargs="*", default=["."], metavar="PATH", help="files or folders (default: .)")
+    p.add_argument("paths", nargs="*", default=["."], metavar="PATH",
+                   help="files or folders (default: .); '-' lints stdin")
+    p.add_argument("--stdin-filename", metavar="PATH",
+                   help="the path of the file given on stdin (for config, bundles and messages)")
     p.add_argument("--output-format", choices=OUTPUT_FORMATS, default="text",
                    help="text (default), json, github (workflow annotations) or sarif (SARIF 2.1.0)")
-    p.add_argument("--fix", action="store_true", help="apply safe fixes in place")
+    p.add_argument("--fix", action="store_true",
+                   help="apply safe fixes in place (with '-': print the fixed text, diagnostics to stderr)")
     p.add_argument("--unsafe-fixes", action="store_true", help="with --fix or --diff, also apply unsafe fixes")
     p.add_argument("--diff", action="store_true",
                    help="print the fixes (safe ones; all with --unsafe-fixes) as a unified diff; write nothing (exit 0)")
@@ -151,7 +155,7 @@ def _run_lint(args) -> int:
 def _run_rule(args) -> int:
     import json
 
-    from plxtools.lint.registry import all_rules, get
+    from plxtools.rules.registry import all_rules, get
 
     if args.all or not args.code:
         rules = all_rules()
@@ -180,20 +184,14 @@ def _run_migrate(args) -> int:
 
 
 def _run_fmt(args) -> int:
-    try:
-        from plxtools.fmt.cli import run_fmt
-    except ImportError:
-        print("plx fmt: the formatter is not available in this build", file=sys.stderr)
-        return 2
+    from plxtools.fmt.cli import run_fmt
+
     return run_fmt(args)
 
 
 def _run_check(args) -> int:
-    try:
-        from plxtools.check.cli import run_check
-    except ImportError:
-        print("plx check: the checker is not available in this build", file=sys.stderr)
-        return 2
+    from plxtools.check.cli import run_check
+
     return run_check(args)
 
 
@@ -201,7 +199,9 @@ def _run_lsp(args) -> int:
     try:
         from plxtools.lsp.server import run_server
     except ImportError as exc:
-        print(f"plx lsp: the language server is not available: {exc}", file=sys.stderr)
+        if (exc.name or "").startswith("plxtools"):
+            raise  # our own code is never optional
+        print(f"plx lsp: the language server needs {exc.name}, which is not installed: {exc}", file=sys.stderr)
         return 2
     return run_server(args)
 

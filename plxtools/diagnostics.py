@@ -88,8 +88,8 @@ class Diagnostic:
                 "end": {"line": self.span.end.line + 1, "column": self.span.end.column + 1},
             },
         }
-        if self.help:
-            out["help"] = self.help
+        out["help"] = self.help or None
+        out["fix"] = None
         if self.fix is not None:
             out["fix"] = {
                 "message": self.fix.message,

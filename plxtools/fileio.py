@@ -15,6 +15,7 @@ in words meant for the user; callers report it and exit 2.
 
 from __future__ import annotations
 
+import difflib
 import os
 import stat
 import tempfile
@@ -103,3 +104,9 @@ def _sync_folder(folder: Path) -> None:
         pass
     finally:
         os.close(fd)
+
+
+def unified_diff(path: str, old: str, new: str) -> str:
+    return "".join(
+        difflib.unified_diff(old.splitlines(True), new.splitlines(True), f"a/{path}", f"b/{path}")
+    )

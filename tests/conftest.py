@@ -2,12 +2,25 @@ import glob
 import os
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
+from hypothesis.configuration import set_hypothesis_home_dir
+from hypothesis.database import DirectoryBasedExampleDatabase
 
 REPO = Path(__file__).resolve().parent.parent
 CASES = REPO / "tests" / "cases"
+
+# Hermetic: the run leaves nothing in the working tree or the user's cache (CI checks `git status`).
+# One folder per user outside the tree holds plx's bundle cache (unless PLX_CACHE_DIR is set, as CI
+# does) and hypothesis' example database; pytest's own cache is off (pyproject's addopts).
+_TMP = Path(tempfile.gettempdir()) / f"plxtools-tests-{os.getuid() if hasattr(os, 'getuid') else 'user'}"
+os.environ.setdefault("PLX_CACHE_DIR", str(_TMP / "cache"))
+set_hypothesis_home_dir(str(_TMP / "hypothesis-home"))
+settings.register_profile("plxtools", database=DirectoryBasedExampleDatabase(str(_TMP / "hypothesis")))
+settings.load_profile("plxtools")
 
 
 def bundle_root() -> Path:

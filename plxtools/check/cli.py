@@ -29,7 +29,7 @@ def _artefact_path(template: str, index: int, count: int) -> Path:
 def run_check(args) -> int:
     from plxtools.check.pipeline import Skip, analyse, blocking_reason, run_backend
     from plxtools.config import ConfigError, config_for
-    from plxtools.lint.runner import UsageError, discover
+    from plxtools.discovery import UsageError, discover
 
     if args.duration is not None and not (math.isfinite(args.duration) and 0 < args.duration <= MAX_DURATION):
         print(f"plx check: --duration must be a number of seconds in (0, {MAX_DURATION:g}]; got {args.duration:g}",
@@ -86,7 +86,7 @@ def run_check(args) -> int:
                   default=_json_default)
         sys.stdout.write("\n")
     elif fmt in ("github", "sarif"):
-        from plxtools.lint.reporters import render
+        from plxtools.rules.reporters import render
 
         render(diags, fmt, sys.stdout, files_checked=len(results))
     else:

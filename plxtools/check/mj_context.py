@@ -34,6 +34,7 @@ class BuildContext:
     def for_scene(cls, scene: Scene) -> "BuildContext":
         import mujoco
 
+        _keep_mujoco_warnings_in_process(mujoco)
         out = CompiledScene(scene=scene)
         out.spec = mujoco.MjSpec()
         return cls(mujoco, scene, out, out.spec)
@@ -68,3 +69,23 @@ class BuildContext:
             self.notes.append(note_from_compile_error(err, self.names))
             self.out.model = None
             raise CompileFailed(stage) from err
+
+
+MUJOCO_WARNINGS: list[str] = []  # MuJoCo's own warnings of this process (the last 100)
+
+
+def _keep_mujoco_warnings_in_process(mujoco) -> None:
+    """MuJoCo's default warning handler appends to MUJOCO_LOG.TXT in the current folder, which is
+    the user's project: keep its warnings in memory (and the debug log) instead. The blow-ups they
+    announce are reported by the simulation monitors."""
+    if mujoco.get_mju_user_warning() is not None:
+        return
+
+    def on_warning(text: str) -> None:
+        import logging
+
+        logging.getLogger("plxtools.check").debug("MuJoCo warning: %s", text)
+        MUJOCO_WARNINGS.append(text)
+        del MUJOCO_WARNINGS[:-100]
+
+    mujoco.set_mju_user_warning(on_warning)

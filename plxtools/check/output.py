@@ -8,7 +8,7 @@ from typing import Any, TextIO
 
 from plxtools.check.assemble import Placement
 from plxtools.check.pipeline import FileCheck, Skip
-from plxtools.diagnostics import Diagnostic
+from plxtools.diagnostics import Diagnostic, Severity
 
 
 def _r(x: float, nd: int = 6) -> float:
@@ -176,7 +176,7 @@ def motion_diagnostics(fc: FileCheck) -> list[Diagnostic]:
 
 
 def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO, *, simulate: bool) -> None:
-    from plxtools.lint.reporters import _summary_line, render_text as lint_text
+    from plxtools.rules.reporters import _summary_line, render_text as lint_text
 
     rich = _use_rich(stream)
     lint_text(diags, stream, summary=False)
@@ -232,15 +232,33 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
     if diags or results:
         stream.write("\n") if console is None else console.print()
     summary = _summary_line(diags, len(results))
+    mapping = _mapping_notes(diags)
+    if mapping:  # a first run shows these: say they are not problems in the model
+        what = "notes on how the model is mapped to MuJoCo, not problems in it"
+        if mapping == 1:
+            what = "a note on how the model is mapped to MuJoCo, not a problem in it"
+        summary = summary.rstrip(".") + (f": {what}." if mapping == len(diags) else
+                                         f" ({mapping} of them {what}).")
     broken = sum(1 for fc in results if fc.internal_error is not None)
     if broken:  # never "All checks passed" when a file could not be checked
         summary = (f"{summary.rstrip('.')}; {broken} file{'s' if broken != 1 else ''} could not be checked "
-                   f"(internal error).") if diags else f"{broken} of {len(results)} file(s) could not be checked " \
-            f"(internal error)."
+                   f"(internal error).") if diags else f"{broken} of {len(results)} " \
+            f"file{'s' if len(results) != 1 else ''} could not be checked (internal error)."
     if console is not None:
         console.print(summary, style="bold" if diags else "green")
     else:
         stream.write(summary + "\n")
+
+
+def _mapping_notes(diags: list[Diagnostic]) -> int:
+    """How many diagnostics are infos of the simulate stage (how a value was mapped to MuJoCo)."""
+    from plxtools.rules.registry import get
+
+    n = 0
+    for d in diags:
+        rule = get(d.code)
+        n += d.severity is Severity.INFO and rule is not None and rule.stage == "simulate"
+    return n
 
 
 def _line(stream: TextIO, console, text: str, style: str | None) -> None:

@@ -22,6 +22,7 @@ from plxtools.check.instance import Builder
 from plxtools.check.report import Reporter
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Pos, Severity, Span
 from plxtools.model.symbols import ModelSym
+from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import ast, parse_bytes
 
 
@@ -89,7 +90,7 @@ class FileCheck:
 
 
 def _pick_root(program, unit, name: str | None, rep: Reporter) -> ModelSym | None:
-    from plxtools.model.completeness import root_model
+    from plxtools.rules.completeness import root_model
 
     if not name:
         root = root_model(program, unit)
@@ -130,7 +131,7 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
         fc.skip = Skip.NOT_TEXT
         fc.diagnostics = _finish(tree, raw, cfg)
         return fc
-    fa = workspace.analyse(tree)
+    fa = analyse_file(workspace, tree)
     raw.extend(fa.diagnostics)
     fc.timings["lint"] = time.perf_counter() - t0
     rep = Reporter(fa.unit, str(path), skip_codes=_owned_by_lint(raw))
@@ -249,6 +250,6 @@ def _owned_by_lint(lint: list[Diagnostic]) -> frozenset[str]:
 
 def _finish(tree: ast.File, diags: list[Diagnostic], cfg) -> list[Diagnostic]:
     """Lint's own config filtering and suppressions, over lint's and check's findings together."""
-    from plxtools.lint.runner import finalize
+    from plxtools.rules.analysis import finalize
 
     return finalize(tree, diags, cfg)

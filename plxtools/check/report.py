@@ -12,7 +12,7 @@ from plxtools.syntax import ast
 
 
 def _rule_severity(code: str) -> Severity:
-    from plxtools.lint.registry import get
+    from plxtools.rules.registry import get
 
     r = get(code)
     return r.severity if r is not None else Severity.WARNING

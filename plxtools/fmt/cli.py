@@ -15,7 +15,8 @@ from pathlib import Path
 from plxtools.config import ConfigError, config_for
 from plxtools.fileio import write_atomic
 from plxtools.fmt.api import FormatResult, format_bytes
-from plxtools.lint.runner import UsageError, discover, unified_diff
+from plxtools.discovery import UsageError, discover
+from plxtools.fileio import unified_diff
 
 
 @dataclass(slots=True)
@@ -57,7 +58,7 @@ def _report_refusal(name: str, result: FormatResult) -> None:
         _say("This is a bug in plxtools; please report it with the file.")
         return
     for d in result.diagnostics:
-        _say(f"{name}:{d.span.start.line + 1}:{d.span.start.column + 1}: {d.code} {d.message}")
+        _say(f"{name}:{d.span.start.line + 1}:{d.span.start.column + 1}: {d.severity.value} {d.code} {d.message}")
     _say(f"{name}: not formatted: it has syntax errors")
 
 

@@ -45,7 +45,7 @@ def _lint_signature(tree: ast.File) -> list[tuple[str, str, str, str]]:
     from pathlib import Path
 
     from plxtools.config import Config, config_for
-    from plxtools.lint.runner import analyse_tree
+    from plxtools.rules.analysis import analyse_tree
 
     cfg = config_for(Path(tree.path)) if tree.path else Config()
     cfg = replace(cfg, ignore=list(cfg.ignore) + list(LAYOUT_CODES))

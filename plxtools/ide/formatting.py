@@ -12,10 +12,8 @@ class FormattingRefused(Exception):
 
 
 def _formatter():
-    try:
-        from plxtools.fmt import format_range, format_text
-    except ImportError as exc:  # pragma: no cover - only while the formatter is being built
-        raise FormattingRefused(f"the formatter is not available in this build ({exc})") from None
+    from plxtools.fmt import format_range, format_text
+
     return format_text, format_range
 
 

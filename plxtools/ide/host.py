@@ -19,6 +19,7 @@ from pathlib import Path
 from plxtools.config import Config, ConfigError, config_for
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity
 from plxtools.ide.incremental import IncrementalParser
+from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import ast, parse_text
 
 
@@ -78,22 +79,6 @@ class FileState:
             j -= 1
         hits.sort(key=lambda o: (o.span.end.offset - o.span.start.offset, o.kind != "definition"))
         return hits
-
-
-class _Precomputed:
-    """Hands lint the analysis the host already made, so a file is checked once, not twice."""
-
-    def __init__(self, workspace, analysis):
-        self._ws = workspace
-        self._analysis = analysis
-
-    def analyse(self, tree):
-        if self._analysis is not None and self._analysis.unit.tree is tree:
-            return self._analysis
-        return self._ws.analyse(tree)
-
-    def __getattr__(self, name):
-        return getattr(self._ws, name)
 
 
 @dataclass(slots=True)
@@ -391,7 +376,7 @@ class AnalysisHost:
         analysis = None
         if ws is not None:
             before = ws.program.units.get(path)
-            analysis = ws.analyse(tree)
+            analysis = analyse_file(ws, tree)
             if before is not None and analysis.unit is not before and analysis.unit.bundle is not None:
                 self.generation += 1  # a bundle file's symbols changed: everything may see them
         diags = self._lint(tree, analysis)
@@ -430,7 +415,7 @@ class AnalysisHost:
         return st
 
     def _lint(self, tree: ast.File, analysis) -> list[Diagnostic]:
-        from plxtools.lint.runner import analyse_tree
+        from plxtools.rules.analysis import final_diagnostics
 
         cfg = self.config(tree.path)
         ws = self._ws
@@ -439,7 +424,7 @@ class AnalysisHost:
             diags.append(Diagnostic("B000", f"OpenPLX bundles unavailable: {self.workspace_error}", EMPTY_SPAN,
                                     Severity.WARNING, file=tree.path))
             return diags
-        return analyse_tree(tree, cfg, _Precomputed(ws, analysis))
+        return final_diagnostics(tree, cfg, analysis)
 
     def dependents(self, path: str) -> list[str]:
         """Open documents whose diagnostics may change when `path` changes."""

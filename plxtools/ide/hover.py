@@ -106,7 +106,7 @@ def _rule_hover(st: FileState, offset: int) -> HoverResult | None:
         for cm in _CODE.finditer(m.group(1)):
             a, b = base + cm.start(), base + cm.end()
             if a <= offset <= b:
-                from plxtools.lint.registry import get
+                from plxtools.rules.registry import get
 
                 r = get(cm.group())
                 if r is None:

@@ -2,90 +2,143 @@
 
 from __future__ import annotations
 
+import os
 import sys
 from collections import Counter
+from pathlib import Path
 
-from plxtools.config import ConfigError, config_for
+from plxtools.config import Config, ConfigError, config_for
 from plxtools.diagnostics import Severity
-from plxtools.lint.runner import UsageError, discover, fixed_text, lint_file, unified_diff
+from plxtools.lint.runner import FileResult, UsageError, discover, fixed_text, lint_file, unified_diff
 
 
 def _codes(s: str | None) -> list[str]:
     return [c.strip().upper() for c in s.split(",") if c.strip()] if s else []
 
 
-def run_lint(args) -> int:
-    from plxtools.lint.reporters import render
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}{'' if n == 1 else 's'}"
 
+
+def _check_config_codes(cfg: Config, seen: set) -> None:
+    """Every code or prefix a config file names must exist (raises ValueError)."""
+    from plxtools.rules.registry import check_selectors
+
+    if cfg.source is None or cfg.source in seen:
+        return
+    seen.add(cfg.source)
+    for key, codes in (("select", cfg.select or []), ("ignore", cfg.ignore), ("extend-select", cfg.extend_select),
+                       *((f"per-file-ignores.{k}", v) for k, v in cfg.per_file_ignores.items())):
+        check_selectors(codes, f"{cfg.source}: {key}")
+
+
+def run_lint(args) -> int:
+    from plxtools.rules.registry import check_selectors
+    from plxtools.rules.reporters import render
+
+    paths = list(args.paths or ["."])
+    stdin = "-" in paths
     try:
-        files = discover(args.paths)
-    except (UsageError, ConfigError) as exc:
+        check_selectors(_codes(args.select), "--select")
+        check_selectors(_codes(args.ignore), "--ignore")
+        if stdin and len(paths) > 1:
+            raise UsageError("'-' (stdin) cannot be combined with other paths")
+        if stdin and args.diff:
+            raise UsageError("--diff cannot be used with '-' (stdin); use --fix to print the fixed text")
+        name = getattr(args, "stdin_filename", None) or "-"
+        files = [Path(name)] if stdin else discover(paths)
+    except (UsageError, ConfigError, ValueError) as exc:
         print(f"plx lint: {exc}", file=sys.stderr)
         return 2
-    workspace = None
+    from plxtools.model.workspace import workspace_for_cli
+
     try:
-        from plxtools.model.workspace import workspace_for_cli
-    except ImportError:
-        workspace_for_cli = None
-    if workspace_for_cli is not None:
-        try:
-            workspace = workspace_for_cli(args.bundle_path, files, use_cache=not args.no_cache,
-                                          openplx_version=getattr(args, "openplx_version", None))
-        except (UsageError, ConfigError, ValueError) as exc:
-            print(f"plx lint: {exc}", file=sys.stderr)
-            return 2
-    if getattr(args, "show_settings", False) and workspace is not None:
+        targets = [f for f in files if f.exists()] if stdin else files
+        workspace = workspace_for_cli(args.bundle_path, targets, use_cache=not args.no_cache,
+                                      openplx_version=getattr(args, "openplx_version", None))
+    except (UsageError, ConfigError, ValueError) as exc:
+        print(f"plx lint: {exc}", file=sys.stderr)
+        return 2
+    if getattr(args, "show_settings", False):
         from plxtools.bundles_cli import print_settings
 
         return print_settings(workspace)
-    note = workspace.bundle_set.announcement() if workspace is not None else None
+    note = workspace.bundle_set.announcement()
     if note and not args.quiet and args.output_format == "text":
         print(f"plx lint: {note}", file=sys.stderr)
     all_diags = []
     fixed_files = 0
     fixes_applied = 0
+    seen_configs: set = set()
     for f in files:
         try:
-            cfg = config_for(f)
-        except ConfigError as exc:
+            cfg = config_for(f if not stdin or f.name != "-" else Path(os.getcwd()) / "-")
+            _check_config_codes(cfg, seen_configs)
+        except (ConfigError, ValueError) as exc:
             print(f"plx lint: {exc}", file=sys.stderr)
             return 2
         if args.select:
             cfg.select = _codes(args.select)
         if args.ignore:
             cfg.ignore = cfg.ignore + _codes(args.ignore)
-        result = lint_file(f, cfg, workspace)
+        result = _lint_stdin(f, cfg, workspace) if stdin else lint_file(f, cfg, workspace)
         diags = result.diagnostics
-        if (args.fix or args.diff) and result.tree is not None and not result.tree.has_errors_of_syntax():
-            new_text, n = fixed_text(result.tree, diags, args.unsafe_fixes)
+        fixable = (args.fix or args.diff) and result.tree is not None and not result.tree.has_errors_of_syntax()
+        new_text, n = fixed_text(result.tree, diags, args.unsafe_fixes) if fixable else (None, 0)
+        if stdin and args.fix:
+            # like `plx fmt -`: the (fixed) text goes to stdout, the remaining diagnostics to stderr
+            text = new_text if n else (result.tree.text if result.tree is not None else "")
+            sys.stdout.write(text)
             if n:
-                if args.diff:
-                    sys.stdout.write(unified_diff(str(f), result.tree.text, new_text))
-                else:
-                    from plxtools.fileio import write_atomic
+                fixes_applied += n
+                fixed_files += 1
+                diags = _lint_text(str(f), text, cfg, workspace).diagnostics
+        elif n:
+            if args.diff:
+                sys.stdout.write(unified_diff(str(f), result.tree.text, new_text))
+            else:
+                from plxtools.fileio import write_atomic
 
-                    try:
-                        write_atomic(f, new_text, result.tree.had_bom)
-                    except OSError as exc:  # the user's file system, not a bug: say what happened
-                        print(f"plx lint: {exc.strerror}", file=sys.stderr)
-                        return 2
-                    fixed_files += 1
-                    fixes_applied += n
-                    diags = lint_file(f, cfg, workspace).diagnostics
+                try:
+                    write_atomic(f, new_text, result.tree.had_bom)
+                except OSError as exc:  # the user's file system, not a bug: say what happened
+                    print(f"plx lint: {exc.strerror}", file=sys.stderr)
+                    return 2
+                fixed_files += 1
+                fixes_applied += n
+                diags = lint_file(f, cfg, workspace).diagnostics
         all_diags.extend(diags)
     if args.diff:
         return 0
+    out = sys.stderr if stdin and args.fix else sys.stdout
     if args.statistics:
         counts = Counter((d.code, d.severity.value) for d in all_diags)
         for (code, sev), n in sorted(counts.items(), key=lambda kv: (-kv[1], kv[0])):
-            print(f"{n:6}  {code:6} {sev}")
+            print(f"{n:6}  {code:6} {sev}", file=out)
     elif args.output_format == "text" and args.quiet:
-        from plxtools.lint.reporters import render_text
+        from plxtools.rules.reporters import render_text
 
-        render_text(all_diags, sys.stdout, summary=False)
+        render_text(all_diags, out, summary=False)
     else:
-        render(all_diags, args.output_format, sys.stdout, files_checked=len(files))
+        render(all_diags, args.output_format, out, files_checked=len(files))
     if args.fix and fixes_applied and args.output_format == "text":
-        print(f"Fixed {fixes_applied} problem(s) in {fixed_files} file(s).")
+        print(f"Fixed {_plural(fixes_applied, 'problem')} in {_plural(fixed_files, 'file')}.", file=out)
     has_error = any(d.severity == Severity.ERROR for d in all_diags)
     return 0 if (args.exit_zero or not has_error) else 1
+
+
+def _lint_stdin(name: Path, cfg: Config, workspace) -> FileResult:
+    data = sys.stdin.buffer.read()
+    from plxtools.rules.analysis import analyse_tree
+    from plxtools.syntax import parse_bytes
+
+    tree = parse_bytes(data, str(name))
+    return FileResult(name, tree, analyse_tree(tree, cfg, workspace))
+
+
+def _lint_text(name: str, text: str, cfg: Config, workspace) -> FileResult:
+    from plxtools.rules.analysis import analyse_tree
+    from plxtools.syntax import parse_text
+
+    tree = parse_text(text, name)
+    return FileResult(Path(name), tree, analyse_tree(tree, cfg, workspace))

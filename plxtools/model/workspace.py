@@ -288,15 +288,12 @@ class Workspace:
         return unit
 
     def analyse(self, tree: ast.File) -> FileAnalysis:
+        """What the model itself says about a file: names, types, bundle config. The rules that
+        judge a resolved file (completeness, conventions) run on top of this in plxtools.rules."""
         unit = self.unit_for(tree)
         checker = Checker(self.program, unit, self.known_annotations)
         checker.run()
         diags = checker.diags + self._bundle_config_diagnostics(tree)
-        from plxtools.model.completeness import completeness_diagnostics
-        from plxtools.model.style import style_diagnostics
-
-        diags += completeness_diagnostics(self.program, unit, checker)
-        diags += style_diagnostics(self.program, unit, checker)
         for d in diags:
             d.file = tree.path
         self._help_for_unloaded_bundles(tree, diags)

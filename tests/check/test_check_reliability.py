@@ -193,7 +193,7 @@ def test_motion_warnings_are_in_the_simulation_findings():
 
 def test_backend_notes_are_registered_rule_codes(tmp_path):
     """One naming scheme: everything the backend says is a registered A1xx code."""
-    from plxtools.lint.registry import get
+    from plxtools.rules.registry import get
 
     _, doc = _json("--simulate", "--duration", "0.5", str(REPO / "examples" / "boxtruck" / "boxtruck.openplx"))
     backend = [d for d in doc["diagnostics"] if d["code"].startswith("A1")]
@@ -327,3 +327,14 @@ def test_internal_error_never_ends_in_all_checks_passed():
     render_text([FileCheck("a.openplx", skip=Skip.INTERNAL, internal_error="boom")], [], out, simulate=True)
     text = out.getvalue()
     assert "All checks passed" not in text and "could not be checked (internal error)" in text
+
+
+def test_a_blow_up_leaves_no_mujoco_log_in_the_users_folder(tmp_path):
+    """MuJoCo's default handler appends its warnings to MUJOCO_LOG.TXT in the current folder."""
+    blow = ("Box is Physics3D.Bodies.RigidBody:\n    geometry is Physics3D.Geometries.Box:\n        size: {1, 1, 1}\n"
+            "    inertia.mass: 1\n    kinematics.initial_local_linear_velocity: {1e300, 0, 0}\n"
+            "Scene is Physics3D.System:\n    box is Box\n")
+    f = _write(tmp_path, blow)
+    r = _run_plx("check", "--simulate", "--duration", "0.5", str(f), cwd=tmp_path)
+    assert r.returncode == 1 and "A101" in r.stdout, r.stdout + r.stderr
+    assert not (tmp_path / "MUJOCO_LOG.TXT").exists()

@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-from plxtools.lint.registry import get
+from plxtools.rules.registry import get
 from tests.conftest import REPO, run_plx
 
 EXAMPLES = REPO / "examples"

@@ -1,16 +1,16 @@
 """The generated docs (rule pages, CLI help blocks, changelog copy) match the code they come from.
 
-When this fails, run `python -m plxtools.lint.docs` and commit the result.
+When this fails, run `python -m plxtools.docgen` and commit the result.
 """
 
 from __future__ import annotations
 
-from plxtools.lint import docs as gen
-from plxtools.lint.registry import all_rules
+from plxtools import docgen as gen
+from plxtools.rules.registry import all_rules
 from tests.conftest import REPO, run_plx
 
 DOCS = REPO / "docs"
-HINT = "generated docs are stale: run `python -m plxtools.lint.docs`"
+HINT = "generated docs are stale: run `python -m plxtools.docgen`"
 
 
 def test_rule_pages_regenerate_identically(tmp_path):

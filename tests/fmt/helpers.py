@@ -69,7 +69,7 @@ def lint_signature(text: str) -> list[tuple[str, str]]:
     from dataclasses import replace
 
     from plxtools.config import Config
-    from plxtools.lint.runner import analyse_tree
+    from plxtools.rules.analysis import analyse_tree
 
     cfg = replace(Config(), ignore=["C006"])
     diags = analyse_tree(parse_text(text), cfg)

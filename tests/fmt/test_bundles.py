@@ -10,7 +10,8 @@ from collections import Counter
 
 from plxtools.config import config_for
 from plxtools.fmt import format_bytes
-from plxtools.lint.runner import analyse_tree, lint_file
+from plxtools.lint.runner import lint_file
+from plxtools.rules.analysis import analyse_tree
 from plxtools.syntax import parse_text
 from tests.fmt.helpers import assert_fixed_point, assert_same_meaning
 

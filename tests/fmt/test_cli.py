@@ -83,7 +83,7 @@ def test_stdin_to_stdout_with_stdin_filename(tmp_path):
 def test_stdin_with_a_syntax_error_prints_nothing_and_exits_2():
     proc = plx_fmt("-", "--stdin-filename", "model.openplx", stdin=BROKEN)
     assert proc.returncode == 2 and proc.stdout == b""
-    assert b"model.openplx:2:11: S008 unexpected '='" in proc.stderr
+    assert b"model.openplx:2:11: error S008 unexpected '='" in proc.stderr
 
 
 def test_a_file_with_a_syntax_error_is_refused_and_left_untouched(tmp_path):
@@ -92,7 +92,7 @@ def test_a_file_with_a_syntax_error_is_refused_and_left_untouched(tmp_path):
     proc = plx_fmt(str(tmp_path))
     err = proc.stderr.decode()
     assert proc.returncode == 2
-    assert f"{f['broken']}:2:11: S008 unexpected '='" in err
+    assert f"{f['broken']}:2:11: error S008 unexpected '='" in err
     assert "1 failed to reformat" in err or "1 file failed to reformat" in err
     assert f["broken"].read_bytes() == BROKEN and f["broken"].stat().st_mtime_ns == before
     assert f["ugly"].read_bytes() == PRETTY  # the other file is still formatted

@@ -125,7 +125,7 @@ def test_local_repo_config_from_the_docs(tmp_path):
     first = _run(proj, env, "run", "--all-files")
     assert first.returncode == 1, first.stdout + first.stderr
     assert "plx fmt" in first.stdout and "Failed" in first.stdout
-    assert "broken.openplx:2:8: S008" in first.stdout  # refused by fmt, reported by lint
+    assert "broken.openplx:2:8: error S008" in first.stdout  # refused by fmt, reported by lint
     assert (proj / "ugly.openplx").read_text() == PRETTY
     (proj / "broken.openplx").unlink()
     _git(proj, env, "add", "-A")

@@ -62,7 +62,7 @@ def test_fmt_refuses_a_line_between_two_levels(tmp_path):
     p.write_text(text)
     r = run_plx("fmt", str(p))
     assert r.returncode == 2
-    assert f"{p}:4:7: S015" in r.stderr and "not formatted" in r.stderr
+    assert f"{p}:4:7: error S015" in r.stderr and "not formatted" in r.stderr
     assert p.read_text() == text
 
 

@@ -4,7 +4,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from plxtools.config import Config
-from plxtools.lint.runner import analyse_tree
+from plxtools.rules.analysis import analyse_tree
 from plxtools.syntax import parse_text
 from tests.conftest import REPO, bundle_files
 from tests.syntax.test_mutation import mutate

@@ -2,7 +2,7 @@
 
 import pytest
 
-from plxtools.lint.runner import analyse_tree
+from plxtools.rules.analysis import analyse_tree
 from plxtools.config import Config
 from plxtools.syntax import parse_text
 from tests.conftest import REPO

@@ -1,7 +1,7 @@
 """Self-reference, cycles through traits and becomes, deep inheritance: diagnostics, never a crash."""
 
 from plxtools.config import Config
-from plxtools.lint.runner import analyse_tree
+from plxtools.rules.analysis import analyse_tree
 from plxtools.syntax import parse_text
 
 

@@ -79,7 +79,7 @@ def test_lone_cr_is_a_line_break_for_cli_positions(tmp_path):
     p = _write(tmp_path, "# header\r\rScene is Physics3D.System:\r\r    x is Real: nope\r\r")
     r = run_plx("lint", str(p))
     assert r.returncode == 1
-    assert f"{p}:5:16: N003" in r.stdout
+    assert f"{p}:5:16: error N003" in r.stdout
 
 
 def test_fmt_check_on_a_valid_lone_cr_file(tmp_path):
@@ -108,7 +108,7 @@ def test_an_integer_over_4300_digits_is_a_located_error(tmp_path):
     p = _write(tmp_path, HEAD + "    x is Int: " + "9" * 4301 + "\n    y is Int: " + "9" * 4300 + "\n")
     r = run_plx("lint", str(p))
     assert r.returncode == 1, r.stderr
-    assert f"{p}:2:15: S005 integer literal too long: 4301 digits" in r.stdout
+    assert f"{p}:2:15: error S005 integer literal too long: 4301 digits" in r.stdout
     assert "internal error" not in r.stdout + r.stderr
     r = run_plx("fmt", str(p))
     assert r.returncode == 2 and "S005" in r.stderr and "internal error" not in r.stderr
@@ -131,13 +131,13 @@ def test_truck_is_clean(tmp_path):
 
 def test_a_line_three_spaces_short_is_one_error(tmp_path):
     lines = _lint_lines(tmp_path, TRUCK.replace("        height: 0.3", "     height: 0.3"))
-    assert lines == [":13:6: S015 this line is indented 5 columns: between the block at column 4 and "
+    assert lines == [":13:6: error S015 this line is indented 5 columns: between the block at column 4 and "
                      "the one at column 8"]
 
 
 def test_a_tab_that_changes_the_block_is_one_error(tmp_path):
     lines = _lint_lines(tmp_path, TRUCK.replace("        height: 0.3", "\theight: 0.3"))
-    assert len(lines) == 1 and lines[0].startswith(":13:2: S003 a tab in this line's indentation"), lines
+    assert len(lines) == 1 and lines[0].startswith(":13:2: error S003 a tab in this line's indentation"), lines
     assert "4 columns with 4-wide tabs, 8 with 8-wide tabs" in lines[0]
 
 

@@ -1,7 +1,7 @@
 """Semantic rules: names (N), types (T), model structure (M), bundles (B), conventions (C)."""
 
 from plxtools.diagnostics import Severity
-from plxtools.lint.registry import rule
+from plxtools.rules.registry import rule
 
 E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
 
@@ -125,6 +125,12 @@ rule("M009", "reference-with-block", E,
      "A block creates and configures a new object, which contradicts `reference`.")
 
 # ---------------------------------------------------------------- bundles
+rule("B000", "bundles-unavailable", W,
+     "The language server could not load any OpenPLX bundles (shown once per file, instead of the "
+     "model's diagnostics).",
+     "Without the bundles no name can be resolved, so the editor shows only syntax errors until the "
+     "setup is fixed: install `openplx-bundles`, or point `bundlePath` / `bundle-path` at a folder "
+     "of bundles. The message says what failed.")
 rule("B001", "bundle-config-name", E, "A bundle's config.openplx has no `config is BundleConfig:` or no name.",
      "The name is how other bundles depend on this one.",
      example='config is BundleConfig:\n    version: "0.1.0"',

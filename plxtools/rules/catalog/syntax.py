@@ -1,7 +1,7 @@
 """Syntax rules (S...): reported by the parser, always on, cannot be suppressed away from the file."""
 
 from plxtools.diagnostics import Severity
-from plxtools.lint.registry import rule
+from plxtools.rules.registry import rule
 
 E, W = Severity.ERROR, Severity.WARNING
 

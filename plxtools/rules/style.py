@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 
 from plxtools.diagnostics import Diagnostic, Severity
-from plxtools.model.completeness import root_model
+from plxtools.rules.completeness import root_model
 from plxtools.model.program import Program
 from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast
@@ -15,7 +15,7 @@ SNAKE = re.compile(r"^[a-z_][a-z0-9_]*$")
 UPPER = re.compile(r"^[A-Z][A-Z0-9_]*$")
 
 
-def style_diagnostics(program: Program, unit, checker) -> list[Diagnostic]:
+def style_diagnostics(program: Program, unit, occurrences) -> list[Diagnostic]:
     out: list[Diagnostic] = []
     tree = unit.tree
 
@@ -66,7 +66,7 @@ def style_diagnostics(program: Program, unit, checker) -> list[Diagnostic]:
 
     # C003: models defined in a loose file that nothing uses; C007: root that is not a System
     root = root_model(program, unit)
-    used = {id(o.target) for o in checker.occurrences if o.kind != "definition"}
+    used = {id(o.target) for o in occurrences if o.kind != "definition"}
     for name, sym in unit.locals.items():
         if isinstance(sym, ModelSym) and sym is not root and id(sym) not in used:
             span = sym.stmt.name.span if isinstance(sym.stmt, ast.TraitDef) else sym.stmt.path.span

@@ -1,7 +1,7 @@
 """Hygiene rules about plxtools' own mechanisms (C0xx)."""
 
 from plxtools.diagnostics import Severity
-from plxtools.lint.registry import rule
+from plxtools.rules.registry import rule
 
 rule("C002", "unused-suppression", Severity.WARNING,
      "A `# plx: ignore[...]` comment suppresses nothing (or names a code that no longer occurs there).",

@@ -9,7 +9,7 @@ A1xx codes, for what is specific to it, and treats what the static checks guaran
 """
 
 from plxtools.diagnostics import Severity
-from plxtools.lint.registry import rule
+from plxtools.rules.registry import rule
 
 E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
 C, SIM = "check", "simulate"

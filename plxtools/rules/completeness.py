@@ -48,7 +48,7 @@ def _assigned(program: Program, model: ModelSym) -> set[tuple[str, ...]]:
     return out
 
 
-def completeness_diagnostics(program: Program, unit, checker) -> list[Diagnostic]:
+def completeness_diagnostics(program: Program, unit) -> list[Diagnostic]:
     if unit.bundle is not None:
         return []
     root = root_model(program, unit)

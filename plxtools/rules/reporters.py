@@ -6,13 +6,15 @@ import json
 import os
 import sys
 from collections import Counter
+from pathlib import Path
+from urllib.parse import quote
 from typing import Iterable, TextIO
 
-from plxtools import __version__
+from plxtools import DOCS_BASE_URL, __version__
 from plxtools.diagnostics import Diagnostic, Severity
 
 FORMATS = ("text", "json", "github", "sarif")
-DOCS_URL = "https://plxtools.invalid/docs/rules/{code}/"
+DOCS_URL = DOCS_BASE_URL + "rules/{code}/"  # mkdocs serves docs/rules/CODE.md at rules/CODE/
 
 
 def _use_color(stream: TextIO) -> bool:
@@ -27,6 +29,11 @@ def _loc(d: Diagnostic) -> str:
     return f"{d.file}:{d.span.start.line + 1}:{d.span.start.column + 1}"
 
 
+def text_line(d: Diagnostic) -> str:
+    """`path:line:col: severity CODE`, the start of a diagnostic's line in text output."""
+    return f"{_loc(d)}: {d.severity.value} {d.code}"
+
+
 def render_text(diags: list[Diagnostic], stream: TextIO, *, show_fix_hint: bool = True,
                 summary: bool = True, files_checked: int | None = None) -> None:
     if _use_color(stream):
@@ -34,7 +41,7 @@ def render_text(diags: list[Diagnostic], stream: TextIO, *, show_fix_hint: bool 
         return
     for d in diags:
         fixable = " [*]" if d.fix is not None and d.fix.safe and show_fix_hint else ""
-        stream.write(f"{_loc(d)}: {d.code}{fixable} {d.message}\n")
+        stream.write(f"{text_line(d)}{fixable} {d.message}\n")
         if d.help:
             stream.write(f"  help: {d.help}\n")
     if summary:
@@ -68,7 +75,7 @@ def _render_rich(diags: list[Diagnostic], stream: TextIO, *, summary: bool, file
         t = Text()
         t.append(_loc(d), style="bold")
         t.append(": ")
-        t.append(d.code, style=styles[d.severity])
+        t.append(f"{d.severity.value} {d.code}", style=styles[d.severity])
         if d.fix is not None and d.fix.safe:
             t.append(" [*]", style="cyan")
         t.append(" " + d.message)
@@ -91,11 +98,38 @@ def _gh_escape(s: str, prop: bool = False) -> str:
     return s
 
 
+def _absolute(file: str) -> Path:
+    p = Path(file)
+    return Path(os.path.normpath(p if p.is_absolute() else Path.cwd() / p))
+
+
+def repository_root(start: Path | None = None) -> Path:
+    """The git work tree that holds `start` (default: the current folder), else that folder."""
+    start = (start or Path.cwd()).resolve()
+    for p in (start, *start.parents):
+        if (p / ".git").exists():
+            return p
+    return start
+
+
+def _relative_to(file: str, root: Path) -> str | None:
+    try:
+        return _absolute(file).relative_to(root).as_posix()
+    except ValueError:
+        try:  # the root was resolved (symlinks); compare resolved paths too
+            return _absolute(file).resolve().relative_to(root).as_posix()
+        except (ValueError, OSError):
+            return None
+
+
 def render_github(diags: list[Diagnostic], stream: TextIO) -> None:
+    """GitHub workflow annotations; GitHub wants paths relative to the repository root."""
     level = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
+    root = repository_root()
     for d in diags:
+        path = _relative_to(d.file, root) or d.file
         props = (
-            f"file={_gh_escape(d.file, True)},line={d.span.start.line + 1},col={d.span.start.column + 1},"
+            f"file={_gh_escape(path, True)},line={d.span.start.line + 1},col={d.span.start.column + 1},"
             f"endLine={d.span.end.line + 1},endColumn={d.span.end.column + 1},"
             f"title={_gh_escape('plx ' + d.code, True)}"
         )
@@ -116,6 +150,7 @@ def sarif_document(diags: list[Diagnostic], rules: Iterable[tuple[str, str, str]
         for code, name, desc in rules
     ]
     results = []
+    root = Path.cwd().resolve()
     for d in diags:
         results.append(
             {
@@ -125,7 +160,7 @@ def sarif_document(diags: list[Diagnostic], rules: Iterable[tuple[str, str, str]
                 "locations": [
                     {
                         "physicalLocation": {
-                            "artifactLocation": {"uri": d.file.replace(os.sep, "/")},
+                            "artifactLocation": _artifact_location(d.file, root),
                             "region": {
                                 "startLine": d.span.start.line + 1,
                                 "startColumn": d.span.start.column + 1,
@@ -146,14 +181,24 @@ def sarif_document(diags: list[Diagnostic], rules: Iterable[tuple[str, str, str]
                     "driver": {
                         "name": "plxtools",
                         "version": __version__,
-                        "informationUri": "https://plxtools.invalid/docs/",
+                        "informationUri": DOCS_BASE_URL,
                         "rules": rule_list,
                     }
                 },
+                "originalUriBaseIds": {"%SRCROOT%": {"uri": root.as_uri().rstrip("/") + "/"}},
                 "results": results,
             }
         ],
     }
+
+
+def _artifact_location(file: str, root: Path) -> dict:
+    """A percent-encoded URI relative to %SRCROOT% (the current folder), or a file:// URI for a
+    file outside it: SARIF viewers resolve either, whatever the path's spaces, '#' or accents."""
+    rel = _relative_to(file, root)
+    if rel is not None:
+        return {"uri": quote(rel, safe="/"), "uriBaseId": "%SRCROOT%"}
+    return {"uri": _absolute(file).as_uri()}
 
 
 def render(diags: list[Diagnostic], fmt: str, stream: TextIO | None = None, *,
@@ -164,7 +209,7 @@ def render(diags: list[Diagnostic], fmt: str, stream: TextIO | None = None, *,
     elif fmt == "github":
         render_github(diags, stream)
     elif fmt == "sarif":
-        from plxtools.lint.registry import describe_codes
+        from plxtools.rules.registry import describe_codes
 
         json.dump(sarif_document(diags, describe_codes({d.code for d in diags})), stream, indent=2)
         stream.write("\n")

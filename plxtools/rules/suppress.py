@@ -76,7 +76,7 @@ def apply(tree: ast.File, diags: list[Diagnostic], report_unused: bool = True) -
             else:
                 unused = [c for c in s.codes if not any(u.startswith(c) for u in s.used)]
             if unused:
-                what = "this suppression" if unused == ["(all)"] else "suppressed code(s) " + ", ".join(unused)
+                what = "this suppression" if unused == ["(all)"] else ("suppressed code " if len(unused) == 1 else "suppressed codes ") + ", ".join(unused)
                 fix = None
                 if s.codes is None or len(unused) == len(s.codes):
                     start, end = s.comment.span.start.offset, s.comment.span.end.offset

@@ -52,7 +52,7 @@ def rule(code: str, name: str, severity: Severity, summary: str, why: str, *, ex
 
 def _load() -> None:
     # importing the catalogues registers their rules
-    from plxtools.lint import catalog  # noqa: F401
+    from plxtools.rules import catalog  # noqa: F401
 
 
 def all_rules() -> list[Rule]:
@@ -73,3 +73,30 @@ def get(code_or_name: str) -> Rule | None:
 def describe_codes(codes: set[str]) -> list[tuple[str, str, str]]:
     _load()
     return [(c, RULES[c].name, RULES[c].summary) for c in sorted(codes) if c in RULES]
+
+
+def unknown_selectors(selectors) -> list[tuple[str, str | None]]:
+    """The codes or prefixes in `selectors` that match no rule, each with the nearest real one.
+
+    `N0002` in a `select` would otherwise silently select nothing, which reads as "all clear"."""
+    import difflib
+
+    _load()
+    prefixes = {code[:i] for code in RULES for i in range(1, len(code) + 1)}
+    out = []
+    for s in selectors:
+        s = s.strip().upper()
+        if not s or s == "ALL" or s in prefixes:
+            continue
+        near = difflib.get_close_matches(s, sorted(RULES) if len(s) >= 3 else sorted(prefixes), n=1, cutoff=0.6)
+        out.append((s, near[0] if near else None))
+    return out
+
+
+def check_selectors(selectors, where: str) -> None:
+    """Raise ValueError naming every unknown code or prefix in `selectors` (from `where`)."""
+    bad = unknown_selectors(selectors)
+    if bad:
+        parts = [f"'{code}'" + (f" (did you mean '{near}'?)" if near else "") for code, near in bad]
+        noun = "rule code or prefix" if len(bad) == 1 else "rule codes or prefixes"
+        raise ValueError(f"{where}: unknown {noun} {', '.join(parts)}; `plx rule --all` lists them")

@@ -1,0 +1,62 @@
+"""Every rule on one parsed file: the model's own findings (names, types), then the rules that
+judge a resolved file (completeness, conventions), then config selection, suppressions, order.
+
+lint, check, fmt's safety check and the editor all call this, so a file gets the same
+diagnostics everywhere."""
+
+from __future__ import annotations
+
+from plxtools.config import Config
+from plxtools.diagnostics import Diagnostic
+from plxtools.syntax import ast
+
+
+def analyse_file(workspace, tree: ast.File):
+    """The model's analysis of `tree` with the rules' diagnostics added (a model FileAnalysis)."""
+    from plxtools.model.workspace import FileAnalysis
+    from plxtools.rules.completeness import completeness_diagnostics
+    from plxtools.rules.style import style_diagnostics
+
+    fa = workspace.analyse(tree)
+    extra = completeness_diagnostics(workspace.program, fa.unit)
+    extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences)
+    for d in extra:
+        d.file = tree.path
+    return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.occurrences)
+
+
+def analyse_tree(tree: ast.File, cfg: Config, workspace=None) -> list[Diagnostic]:
+    """All diagnostics for a parsed file: syntax, then the semantic ones, filtered by config."""
+    analysis = None
+    if not is_binary(tree):
+        if workspace is None:
+            from plxtools.model.workspace import workspace_for_cli
+
+            workspace = workspace_for_cli([], [], use_cache=True)
+        analysis = analyse_file(workspace, tree)
+    return final_diagnostics(tree, cfg, analysis)
+
+
+def is_binary(tree: ast.File) -> bool:
+    """S001: the file is not text, so there is nothing to analyse beyond saying so."""
+    return any(d.code == "S001" for d in tree.diagnostics)
+
+
+def final_diagnostics(tree: ast.File, cfg: Config, analysis) -> list[Diagnostic]:
+    """A file's diagnostics from its parse and an analysis already made (None: syntax only)."""
+    diags = list(tree.diagnostics)
+    if analysis is not None and not is_binary(tree):
+        diags.extend(analysis.diagnostics)
+    return finalize(tree, diags, cfg)
+
+
+def finalize(tree: ast.File, diags: list[Diagnostic], cfg: Config) -> list[Diagnostic]:
+    """Config selection, inline suppressions and ordering: shared by lint, check and the server."""
+    from plxtools.rules.suppress import apply
+
+    for d in diags:
+        d.file = tree.path
+    diags = [d for d in diags if cfg.rule_enabled(d.code, tree.path)]
+    diags = apply(tree, diags, report_unused=cfg.rule_enabled("C002", tree.path))
+    diags.sort(key=Diagnostic.sort_key)
+    return diags

@@ -1,0 +1,99 @@
+"""The server's copy of a document follows LSP's rules for any edit (issue 14 item 4): only `\\n`,
+`\\r\\n` and `\\r` end a line, and a position past a line's end is that line's end. Checked
+against a client-side model written independently here, and over stdio for the reproductions."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from plxtools.lsp.convert import apply_change
+from tests.lsp.rawclient import RawServer
+
+# characters that are line breaks to Python's str.splitlines but not to LSP, and non-BMP text
+ALPHABET = ["a", "b", " ", "\n", "\r\n", "\r", "\u2028", "\u2029", "\x0c", "\x0b", "\x85", "\x1c", "\x1d",
+            "\x1e", "é", "\U0001F600"]
+
+
+def _client_lines(text: str) -> list[tuple[int, int]]:
+    """(start, end) offsets of each LSP line, end before its line break."""
+    lines, start, i = [], 0, 0
+    while i < len(text):
+        ch = text[i]
+        if ch == "\r" or ch == "\n":
+            lines.append((start, i))
+            i += 2 if text.startswith("\r\n", i) else 1
+            start = i
+        else:
+            i += 1
+    lines.append((start, len(text)))
+    return lines
+
+
+def _client_offset(text: str, line: int, character: int) -> int:
+    lines = _client_lines(text)
+    if line >= len(lines):
+        return len(text)
+    start, end = lines[line]
+    units = 0
+    for i in range(start, end):
+        if units >= character:
+            return i
+        units += 2 if ord(text[i]) > 0xFFFF else 1  # UTF-16 code units
+    return end
+
+
+def _client_apply(text: str, sl: int, sc: int, el: int, ec: int, new: str) -> str:
+    a, b = _client_offset(text, sl, sc), _client_offset(text, el, ec)
+    a, b = min(a, b), max(a, b)
+    return text[:a] + new + text[b:]
+
+
+def _change(sl, sc, el, ec, new):
+    pos = SimpleNamespace
+    return SimpleNamespace(range=SimpleNamespace(start=pos(line=sl, character=sc), end=pos(line=el, character=ec)),
+                           text=new)
+
+
+texts = st.lists(st.sampled_from(ALPHABET), max_size=30).map("".join)
+
+
+@settings(max_examples=300, deadline=None)
+@given(text=texts, edits=st.lists(st.tuples(st.integers(0, 8), st.integers(0, 12), st.integers(0, 8),
+                                            st.integers(0, 12), texts), min_size=1, max_size=6))
+def test_random_edits_match_a_client_model(text, edits):
+    server_text = client_text = text
+    for sl, sc, el, ec, new in edits:
+        server_text = apply_change(server_text, _change(sl, sc, el, ec, new))
+        client_text = _client_apply(client_text, sl, sc, el, ec, new)
+        assert server_text == client_text
+
+
+def _diagnostics_after(text: str, change: dict) -> list[tuple]:
+    s = RawServer()
+    try:
+        s.initialize(options={"diagnosticMode": "push"})
+        uri = "file:///sync/doc.openplx"
+        s.open(uri, text)
+        s.notification("textDocument/publishDiagnostics", where=lambda p: p["uri"] == uri)
+        s.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 2}, "contentChanges": [change]})
+        got = s.notification("textDocument/publishDiagnostics", where=lambda p: p["uri"] == uri and p["version"] == 2)
+        assert s.close() == 0
+    finally:
+        if s.proc.poll() is None:
+            s.proc.kill()
+    return [(d["code"], d["range"]["start"]["line"], d["range"]["start"]["character"]) for d in got["diagnostics"]]
+
+
+def test_a_line_separator_in_a_comment_does_not_move_later_edits():
+    text = "# note\u2028more\nScene is Physics3D.System:\n    x is Real: 1\n    y is Real: 2\n"
+    change = {"range": {"start": {"line": 3, "character": 15}, "end": {"line": 3, "character": 16}}, "text": "zzz"}
+    assert _diagnostics_after(text, change) == [("N003", 3, 15)]
+
+
+def test_an_edit_past_the_end_of_a_line_stays_on_that_line():
+    text = "Scene is Physics3D.System:\n    x is Real: 1\n    y is Real: 2\n"
+    change = {"range": {"start": {"line": 1, "character": 17}, "end": {"line": 1, "character": 17}}, "text": " + zzz"}
+    assert _diagnostics_after(text, change) == [("N003", 1, 19)]
