@@ -238,7 +238,9 @@ def _span_of_source(tree: ast.File, src) -> Span:
 # What lint's model checks own: a missing value (M007), an unbound reference (M008) or one given a
 # value of the wrong kind (T001), a value cycle (M006), a type or name error.  When lint has found one of these in the file, the evaluator's own
 # reports of the same kinds (A004, A005, A006, A003) are consequences of it and are not made.
-_LINT_OWNED = {"A004": ("M007",), "A005": ("M008", "T001"), "A006": ("M006",), "A003": ("T", "N")}
+# an evaluation problem lint already owns; a missing value that follows from a misspelt attribute or a
+# block that did not parse is lint's too (its M007 is dropped as a consequence, see rules/completeness.py)
+_LINT_OWNED = {"A004": ("M007", "N002", "S"), "A005": ("M008", "T001"), "A006": ("M006",), "A003": ("T", "N")}
 
 
 def _owned_by_lint(lint: list[Diagnostic]) -> frozenset[str]:

@@ -18,7 +18,7 @@ def analyse_file(workspace, tree: ast.File):
     from plxtools.rules.style import style_diagnostics
 
     fa = workspace.analyse(tree)
-    extra = completeness_diagnostics(workspace.program, fa.unit)
+    extra = completeness_diagnostics(workspace.program, fa.unit, list(tree.diagnostics) + fa.diagnostics)
     extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences)
     for d in extra:
         d.file = tree.path

@@ -48,13 +48,19 @@ def _assigned(program: Program, model: ModelSym) -> set[tuple[str, ...]]:
     return out
 
 
-def completeness_diagnostics(program: Program, unit) -> list[Diagnostic]:
+def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = ()) -> list[Diagnostic]:
+    """M007/M008 for what the root model creates, one per source location and attribute.
+
+    `causes` are the file's other diagnostics: a declaration whose block failed to parse, or that
+    holds a misspelt attribute close to the missing one, already has its error; the missing values
+    that only follow from it are not reported again (one mistake, one message)."""
     if unit.bundle is not None:
         return []
     root = root_model(program, unit)
     if root is None:
         return []
-    out: list[Diagnostic] = []
+    found: list[tuple[Diagnostic, str, str, str]] = []  # (diagnostic, member name, dotted path, type)
+    caused = _Causes(unit.tree, causes)
     seen: set[tuple[str, str]] = set()
     memo: dict[int, set[tuple[str, ...]]] = {}
 
@@ -79,22 +85,25 @@ def completeness_diagnostics(program: Program, unit) -> list[Diagnostic]:
                 local_anchor = mem.stmt.path.span
             full = f"{path}.{name}" if path else name
             if mem.reference:
-                if not here and not mem.optional and (full, "ref") not in seen:
+                if not here and not mem.optional and (full, "ref") not in seen and not caused(local_anchor, name):
                     seen.add((full, "ref"))
-                    out.append(Diagnostic(
-                        "M008", f"reference '{full}' ({mty.display()}) is never bound",
+                    found.append((Diagnostic(
+                        "M008", _message("M008", full, mty.display()),
                         local_anchor, Severity.ERROR, file=unit.path,
-                        help=f"give it an existing object: '{name}: ...' (declared in {mem.owner.qname})"))
+                        help=f"give it an existing object: '{name}: ...' (declared in {mem.owner.qname})"),
+                        name, full, mty.display()))
                 continue
             if mty.unknown or mty.alts or mty.array:
                 continue
             if mty.primitive is not None:
-                if mty.primitive in REQUIRED_PRIMITIVES and not here and not mem.optional and (full, "val") not in seen:
+                if (mty.primitive in REQUIRED_PRIMITIVES and not here and not mem.optional
+                        and (full, "val") not in seen and not caused(local_anchor, name)):
                     seen.add((full, "val"))
-                    out.append(Diagnostic(
-                        "M007", f"missing assignment {full} ({mty.primitive}): the model is not complete",
+                    found.append((Diagnostic(
+                        "M007", _message("M007", full, mty.primitive),
                         local_anchor, Severity.ERROR, file=unit.path,
-                        help=f"give it a value, e.g. '{name}: ...' (declared without a default in {mem.owner.qname})"))
+                        help=f"give it a value, e.g. '{name}: ...' (declared without a default in {mem.owner.qname})"),
+                        name, full, mty.primitive))
                 continue
             if mem.value is not None:
                 continue  # given an existing object or a computed value
@@ -103,4 +112,66 @@ def completeness_diagnostics(program: Program, unit) -> list[Diagnostic]:
 
     anchor = root.stmt.path.span if isinstance(root.stmt, ast.Declaration) else root.stmt.header
     visit(Ty(root), set(), "", anchor, 0, ())
+    return _one_per_location(found)
+
+
+def _message(code: str, path: str, ty: str, instances: str = "") -> str:
+    where = f" in {instances}" if instances else ""
+    if code == "M008":
+        return f"reference '{path}' ({ty}){where} is never bound"
+    return f"missing assignment {path} ({ty}){where}: the model is not complete"
+
+
+def _one_per_location(found: list[tuple[Diagnostic, str, str, str]]) -> list[Diagnostic]:
+    """A model used by four wheels misses its value once, at one place: report it once and name the
+    instances (`a.geometry.radius` ... `d.geometry.radius` -> `geometry.radius` in a, b, c, d)."""
+    groups: dict[tuple, list[tuple[Diagnostic, str, str, str]]] = {}
+    for item in found:
+        d, name = item[0], item[1]
+        groups.setdefault((d.code, d.span.start.offset, d.span.end.offset, name, d.help), []).append(item)
+    out = []
+    for items in groups.values():
+        d = items[0][0]
+        if len(items) > 1:
+            paths = [full.split(".") for _, _, full, _ in items]
+            n = 0  # length of the common suffix, leaving each instance at least one part
+            while all(len(p) > n + 1 for p in paths) and len({tuple(p[len(p) - n - 1:]) for p in paths}) == 1:
+                n += 1
+            suffix = ".".join(paths[0][len(paths[0]) - n:])
+            owners = [".".join(p[:len(p) - n]) for p in paths]
+            shown = ", ".join(owners[:6]) + (f" and {len(owners) - 6} more" if len(owners) > 6 else "")
+            d.message = _message(d.code, suffix, items[0][3], f"{len(owners)} instances ({shown})")
+        out.append(d)
     return out
+
+
+class _Causes:
+    """Which declarations already carry the error that explains a missing value."""
+
+    def __init__(self, tree: ast.File, causes: list[Diagnostic]):
+        self.text = tree.text
+        self.errors = [d for d in causes if d.severity is Severity.ERROR and (d.code[0] == "S" or d.code == "N002")]
+        self.extent: dict[int, tuple[int, int]] = {}
+        if self.errors:
+            for st in ast.walk_statements(tree.statements):
+                path = getattr(st, "path", None)
+                if path is not None:
+                    self.extent[path.span.start.offset] = (st.span.start.offset, st.span.end.offset)
+
+    def __call__(self, anchor: Span, name: str) -> bool:
+        if not self.errors:
+            return False
+        ext = self.extent.get(anchor.start.offset)
+        if ext is None:
+            return False
+        import difflib
+
+        for d in self.errors:
+            if not ext[0] <= d.span.start.offset <= ext[1]:
+                continue
+            if d.code[0] == "S":
+                return True  # the block did not parse: what it lacks follows from that
+            written = self.text[d.span.start.offset:d.span.end.offset].split(".")[-1]
+            if difflib.SequenceMatcher(None, written.lower(), name.lower()).ratio() >= 0.75:
+                return True  # `raduis:` was meant to be `radius:`
+        return False
