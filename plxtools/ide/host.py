@@ -341,8 +341,8 @@ class AnalysisHost:
             if path == skip:
                 continue
             unit = ws.program.units.get(path)
-            if unit is None or unit.bundle is None or unit.tree.text == doc.text:
-                continue
+            if unit is None or unit.bundle is None or unit.official or unit.tree.text == doc.text:
+                continue  # an official bundle file is read-only: its edits never reach the model
             ws.unit_for(self._parse(path, doc.text))
             self.generation += 1
 
@@ -374,8 +374,11 @@ class AnalysisHost:
         if tree is None:
             tree = self._parse(path, text)
         analysis = None
-        if ws is not None:
-            before = ws.program.units.get(path)
+        disk = ws.program.units.get(path) if ws is not None else None
+        if disk is not None and disk.official and disk.tree.text != text:
+            pass  # an edited official bundle file: syntax only, the model keeps the installed text
+        elif ws is not None:
+            before = disk
             analysis = analyse_file(ws, tree)
             if before is not None and analysis.unit is not before and analysis.unit.bundle is not None:
                 self.generation += 1  # a bundle file's symbols changed: everything may see them

@@ -869,9 +869,12 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
         for s in res.signatures:
             labels = param_label_offsets(s) if offsets else [p.label for p in s.parameters]
             params_ = [types.ParameterInformation(label=lab) for lab in labels]
+            # the active parameter inside each signature too: LSP 3.18 reads a null there as "none"
+            active = min(res.active_parameter or 0, max(len(params_) - 1, 0))
             sigs.append(types.SignatureInformation(label=s.label, parameters=params_,
                                                    documentation=ls.doc_markup(s.documentation)
-                                                   if s.documentation else None))
+                                                   if s.documentation else None,
+                                                   active_parameter=active))
         return types.SignatureHelp(signatures=sigs, active_signature=res.active_signature,
                                    active_parameter=res.active_parameter)
 

@@ -155,3 +155,42 @@ def test_malformed_messages_are_answered_or_ignored(server):
     invalid = server.request("textDocument/completion", {"textDocument": {"uri": URI}})
     assert invalid["error"]["code"] == -32602
     assert "Real" in json.dumps(hover(server)["result"])
+
+
+def test_signature_help_names_the_active_parameter_inside_the_signature(server):
+    """LSP 3.18 reads `activeParameter: null` inside a signature as "no parameter active"."""
+    uri = "file:///proto/sig.openplx"
+    text = "S is Physics3D.System:\n    q is Math.Quat: Math.Quat.angle_axis(Math.PI / 4, \n"
+    server.open(uri, text)
+    res = server.request("textDocument/signatureHelp", {"textDocument": {"uri": uri},
+                                                        "position": {"line": 1, "character": len(text.splitlines()[1])}})
+    result = res["result"]
+    assert result["activeParameter"] == 1
+    assert [sig["activeParameter"] for sig in result["signatures"]][result.get("activeSignature", 0)] == 1
+
+
+def test_refusing_to_rename_an_official_name_is_an_answer_not_an_error_in_the_log(server):
+    """The fixture's teardown checks the whole log: no ERROR line and no traceback."""
+    uri = "file:///proto/rename.openplx"
+    server.open(uri, "S is Physics3D.System:\n    b is Physics3D.Bodies.RigidBody\n")
+    got = server.request("textDocument/rename", {"textDocument": {"uri": uri},
+                                                 "position": {"line": 1, "character": 33}, "newName": "X"})
+    assert got["error"]["code"] == -32803 and "official bundle" in got["error"]["message"]
+    server.notify("$/cancelRequest", {"id": 424242})  # a routine cancel of a request already answered
+    assert "Real" in json.dumps(hover(server)["result"])
+
+
+def test_document_versions_going_backwards_are_logged_as_a_warning():
+    s = RawServer()
+    try:
+        s.initialize(options={"diagnosticMode": "push"})
+        s.open(URI, TEXT, version=5)
+        edit = {"range": {"start": {"line": 1, "character": 15}, "end": {"line": 1, "character": 16}}, "text": "2"}
+        s.notify("textDocument/didChange", {"textDocument": {"uri": URI, "version": 3}, "contentChanges": [edit]})
+        assert "Real" in json.dumps(hover(s)["result"])  # the server goes on
+        assert s.close() == 0
+    finally:
+        if s.proc.poll() is None:
+            s.proc.kill()
+    log = b"".join(s.stderr).decode()
+    assert "went from 5 to 3" in log and "WARNING" in log, log
