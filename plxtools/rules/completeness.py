@@ -105,8 +105,8 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
                         help=f"give it a value, e.g. '{name}: ...' (declared without a default in {mem.owner.qname})"),
                         name, full, mty.primitive))
                 continue
-            if mem.value is not None:
-                continue  # given an existing object or a computed value
+            if mem.value is not None or (name,) in assigned:
+                continue  # given an existing object or a computed value (checked where it is made)
             sub = {p[1:] for p in assigned if len(p) > 1 and p[0] == name}
             visit(mty, sub, full, local_anchor, depth + 1, chain + (id(model),))
 

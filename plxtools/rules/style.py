@@ -74,8 +74,31 @@ def style_diagnostics(program: Program, unit, occurrences) -> list[Diagnostic]:
                 span, Severity.WARNING, "use it, move it into a bundle, or remove it")
     if root is not None:
         system = program.lookup(["Physics3D", "System"], unit)
-        if isinstance(system, ModelSym) and not program.is_subtype(root, system):
-            add("C007", f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System",
+        is_system = isinstance(system, ModelSym) and program.is_subtype(root, system)
+        # a scene above the root that nothing uses: the scene was meant to be last
+        stray = [sym for sym in unit.locals.values() if isinstance(sym, ModelSym) and sym is not root
+                 and id(sym) not in used and isinstance(system, ModelSym) and program.is_subtype(sym, system)]
+        if not is_system and stray:
+            add("C007", f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
+                f"and the System '{stray[0].name}' above it is used by nothing",
+                root.stmt.path.span, Severity.WARNING,
+                f"a scene is loaded from the last model; move '{stray[0].name}' to the end of the file")
+        elif not _loadable_root(program, unit, root):
+            add("C007", f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
+                f"a rigid body or a material",
                 root.stmt.path.span, Severity.WARNING,
                 "a scene is loaded from the last model; make it a Physics3D.System or move the scene last")
     return out
+
+
+def _loadable_root(program: Program, unit, root: ModelSym) -> bool:
+    """What importers load from a file's last model: a System (a scene), a rigid body, or a
+    material of an official bundle (a material library). Judged on the bundles in use, so it fits
+    every version (materials moved from Physics.Charges to Physics.Geometries)."""
+    kinds = [program.lookup(["Physics3D", "System"], unit), program.lookup(["Physics3D", "Bodies", "RigidBody"], unit)]
+    if not any(isinstance(k, ModelSym) for k in kinds):
+        return True  # the bundles in use do not say: do not guess
+    if any(isinstance(k, ModelSym) and program.is_subtype(root, k) for k in kinds):
+        return True
+    return any(m.name.endswith("Material") and m.unit is not None and m.unit.official
+               for m in program.ancestors(root))

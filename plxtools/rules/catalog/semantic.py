@@ -173,5 +173,9 @@ rule("C006", "misaligned-indentation", I,
      "OpenPLX accepts it (some official files do it), but it is easy to misread, and it is also what a "
      "missing `:` on the line above looks like. `plx fmt` aligns siblings.")
 rule("C007", "root-not-system", W,
-     "The last model of a file outside any bundle (the model a runtime loads) is not a Physics3D.System.",
-     "agxViewer and other runtimes load the last model as the scene; a scene should be a System.")
+     "The last model of a file outside any bundle (the model a runtime loads) is not a Physics3D.System, "
+     "a rigid body or a material.",
+     "agxViewer and other runtimes load the last model of a file: a System as a scene, a rigid body or a "
+     "material (of the official bundles) as a library item. Reported when the last model is none of "
+     "these, and when it is a body or material while a System above it is used by nothing (the scene "
+     "was meant to be last).")
