@@ -34,6 +34,11 @@ range is not shown). `--output-format json` gives the same list as data.
 $ plx migrate --explain 0.17.26 0.19.0
 ```
 
+`plx lint` (and the editor) use the same index for unknown types: when a type that does not
+resolve in the version in use exists in another official version (`Physics3D.Charges.Box`, which
+0.19.0 removed), the diagnostic's help line names the versions that have it and the command that
+lists the changes. Rewriting model files (`plx migrate --to VERSION PATH...`) is not available yet.
+
 ## How changes are found
 
 Each consecutive pair of versions is compared:

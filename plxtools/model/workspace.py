@@ -297,6 +297,7 @@ class Workspace:
         for d in diags:
             d.file = tree.path
         self._help_for_unloaded_bundles(tree, diags)
+        self._help_for_other_versions(tree, diags)
         return FileAnalysis(unit, diags, checker.occurrences)
 
     def _help_for_unloaded_bundles(self, tree: ast.File, diags: list[Diagnostic]) -> None:
@@ -318,6 +319,28 @@ class Workspace:
             elif name in wanted:
                 d.help = (f"'{name}' is a dependency in {home.root / 'config.openplx'} but no bundle of that "
                           f"name is loaded: add its folder with --bundle-path or bundle-path in plx.toml")
+
+    def _help_for_other_versions(self, tree: ast.File, diags: list[Diagnostic]) -> None:
+        """An unknown type that an official OpenPLX version of another release has: say which, so the
+        user knows to migrate (or to choose that version) instead of hunting for a typo."""
+        unknown = [d for d in diags if d.code == "N001"]
+        bs = getattr(self, "bundle_set", None)
+        using = getattr(bs, "official_version", None)
+        if not unknown or not using:
+            return
+        from plxtools.model.apiindex import spans, where_defined
+
+        for d in unknown:
+            written = tree.text[d.span.start.offset:d.span.end.offset]
+            if "." not in written or not written.replace(".", "").replace("_", "").isalnum():
+                continue
+            found = [v for v in where_defined(written) if v != using]
+            if not found:
+                continue
+            note = (f"'{written}' exists in OpenPLX {spans(found)}, not in {using} (the version in use): "
+                    f"`plx migrate --explain {found[-1]} {using}` lists what changed; `openplx-version` in "
+                    f"plx.toml chooses another version")
+            d.help = f"{note}; {d.help}" if d.help else note
 
     def nearby_bundles(self, folder: Path, levels: int = 3) -> dict[str, Path]:
         """Bundles (by config name) in `folder`, its parents up to `levels` up, and their subfolders."""
