@@ -1,30 +1,58 @@
-"""Each case file triggers its rules at the expected positions, and its near misses stay silent."""
+"""Each case file triggers its rules at the expected places with the expected words, and its near
+misses stay silent.
 
+`<case>.expected` is a snapshot of everything a user sees for `<case>.openplx`: each diagnostic as
+`plx lint` prints it (location, severity, code, message, help) and the unified diff that
+`plx lint --fix --unsafe-fixes` would apply. After a deliberate change, regenerate the snapshots
+with `PLX_UPDATE_SNAPSHOTS=1 python -m pytest tests/lint/test_rule_cases.py` and review the diff.
+"""
+
+import io
+import os
 from pathlib import Path
 
 import pytest
 
-from plxtools.lint.runner import lint_file
+from plxtools.fileio import unified_diff
+from plxtools.lint.runner import fixed_text, lint_file
+from plxtools.rules.reporters import render_text
 from tests.conftest import CASES
 
 CASE_FILES = sorted((CASES / "lint").glob("*.openplx"))
+UPDATE = os.environ.get("PLX_UPDATE_SNAPSHOTS") == "1"
+
+
+def snapshot(path: Path, workspace) -> str:
+    result = lint_file(path, workspace=workspace)
+    for d in result.diagnostics:
+        d.file = path.name  # the snapshot does not depend on where the checkout is
+    out = io.StringIO()
+    render_text(result.diagnostics, out, summary=False)
+    text = out.getvalue()
+    if result.tree is not None and not result.tree.has_errors_of_syntax():
+        new, n = fixed_text(result.tree, result.diagnostics, unsafe=True)
+        if n:
+            text += "\n# plx lint --fix --unsafe-fixes\n" + unified_diff(path.name, result.tree.text, new)
+    return text
 
 
 @pytest.mark.parametrize("path", CASE_FILES, ids=lambda p: p.stem)
 def test_case_file(path: Path, workspace):
-    expected = path.with_suffix(".expected").read_text().split()
-    expected = [f"{a} {b}" for a, b in zip(expected[::2], expected[1::2])]
-    result = lint_file(path, workspace=workspace)
-    got = [f"{d.span.start.line + 1}:{d.span.start.column + 1} {d.code}" for d in result.diagnostics]
-    assert got == expected
+    got = snapshot(path, workspace)
+    expected_file = path.with_suffix(".expected")
+    if UPDATE:
+        expected_file.write_text(got, encoding="utf-8")
+    assert got == expected_file.read_text(encoding="utf-8"), f"snapshot differs: {expected_file.name}"
 
 
 def test_every_semantic_code_has_a_case_or_a_dedicated_test():
     from plxtools.rules.registry import all_rules
 
+    import re
+
     covered = set()
     for p in (CASES / "lint").glob("*.expected"):
-        covered |= {line.split()[1] for line in p.read_text().splitlines() if line.strip()}
+        covered |= set(re.findall(r"^\S+:\d+:\d+: (?:error|warning|info) ([A-Z]\d{3})", p.read_text(), re.M))
     # B000: tests/ide/test_bundles_unavailable.py
     dedicated = {"B000", "B001", "B002", "B003", "B004", "B005", "E001", "T007", "M009"}
     semantic = {r.code for r in all_rules() if r.stage == "lint" and r.code[0] in "NTMBC"}
