@@ -113,13 +113,20 @@ def _add_lsp(sub) -> None:
 
 
 def _add_migrate(sub) -> None:
-    p = sub.add_parser("migrate", help="explain the API changes between two official OpenPLX versions",
-                       description="Explain what changed in the official OpenPLX bundles between two versions "
-                       "(moved, renamed and removed models and attributes, changed types, new required "
-                       "attributes), from plx's built-in API index. Exit 2 for a version plx does not know.")
-    p.add_argument("--explain", nargs=2, required=True, metavar=("FROM", "TO"),
+    p = sub.add_parser("migrate", help="move model files to another official OpenPLX version, or explain the changes",
+                       description="Rewrite OpenPLX files for another official OpenPLX version: models that moved "
+                       "or were renamed and renamed attributes, as plx's built-in API index of every version says. "
+                       "A file is rewritten only when the result parses and lints with no more errors under the "
+                       "new version than before. With --explain, print the API changes between two versions. "
+                       "Exit 0 when done, 1 with --check when a file would change (or when some files were "
+                       "refused), 2 on usage errors or when nothing could be migrated.")
+    from plxtools.migrate.command import add_arguments
+
+    add_arguments(p)
+    p.add_argument("--explain", nargs=2, metavar=("FROM", "TO"),
                    help="print the changes from version FROM to version TO (e.g. 0.17.26 0.19.0)")
-    p.add_argument("--output-format", choices=("text", "json"), default="text", help="text (default) or json")
+    p.add_argument("--output-format", choices=("text", "json"), default="text",
+                   help="with --explain: text (default) or json")
     p.set_defaults(func=_run_migrate)
 
 
@@ -178,9 +185,9 @@ def _run_rule(args) -> int:
 
 
 def _run_migrate(args) -> int:
-    from plxtools.migrate.explain import run_explain
+    from plxtools.migrate.command import run
 
-    return run_explain(args.explain[0], args.explain[1], args.output_format)
+    return run(args)
 
 
 def _run_fmt(args) -> int:

@@ -97,3 +97,15 @@ class Diagnostic:
                 "edits": [{"start": e.start, "end": e.end, "content": e.text} for e in self.fix.edits],
             }
         return out
+
+
+def apply_edits(text: str, edits: list[Edit]) -> str:
+    """Apply non-overlapping edits (later ones first); overlapping edits are skipped."""
+    out = text
+    last_start = len(text) + 1
+    for e in sorted(edits, key=lambda e: (e.start, e.end), reverse=True):
+        if e.end > last_start:
+            continue
+        out = out[: e.start] + e.text + out[e.end :]
+        last_start = e.start
+    return out

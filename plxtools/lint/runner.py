@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from plxtools.config import Config, config_for
-from plxtools.diagnostics import Diagnostic, Edit, Severity
+from plxtools.diagnostics import Diagnostic, Edit, Severity, apply_edits  # noqa: F401 - lint's name for it
 from plxtools.discovery import UsageError, discover  # noqa: F401 - the lint command's names for them
 from plxtools.fileio import unified_diff  # noqa: F401
 from plxtools.rules.analysis import analyse_tree
@@ -41,18 +41,6 @@ def lint_file(path: Path, cfg: Config | None = None, workspace=None) -> FileResu
     if tree is None:
         tree = parse_bytes(data, str(path))
     return FileResult(path, tree, analyse_tree(tree, cfg, workspace))
-
-
-def apply_edits(text: str, edits: list[Edit]) -> str:
-    """Apply non-overlapping edits (later ones first); overlapping edits are skipped."""
-    out = text
-    last_start = len(text) + 1
-    for e in sorted(edits, key=lambda e: (e.start, e.end), reverse=True):
-        if e.end > last_start:
-            continue
-        out = out[: e.start] + e.text + out[e.end :]
-        last_start = e.start
-    return out
 
 
 def fixed_text(tree: ast.File, diags: list[Diagnostic], unsafe: bool) -> tuple[str, int]:

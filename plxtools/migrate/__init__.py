@@ -1,1 +1,1 @@
-"""`plx migrate`: moving models between OpenPLX versions. For now only `--explain FROM TO`."""
+"""`plx migrate`: move model files between official OpenPLX versions (`--to`), or explain the changes (`--explain`)."""

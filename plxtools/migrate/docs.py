@@ -37,7 +37,35 @@ $ plx migrate --explain 0.17.26 0.19.0
 `plx lint` (and the editor) use the same index for unknown types: when a type that does not
 resolve in the version in use exists in another official version (`Physics3D.Charges.Box`, which
 0.19.0 removed), the diagnostic's help line names the versions that have it and the command that
-lists the changes. Rewriting model files (`plx migrate --to VERSION PATH...`) is not available yet.
+lists the changes.
+
+## Migrating files
+
+```console
+$ plx migrate --from 0.17.26 --to 0.19.0 models/
+```
+
+rewrites what can be rewritten mechanically: models that moved or were renamed one to one
+(`Physics3D.Charges.Box` becomes `Physics3D.Geometries.Box`), from the index or the reviewed
+table, and renamed attributes (`charges:` becomes `connectors:`, also inside dotted paths such as
+`prismatic.charges`). Type names are found in the file's tokens, so comments and strings are never
+touched; attributes are found through the semantic model of the file under the version it was
+written for, so an attribute of your own that happens to be called `charges` stays as it is.
+Everything else in the file (comments, layout, blank lines) is kept.
+
+A file is written only when the result parses, the formatter accepts it, and it lints with no
+more errors under the new version than it had under the old one; otherwise it is left as it was
+and plx says why. What needs a person (a removed model or attribute, a changed type, a new
+required attribute) is not touched: lint the result under the new version and look at the change
+list above.
+
+- `--from VERSION`: the version the files were written for. By default, the version plx lints
+  them with: `openplx-version` in `plx.toml` / `[tool.plx]`, a version pinned by a user bundle's
+  `config.openplx`, else the installed bundles (then there is nothing to do: pass `--from`).
+- `--diff` prints the changes as a unified diff and writes nothing; `--check` writes nothing and
+  exits 1 when a file would change.
+- Exit codes: 0 done, 1 with `--check` when something would change or when some files were
+  refused, 2 for a usage error or when no file could be migrated.
 
 ## How changes are found
 

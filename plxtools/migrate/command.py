@@ -1,0 +1,113 @@
+"""The `plx migrate --to VERSION PATH...` command: per file, the version it was written for, the
+rewrite, and the write (or the diff, or the check)."""
+
+from __future__ import annotations
+
+import sys
+
+from plxtools.config import ConfigError, config_for
+from plxtools.discovery import UsageError, discover
+
+
+def _say(text: str) -> None:
+    print(text, file=sys.stderr)
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}{'' if n == 1 else 's'}"
+
+
+def run_migrate(args) -> int:
+    from plxtools.fileio import unified_diff, write_atomic
+    from plxtools.model.apiindex import UnknownVersion, check_version, version_key
+    from plxtools.model.versions import BundleSetError, resolve_bundle_set
+    from plxtools.model.workspace import workspace_for_set
+    from plxtools.migrate.rewrite import migrate_text, plan
+
+    try:
+        to_v = check_version(args.to)
+        from_flag = check_version(args.from_version) if args.from_version else None
+        files = discover(args.paths)
+    except (UnknownVersion, UsageError, ConfigError, ValueError) as exc:
+        _say(f"plx migrate: {exc}")
+        return 2
+    changed = refused = edits = 0
+    plans: dict[str, object] = {}
+    for f in files:
+        try:
+            cfg = config_for(f)
+            if from_flag is not None:
+                from_v = from_flag
+            else:  # the version the file is linted with today: config, a bundle's pin, else the installed one
+                from_v = resolve_bundle_set([f], [], None).official_version
+                if from_v is None:
+                    raise BundleSetError(f"{f}: cannot tell which OpenPLX version it was written for; pass --from")
+            if version_key(from_v) > version_key(to_v):
+                raise UsageError(f"{f}: written for {from_v}, which is newer than --to {to_v} "
+                                 "(plx migrate only moves forward)")
+            data = f.read_bytes()
+            had_bom = data.startswith(b"\xef\xbb\xbf")
+            text = data.decode("utf-8-sig")
+            from_ws = workspace_for_set(resolve_bundle_set([f], [], from_v))
+            to_ws = workspace_for_set(resolve_bundle_set([f], [], to_v))
+        except (UsageError, ConfigError, BundleSetError, UnknownVersion, ValueError) as exc:
+            _say(f"plx migrate: {exc}")
+            return 2
+        except (OSError, UnicodeDecodeError) as exc:
+            _say(f"plx migrate: {f}: cannot read it: {getattr(exc, 'strerror', None) or exc}")
+            return 2
+        key = f"{from_v}->{to_v}"
+        if key not in plans:
+            plans[key] = plan(from_v, to_v)
+        fm = migrate_text(f, text, plans[key], cfg, from_ws, to_ws)
+        if fm.refused:
+            refused += 1
+            _say(f"{f}: not migrated from {from_v} to {to_v}: {fm.refused}")
+            continue
+        if not fm.changed:
+            continue
+        changed += 1
+        edits += fm.edits
+        if args.diff:
+            sys.stdout.write(unified_diff(str(f), fm.old_text, fm.new_text))
+        elif args.check:
+            _say(f"would migrate {f} ({_plural(fm.edits, 'change')}, {from_v} -> {to_v})")
+        else:
+            try:
+                write_atomic(f, fm.new_text, had_bom)
+            except OSError as exc:
+                _say(f"plx migrate: {f}: {exc.strerror}")
+                return 2
+            remain = f"; {_plural(fm.errors_after, 'error')} left for a person (plx lint)" if fm.errors_after else ""
+            _say(f"migrated {f} ({_plural(fm.edits, 'change')}, {from_v} -> {to_v}){remain}")
+    verb = "would migrate" if (args.check or args.diff) else "migrated"
+    _say(f"{verb.capitalize()} {_plural(changed, 'file')} ({_plural(edits, 'change')}); "
+         f"{_plural(len(files) - changed - refused, 'file')} unchanged"
+         + (f"; {_plural(refused, 'file')} refused" if refused else "") + ".")
+    if refused:
+        return 2 if not changed else 1
+    return 1 if args.check and changed else 0
+
+
+def add_arguments(p) -> None:
+    p.add_argument("paths", nargs="*", metavar="PATH", help="files or folders to migrate (with --to)")
+    p.add_argument("--to", metavar="VERSION", help="the OpenPLX version to migrate the files to (e.g. 0.19.0)")
+    p.add_argument("--from", dest="from_version", metavar="VERSION",
+                   help="the version the files were written for (default: the version plx lints them with: "
+                        "openplx-version in the config, a bundle's pin, else the installed bundles)")
+    p.add_argument("--diff", action="store_true", help="print the changes as a unified diff; write nothing")
+    p.add_argument("--check", action="store_true", help="write nothing; exit 1 when a file would change")
+
+
+def run(args) -> int:
+    if args.explain:
+        if args.to or args.paths:
+            _say("plx migrate: --explain cannot be combined with --to or paths")
+            return 2
+        from plxtools.migrate.explain import run_explain
+
+        return run_explain(args.explain[0], args.explain[1], args.output_format)
+    if not args.to or not args.paths:
+        _say("plx migrate: give --to VERSION and the files or folders to migrate (or --explain FROM TO)")
+        return 2
+    return run_migrate(args)

@@ -1,0 +1,148 @@
+"""`plx migrate --to VERSION PATH...`: rewrite model files for another official OpenPLX version.
+
+What is rewritten comes from the change list between the two versions (`model/apichanges.py`),
+never from a list of names here: models that moved or were renamed (one to one, inferred from the
+API index or recorded in the reviewed table) and renamed attributes. Type names are found with
+the lexer's tokens (so comments and strings are never touched); attributes through the semantic
+model of the file under the version it was written for, so `charges` is renamed only where it
+means the attribute of a mate or interaction, also inside dotted paths.
+
+A rewrite is kept only when the result parses, the formatter accepts it, and it lints with no
+more errors under the target version than the input had under its own; otherwise the file is left
+as it was, with a message saying why.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from plxtools.diagnostics import Edit, Severity, apply_edits
+from plxtools.model.apichanges import AUTO, TABLE, changes
+from plxtools.syntax import ast, parse_text
+
+
+@dataclass(frozen=True)
+class Plan:
+    """The mechanical part of a migration between two versions."""
+
+    from_version: str
+    to_version: str
+    types: dict[str, str]  # old qualified model name -> new one
+    attrs: dict[tuple[str, str], str]  # (model that declares it, old attribute) -> new attribute
+
+
+def plan(from_v: str, to_v: str) -> Plan:
+    types: dict[str, str] = {}
+    attrs: dict[tuple[str, str], str] = {}
+    for c in changes(from_v, to_v):
+        if c.handling not in (AUTO, TABLE):
+            continue
+        if c.kind in ("model-moved", "model-renamed") and c.old and c.new:
+            types[c.old] = c.new
+        elif c.kind == "attr-renamed" and c.old and c.new:
+            attrs[(c.model, c.old)] = c.new
+    return Plan(from_v, to_v, types, attrs)
+
+
+@dataclass
+class FileMigration:
+    path: Path
+    old_text: str
+    new_text: str | None = None  # None: left unchanged (see `refused`)
+    edits: int = 0
+    refused: str | None = None
+    errors_before: int = 0
+    errors_after: int = 0
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def changed(self) -> bool:
+        return self.new_text is not None and self.new_text != self.old_text
+
+
+def type_edits(tree: ast.File, types: dict[str, str]) -> list[Edit]:
+    """Qualified names that moved: the longest leading part of a dotted name found in `types`."""
+    from plxtools.syntax.lexer import lex
+
+    out: list[Edit] = []
+    if not types:
+        return out
+    for line in lex(tree.text).lines:
+        toks = line.tokens
+        i = 0
+        while i < len(toks):
+            if toks[i].type != "NAME" or (i > 0 and toks[i - 1].type == "DOT"):
+                i += 1
+                continue
+            j = i  # the dotted run toks[i..j]
+            while j + 2 < len(toks) and toks[j + 1].type == "DOT" and toks[j + 2].type == "NAME":
+                j += 2
+            parts = [str(toks[k]) for k in range(i, j + 1, 2)]
+            for n in range(len(parts), 1, -1):
+                new = types.get(".".join(parts[:n]))
+                if new is not None:
+                    out.append(Edit(toks[i].start_pos, toks[i + 2 * (n - 1)].end_pos, new))
+                    break
+            i = j + 1
+    return out
+
+
+def attribute_edits(tree: ast.File, analysis, attrs: dict[tuple[str, str], str]) -> list[Edit]:
+    """Renamed attributes, wherever the model resolves a name to that attribute."""
+    from plxtools.model.symbols import MemberSym
+
+    out: dict[tuple[int, int], Edit] = {}
+    if not attrs or analysis is None:
+        return []
+    for occ in analysis.occurrences:
+        target = occ.target
+        if not isinstance(target, MemberSym) or target.owner is None:
+            continue
+        new = attrs.get((target.owner.qname, target.name))
+        a, b = occ.span.start.offset, occ.span.end.offset
+        if new is not None and tree.text[a:b] == target.name:
+            out[(a, b)] = Edit(a, b, new)
+    return list(out.values())
+
+
+def _errors(diags) -> int:
+    return sum(1 for d in diags if d.severity is Severity.ERROR)
+
+
+def migrate_text(path: Path, text: str, p: Plan, cfg, from_ws, to_ws) -> FileMigration:
+    """The migration of one file's text (nothing is written here)."""
+    from plxtools.fmt import format_text
+    from plxtools.rules.analysis import analyse_file, final_diagnostics
+
+    fm = FileMigration(path, text)
+    tree = parse_text(text, str(path))
+    if tree.has_errors_of_syntax():
+        fm.refused = "it has syntax errors; fix them first (`plx lint`)"
+        return fm
+    before = analyse_file(from_ws, tree)
+    fm.errors_before = _errors(final_diagnostics(tree, cfg, before))
+    edits = type_edits(tree, p.types) + attribute_edits(tree, before, p.attrs)
+    if not edits:
+        fm.new_text = text
+        fm.errors_after = fm.errors_before
+        return fm
+    new_text = apply_edits(text, edits)
+    new_tree = parse_text(new_text, str(path))
+    if new_tree.has_errors_of_syntax():
+        fm.refused = "the rewritten text would not parse (a bug in plx migrate; please report it)"
+        return fm
+    formatted = format_text(new_text, str(path))
+    if formatted.text is None:
+        fm.refused = "the formatter refuses the rewritten text (a bug in plx migrate; please report it)"
+        return fm
+    after = final_diagnostics(new_tree, cfg, analyse_file(to_ws, new_tree))
+    fm.errors_after = _errors(after)
+    if fm.errors_after > fm.errors_before:
+        first = next(d for d in after if d.severity is Severity.ERROR)
+        fm.refused = (f"under {p.to_version} it would have {fm.errors_after} errors (under {p.from_version}: "
+                      f"{fm.errors_before}), e.g. line {first.span.start.line + 1}: {first.code} {first.message}")
+        return fm
+    fm.new_text = new_text
+    fm.edits = len(edits)
+    return fm

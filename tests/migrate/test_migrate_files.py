@@ -1,0 +1,90 @@
+"""`plx migrate --to VERSION PATH...` on models written by us in the 0.17 style (issue 13)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from tests.bundles.conftest import fetched  # noqa: F401 - the fixture that provides old versions
+from tests.conftest import run_plx
+
+OLD = """\
+# a pendulum written for 0.17: charges became connectors, Charges became Geometries/Interactions
+Battery:
+    charges is Int: 3  # our own attribute called charges: not the mate's
+
+Link is Physics3D.Bodies.RigidBody:
+    geometry is Physics3D.Charges.Box:
+        size: {0.1, 0.1, 1.0}
+    inertia.mass: 1
+    top is Physics3D.Charges.MateConnector:  # the pivot
+        position: {0, 0, 0.5}
+        main_axis: {0, 1, 0}
+        normal: {1, 0, 0}
+
+Scene is Physics3D.System:
+    battery is Battery
+    link is Link
+    world_top is Physics3D.Charges.MateConnector:
+        position: {0, 0, 2}
+        main_axis: {0, 1, 0}
+        normal: {1, 0, 0}
+    hinge is Physics3D.Interactions.Hinge:
+        charges: [link.top, world_top]
+    count is Int: battery.charges
+"""
+
+NEW = (OLD.replace("Physics3D.Charges.Box", "Physics3D.Geometries.Box")
+       .replace("Physics3D.Charges.MateConnector", "Physics3D.Interactions.MateConnector")
+       .replace("        charges: [link.top", "        connectors: [link.top"))
+
+
+@pytest.fixture
+def old_model(tmp_path, fetched):  # noqa: F811
+    fetched("0.17.26")
+    f = tmp_path / "pendulum.openplx"
+    f.write_text(OLD, encoding="utf-8")
+    assert run_plx("lint", "--openplx-version", "0.17.26", str(f)).returncode == 0
+    return f
+
+
+def test_migrate_rewrites_moved_models_and_renamed_attributes_and_keeps_the_rest(old_model: Path):
+    r = run_plx("migrate", "--from", "0.17.26", "--to", "0.19.0", str(old_model))
+    assert r.returncode == 0, r.stderr
+    assert old_model.read_text(encoding="utf-8") == NEW
+    assert "4 changes" in r.stderr
+    lint = run_plx("lint", "--openplx-version", "0.19.0", str(old_model))
+    assert lint.returncode == 0, lint.stdout
+    again = run_plx("migrate", "--from", "0.19.0", "--to", "0.19.0", "--check", str(old_model))
+    assert again.returncode == 0 and "0 files (0 changes)" in again.stderr
+    fmt = run_plx("fmt", "--check", str(old_model))
+    assert fmt.returncode in (0, 1) and "internal error" not in fmt.stderr
+
+
+def test_diff_and_check_write_nothing(old_model: Path):
+    d = run_plx("migrate", "--from", "0.17.26", "--to", "0.19.0", "--diff", str(old_model))
+    assert d.returncode == 0 and "+        connectors: [link.top, world_top]" in d.stdout
+    c = run_plx("migrate", "--from", "0.17.26", "--to", "0.19.0", "--check", str(old_model))
+    assert c.returncode == 1 and "would migrate" in c.stderr
+    assert old_model.read_text(encoding="utf-8") == OLD
+
+
+def test_the_from_version_defaults_to_the_projects_pin(old_model: Path):
+    (old_model.parent / "plx.toml").write_text('openplx-version = "0.17.26"\n', encoding="utf-8")
+    r = run_plx("migrate", "--to", "0.19.0", str(old_model))
+    assert r.returncode == 0, r.stderr
+    assert "0.17.26 -> 0.19.0" in r.stderr and old_model.read_text(encoding="utf-8") == NEW
+
+
+def test_bad_input_is_a_message_and_the_file_is_untouched(old_model: Path, tmp_path):
+    r = run_plx("migrate", "--from", "0.17.26", "--to", "9.9", str(old_model))
+    assert r.returncode == 2 and "9.9" in r.stderr and "Traceback" not in r.stderr
+    r = run_plx("migrate", "--from", "0.19.0", "--to", "0.17.26", str(old_model))
+    assert r.returncode == 2 and "only moves forward" in r.stderr
+    broken = tmp_path / "broken.openplx"
+    broken.write_text("Scene is Physics3D.System:\n    x is = 1\n", encoding="utf-8")
+    r = run_plx("migrate", "--from", "0.17.26", "--to", "0.19.0", str(broken))
+    assert r.returncode == 2 and "syntax errors" in r.stderr
+    assert broken.read_text(encoding="utf-8") == "Scene is Physics3D.System:\n    x is = 1\n"
+    assert old_model.read_text(encoding="utf-8") == OLD
