@@ -7,6 +7,7 @@ version), so a one-file lint does not re-parse 465 bundle files.
 
 from __future__ import annotations
 
+import functools
 import zlib
 import os
 import pickle
@@ -15,7 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from plxtools import __version__
-from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity
+from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix, Severity
 from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
 from plxtools.model.checker import Checker, Occurrence
 from plxtools.model.program import Program
@@ -321,14 +322,19 @@ class Workspace:
                           f"name is loaded: add its folder with --bundle-path or bundle-path in plx.toml")
 
     def _help_for_other_versions(self, tree: ast.File, diags: list[Diagnostic]) -> None:
-        """An unknown type that an official OpenPLX version of another release has: say which, so the
-        user knows to migrate (or to choose that version) instead of hunting for a typo."""
+        """An unknown type that another official OpenPLX version has. When the API index says it
+        moved or was renamed one to one by the version in use, it is U001 with a safe fix to the new
+        name; otherwise the help says which versions have it, so the user migrates (or chooses that
+        version) instead of hunting for a typo."""
         unknown = [d for d in diags if d.code == "N001"]
         bs = getattr(self, "bundle_set", None)
         using = getattr(bs, "official_version", None)
-        if not unknown or not using:
+        if not using:
             return
-        from plxtools.model.apiindex import spans, where_defined
+        self._renamed_attributes(tree, [d for d in diags if d.code == "N002"], using)
+        if not unknown:
+            return
+        from plxtools.model.apiindex import UnknownVersion, spans, version_key, where_defined
 
         for d in unknown:
             written = tree.text[d.span.start.offset:d.span.end.offset]
@@ -337,10 +343,49 @@ class Workspace:
             found = [v for v in where_defined(written) if v != using]
             if not found:
                 continue
+            older = [v for v in found if version_key(v) < version_key(using)]
+            try:
+                new = _moved_to(written, older[-1], using) if older else None
+            except UnknownVersion:
+                new = None
+            if new is not None and self._resolves(new, tree):
+                d.code = "U001"
+                d.message = f"'{written}' was renamed '{new}' (OpenPLX {older[-1]} -> {using})"
+                d.help = f"write '{new}'; `plx migrate --to {using}` updates whole files"
+                d.fix = Fix(f"replace with '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=True)
+                continue
             note = (f"'{written}' exists in OpenPLX {spans(found)}, not in {using} (the version in use): "
                     f"`plx migrate --explain {found[-1]} {using}` lists what changed; `openplx-version` in "
                     f"plx.toml chooses another version")
             d.help = f"{note}; {d.help}" if d.help else note
+
+    def _renamed_attributes(self, tree: ast.File, unknown: list[Diagnostic], using: str) -> None:
+        """An unknown attribute that official versions before `using` renamed (`charges` ->
+        `connectors`): U002 with the new name. The fix is unsafe: the index knows which models
+        renamed it, and the user confirms that this is one of them."""
+        if not unknown:
+            return
+        renamed = _renamed_attributes_before(using)
+        for d in unknown:
+            written = tree.text[d.span.start.offset:d.span.end.offset]
+            targets = renamed.get(written)
+            if not targets or len({new for new, _, _ in targets}) != 1:
+                continue
+            new, model, since = targets[0]
+            owners = ", ".join(sorted({m for _, m, _ in targets})[:3])
+            d.code = "U002"
+            d.message = f"'{written}' was renamed '{new}' in OpenPLX {since} (in {owners})"
+            d.help = f"write '{new}' if this is one of those models; `plx migrate --to {using}` updates whole files"
+            d.fix = Fix(f"rename to '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=False)
+
+    def _resolves(self, qname: str, tree: ast.File) -> bool:
+        from plxtools.model.symbols import ModelSym
+
+        unit = self.program.units.get(tree.path) if tree.path else None
+        try:
+            return isinstance(self.program.lookup(qname.split("."), unit), ModelSym)
+        except Exception:  # noqa: BLE001 - a lookup for a hint must never break the analysis
+            return False
 
     def nearby_bundles(self, folder: Path, levels: int = 3) -> dict[str, Path]:
         """Bundles (by config name) in `folder`, its parents up to `levels` up, and their subfolders."""
@@ -424,4 +469,31 @@ def describe_bundle_set(ws: Workspace) -> list[dict]:
     for b in sorted(ws.bundles.values(), key=lambda b: (not b.official, b.name)):
         out.append({"name": b.name, "version": b.version or "", "folder": str(b.root),
                     "official": b.official, "why": b.origin})
+    return out
+
+
+def _moved_to(qname: str, old_v: str, new_v: str) -> str | None:
+    """The new name of a model that moved or was renamed one to one between two versions."""
+    from plxtools.model.apichanges import AUTO, TABLE, changes
+
+    for c in changes(old_v, new_v):
+        if c.kind in ("model-moved", "model-renamed") and c.old == qname and c.handling in (AUTO, TABLE):
+            return c.new
+    return None
+
+
+@functools.lru_cache(maxsize=8)
+def _renamed_attributes_before(using: str) -> dict[str, list[tuple[str, str, str]]]:
+    """old attribute name -> [(new name, model, first version)] for renames from the oldest indexed
+    version up to `using`, one to one (from the index or the reviewed table)."""
+    from plxtools.model.apichanges import AUTO, TABLE, changes
+    from plxtools.model.apiindex import versions
+
+    out: dict[str, list[tuple[str, str, str]]] = {}
+    first = versions()[0]
+    if first == using:
+        return out
+    for c in changes(first, using):
+        if c.kind == "attr-renamed" and c.handling in (AUTO, TABLE) and c.old and c.new:
+            out.setdefault(c.old, []).append((c.new, c.model, c.since))
     return out

@@ -8,13 +8,12 @@ from plxtools.model.apiindex import where_defined
 from tests.conftest import run_plx
 
 
-def test_a_type_of_an_older_version_names_the_versions_that_have_it(tmp_path):
+def test_a_removed_type_of_an_older_version_names_the_versions_that_have_it(tmp_path):
     f = tmp_path / "old.openplx"
-    f.write_text("Scene is Physics3D.System:\n    b is Physics3D.Bodies.RigidBody:\n"
-                 "        geometry is Physics3D.Charges.Box:\n            size: {1, 1, 1}\n", encoding="utf-8")
+    f.write_text("Scene is Physics3D.System:\n    s is Sensors.ForceTorqueSensor\n", encoding="utf-8")
     [d] = json.loads(run_plx("lint", "--output-format", "json", str(f)).stdout)
     assert d["code"] == "N001"
-    have = where_defined("Physics3D.Charges.Box")
+    have = where_defined("Sensors.ForceTorqueSensor")
     assert have and "0.19.0" not in have  # the index says it was removed before 0.19.0
     assert f"exists in OpenPLX {have[0]}-" in d["help"] and "plx migrate --explain" in d["help"]
     assert have[-1] in d["help"]
@@ -25,3 +24,32 @@ def test_a_plain_typo_gets_no_version_note(tmp_path):
     f.write_text("Scene is Physics3D.System:\n    b is Physics3D.Bodies.RigidBdy\n", encoding="utf-8")
     [d] = json.loads(run_plx("lint", "--output-format", "json", str(f)).stdout)
     assert d["code"] == "N001" and "exists in OpenPLX" not in (d["help"] or "")
+
+
+OLD_STYLE = """\
+Scene is Physics3D.System:
+    a is Physics3D.Bodies.RigidBody:
+        geometry is Physics3D.Charges.Box:  # written for 0.17
+            size: {1, 1, 1}
+        top is Physics3D.Charges.MateConnector
+    b is Physics3D.Bodies.RigidBody:
+        top is Physics3D.Charges.MateConnector
+    hinge is Physics3D.Interactions.Hinge:
+        charges: [a.top, b.top]
+"""
+
+
+def test_renamed_models_are_u001_with_a_safe_fix_and_attributes_u002_with_an_unsafe_one(tmp_path):
+    f = tmp_path / "scene.openplx"
+    f.write_text(OLD_STYLE, encoding="utf-8")
+    diags = json.loads(run_plx("lint", "--output-format", "json", str(f)).stdout)
+    assert [d["code"] for d in diags] == ["U001", "U001", "U001", "U002"], diags
+    assert diags[0]["fix"]["applicability"] == "safe" and diags[3]["fix"]["applicability"] == "unsafe"
+    assert "Physics3D.Geometries.Box" in diags[0]["message"] and "'connectors'" in diags[3]["message"]
+    run_plx("lint", "--fix", str(f))
+    assert "Physics3D.Charges" not in f.read_text(encoding="utf-8")
+    assert "charges:" in f.read_text(encoding="utf-8")  # unsafe: only on request
+    r = run_plx("lint", "--fix", "--unsafe-fixes", str(f))
+    assert r.returncode == 0, r.stdout
+    assert "connectors: [a.top, b.top]" in f.read_text(encoding="utf-8")
+    assert "# written for 0.17" in f.read_text(encoding="utf-8")
