@@ -10,7 +10,10 @@
  *  2. `openplx.interpreter`: a Python interpreter. Use `plx` from that interpreter's scripts folder,
  *     else `<python> -m plxtools` when the package is importable there. Explicit, so no fallback.
  *  3. The Python extension's active interpreter (same two checks). Implicit: on failure, go on.
- *  4. `plx` on PATH.
+ *  4. `plx` on the PATH of the extension host process.
+ *  5. `plx` on the PATH of the user's login shell (editors started from a desktop menu, or
+ *     code-server started by a service, may not have the shell's PATH). Not on Windows.
+ *  6. A virtual environment in the workspace: `.venv`, `venv`, `env` (`bin/plx`, `Scripts\plx.exe`).
  */
 import * as fs from 'node:fs';
 import * as os from 'node:os';
@@ -19,7 +22,7 @@ import { execFile } from 'node:child_process';
 
 export const INSTALL_COMMAND = 'pip install plxtools';
 
-export type PlxSource = 'server.path' | 'interpreter' | 'python-extension' | 'PATH';
+export type PlxSource = 'server.path' | 'interpreter' | 'python-extension' | 'PATH' | 'login-shell' | 'workspace-venv';
 
 /** How to run `plx <subcommand>`: `command ...prefixArgs <subcommand> ...`. */
 export interface PlxInvocation {
@@ -53,6 +56,24 @@ export interface DiscoveryInput {
   workspaceFolder?: string;
   /** Returns true when `import plxtools` would work in `python`. Injectable for tests. */
   hasPlxtoolsModule?: (python: string, env: Env) => Promise<boolean>;
+  /** The PATH of the user's login shell (undefined when it cannot be read). Injectable for tests. */
+  loginShellPath?: (env: Env) => Promise<string | undefined>;
+}
+
+/** Folders of a workspace where a virtual environment usually lives. */
+export const WORKSPACE_VENVS = ['.venv', 'venv', 'env'];
+
+/** Asks `$SHELL -lc` for its PATH (2 s at most); undefined when there is no such shell or it fails. */
+export function readLoginShellPath(env: Env): Promise<string | undefined> {
+  const shell = env.SHELL;
+  if (!shell || process.platform === 'win32') {
+    return Promise.resolve(undefined);
+  }
+  return new Promise((resolve) => {
+    execFile(shell, ['-lc', 'printf "%s" "$PATH"'], { env: env as NodeJS.ProcessEnv, timeout: 2000 }, (err, stdout) => {
+      resolve(err || !stdout ? undefined : String(stdout).trim());
+    });
+  });
 }
 
 export interface Attempt {
@@ -299,11 +320,36 @@ export async function discoverPlx(input: DiscoveryInput): Promise<DiscoveryResul
     }
   }
 
-  // 4. PATH
+  // 4. The extension host's PATH
   const onPath = findOnPath('plx', input.env, platform);
   if (onPath) {
     return plxFound(attempts, onPath, 'PATH', 'PATH');
   }
   attempts.push({ source: 'PATH', candidate: 'plx on PATH', outcome: 'not found' });
+
+  // 5. The login shell's PATH
+  if (platform !== 'win32') {
+    const shellPath = await (input.loginShellPath ?? readLoginShellPath)(input.env);
+    const onShellPath = shellPath ? findOnPath('plx', { ...input.env, PATH: shellPath }, platform) : undefined;
+    if (onShellPath) {
+      return plxFound(attempts, onShellPath, 'login-shell', "the login shell's PATH");
+    }
+    attempts.push({ source: 'login-shell', candidate: "plx on the login shell's PATH",
+                    outcome: shellPath ? 'not found' : 'could not be read' });
+  }
+
+  // 6. A virtual environment in the workspace
+  if (input.workspaceFolder) {
+    for (const name of WORKSPACE_VENVS) {
+      const candidate = platform === 'win32'
+        ? path.join(input.workspaceFolder, name, 'Scripts', 'plx.exe')
+        : path.join(input.workspaceFolder, name, 'bin', 'plx');
+      const problem = executableProblem(candidate, platform);
+      if (!problem) {
+        return plxFound(attempts, candidate, 'workspace-venv', `the workspace's ${name}`);
+      }
+      attempts.push({ source: 'workspace-venv', candidate, outcome: problem });
+    }
+  }
   return { found: false, attempts, message: notFoundMessage(attempts, extPython) };
 }

@@ -40,7 +40,13 @@ const never = async (): Promise<boolean> => {
 };
 
 function input(overrides: Partial<DiscoveryInput>): DiscoveryInput {
-  return { env: { PATH: '' }, platform: 'linux', hasPlxtoolsModule: async () => false, ...overrides };
+  return {
+    env: { PATH: '' },
+    platform: 'linux',
+    hasPlxtoolsModule: async () => false,
+    loginShellPath: async () => undefined,
+    ...overrides,
+  };
 }
 
 function expectFound(result: DiscoveryResult): Extract<DiscoveryResult, { found: true }> {
@@ -277,7 +283,7 @@ posixOnly('discoverPlx: PATH and the not-found message', () => {
     const r = expectNotFound(await discoverPlx(input({ pythonExtensionInterpreter: python, env: { PATH: path.join(tmp, 'empty') } })));
     assert.deepEqual(
       r.attempts.map((a) => a.source),
-      ['python-extension', 'python-extension', 'PATH'],
+      ['python-extension', 'python-extension', 'PATH', 'login-shell'],
     );
     assert.match(r.message, /^The OpenPLX language server \(plx\) was not found\. Tried: /);
     assert.ok(r.message.includes(path.join(tmp, 'active', 'bin', 'plx')), r.message);
@@ -290,6 +296,46 @@ posixOnly('discoverPlx: PATH and the not-found message', () => {
   it('suggests plain `pip install plxtools` when no interpreter is known', async () => {
     const r = expectNotFound(await discoverPlx(input({})));
     assert.ok(r.message.includes('`pip install plxtools`'), r.message);
+  });
+});
+
+posixOnly('discoverPlx: the login shell and the workspace', () => {
+  it("uses plx from the login shell's PATH when the process PATH has none (code-server)", async () => {
+    const plx = file('shellbin/plx');
+    const r = expectFound(await discoverPlx(input({
+      env: { PATH: path.join(tmp, 'empty') },
+      loginShellPath: async () => [path.join(tmp, 'nothing'), path.dirname(plx)].join(':'),
+    })));
+    assert.equal(r.invocation.command, plx);
+    assert.equal(r.invocation.source, 'login-shell');
+    assert.deepEqual(r.attempts.map((a) => a.source), ['PATH', 'login-shell']);
+  });
+
+  it('prefers the process PATH and does not start a shell then', async () => {
+    const onPath = file('procbin/plx');
+    const r = expectFound(await discoverPlx(input({
+      env: { PATH: path.dirname(onPath) },
+      loginShellPath: async () => { throw new Error('the login shell should not be asked'); },
+    })));
+    assert.equal(r.invocation.source, 'PATH');
+  });
+
+  it("finds plx in the workspace's .venv, then venv, when no PATH has it", async () => {
+    file('ws/venv/bin/plx');
+    const dotVenv = file('ws/.venv/bin/plx');
+    const r = expectFound(await discoverPlx(input({ workspaceFolder: path.join(tmp, 'ws') })));
+    assert.equal(r.invocation.command, dotVenv);
+    assert.equal(r.invocation.source, 'workspace-venv');
+    fs.rmSync(path.join(tmp, 'ws', '.venv'), { recursive: true });
+    const r2 = expectFound(await discoverPlx(input({ workspaceFolder: path.join(tmp, 'ws') })));
+    assert.equal(r2.invocation.command, path.join(tmp, 'ws', 'venv', 'bin', 'plx'));
+  });
+
+  it('lists every place it looked when nothing is found', async () => {
+    const r = expectNotFound(await discoverPlx(input({ workspaceFolder: path.join(tmp, 'empty-ws') })));
+    assert.deepEqual(r.attempts.map((a) => a.source),
+      ['PATH', 'login-shell', 'workspace-venv', 'workspace-venv', 'workspace-venv']);
+    assert.ok(r.message.includes(path.join(tmp, 'empty-ws', '.venv', 'bin', 'plx')), r.message);
   });
 });
 
