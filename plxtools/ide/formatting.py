@@ -8,7 +8,13 @@ from plxtools.ide.types import TextEdit
 
 
 class FormattingRefused(Exception):
-    """The formatter will not touch this text (syntax errors, or it could not verify its output)."""
+    """The formatter will not touch this text (syntax errors, or it could not verify its output).
+
+    `syntax` says which: a file with syntax errors is a normal state while typing, not a failure."""
+
+    def __init__(self, message: str, syntax: bool = False):
+        super().__init__(message)
+        self.syntax = syntax
 
 
 def _formatter():
@@ -24,7 +30,7 @@ def format_document(text: str, path: str = "") -> list[TextEdit]:
         if result.diagnostics:
             d = result.diagnostics[0]
             raise FormattingRefused(f"not formatted: the file has syntax errors (line {d.span.start.line + 1}: "
-                                    f"{d.message})")
+                                    f"{d.message})", syntax=True)
         raise FormattingRefused(f"not formatted: {result.internal_error or 'the formatter refused the file'}")
     new = result.text
     if new.startswith("\ufeff") and not text.startswith("\ufeff"):

@@ -926,7 +926,7 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
         try:
             edits = ide.format_document(st.text, st.path if os.path.isabs(st.path) else "")
         except ide.FormattingRefused as exc:
-            if "syntax errors" in str(exc):
+            if exc.syntax:
                 ls.window_log_message(types.LogMessageParams(type=types.MessageType.Info, message=f"plx: {exc}"))
                 return []
             raise RequestFailed(str(exc)) from None

@@ -54,7 +54,8 @@ def test_check_evaluates_a_017_model_under_017(fetched):
     assert [d for d in doc["diagnostics"] if d["severity"] == "error"] == []
     assert doc["assembly"][case]["model"] == "Pendulum"
     assert "bob" in doc["assembly"][case]["bodies"]
-    # and the same file under 0.19.0 is reported: the Charges namespace is gone there
+    # and the same file under 0.19.0 is reported: the Charges namespace is gone there, and the
+    # moved names are U001 with the new name as the fix
     r19 = run_plx("check", "--openplx-version", "0.19.0", case, "--output-format", "json")
     codes = {d["code"] for d in json.loads(r19.stdout)["diagnostics"]}
-    assert "N001" in codes
+    assert "U001" in codes
