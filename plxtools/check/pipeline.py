@@ -131,7 +131,7 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
         fc.skip = Skip.NOT_TEXT
         fc.diagnostics = _finish(tree, raw, cfg)
         return fc
-    fa = analyse_file(workspace, tree)
+    fa = analyse_file(workspace, tree, root_name=model)
     raw.extend(fa.diagnostics)
     fc.timings["lint"] = time.perf_counter() - t0
     rep = Reporter(fa.unit, str(path), skip_codes=_owned_by_lint(raw))

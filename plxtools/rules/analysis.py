@@ -11,18 +11,30 @@ from plxtools.diagnostics import Diagnostic
 from plxtools.syntax import ast
 
 
-def analyse_file(workspace, tree: ast.File):
-    """The model's analysis of `tree` with the rules' diagnostics added (a model FileAnalysis)."""
+def analyse_file(workspace, tree: ast.File, root_name: str | None = None):
+    """The model's analysis of `tree` with the rules' diagnostics added (a model FileAnalysis).
+
+    `root_name` is the model a run instantiates (`plx check --model`); by default the file's last
+    model. Completeness and the root rules judge that one."""
     from plxtools.model.workspace import FileAnalysis
     from plxtools.rules.completeness import completeness_diagnostics
     from plxtools.rules.style import style_diagnostics
 
     fa = workspace.analyse(tree)
-    extra = completeness_diagnostics(workspace.program, fa.unit, list(tree.diagnostics) + fa.diagnostics)
-    extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences)
+    root = _named_model(workspace.program, fa.unit, root_name) if root_name else None
+    extra = completeness_diagnostics(workspace.program, fa.unit, list(tree.diagnostics) + fa.diagnostics, root)
+    extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences, root)
     for d in extra:
         d.file = tree.path
     return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.occurrences)
+
+
+def _named_model(program, unit, name: str):
+    """The model `name` resolves to in this file (None when it is no model: check reports that)."""
+    from plxtools.model.symbols import ModelSym
+
+    found = program.lookup(name.split("."), unit)
+    return found if isinstance(found, ModelSym) and not found.is_trait else None
 
 
 def analyse_tree(tree: ast.File, cfg: Config, workspace=None) -> list[Diagnostic]:

@@ -48,7 +48,8 @@ def _assigned(program: Program, model: ModelSym) -> set[tuple[str, ...]]:
     return out
 
 
-def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = ()) -> list[Diagnostic]:
+def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = (),
+                             root: ModelSym | None = None) -> list[Diagnostic]:
     """M007/M008 for what the root model creates, one per source location and attribute.
 
     `causes` are the file's other diagnostics: a declaration whose block failed to parse, or that
@@ -56,7 +57,7 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
     that only follow from it are not reported again (one mistake, one message)."""
     if unit.bundle is not None:
         return []
-    root = root_model(program, unit)
+    root = root or root_model(program, unit)
     if root is None:
         return []
     found: list[tuple[Diagnostic, str, str, str]] = []  # (diagnostic, member name, dotted path, type)

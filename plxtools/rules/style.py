@@ -15,7 +15,7 @@ SNAKE = re.compile(r"^[a-z_][a-z0-9_]*$")
 UPPER = re.compile(r"^[A-Z][A-Z0-9_]*$")
 
 
-def style_diagnostics(program: Program, unit, occurrences) -> list[Diagnostic]:
+def style_diagnostics(program: Program, unit, occurrences, root: ModelSym | None = None) -> list[Diagnostic]:
     out: list[Diagnostic] = []
     tree = unit.tree
 
@@ -65,14 +65,15 @@ def style_diagnostics(program: Program, unit, occurrences) -> list[Diagnostic]:
         return out
 
     # C003: models defined in a loose file that nothing uses; C007: root that is not a System
-    root = root_model(program, unit)
+    chosen = root is not None  # --model NAME: that model is the root, wherever it is in the file
+    root = root or root_model(program, unit)
     used = {id(o.target) for o in occurrences if o.kind != "definition"}
     for name, sym in unit.locals.items():
         if isinstance(sym, ModelSym) and sym is not root and id(sym) not in used:
             span = sym.stmt.name.span if isinstance(sym.stmt, ast.TraitDef) else sym.stmt.path.span
             add("C003", f"{'trait' if sym.is_trait else 'model'} '{name}' is defined but never used in this file",
                 span, Severity.WARNING, "use it, move it into a bundle, or remove it")
-    if root is not None:
+    if root is not None and not chosen:  # a root chosen by name is not "the last model"
         system = program.lookup(["Physics3D", "System"], unit)
         is_system = isinstance(system, ModelSym) and program.is_subtype(root, system)
         # a scene above the root that nothing uses: the scene was meant to be last

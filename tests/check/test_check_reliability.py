@@ -338,3 +338,16 @@ def test_a_blow_up_leaves_no_mujoco_log_in_the_users_folder(tmp_path):
     r = _run_plx("check", "--simulate", "--duration", "0.5", str(f), cwd=tmp_path)
     assert r.returncode == 1 and "A101" in r.stdout, r.stdout + r.stderr
     assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
+
+
+def test_model_option_changes_the_root_the_lint_rules_judge(tmp_path):
+    """`--model Test` instantiates Test, so a value missing only in the last model is not reported."""
+    f = _write(tmp_path, "Wheel is Physics3D.Bodies.RigidBody:\n    radius is Real\n    inertia.mass: 10\n\n"
+                         "Test is Physics3D.System:\n    w is Wheel:\n        radius: 0.3\n\n"
+                         "Scene is Physics3D.System:\n    w is Wheel\n")
+    default = json.loads(_run_plx("check", "--output-format", "json", str(f), cwd=tmp_path).stdout)
+    assert "M007" in [d["code"] for d in default["diagnostics"]]
+    chosen = _run_plx("check", "--model", "Test", "--output-format", "json", str(f), cwd=tmp_path)
+    codes = [d["code"] for d in json.loads(chosen.stdout)["diagnostics"]]
+    assert "M007" not in codes and "C007" not in codes, chosen.stdout
+    assert chosen.returncode == 0
