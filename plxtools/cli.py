@@ -85,6 +85,11 @@ def _add_check(sub) -> None:
     p.add_argument("--output-format", choices=OUTPUT_FORMATS, default="text", help="text, json, github or sarif")
     p.add_argument("--render", metavar="FILE.png", help="save a picture of the assembled scene (offscreen)")
     p.add_argument("--export-mjcf", metavar="FILE.xml", help="write the compiled MuJoCo model")
+    p.add_argument("--trace", metavar="FILE.csv",
+                   help="write the simulated motion (every body's pose and velocity, every mate's coordinate, "
+                   "every 0.01 s) as CSV; implies --simulate")
+    p.add_argument("--timeout", type=float, default=None, metavar="SECONDS",
+                   help="wall-clock limit of each file's simulation (default 300); a run cut short is A109")
     p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
                    help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
     p.add_argument("--exit-zero", action="store_true", help="exit 0 even when errors are found")

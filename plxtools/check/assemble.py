@@ -341,6 +341,7 @@ class Assembler:
                 asm.other_interactions.append(obj)
         for node in asm.nodes[1:]:
             self._declared(node)
+        self._kinematically_controlled(asm)
         for m in mates:
             asm.mates.append(self._mate(asm, m))
         for c in ctrls:
@@ -358,6 +359,20 @@ class Assembler:
                 return n
             cur = cur.owner
         return asm.root_node
+
+    def _kinematically_controlled(self, asm: Assembly) -> None:
+        """``System.kinematically_controlled: [bodies]`` (deprecated in 0.19, still honoured by AGX's
+        importers) makes those bodies kinematic, as ``is_dynamic: false`` does."""
+        for node in asm.nodes:
+            if node.kind != "system":
+                continue
+            listed = self.get(node.obj, "kinematically_controlled", None)
+            if not isinstance(listed, (list, tuple)):
+                continue
+            for item in listed:
+                target = asm.node_of(item) if isinstance(item, Obj) else None
+                if target is not None and target.kind == "body":
+                    target.is_dynamic = False
 
     def _declared(self, node: Node) -> None:
         obj = node.obj

@@ -17,6 +17,7 @@ from plxtools.diagnostics import Severity
 
 
 MAX_DURATION = 3600.0  # s of simulated time; a longer run is a usage error, not an hour-long job
+DEFAULT_TIMEOUT = 300.0  # s of wall-clock time per file's simulation
 
 
 def _artefact_path(template: str, index: int, count: int) -> Path:
@@ -35,6 +36,15 @@ def run_check(args) -> int:
         print(f"plx check: --duration must be a number of seconds in (0, {MAX_DURATION:g}]; got {args.duration:g}",
               file=sys.stderr)
         return 2
+    timeout = getattr(args, "timeout", None)
+    if timeout is None:
+        timeout = DEFAULT_TIMEOUT
+    elif not (math.isfinite(timeout) and timeout > 0):
+        print(f"plx check: --timeout must be a positive number of seconds; got {timeout:g}", file=sys.stderr)
+        return 2
+    trace = getattr(args, "trace", None)
+    if trace:
+        args.simulate = True
     want_backend = bool(args.simulate or args.render or args.export_mjcf)
     try:
         files = discover(args.paths)
@@ -64,7 +74,8 @@ def run_check(args) -> int:
             if want_backend and fc.scene is not None:
                 reason = blocking_reason(fc)
                 if reason is None:
-                    run_backend(fc, simulate=bool(args.simulate), duration=args.duration)
+                    run_backend(fc, simulate=bool(args.simulate), duration=args.duration, record=bool(trace),
+                                timeout=timeout)
                 else:
                     fc.skip, fc.skip_detail = Skip.BLOCKED, reason
         except Exception as exc:  # a bug in plxtools: say so, go on with the other files
@@ -115,7 +126,8 @@ def _json_default(o):
 def _artefacts(args, results) -> int:
     status = 0
     targets = [fc for fc in results if fc.scene is not None]
-    for kind, template in (("render", args.render), ("export", args.export_mjcf)):
+    for kind, template in (("render", args.render), ("export", args.export_mjcf),
+                           ("trace", getattr(args, "trace", None))):
         if not template:
             continue
         if not targets:
@@ -125,6 +137,9 @@ def _artefacts(args, results) -> int:
             continue
         for i, fc in enumerate(targets):
             out = _artefact_path(template, i, len(targets))
+            if kind == "trace":
+                status = max(status, _write_trace(fc, out))
+                continue
             if fc.compiled is None or not fc.compiled.ok:
                 why = fc.skipped if fc.compiled is None and fc.skipped else "the scene did not compile to MuJoCo"
                 print(f"plx check: {fc.path}: cannot write {out}: {why}", file=sys.stderr)
@@ -153,6 +168,22 @@ def _artefacts(args, results) -> int:
                 print(f"plx check: cannot write {out}: {exc.strerror or exc}", file=sys.stderr)
                 status = 2
     return status
+
+
+def _write_trace(fc, out: Path) -> int:
+    from plxtools.check.trace_file import TraceWriteError, write_trace
+
+    sim = fc.simulation
+    if sim is None or sim.trace is None:
+        why = fc.skipped or "the scene was not simulated"
+        print(f"plx check: {fc.path}: cannot write {out}: {why}", file=sys.stderr)
+        return 2
+    try:
+        write_trace(sim.trace, out)
+    except TraceWriteError as exc:
+        print(f"plx check: cannot write {out}: {exc}", file=sys.stderr)
+        return 2
+    return 0
 
 
 def _report_note(fc, note) -> None:

@@ -53,6 +53,11 @@ UNIFORM_GRAVITY = "Simulation.UniformGravitationalField"
 POINT_GRAVITY = "Simulation.PointGravitationalField"
 LINEAR_ELASTIC = "Physics.Interactions.Flexibility.LinearElastic"
 MECH_DAMPING = "Physics.Interactions.Dissipation.MechanicalDamping"
+RELAXATION_DAMPING = "Physics.Interactions.Dissipation.ConstraintRelaxationTimeDamping"
+DEFAULT_DISSIPATION = "Physics.Interactions.Dissipation.DefaultDissipation"
+# "The runtime decides" (DefaultDissipation): AGX damps a constraint with a relaxation time of two
+# of its default 60 Hz time steps; the damping coefficient is stiffness x relaxation time.
+DEFAULT_RELAXATION_TIME = 2.0 / 60.0
 
 
 @dataclass(eq=False)
@@ -484,10 +489,39 @@ def _controller(col: Collector, c: CtrlRec, conns: _Connectors, rep: Reporter) -
         fl = col.ev.child(obj, "flexibility")
         if isinstance(fl, Obj) and col.k.isa(fl, LINEAR_ELASTIC):
             sc.stiffness = a.real(fl, "stiffness", 1e6)
-        ds = col.ev.child(obj, "dissipation")
-        if isinstance(ds, Obj) and col.k.isa(ds, MECH_DAMPING):
-            sc.damping = a.real(ds, "damping_constant", 0.0)
+        _spring_damping(col, obj, sc, rep)
+    sc.user_set = frozenset(n for n in ("gain", "flexibility.stiffness", "target_speed")
+                            if _user_set(col, obj, n))
     return sc
+
+
+def _user_set(col: Collector, obj: Obj, path: str) -> bool:
+    """True when the value at ``path`` is decided by a statement outside the official bundles."""
+    _, unit = col.ev.where(obj, path)
+    return unit is not None and not getattr(unit, "official", False)
+
+
+def _spring_damping(col: Collector, obj: Obj, sc: S.Controller, rep: Reporter) -> None:
+    """The damping coefficient a spring's ``dissipation`` stands for (N s/m or N m s/rad)."""
+    ds = col.ev.child(obj, "dissipation")
+    k = sc.stiffness
+    if not isinstance(ds, Obj):
+        sc.damping, sc.damping_from = 0.0, "no dissipation"
+    elif col.k.isa(ds, MECH_DAMPING):
+        sc.damping = col.a.real(ds, "damping_constant", 0.0)
+        sc.damping_from = "MechanicalDamping.damping_constant"
+    elif col.k.isa(ds, RELAXATION_DAMPING):
+        tau = col.a.real(ds, "relaxation_time", 0.0)
+        sc.damping = k * tau if math.isfinite(tau) and tau > 0 else -1.0
+        sc.damping_from = f"relaxation time {tau:g} s x stiffness {k:g}"
+    elif col.k.isa(ds, "Physics.Interactions.Dissipation.DefaultFriction"):
+        sc.damping, sc.damping_from = 0.0, "none (friction on a spring is not simulated)"
+        rep.add("A040", f"{obj.display}: {ds.model.qname} on a spring is not simulated by the MuJoCo "
+                "backend (no damping used)", obj=ds, severity="warning")
+    else:  # DefaultDissipation: the runtime's choice
+        sc.damping = k * DEFAULT_RELAXATION_TIME
+        sc.damping_from = (f"default dissipation: AGX's relaxation time {DEFAULT_RELAXATION_TIME:.4g} s x "
+                           f"stiffness {k:g}")
 
 
 def _excludes(col: Collector, rep: Reporter) -> list[S.ExcludePair]:

@@ -102,6 +102,8 @@ def build(ctx: BuildContext) -> None:
     spec.option.gravity = [float(g) for g in scene.gravity]
     spec.option.integrator = mj.mjtIntegrator.mjINT_IMPLICITFAST
     spec.option.enableflags |= int(mj.mjtEnableBit.mjENBL_ENERGY)
+    spec.option.cone = mj.mjtCone.mjCONE_ELLIPTIC
+    spec.option.impratio = 10.0
     spec.visual.global_.offwidth = 1280
     spec.visual.global_.offheight = 960
     spec.worldbody.add_light(
@@ -305,11 +307,14 @@ def add_static_bodies(ctx: BuildContext) -> None:
             name=name, pos=list(body.world_pos), quat=list(quat_normalize(body.world_quat))
         )
         ctx.mj_bodies[path] = mb
-        if any(abs(v) > 0 for v in (*body.lin_vel, *body.ang_vel)):
+        if body.kinematic:
+            mb.mocap = True
+            ctx.out.kinematic.append(path)
             ctx.note(
-                WARNING,
+                INFO,
                 "A121",
-                f"{path} is not dynamic; its initial velocity is ignored (held fixed)",
+                f"{path} is kinematic: it moves with its velocity whatever hits it (a MuJoCo mocap body; "
+                "contacts see where it is, not how fast it moves, so friction does not carry things on it)",
                 body,
             )
         add_geoms(ctx, mb, body)

@@ -24,15 +24,40 @@ from plxtools.check.scene import Controller, Mate
 KV_STEPS = 10.0
 KV_STEPS_LIMITED = 1.0
 SPRING_OMEGA_H = 0.2  # spring stiffness cap: natural frequency * timestep <= 0.2
+MIN_TIMESTEP = 1e-4  # s: the shortest step chosen for stiff springs (20 x shorter than the default)
 BIG_FORCE = 1e9
 
 
 # -- controllers -----------------------------------------------------------------------------
 def add_controllers(ctx: BuildContext, model: Any) -> None:
+    bound = bind_controllers(ctx, model)
+    choose_timestep(ctx, bound)
+    for ctl, mate, joint, sign, ieff in bound:
+        if ctl.kind == "velocity_motor":
+            add_velocity_motor(ctx, ctl, mate, joint, sign, ieff)
+        elif ctl.kind in ("torque_motor", "force_motor"):
+            add_effort_motor(ctx, ctl, mate, joint, sign)
+        elif ctl.kind == "range":
+            add_range(ctx, ctl, joint, sign)
+        elif ctl.kind == "spring":
+            add_spring(ctx, ctl, joint, sign, ieff)
+        else:
+            ctx.invariant("A040",
+                f"{ctl.path}: controller kind {ctl.kind!r} unsupported; ignored",
+                ctl,
+            )
+
+
+Binding = tuple[Controller, Mate, str, int, float]  # controller, its mate, joint, sign, effective inertia
+
+
+def bind_controllers(ctx: BuildContext, model: Any) -> list[Binding]:
+    """Each enabled controller with the MuJoCo joint it acts on (notes for those that act on none)."""
     mates: dict[tuple[str, str], Mate] = {}
     for m in ctx.scene.mates:
         if len(m.connectors) == 2:
             mates.setdefault((m.connectors[0].path, m.connectors[1].path), m)
+    out: list[Binding] = []
     for ctl in ctx.scene.controllers:
         ctx.names.add("controller", ctl.path, ctl.source)
         if not ctl.enabled:
@@ -64,19 +89,28 @@ def add_controllers(ctx: BuildContext, model: Any) -> None:
             )
         jid = model.joint(joint).id
         ieff = 1.0 / max(float(model.dof_invweight0[model.jnt_dofadr[jid]]), 1e-12)
-        if ctl.kind == "velocity_motor":
-            add_velocity_motor(ctx, ctl, mate, joint, sign, ieff)
-        elif ctl.kind in ("torque_motor", "force_motor"):
-            add_effort_motor(ctx, ctl, mate, joint, sign)
-        elif ctl.kind == "range":
-            add_range(ctx, ctl, joint, sign)
-        elif ctl.kind == "spring":
-            add_spring(ctx, ctl, joint, sign, ieff)
-        else:
-            ctx.invariant("A040",
-                f"{ctl.path}: controller kind {ctl.kind!r} unsupported; ignored",
-                ctl,
-            )
+        out.append((ctl, mate, joint, sign, ieff))
+    return out
+
+
+def choose_timestep(ctx: BuildContext, bound: list[Binding]) -> None:
+    """Shorten the time step (down to MIN_TIMESTEP) so that every spring runs with the stiffness
+    the model gives it: joint stiffness is integrated explicitly and needs omega * h <= 0.2."""
+    h = float(ctx.spec.option.timestep)
+    need, stiffest = h, None
+    for ctl, _mate, _joint, _sign, ieff in bound:
+        if ctl.kind == "spring" and ctl.stiffness > 0 and math.isfinite(ctl.stiffness):
+            hk = SPRING_OMEGA_H * math.sqrt(ieff / ctl.stiffness)
+            if hk < need:
+                need, stiffest = hk, ctl
+    if stiffest is None:
+        return
+    new_h = max(need, MIN_TIMESTEP)
+    new_h = h / math.ceil(h / new_h)  # a whole number of steps per default step keeps sampling exact
+    ctx.spec.option.timestep = new_h
+    ctx.note(INFO, "A133", f"time step shortened from {h:g} s to {new_h:.4g} s so that {stiffest.path} "
+             f"(stiffness {stiffest.stiffness:g}) is simulated as stiff as the model says"
+             + ("" if new_h <= need * (1 + 1e-9) else f"; the floor is {MIN_TIMESTEP:g} s"), stiffest)
 
 
 def controller_joint(ctx: BuildContext, ctl: Controller, mate: Mate) -> str | None:
@@ -124,7 +158,7 @@ def effort_range(ctx: BuildContext, ctl: Controller, act: Any) -> None:
 
 
 def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str, sign: int, ieff: float) -> None:
-    h = float(ctx.scene.timestep)
+    h = float(ctx.spec.option.timestep)
     if ctl.gain <= 0:
         ctx.note(
             ERROR,
@@ -143,10 +177,12 @@ def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: st
             if limited
             else "integrated implicitly, nearly rigid speed tracking"
         )
+        user = "gain" in ctl.user_set
         ctx.note(
-            INFO,
+            WARNING if user else INFO,
             "A111",
-            f"{ctl.path}: gain {ctl.gain:g} is far too stiff for MuJoCo; kv clamped to {kv:.4g} "
+            f"{ctl.path}: {'your' if user else 'the default'} gain {ctl.gain:g} is far too stiff for MuJoCo; "
+            f"kv clamped to {kv:.4g} "
             f"(= {steps:g} x effective inertia {ieff:.4g} / timestep {h:g}; {why})",
             ctl,
         )
@@ -202,6 +238,12 @@ def add_range(ctx: BuildContext, ctl: Controller, joint: str, sign: int) -> None
     j = ctx.spec.joint(joint)
     j.limited = ctx.mj.mjtLimited.mjLIMITED_TRUE
     j.range = [lo, hi]
+    # OpenPLX ranges are rigid by default: MuJoCo's stiffest stable limit (a time constant of two
+    # steps, critically damped) instead of its soft default (0.02 s), which let a weight falling
+    # 0.5 m onto its stop overshoot by 2 cm
+    h = float(ctx.spec.option.timestep)
+    j.solref_limit = [2.0 * h, 1.0]
+    j.solimp_limit = [0.95, 0.99, 0.001, 0.5, 2.0]
     if math.isfinite(ctl.max_effort) or (math.isfinite(ctl.min_effort) and ctl.min_effort != 0):
         ctx.note(
             INFO,
@@ -212,7 +254,7 @@ def add_range(ctx: BuildContext, ctl: Controller, joint: str, sign: int) -> None
 
 
 def add_spring(ctx: BuildContext, ctl: Controller, joint: str, sign: int, ieff: float) -> None:
-    h = float(ctx.scene.timestep)
+    h = float(ctx.spec.option.timestep)
     if ctl.stiffness <= 0:
         ctx.note(
             ERROR,
@@ -221,11 +263,11 @@ def add_spring(ctx: BuildContext, ctl: Controller, joint: str, sign: int, ieff: 
             ctl,
         )
         return
-    if ctl.damping < 0:
+    if ctl.damping < 0 or not math.isfinite(ctl.damping):
         ctx.note(
             ERROR,
             "A130",
-            f"{ctl.path}: damping {ctl.damping:g} must not be negative; spring ignored",
+            f"{ctl.path}: damping ({ctl.damping_from or ctl.damping}) must be a finite number >= 0; spring ignored",
             ctl,
         )
         return
@@ -233,9 +275,10 @@ def add_spring(ctx: BuildContext, ctl: Controller, joint: str, sign: int, ieff: 
     k = min(float(ctl.stiffness), cap)
     if k < ctl.stiffness:
         ctx.note(
-            INFO,
+            WARNING,
             "A112",
-            f"{ctl.path}: stiffness {ctl.stiffness:g} would be unstable at timestep {h:g}; clamped to {k:.4g} "
+            f"{ctl.path}: stiffness {ctl.stiffness:g} would be unstable even at the shortest time step {h:g} s; "
+            f"simulated with {k:.4g} "
             f"(natural frequency x timestep <= {SPRING_OMEGA_H:g} for effective inertia {ieff:.4g})",
             ctl,
         )

@@ -27,9 +27,12 @@ class BodyReport:
     horizontal_distance: float  # |displacement| in the world XY plane
     path_length: float  # summed over samples
     heading_change: float  # rad, yaw of the body x axis about world Z, unwrapped (+ = counter-clockwise)
-    max_speed: float  # m/s, body origin
+    max_speed: float  # m/s, centre of mass
     min_z: float
     fell_through_time: float | None = None
+    kinetic_energy: float = 0.0  # J at the end (translation + rotation)
+    max_kinetic_energy: float = 0.0  # J, largest over the samples
+    potential_energy: float = 0.0  # J at the end, gravity only (-m g . x_cm)
 
 
 @dataclass(slots=True)
@@ -76,9 +79,10 @@ class SimulationResult:
     bodies: dict[str, BodyReport] = field(default_factory=dict)
     mates: dict[str, MateReport] = field(default_factory=dict)
     motors: dict[str, MotorReport] = field(default_factory=dict)
-    energy: dict[str, float] = field(default_factory=dict)
+    energy: dict[str, Any] = field(default_factory=dict)
+    implausible_speeds: list[dict[str, Any]] = field(default_factory=list)
     notes: list[BackendNote] = field(default_factory=list)
-    trace: dict[str, Any] | None = None  # record=True: {"time": [...], "joints": {mate path: [q...]}}
+    trace: dict[str, Any] | None = None  # record=True: see :class:`Trace`
 
     def to_dict(self) -> dict[str, Any]:
         d = {k: v for k, v in asdict(self).items() if k != "notes"}
@@ -175,6 +179,8 @@ class SimOptions:
     """Thresholds of the monitors (see :func:`plxtools.check.mujoco_backend.simulate`)."""
 
     sample_dt: float = 0.01
+    timeout: float | None = None  # s of wall-clock time; None: no limit
+    energy_tol: float = 0.05  # energy gain tolerated, as a fraction of the run's energy scale
     penetration_tol: float = 0.005
     max_speed: float = 1e3
     fall_margin: float = 0.01
@@ -198,19 +204,79 @@ class SimRun:
     duration: float
     bodies: list[tuple[str, int, bool]]  # (path, MuJoCo body id, dynamic)
     speed: dict[str, float] = field(default_factory=dict)  # body path -> speed at the last sample
+    movers: list["KinematicMover"] = field(default_factory=list)
 
     @property
     def dyn(self) -> list[tuple[str, int]]:
         return [(p, i) for p, i, d in self.bodies if d]
+
+    @property
+    def moving(self) -> list[tuple[str, int]]:
+        """Dynamic bodies and kinematic bodies that move as prescribed."""
+        kin = {m.path for m in self.movers}
+        return [(p, i) for p, i, d in self.bodies if d or p in kin]
 
     def add(self, sev: str, code: str, msg: str, path: str | None) -> None:
         src = self.compiled.names.sources.get(path) if path else None
         self.res.notes.append(BackendNote(sev, code, msg, src, path))
 
 
+@dataclass(slots=True)
+class KinematicMover:
+    """A kinematic body moved at its constant prescribed velocity (world frame, about its origin)."""
+
+    path: str
+    mocap: int
+    p0: np.ndarray
+    q0: np.ndarray
+    v: np.ndarray
+    w: np.ndarray
+
+    def place(self, data: Any, t: float) -> None:
+        data.mocap_pos[self.mocap] = self.p0 + self.v * t
+        angle = float(np.linalg.norm(self.w)) * t
+        if angle == 0.0:
+            data.mocap_quat[self.mocap] = self.q0
+            return
+        ax = self.w / np.linalg.norm(self.w)
+        dq = np.array([math.cos(angle / 2), *(math.sin(angle / 2) * ax)])
+        data.mocap_quat[self.mocap] = _quat_mul(dq, self.q0)
+
+
+def _quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return np.array([aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
+                     aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw])
+
+
+def kinematic_movers(compiled: CompiledScene, model: Any, data: Any) -> list[KinematicMover]:
+    out = []
+    for path in compiled.kinematic:
+        b = compiled.scene.body(path)
+        name = compiled.names.name("body", path)
+        if b is None or name is None:
+            continue
+        mid = int(model.body_mocapid[model.body(name).id])
+        if mid < 0:
+            continue
+        out.append(KinematicMover(path, mid, data.mocap_pos[mid].copy(), data.mocap_quat[mid].copy(),
+                                  np.asarray(b.lin_vel, dtype=float), np.asarray(b.ang_vel, dtype=float)))
+    return out
+
+
 class Monitor:
     """One thing watched during the run: set up at t=0, ``sample`` after every chunk of steps,
-    ``finish`` writes its part of the result.  A new check of the motion is a new Monitor."""
+    ``finish`` writes its part of the result.  A new check of the motion is a new Monitor.  One
+    with ``per_step`` set also sees every single step (``before_step`` / ``after_step``)."""
+
+    per_step = False
+
+    def before_step(self, run: SimRun) -> None:
+        pass
+
+    def after_step(self, run: SimRun) -> None:
+        pass
 
     def sample(self, run: SimRun, t: float) -> None:
         pass
@@ -282,23 +348,40 @@ class BadControl(Monitor):
 
 
 class Trace(Monitor):
-    """``record=True``: the joint coordinates of every mate at every sample, in OpenPLX's sign."""
+    """``record=True``: at every sample, the coordinate and speed of every mate's joint (in
+    OpenPLX's sign) and the world pose, centre-of-mass velocity and angular velocity of every body
+    (what ``plx check --trace`` writes)."""
 
     def __init__(self, run: SimRun) -> None:
         model, compiled = run.model, run.compiled
-        self.traced: list[tuple[str, int, int]] = []  # (key, qpos address, sign)
+        self.traced: list[tuple[str, int, int, int]] = []  # (key, qpos address, dof address, sign)
         for mate_path, jnames in compiled.joints.items():
             for jn in jnames:
                 j = model.joint(jn)
                 if model.jnt_type[j.id] in (2, 3):
                     key = mate_path + (jn[jn.rfind(":") :] if len(jnames) > 1 else "")
-                    self.traced.append((key, int(model.jnt_qposadr[j.id]), compiled.joint_sign[mate_path]))
-        run.res.trace = {"time": [0.0], "joints": {k: [s * float(run.data.qpos[a])] for k, a, s in self.traced}}
+                    self.traced.append((key, int(model.jnt_qposadr[j.id]), int(model.jnt_dofadr[j.id]),
+                                        compiled.joint_sign[mate_path]))
+        self.vel6 = np.zeros(6)
+        run.res.trace = {"time": [], "joints": {k: [] for k, *_ in self.traced},
+                         "joint_speeds": {k: [] for k, *_ in self.traced},
+                         "bodies": {p: {"position": [], "quaternion": [], "velocity": [], "angular_velocity": []}
+                                    for p, _, _ in run.bodies}}
+        self.sample(run, 0.0)
 
     def sample(self, run: SimRun, t: float) -> None:
-        run.res.trace["time"].append(t)
-        for key, adr, sgn in self.traced:
-            run.res.trace["joints"][key].append(sgn * float(run.data.qpos[adr]))
+        tr, data = run.res.trace, run.data
+        tr["time"].append(t)
+        for key, qa, da, sgn in self.traced:
+            tr["joints"][key].append(sgn * float(data.qpos[qa]))
+            tr["joint_speeds"][key].append(sgn * float(data.qvel[da]))
+        for p, i, _ in run.bodies:
+            b = tr["bodies"][p]
+            b["position"].append(_vec(data.xpos[i]))
+            b["quaternion"].append(_vec(data.xquat[i]))
+            run.mujoco.mj_objectVelocity(run.model, data, run.mujoco.mjtObj.mjOBJ_BODY, i, self.vel6, 0)
+            b["velocity"].append(_vec(self.vel6[3:]))
+            b["angular_velocity"].append(_vec(self.vel6[:3]))
 
 
 @dataclass
@@ -314,44 +397,61 @@ class _BodyTrack:
 
 
 class BodyMotion(Monitor):
-    """Per dynamic body: path length, heading change, top speed, lowest point; the body reports."""
+    """Per moving body: path length, heading change, top speed, lowest point, kinetic and
+    potential energy; the body reports."""
 
     def __init__(self, run: SimRun) -> None:
         data = run.data
         self.start = {p: (data.xpos[i].copy(), data.xquat[i].copy()) for p, i, _ in run.bodies}
         self.track = {p: _BodyTrack(data.xpos[i].copy(), data.xquat[i].copy(), data.xpos[i].copy(),
                                     yaw_of_mat(data.xmat[i].reshape(3, 3)), float(data.xpos[i][2]))
-                      for p, i in run.dyn}
+                      for p, i in run.moving}
         self.vel6 = np.zeros(6)
+        self.ke_max: dict[str, float] = {}
+        self.sample(run, 0.0, first=True)
 
-    def sample(self, run: SimRun, t: float) -> None:
+    def kinetic(self, run: SimRun, i: int) -> tuple[float, float]:
+        """(speed of the centre of mass, kinetic energy) of body ``i`` now."""
+        model, data = run.model, run.data
+        run.mujoco.mj_objectVelocity(model, data, run.mujoco.mjtObj.mjOBJ_BODY, i, self.vel6, 0)
+        v, w = self.vel6[3:], self.vel6[:3]
+        w_local = data.ximat[i].reshape(3, 3).T @ w
+        ke = 0.5 * float(model.body_mass[i]) * float(v @ v) + 0.5 * float(model.body_inertia[i] @ (w_local ** 2))
+        return float(np.linalg.norm(v)), ke
+
+    def sample(self, run: SimRun, t: float, first: bool = False) -> None:
         data = run.data
-        for p, i in run.dyn:
+        for p, i in run.moving:
             tr = self.track[p]
             x = data.xpos[i]
-            tr.path_length += float(np.linalg.norm(x - tr.last_pos))
-            tr.last_pos = x.copy()
-            y = yaw_of_mat(data.xmat[i].reshape(3, 3))
-            tr.yaw_total += (y - tr.yaw_last + math.pi) % (2 * math.pi) - math.pi
-            tr.yaw_last = y
-            run.mujoco.mj_objectVelocity(run.model, data, run.mujoco.mjtObj.mjOBJ_BODY, i, self.vel6, 0)
-            sp = float(np.linalg.norm(self.vel6[3:]))
+            if not first:
+                tr.path_length += float(np.linalg.norm(x - tr.last_pos))
+                tr.last_pos = x.copy()
+                y = yaw_of_mat(data.xmat[i].reshape(3, 3))
+                tr.yaw_total += (y - tr.yaw_last + math.pi) % (2 * math.pi) - math.pi
+                tr.yaw_last = y
+            sp, ke = self.kinetic(run, i)
             tr.max_speed = max(tr.max_speed, sp)
+            self.ke_max[p] = max(self.ke_max.get(p, 0.0), ke)
             run.speed[p] = sp
             tr.min_z = min(tr.min_z, float(x[2]))
 
     def finish(self, run: SimRun) -> None:
-        data = run.data
+        data, model = run.data, run.model
+        g = np.asarray(model.opt.gravity, dtype=float)
         fell = {f["body"]: f["time"] for f in run.res.fall_through}
         for p, i, d in run.bodies:
             p0, q0 = self.start[p]
             p1, q1 = data.xpos[i].copy(), data.xquat[i].copy()
             disp = p1 - p0
             tr = self.track.get(p)
+            ke = self.kinetic(run, i)[1] if tr else 0.0
+            pe = -float(model.body_mass[i]) * float(g @ data.xipos[i])
             run.res.bodies[p] = BodyReport(
                 p, d, _vec(p0), _vec(q0), _vec(p1), _vec(q1), _vec(disp), float(np.linalg.norm(disp)),
                 float(np.linalg.norm(disp[:2])), tr.path_length if tr else 0.0, tr.yaw_total if tr else 0.0,
-                tr.max_speed if tr else 0.0, tr.min_z if tr else float(p0[2]), fell.get(p))
+                tr.max_speed if tr else 0.0, tr.min_z if tr else float(p0[2]), fell.get(p),
+                ke, self.ke_max.get(p, 0.0), pe)
 
 
 class FallThrough(Monitor):
@@ -482,24 +582,137 @@ class MotorTracking(Monitor):
 
 
 class Energy(Monitor):
-    """Total energy at the start and the end, and the largest kinetic energy."""
+    """Total mechanical energy (gravity, springs, motion) against the work the actuators did (A134).
+
+    Nothing but an actuator (or a kinematic body) adds energy to a scene: contacts, damping and
+    friction only take it away.  So E(t) - E(0) - W_actuators(t) must stay <= 0 up to the
+    integrator's error; a gain above ``energy_tol`` of the run's energy scale (its largest kinetic
+    energy plus the actuators' work, at least lifting every body by a millimetre) is a finding."""
 
     def __init__(self, run: SimRun) -> None:
-        self.initial = float(run.data.energy[0] + run.data.energy[1])
-        self.max_kinetic = float(run.data.energy[1])
+        data, model = run.data, run.model
+        self.initial = self._total(run)
+        self.max_kinetic = float(data.energy[1])
+        self.work = 0.0
+        self.work_abs = 0.0
+        self.gain, self.gain_time = 0.0, 0.0
+        masses = [float(model.body_mass[i]) for _, i in run.dyn]
+        self.floor = sum(masses) * float(np.linalg.norm(model.opt.gravity)) * 1e-3
+        self.checked = not run.movers  # a kinematic body pushing things does work we do not count
+        # the actuators, as arrays: the work they do is summed over every step (see after_step)
+        acts = [a for a in run.compiled.actuators]
+        self.per_step = bool(acts)
+        self.dof = np.array([int(model.jnt_dofadr[model.joint(a.joint).id]) for a in acts], dtype=int)
+        self.gear = np.array([float(a.gear) for a in acts])
+        self.kv = np.array([float(a.kv) if a.kv is not None else 0.0 for a in acts])
+        ids = [model.actuator(a.name).id for a in acts]
+        self.aid = np.array(ids, dtype=int)
+        self.limited = np.array([bool(model.actuator_forcelimited[i]) for i in ids], dtype=bool)
+        self.lo = np.array([float(model.actuator_forcerange[i][0]) if model.actuator_forcelimited[i] else -np.inf
+                            for i in ids])
+        self.hi = np.array([float(model.actuator_forcerange[i][1]) if model.actuator_forcelimited[i] else np.inf
+                            for i in ids])
+        self.v_old = np.zeros(len(acts))
+
+    @staticmethod
+    def _total(run: SimRun) -> float:
+        return float(run.data.energy[0] + run.data.energy[1])
+
+    def before_step(self, run: SimRun) -> None:
+        self.v_old = self.gear * run.data.qvel[self.dof]
+
+    def after_step(self, run: SimRun) -> None:
+        """The work of one step: a velocity servo is integrated implicitly, so its force is
+        kv (ctrl - v) at the velocity the step ends with, unless it saturates (then MuJoCo uses the
+        clamped explicit force); a motor's force is its clamped control."""
+        d = run.data
+        v_new = self.gear * d.qvel[self.dof]
+        ctrl = d.ctrl[self.aid]
+        explicit = np.where(self.kv > 0, self.kv * (ctrl - self.v_old), ctrl)
+        clamped = np.clip(explicit, self.lo, self.hi)
+        saturated = self.limited & (clamped != explicit)
+        implicit = np.where(self.kv > 0, self.kv * (ctrl - v_new), ctrl)
+        force = np.where(saturated, clamped, np.clip(implicit, self.lo, self.hi))
+        w = force * 0.5 * (self.v_old + v_new) * float(run.model.opt.timestep)
+        self.work += float(w.sum())
+        self.work_abs += float(np.abs(w).sum())
 
     def sample(self, run: SimRun, t: float) -> None:
         self.max_kinetic = max(self.max_kinetic, float(run.data.energy[1]))
+        g = self._total(run) - self.initial - self.work
+        if g > self.gain:
+            self.gain, self.gain_time = g, t
 
     def finish(self, run: SimRun) -> None:
-        run.res.energy = {"initial_total": self.initial, "final_total": float(run.data.energy[0] + run.data.energy[1]),
-                          "max_kinetic": self.max_kinetic}
+        scale = max(self.max_kinetic + self.work_abs, self.floor, 1e-12)
+        run.res.energy = {"initial_total": self.initial, "final_total": self._total(run),
+                          "max_kinetic": self.max_kinetic, "actuator_work": self.work,
+                          "max_unexplained_gain": self.gain, "max_unexplained_gain_time": self.gain_time,
+                          "checked": self.checked}
+        if not self.checked or self.gain <= run.opt.energy_tol * scale + self.floor:
+            return
+        worst = None
+        bodies = run.res.bodies
+        if bodies:
+            worst = max(bodies, key=lambda b: bodies[b].max_kinetic_energy if bodies[b].dynamic else -1.0)
+        run.add(WARNING, "A134",
+                f"the scene gained {self.gain:.4g} J of energy that no motor supplied "
+                f"({100 * self.gain / scale:.3g} % of its energy scale {scale:.4g} J), largest at "
+                f"t={self.gain_time:.3f} s" + (f"; the most energetic body is {worst}" if worst else "")
+                + ": the motion is not physical (too stiff a spring or mate, an overlap pushed apart, or a gap "
+                "in the MuJoCo mapping)", worst)
+
+
+class Plausibility(Monitor):
+    """A body faster than anything in the scene explains (A135): its start speed, free fall over
+    the whole run, the motors' target speeds over the scene's size, and the springs' initial energy,
+    with a margin of 2."""
+
+    def __init__(self, run: SimRun) -> None:
+        model, data = run.model, run.data
+        dyn = run.dyn
+        self.reported: set[str] = set()
+        if not dyn:
+            self.bound = math.inf
+            return
+        g = float(np.linalg.norm(model.opt.gravity))
+        v0 = max((run.speed.get(p, 0.0) for p, _ in dyn), default=0.0)
+        centre = np.mean([data.xipos[i] for _, i in dyn], axis=0)
+        radius = max(float(np.linalg.norm(data.xipos[i] - centre)) for _, i in dyn)
+        radius += max((float(model.geom_rbound[k]) for k in range(model.ngeom)
+                       if model.geom_bodyid[k] in {i for _, i in dyn}), default=0.0)
+        motors = 0.0
+        for a in run.compiled.actuators:
+            if a.kind == "velocity_motor":
+                jid = model.joint(a.joint).id
+                rot = model.jnt_type[jid] == 3
+                motors = max(motors, abs(a.target_speed) * (radius if rot else 1.0))
+        gpe = sum(-float(model.body_mass[i]) * float(np.asarray(model.opt.gravity) @ data.xipos[i])
+                  for _, i, _d in run.bodies)
+        spring_pe = max(float(data.energy[0]) - gpe, 0.0)
+        m_min = min(float(model.body_mass[i]) for _, i in dyn) or 1e-9
+        springs = math.sqrt(2.0 * spring_pe / m_min) if spring_pe > 0 else 0.0
+        self.explained = v0 + g * run.duration + motors + springs
+        self.parts = (v0, g * run.duration, motors, springs)
+        self.bound = 2.0 * self.explained + 1.0
+
+    def sample(self, run: SimRun, t: float) -> None:
+        for p, _ in run.dyn:
+            v = run.speed.get(p, 0.0)
+            if v > self.bound and p not in self.reported:
+                self.reported.add(p)
+                v0, ff, mot, spr = self.parts
+                run.res.implausible_speeds.append({"body": p, "time": t, "speed": v, "bound": self.bound})
+                run.add(WARNING, "A135",
+                        f"{p} reached {v:.4g} m/s at t={t:.3f} s, more than the scene explains "
+                        f"({self.explained:.3g} m/s: start {v0:.3g} + free fall over the run {ff:.3g} + motors "
+                        f"{mot:.3g} + springs {spr:.3g}; twice that plus 1 m/s is tolerated)", p)
 
 
 # Everything watched during a run, in the order their findings are reported.  A new check of the
 # motion is a Monitor subclass added here.
 MONITORS: tuple[type[Monitor], ...] = (BadControl, Trace, BodyMotion, FallThrough, MateSeparation, JointLimits,
-                                       MotorTracking, Energy)
+                                       MotorTracking, Plausibility, Energy)
 
 
 def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options: Any) -> SimulationResult:
@@ -509,12 +722,13 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options:
 
     opt = SimOptions(**options)
     scene = compiled.scene
-    h = float(scene.timestep)
-    res = SimulationResult(False, scene.name, float(duration), 0.0, 0, h, 0.0, compiled.compile_ms,
-                           notes=list(compiled.notes))
+    res = SimulationResult(False, scene.name, float(duration), 0.0, 0, float(scene.timestep), 0.0,
+                           compiled.compile_ms, notes=list(compiled.notes))
     if not compiled.ok:
         return res
     model, names = compiled.model, compiled.names
+    h = float(model.opt.timestep)
+    res.timestep = h
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, model.key("initial").id)
     mujoco.mj_forward(model, data)
@@ -524,20 +738,37 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options:
         if n is not None and n not in [x[0] for x in bodies]:
             bodies.append((b.path, model.body(n).id, b.is_dynamic))
     run = SimRun(mujoco, compiled, model, data, res, opt, float(duration), bodies)
+    run.movers = kinematic_movers(compiled, model, data)
 
     initial_penetrations(run)
     monitors: list[Monitor] = [m(run) for m in MONITORS if m is not Trace or opt.record]
     blowup = BlowUp(run)
+    per_step = [m for m in monitors if m.per_step]
 
     n_steps = max(1, int(round(duration / h)))
     chunk = max(1, int(round(opt.sample_dt / h)))
     done = 0
     t_wall = time.perf_counter()
     while done < n_steps:
+        if opt.timeout is not None and time.perf_counter() - t_wall > opt.timeout:
+            run.add(ERROR, "A109", f"the simulation was stopped by the time limit ({opt.timeout:g} s of wall time) "
+                    f"at t={done * h:.3f} s of {duration:g} s; the motion after that is not checked", None)
+            break
         k = min(chunk, n_steps - done)
-        mujoco.mj_step(model, data, nstep=k)
+        if run.movers or per_step:
+            for _ in range(k):
+                done += 1
+                for mv in run.movers:
+                    mv.place(data, done * h)
+                for m in per_step:
+                    m.before_step(run)
+                mujoco.mj_step(model, data)
+                for m in per_step:
+                    m.after_step(run)
+        else:
+            mujoco.mj_step(model, data, nstep=k)
+            done += k
         mujoco.mj_forward(model, data)  # mj_step leaves positions-derived data one step behind
-        done += k
         t = done * h
         if blowup.happened(run, t, done):
             break
@@ -548,7 +779,8 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options:
     res.simulated_time = done * h
     for m in monitors:
         m.finish(run)
-    if res.blowup is None and res.simulated_time < duration - h / 2:
+    timed_out = any(n.code == "A109" for n in res.notes)
+    if res.blowup is None and not timed_out and res.simulated_time < duration - h / 2:
         run.add(INFO, "A108", f"simulated {res.simulated_time:.3f} of {duration:g} s", None)
     res.ok = not any(n.severity == ERROR for n in res.notes)
     return res

@@ -56,6 +56,7 @@ class CompiledScene:
     tree_mates: list[str] = field(default_factory=list)
     loop_mates: list[str] = field(default_factory=list)
     free_roots: list[str] = field(default_factory=list)  # body paths given a free joint
+    kinematic: list[str] = field(default_factory=list)  # body paths moved as prescribed (mocap bodies)
     actuators: list[ActuatorInfo] = field(default_factory=list)
     monitors: list[MateMonitor] = field(default_factory=list)
     compile_ms: float = 0.0

@@ -30,6 +30,9 @@ def simulation_json(fc: FileCheck) -> dict[str, Any]:
             "path_length": _r(b.path_length),
             "heading_change": _r(b.heading_change),
             "max_speed": _r(b.max_speed),
+            "kinetic_energy": _r(b.kinetic_energy),
+            "max_kinetic_energy": _r(b.max_kinetic_energy),
+            "potential_energy": _r(b.potential_energy),
         }
     d = s.to_dict()
     return {
@@ -48,6 +51,10 @@ def simulation_json(fc: FileCheck) -> dict[str, Any]:
             "initial_penetrations": d.get("penetrations", []),
             "mates_pulled_apart": [m for m, r in d.get("mates", {}).items() if r.get("pulled_apart")],
             "joint_limit_violations": d.get("joint_limit_violations", []),
+            "implausible_speeds": d.get("implausible_speeds", []),
+            "energy_gain": ({"joules": d["energy"].get("max_unexplained_gain"),
+                             "time": d["energy"].get("max_unexplained_gain_time")}
+                            if any(n.code == "A134" for n in s.notes) else None),
             "motion_diagnostics": [{"code": x.code, "line": x.span.start.line + 1, "message": x.message}
                                    for x in motion_diagnostics(fc)],
         },
@@ -121,14 +128,19 @@ def assembly_line(fc: FileCheck) -> str:
     return f"{fc.path}: {fc.model}: " + ", ".join(parts)
 
 
-def motion_rows(fc: FileCheck) -> list[tuple[str, str, str, str, str]]:
+def motion_rows(fc: FileCheck) -> list[tuple[str, ...]]:
     rows = []
     for path, b in fc.simulation.bodies.items():
-        if not b.dynamic:
+        if not b.dynamic and b.path_length == 0.0:
             continue
         heading = f"{math.degrees(b.heading_change):+.1f} deg" if _upright(b) else "n/a"
-        rows.append((path, _vec(b.initial_pos), _vec(b.final_pos), f"{b.distance:.3f} m", heading))
+        rows.append((path, _vec(b.initial_pos), _vec(b.final_pos), f"{b.distance:.3f} m", heading,
+                     f"{b.max_speed:.3g} m/s", _joules(b.max_kinetic_energy)))
     return rows
+
+
+def _joules(e: float) -> str:
+    return f"{e:.3g} J" if abs(e) < 1e4 else f"{e / 1e3:.3g} kJ"
 
 
 def _upright(b) -> bool:
@@ -162,6 +174,12 @@ def findings(fc: FileCheck) -> list[str]:
         out.append(f"{p['geom1']} and {p['geom2']} start {p['depth']:.4g} m deep in each other")
     for j in s.joint_limit_violations:
         out.append(f"{j['mate']} exceeded its range by {j['violation']:.3g} at t={j['time']:.2f} s")
+    for v in s.implausible_speeds:
+        out.append(f"{v['body']} reached an implausible {v['speed']:.3g} m/s at t={v['time']:.2f} s "
+                   f"(bound {v['bound']:.3g} m/s)")
+    if any(n.code == "A134" for n in s.notes):
+        out.append(f"energy gained without a motor doing the work: {s.energy['max_unexplained_gain']:.4g} J at "
+                   f"t={s.energy['max_unexplained_gain_time']:.2f} s")
     for d in motion_diagnostics(fc):
         out.append(f"{d.code} (line {d.span.start.line + 1}): {d.message}")
     return out
@@ -203,13 +221,13 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
                 f"({s.wall_time_s:.2f} s wall)")
         _line(stream, console, head, None)
         rows = motion_rows(fc)
-        cols = ("body", "start", "end", "moved", "heading")
+        cols = ("body", "start", "end", "moved", "heading", "top speed", "top kinetic energy")
         if console is not None:
             from rich.table import Table
 
             table = Table(show_header=True, header_style="bold", box=None, padding=(0, 1), pad_edge=False)
             for c in cols:
-                table.add_column(c, justify="right" if c in ("moved", "heading") else "left")
+                table.add_column(c, justify="left" if c in ("body", "start", "end") else "right")
             for r in rows:
                 table.add_row(*r)
             from rich.padding import Padding
@@ -222,13 +240,18 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
             for r in rows:
                 stream.write(fmt.format(*r) + "\n")
         found = findings(fc)
+        if s.energy:
+            e = s.energy
+            checked = "" if e.get("checked", True) else " (not checked: kinematic bodies do work)"
+            _line(stream, console, f"  energy: {e['initial_total']:.6g} J at the start, {e['final_total']:.6g} J at the "
+                  f"end, motors' work {e.get('actuator_work', 0.0):.4g} J{checked}", None)
         if found:
             _line(stream, console, "  findings:", "bold red")
             for f in found:
                 _line(stream, console, f"    - {f}", None)
         else:
             _line(stream, console, "  findings: none (no blow-up, no mate pulled apart, nothing fell through, "
-                  "no deep initial penetration)", "green")
+                  "no deep initial penetration, no energy gained, no implausible speed)", "green")
     if diags or results:
         stream.write("\n") if console is None else console.print()
     summary = _summary_line(diags, len(results))

@@ -124,6 +124,11 @@ class Body:
     ang_vel: Vec3 = ZERO3  # initial angular velocity, world frame
     source: Source | None = None
 
+    @property
+    def kinematic(self) -> bool:
+        """A non-dynamic body with a velocity: it moves as prescribed, whatever hits it."""
+        return not self.is_dynamic and any(v != 0.0 for v in (*self.lin_vel, *self.ang_vel))
+
 
 @dataclass(slots=True)
 class Connector:
@@ -167,7 +172,11 @@ class Controller:
     * ``torque_motor`` / ``force_motor``: ``effort`` (default_torque / default_force), clamped
       to ``min_effort``/``max_effort``;
     * ``range``: ``start``/``end`` (in the mate's q);
-    * ``spring``: ``stiffness``, ``damping``, ``rest`` (TorsionSpring.angle / LinearSpring.position).
+    * ``spring``: ``stiffness``, ``damping``, ``rest`` (TorsionSpring.angle / LinearSpring.position);
+      ``damping_from`` says where the damping comes from (for the report).
+
+    ``user_set`` names the parameters whose value the user's files decide (not a bundle default):
+    changing one of those for MuJoCo is a warning, changing a bundle default an info.
     """
 
     path: str
@@ -184,6 +193,8 @@ class Controller:
     stiffness: float = 1e6
     damping: float = 0.0
     rest: float = 0.0
+    damping_from: str = ""
+    user_set: frozenset[str] = frozenset()
     enabled: bool = True
     source: Source | None = None
 

@@ -36,7 +36,7 @@ def test_mirrored_motors_turn_instead_of_driving(check_file):
     fc = check_file(BROKEN / "mirrored_motors.openplx", simulate=True, duration=3.0)
     ch = fc.simulation.bodies["box_truck.chassis"]
     assert ch.horizontal_distance < 0.1  # it does not get anywhere ...
-    assert ch.heading_change < -math.radians(0.5)  # ... it turns clockwise, front wheels slipping
+    assert ch.heading_change < -math.radians(0.1)  # ... it turns clockwise, front wheels slipping
 
 
 def test_violated_mate_is_pulled_together_in_the_simulation(check_file):

@@ -599,17 +599,21 @@ def test_render_png_writes_a_real_image(tmp_path) -> None:
     assert pix.std() > 10
 
 
-def test_linear_spring_equilibrium_and_stiffness_clamp() -> None:
+def test_linear_spring_equilibrium_time_step_and_stiffness_clamp() -> None:
     """1 kg on a vertical prismatic (q = body along +Z), spring rest 0, damping 20: rests at -m g / k.
-    The default stiffness 1e6 is clamped to I_eff (0.2 / h)^2 = 1e4 with a note."""
+    The default stiffness 1e6 shortens the time step (A133) and is simulated as given; 1e10 is
+    beyond even the shortest step (1e-4 s) and is clamped to I_eff (0.2 / 1e-4)^2 = 4e6 (A112, a warning)."""
     m = Body("s.m", (0.0, 0.0, 1.0), mass=1.0, geoms=[Geom("s.m.g", "box", size=(0.1, 0.1, 0.1))])
     w = Connector("s.w", None, (0.0, 0.0, 1.0), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0))
     mc = Connector("s.m.c", m.path, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0))
-    for k, k_used in ((100.0, 100.0), (1e6, 1e4)):
+    for k, k_used, h, codes in ((100.0, 100.0, 0.002, set()), (1e6, 1e6, 0.002 / 10, {"A133"}),
+                                (1e10, 4e6, 1e-4, {"A133", "A112"})):
         spring = Controller("s.spring", "spring", "linear", (w, mc), stiffness=k, damping=20.0)
         compiled = compile_scene(Scene("Spring", [m], [Mate("s.p", "prismatic", (w, mc))], [spring]))
         assert compiled.model.jnt_stiffness[0] == pytest.approx(k_used)
-        assert ("A112" in {n.code for n in compiled.notes}) == (k != k_used)
+        assert compiled.model.opt.timestep == pytest.approx(h)
+        assert {n.code for n in compiled.notes} & {"A112", "A133"} == codes
+        assert all(n.severity == "warning" for n in compiled.notes if n.code == "A112")
         res = simulate(compiled, 3.0, record=True)
         assert res.trace["joints"]["s.p"][-1] == pytest.approx(-G / k_used, rel=1e-4)
 

@@ -230,17 +230,26 @@ rule("A107", "bad-control", E, "MuJoCo rejected a NaN or huge actuator control a
      "A target speed or effort evaluated to an unusable number.", stage=SIM)
 rule("A108", "simulation-incomplete", I, "The simulation stopped before the requested duration.",
      "Usually after a blow-up (A101).", stage=SIM)
+rule("A109", "simulation-timeout", E,
+     "The simulation took longer than the wall-clock limit (`--timeout`, 300 s by default) and was stopped.",
+     "The motion after that time is not checked, so the file does not pass. Shorten `--duration`, raise "
+     "`--timeout`, or look for what makes the scene slow (very stiff springs shorten the time step, A133).",
+     stage=SIM)
 rule("A110", "mujoco-compile-error", E,
      "MuJoCo rejected the compiled model; the message names the OpenPLX element when it can.",
      "This is a model MuJoCo cannot represent (or a gap in the backend).", stage=SIM)
 rule("A111", "velocity-motor-gain-clamped", I,
      "A velocity motor's `gain` (1e8 by default) is far too stiff for an explicit actuator; the MuJoCo "
-     "velocity gain is clamped to 10 x the joint's effective inertia / timestep.",
+     "velocity gain is clamped to 10 x the joint's effective inertia / timestep (1 x with an effort limit). "
+     "An info for the bundle's default gain (whose meaning, a nearly rigid speed servo, is kept); a warning "
+     "naming your value and the one used when your files set the gain.",
      "With the implicit integrator this still tracks the target speed almost rigidly, like AGX's stiff "
      "motor, without making the simulation unstable.", stage=SIM)
-rule("A112", "spring-stiffness-clamped", I,
-     "A spring's stiffness would be unstable at the MuJoCo timestep and is lowered.",
-     "Joint stiffness is integrated explicitly; the cap keeps sqrt(k / I) * timestep <= 0.2.", stage=SIM)
+rule("A112", "spring-stiffness-clamped", W,
+     "A spring is so stiff that even the shortest time step plxtools uses (1e-4 s) cannot integrate it; "
+     "the message names your stiffness and the lower one simulated.",
+     "Joint stiffness is integrated explicitly and needs sqrt(k / I) * timestep <= 0.2. Springs up to that "
+     "limit shorten the time step instead (A133).", stage=SIM)
 rule("A113", "friction-model-approximated", I,
      "A dry friction model (box, scaled box, constant normal force...) is approximated by MuJoCo's "
      "Coulomb cone with the same coefficient.", "Friction magnitudes can differ from AGX's model.",
@@ -264,9 +273,12 @@ rule("A119", "range-effort-ignored", I, "A range's effort limits are not modelle
 rule("A120", "initial-velocity-ignored", I,
      "An initial velocity of a body attached by a mate is ignored (it follows its joints).",
      "Only free bodies (the roots of the MuJoCo tree) take an initial velocity.", stage=SIM)
-rule("A121", "kinematic-motion-ignored", W,
-     "A static (`is_dynamic: false`) body has an initial velocity; MuJoCo holds it fixed.",
-     "Kinematically driven bodies are not supported by the backend.", stage=SIM)
+rule("A121", "kinematic-body", I,
+     "A kinematic body (`is_dynamic: false`, or listed in a system's `kinematically_controlled`) with a "
+     "velocity moves at that constant velocity, whatever hits it, as a MuJoCo mocap body.",
+     "Contacts see where the body is, not how fast it moves: it pushes what is in its way, but friction "
+     "does not carry objects resting on it along (a conveyor belt), and bodies hinged to it do not feel "
+     "its rotation.", stage=SIM)
 rule("A122", "controller-reversed", I,
      "A controller lists its mate's connectors in the opposite order, so its coordinate is the negated "
      "mate coordinate.", "A positive target speed then turns the other way; usually unintended.", stage=SIM)
@@ -296,6 +308,24 @@ rule("A131", "scene-inconsistent", E,
      "that a static check (named in the message) guarantees.",
      "The backend runs only on scenes without errors, so this points at a plxtools bug; please report it "
      "with the model.", stage=SIM)
+rule("A133", "timestep-shortened", I,
+     "A stiff spring would be unstable at the default time step of 0.002 s, so the whole scene is "
+     "simulated with a shorter one (a whole fraction of 0.002 s, at least 1e-4 s).",
+     "The spring then acts with the stiffness the model gives it; the run takes proportionally longer.",
+     stage=SIM)
+rule("A134", "energy-gain", W,
+     "The scene's mechanical energy (motion, gravity, springs) grew by more than 5 % of its energy scale "
+     "beyond the work its motors did.",
+     "Contacts, damping and friction only remove energy, so a gain means motion the model does not "
+     "describe: a spring or mate too stiff for the integrator, an initial overlap pushed apart, or a gap in "
+     "the MuJoCo mapping. The message gives the gain, the time and the most energetic body. Not checked "
+     "when kinematic bodies move (they do work on what they push).", stage=SIM)
+rule("A135", "implausible-speed", W,
+     "A body moved faster than anything in the scene explains: its start speed plus free fall over the "
+     "whole run plus the motors' target speeds (rotational ones times the scene's size) plus the speed the "
+     "springs' initial energy could give, with a margin of 2 and 1 m/s.",
+     "The message lists the parts of the bound. A runaway usually comes before a blow-up (A101).",
+     stage=SIM)
 rule("A132", "mjcf-export-unloadable", E,
      "`--export-mjcf`: the MJCF that MuJoCo writes for the scene does not load back into MuJoCo (its XML "
      "writer rounds numbers, so a box of 0.25 m next to one of 1e30 m is written with size 0).",

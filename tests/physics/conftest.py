@@ -1,0 +1,6 @@
+"""tests/physics imports its case table as a plain module."""
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
