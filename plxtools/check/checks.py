@@ -13,6 +13,7 @@ from itertools import combinations
 
 import numpy as np
 
+from plxtools.check import drivetrain
 from plxtools.check.assemble import DOF_OF_MATE, Assembler, Assembly, CtrlRec, Kinds, MateRec, Node, Placement
 from plxtools.check.convert import Collector, GeomRec
 from plxtools.check.frames import angle_between, compose
@@ -71,6 +72,9 @@ class StaticChecks:
         for obj in self.asm.owned[1:]:
             if any(id(o) in reported for o in _owners(obj)):
                 continue
+            if drivetrain.mapped(self.k, obj):  # simulated, with its parts (connectors, inertia, signals)
+                reported.add(id(obj))
+                continue
             qn = p.concrete(obj.model).qname
             ns = qn.split(".")[0]
             msg = None
@@ -91,7 +95,7 @@ class StaticChecks:
                 self.rep.add("A040", msg, obj=obj)
                 self.col.unsupported.append((qn, obj, msg))
         for obj in self.asm.other_interactions:
-            if id(obj) in reported or any(id(o) in reported for o in _owners(obj)):
+            if id(obj) in reported or any(id(o) in reported for o in _owners(obj)) or drivetrain.mapped(self.k, obj):
                 continue
             qn = p.concrete(obj.model).qname
             if qn.split(".")[0] in UNSUPPORTED_BUNDLES:

@@ -368,6 +368,10 @@ def to_scene(asm: Assembly, col: Collector, rep: Reporter, base_dir: str | None)
                                            cr.restitution, cr.tangential_restitution, cr.enabled, _source(rep, cr.obj))
                             for cr in col.contacts if cr.key1 is not None and cr.key2 is not None]
     scene.excludes = _excludes(col, rep)
+    from plxtools.check import drivetrain
+
+    scene.shafts, scene.shaft_couplings, scene.shaft_motors = drivetrain.collect(
+        asm, col, rep, _source, {m.path for m in scene.mates if m.kind in ("hinge", "cylindrical")})
     gravity = _gravity(asm, col)
     if gravity is not None:
         scene.gravity = gravity

@@ -30,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from plxtools.check.mj_drivetrain import add_couplings, add_shaft_motors, add_shafts
 from plxtools.check.mj_context import BuildContext, CompileFailed
 from plxtools.check.mj_controllers import add_controllers, add_keyframe
 from plxtools.check.mj_geoms import add_contact_pairs, add_excludes, add_geoms, set_inertials
@@ -139,6 +140,8 @@ def build(ctx: BuildContext) -> None:
     add_dynamic_bodies(ctx, parents, roots)
     add_loop_closures(ctx, loops)
     add_distance_mates(ctx, distances)
+    add_shafts(ctx)
+    add_couplings(ctx)
     add_excludes(ctx)
     add_contact_pairs(ctx)
 
@@ -152,6 +155,7 @@ def build(ctx: BuildContext) -> None:
     # pass 2: effective joint inertias for gains / stiffness caps
     model = ctx.compile("inertia")
     add_controllers(ctx, model)
+    add_shaft_motors(ctx, model)
     add_keyframe(ctx, model)
     # pass 3: final
     ctx.out.model = ctx.compile("final")

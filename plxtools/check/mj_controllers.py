@@ -322,5 +322,10 @@ def add_keyframe(ctx: BuildContext, model: Any) -> None:
                 f"{path}: initial velocity of a body attached by a mate is ignored (it follows its joints)",
                 body,
             )
+    qpos = np.array(model.qpos0)
+    for jn, (angle, speed) in ctx.shaft_init.items():
+        jid = model.joint(jn).id
+        qpos[model.jnt_qposadr[jid]] = angle
+        qvel[model.jnt_dofadr[jid]] = speed
     ctrl = [a.ctrl for a in ctx.out.actuators]  # actuators compile in the order they were added
-    ctx.spec.add_key(name="initial", qpos=list(model.qpos0), qvel=list(qvel), ctrl=ctrl)
+    ctx.spec.add_key(name="initial", qpos=list(qpos), qvel=list(qvel), ctrl=ctrl)

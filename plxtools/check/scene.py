@@ -235,6 +235,47 @@ class Unsupported:
 
 
 @dataclass(slots=True)
+class Shaft:
+    """A 1D rotational body (Physics1D.Bodies.RotationalBody, DriveTrain.Shaft): one rotational
+    degree of freedom with ``inertia`` (kg m^2), starting at ``angle`` and ``velocity``."""
+
+    path: str
+    inertia: float
+    angle: float = 0.0
+    velocity: float = 0.0
+    source: Source | None = None
+
+
+@dataclass(slots=True)
+class ShaftCoupling:
+    """``gear``: ``a`` (input shaft) turns ``ratio`` times as fast as ``b`` (output shaft);
+    ``actuator``: shaft ``a`` turns with the 3D hinge mate ``b`` (DriveTrain.HingeActuator)."""
+
+    path: str
+    kind: str  # gear | actuator
+    a: str
+    b: str
+    ratio: float = 1.0
+    source: Source | None = None
+
+
+@dataclass(slots=True)
+class ShaftMotor:
+    """A 1D velocity motor (Physics1D.Interactions.RotationalVelocityMotor) or torque motor
+    (DriveTrain.TorqueMotor) acting on ``shaft`` against the ground."""
+
+    path: str
+    kind: str  # velocity_motor | torque_motor
+    shaft: str
+    target_speed: float = 0.0
+    effort: float = 0.0
+    gain: float = 1e8
+    min_effort: float = -INF
+    max_effort: float = INF
+    source: Source | None = None
+
+
+@dataclass(slots=True)
 class Scene:
     name: str
     bodies: list[Body] = field(default_factory=list)
@@ -247,6 +288,9 @@ class Scene:
     timestep: float = 0.002
     base_dir: str | None = None  # directory of the root .openplx file (relative mesh paths)
     default_friction: float | None = None  # material pairs without a model; None = backend default
+    shafts: list[Shaft] = field(default_factory=list)
+    shaft_couplings: list[ShaftCoupling] = field(default_factory=list)
+    shaft_motors: list[ShaftMotor] = field(default_factory=list)
     source: Source | None = None
 
     def body(self, path: str) -> Body | None:
