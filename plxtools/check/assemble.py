@@ -240,6 +240,15 @@ class Assembly:
     other_interactions: list[Obj] = field(default_factory=list)
     broken: list[Obj] = field(default_factory=list)  # mates / controllers whose connectors failed to evaluate
 
+    def mover(self, c: Conn) -> Node:
+        """The node a connector moves with: its ``redirected_parent``'s (a RedirectedMateConnector
+        is given in its owner's frame but attached to another body), else its owner's."""
+        if c.redirected_parent is not None:
+            n = self.node_of(c.redirected_parent)
+            if n is not None:
+                return n
+        return c.node
+
     def node_of(self, obj: Obj) -> Node | None:
         return self.by_obj.get(id(obj))
 
@@ -514,9 +523,9 @@ class Assembler:
             self.rep.add("A014", f"mate {obj.display} joins connector {c0.obj.display} to itself",
                          node=node_, unit=unit_, obj=obj, help="list the two connectors of the two parts it joins")
             rec.usable = False
-        elif c0.node is c1.node and (c0.node.kind == "body" or c0.node is asm.root_node or
-                                     (c0.redirected_parent is None and c1.redirected_parent is None)):
-            where = c0.node.path if c0.node.kind == "body" else "the world (no body)"
+        elif asm.mover(c0) is asm.mover(c1) and (asm.mover(c0).kind == "body" or asm.mover(c0) is asm.root_node or
+                                                 (c0.redirected_parent is None and c1.redirected_parent is None)):
+            where = asm.mover(c0).path if asm.mover(c0).kind == "body" else "the world (no body)"
             self.rep.add("A015", f"mate {obj.display}: both connectors belong to {where}, so it joins nothing",
                          node=node_, unit=unit_, obj=obj,
                          help="one connector must belong to each of the two bodies the mate joins")

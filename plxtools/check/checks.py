@@ -197,7 +197,8 @@ class StaticChecks:
                 self.add_at("A022", f"{m.path}: initial_angle {m.initial_angle:g} is more than 2 pi: is it in "
                             f"degrees? Angles are radians", m.obj, "initial_angle",
                             help=f"Math.Functions.deg_to_rad({m.initial_angle:g})")
-            dyn = [c.node.kind == "body" and c.node.is_dynamic for c in m.conns]
+            movers = [self.asm.mover(c) for c in m.conns]
+            dyn = [n.kind == "body" and n.is_dynamic for n in movers]
             if not any(dyn):
                 self.rep.add("A017", f"mate {m.path} joins two parts that do not move (static bodies or the "
                              f"world); it has no effect", obj=m.obj)
@@ -291,7 +292,7 @@ class StaticChecks:
             if float(np.dot(ax, ay)) > -0.99:
                 continue
             # mirrored hubs: on opposite sides along the axis, on the same parent
-            if x.mate.conns[0].node is not y.mate.conns[0].node:
+            if self.asm.mover(x.mate.conns[0]) is not self.asm.mover(y.mate.conns[0]):
                 continue
             d = fy[1] - fx[1]
             if float(np.dot(d, ay)) <= 0:
@@ -307,7 +308,7 @@ class StaticChecks:
         mated: set[tuple[int, int]] = set()
         for m in self.asm.mates:
             if len(m.conns) == 2 and all(c is not None for c in m.conns):
-                a, b = m.conns[0].node, m.conns[1].node
+                a, b = self.asm.mover(m.conns[0]), self.asm.mover(m.conns[1])
                 mated.add((id(a), id(b)))
                 mated.add((id(b), id(a)))
         excluded = {(id(x), id(y)) for x, y, _ in self.col.exclude_pairs()}

@@ -98,3 +98,10 @@ def test_kinematic_body_is_noted_and_moves():
     sim = next(iter(doc["simulation"].values()))
     assert sim["bodies"]["platform"]["final"]["position"][0] == pytest.approx(0.5)
     assert sim["energy"]["checked"] is False
+
+
+def test_redirected_connector_moves_with_its_redirected_parent_in_static_checks_and_simulation():
+    code, doc = _json("--simulate", "--duration", "1", str(CASES / "physics" / "redirected_pendulum.openplx"))
+    assert code == 0 and "A017" not in {d["code"] for d in doc["diagnostics"]}
+    arm = next(iter(doc["simulation"].values()))["bodies"]["arm"]
+    assert arm["final"]["position"][0] < 0  # swung down through the vertical to the other side
