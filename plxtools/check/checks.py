@@ -13,7 +13,7 @@ from itertools import combinations
 
 import numpy as np
 
-from plxtools.check import drivetrain
+from plxtools.check import coverage, drivetrain
 from plxtools.check.assemble import DOF_OF_MATE, Assembler, Assembly, CtrlRec, Kinds, MateRec, Node, Placement
 from plxtools.check.convert import Collector, GeomRec
 from plxtools.check.frames import angle_between, compose
@@ -47,6 +47,7 @@ class StaticChecks:
 
     def run(self) -> None:
         self.unsupported()
+        self.settings_not_simulated()
         self.masses()
         self.contacts()
         self.mates()
@@ -65,6 +66,21 @@ class StaticChecks:
         self.rep.add(code, message, node=node, unit=unit, obj=obj, **kw)
 
     # ------------------------------------------------------------------ unsupported features
+
+    def settings_not_simulated(self) -> None:
+        """Attributes of mapped objects (mates, controllers, contact models, materials) that hold
+        something the backend cannot simulate: A040 where the value is set (coverage.TABLE)."""
+        seen: set[int] = set()
+        objs = [m.obj for m in self.asm.mates] + [c.obj for c in self.asm.controllers] + \
+            [c.obj for c in self.col.contacts]
+        for obj in objs:
+            if id(obj) in seen:
+                continue
+            seen.add(id(obj))
+            for attr, msg, where in coverage.settings_not_simulated(self.k, self.ev, self.a.get, obj):
+                node, unit = where if where else (None, None)
+                self.rep.add("A040", msg, node=node, unit=unit, obj=obj, severity="warning")
+                self.col.unsupported.append((attr, obj, msg))
 
     def unsupported(self) -> None:
         p = self.a.p

@@ -358,9 +358,7 @@ def to_scene(asm: Assembly, col: Collector, rep: Reporter, base_dir: str | None)
     scene = S.Scene(asm.root.model.name, base_dir=base_dir, source=_source(rep, asm.root))
     scene.bodies = _bodies(asm, col, rep)
     conns = _Connectors(asm, rep, {b.path for b in scene.bodies})
-    scene.mates = [S.Mate(m.path, m.kind, (conns.get(m.conns[0]), conns.get(m.conns[1])), m.initial_angle,
-                          m.initial_position, m.initial_distance, m.enabled, _source(rep, m.obj))
-                   for m in asm.mates if m.usable and m.kind != "unknown"]
+    scene.mates = [_mate(col, m, conns, rep) for m in asm.mates if m.usable and m.kind != "unknown"]
     scene.controllers = [_controller(col, c, conns, rep) for c in asm.controllers
                          if len(c.conns) == 2 and all(x is not None for x in c.conns)
                          and c.mate is not None and c.mate.usable]
@@ -468,6 +466,41 @@ class _Connectors:
                                _t3(frame_world[0][:, 0]), src)
         local = compose(inverse(attach.world), frame_world)
         return S.Connector(c.obj.display, attach.path, _t3(local[1]), _t3(local[0][:, 2]), _t3(local[0][:, 0]), src)
+
+
+CONSTANT_LIMIT_FRICTION = "Physics.Interactions.Dissipation.ConstantLimitFriction"
+VISCOUS_FRICTION = "Physics.Interactions.Dissipation.ConstantViscousSurfaceFriction"
+MATE_FRICTION = {"hinge": (("friction", 0),), "prismatic": (("friction", 1),),
+                 "cylindrical": (("friction_rotational", 0), ("friction_translational", 1))}
+
+
+def _mate(col: Collector, m: MateRec, conns: _Connectors, rep: Reporter) -> S.Mate:
+    sm = S.Mate(m.path, m.kind, (conns.get(m.conns[0]), conns.get(m.conns[1])), m.initial_angle,
+                m.initial_position, m.initial_distance, m.enabled, _source(rep, m.obj))
+    if m.kind == "distance":
+        sm.target_distance = col.a.real(m.obj, "target_distance", m.initial_distance)
+    limit, viscous = [0.0, 0.0], [0.0, 0.0]
+    for attr, k in MATE_FRICTION.get(m.kind, ()):
+        fr = col.ev.child(m.obj, attr)
+        if not isinstance(fr, Obj):
+            continue
+        if col.k.isa(fr, CONSTANT_LIMIT_FRICTION):
+            limit[k] = col.a.real(fr, "limit", 0.0)
+        elif col.k.isa(fr, VISCOUS_FRICTION):
+            viscous[k] = col.a.real(fr, "viscosity", 0.0)
+        elif fr.model.qname.rsplit(".", 1)[-1] != "DefaultFriction":
+            node, unit = (fr.decl[0].stmt, fr.decl[0].unit) if fr.decl else (None, None)
+            rep.add("A040", f"{m.path}.{attr} is {fr.model.qname}, which the MuJoCo backend does not simulate on a "
+                    "joint (ConstantLimitFriction and ConstantViscousSurfaceFriction are); the joint turns freely",
+                    node=node, unit=unit, obj=m.obj, severity="warning")
+    for k in (0, 1):
+        if not (math.isfinite(limit[k]) and limit[k] >= 0) or not (math.isfinite(viscous[k]) and viscous[k] >= 0):
+            node, unit = col.ev.where(m.obj, MATE_FRICTION[m.kind][0][0])
+            rep.add("A036", f"{m.path}: joint friction must be a finite number >= 0 (limit {limit[k]:g}, viscosity "
+                    f"{viscous[k]:g}); it is left out", node=node, unit=unit, obj=m.obj)
+            limit[k] = viscous[k] = 0.0
+    sm.friction_limit, sm.viscous_friction = (limit[0], limit[1]), (viscous[0], viscous[1])
+    return sm
 
 
 def _controller(col: Collector, c: CtrlRec, conns: _Connectors, rep: Reporter) -> S.Controller:

@@ -377,7 +377,9 @@ def add_joint(ctx: BuildContext, mb: Any, m: Mate, cc: Connector) -> None:
     ):
         if m.kind in kinds:
             n = ctx.names.add("joint", m.path, m.source, suffix if m.kind == "cylindrical" else "")
-            mb.add_joint(name=n, type=jtype, pos=list(pos), axis=list(axis), ref=sign * float(offset))
+            k = 0 if jtype == mj.mjtJoint.mjJNT_HINGE else 1  # friction of the rotation / the translation
+            mb.add_joint(name=n, type=jtype, pos=list(pos), axis=list(axis), ref=sign * float(offset),
+                         frictionloss=float(m.friction_limit[k]), damping=[float(m.viscous_friction[k])])
             names.append(n)
     if m.kind == "ball":
         n = ctx.names.add("joint", m.path, m.source)
@@ -476,7 +478,7 @@ def add_distance_mates(ctx: BuildContext, mates: list[Mate]) -> None:
         c0, c1 = m.connectors
         (w0, _, _), (w1, _, _) = world_connector(ctx, c0), world_connector(ctx, c1)
         length0 = float(np.linalg.norm(w1 - w0))
-        target = float(m.initial_distance)
+        target = float(m.initial_distance if m.target_distance is None else m.target_distance)
         if target < 1e-6 and length0 < 1e-6:
             connect(ctx, 
                 m.path, "", owner_mj_name(ctx, c0), owner_mj_name(ctx, c1), local_frame(ctx, c0)[0], m

@@ -295,13 +295,51 @@ def add_spring(ctx: BuildContext, ctl: Controller, joint: str, sign: int, ieff: 
     stiffness = [float(v) for v in j.stiffness]  # [linear, polynomial terms...] in MuJoCo 4
     damping = [float(v) for v in j.damping]
     stiffness[0] = stiffness[0] + k if n else k
-    damping[0] = damping[0] + float(ctl.damping) if n else float(ctl.damping)
+    damping[0] = damping[0] + float(ctl.damping)  # on top of the mate's viscous friction
     j.stiffness = stiffness
     j.damping = damping
     j.springref = sign * float(ctl.rest)
 
 
 # -- initial state ---------------------------------------------------------------------------
+def _joint_velocities(ctx: BuildContext, model: Any, path: str, body: Any, v: np.ndarray, w: np.ndarray,
+                      qvel: np.ndarray) -> None:
+    """A body attached by a mate starts with the part of its initial velocity (relative to its
+    parent body's) that its joint can take: the rotation about a hinge axis, the translation along
+    a slide, any rotation of a ball.  What is left over is an info (A120)."""
+    mj = ctx.mj
+    data = mj.MjData(model)
+    mj.mj_kinematics(model, data)
+    bid = model.body(ctx.names.name("body", path)).id
+    parent_path = ctx.names.path("body", model.body(int(model.body_parentid[bid])).name)
+    parent = ctx.bodies.get(parent_path) if parent_path else None
+    pv = np.asarray(parent.lin_vel, dtype=float) if parent is not None and parent.is_dynamic else np.zeros(3)
+    pw = np.asarray(parent.ang_vel, dtype=float) if parent is not None and parent.is_dynamic else np.zeros(3)
+    dv, dw = v - pv, w - pw
+    left_v, left_w = dv.copy(), dw.copy()
+    for j in range(int(model.body_jntadr[bid]), int(model.body_jntadr[bid] + model.body_jntnum[bid])):
+        adr, axis = int(model.jnt_dofadr[j]), np.array(data.xaxis[j])
+        if model.jnt_type[j] == mj.mjtJoint.mjJNT_HINGE:
+            qvel[adr] = float(dw @ axis)
+            left_w = left_w - float(dw @ axis) * axis
+        elif model.jnt_type[j] == mj.mjtJoint.mjJNT_SLIDE:
+            qvel[adr] = float(dv @ axis)
+            left_v = left_v - float(dv @ axis) * axis
+        elif model.jnt_type[j] == mj.mjtJoint.mjJNT_BALL:
+            r = np.array(data.xmat[bid]).reshape(3, 3)
+            qvel[adr:adr + 3] = r.T @ dw  # a ball joint's velocity is in the body frame
+            left_w = np.zeros(3)
+    scale = max(float(np.linalg.norm(dv)), float(np.linalg.norm(dw)), 1e-12)
+    if max(float(np.linalg.norm(left_v)), float(np.linalg.norm(left_w))) > 1e-6 * scale:
+        ctx.note(INFO, "A120", f"{path}: the part of its initial velocity that its mate does not allow is ignored "
+                 f"(it starts with the joint speed that the velocity gives; left out: linear {_fmt(left_v)} m/s, "
+                 f"angular {_fmt(left_w)} rad/s)", body)
+
+
+def _fmt(v: np.ndarray) -> str:
+    return "(" + ", ".join(f"{x:.3g}" for x in v) + ")"
+
+
 def add_keyframe(ctx: BuildContext, model: Any) -> None:
     qvel = np.zeros(model.nv)
     roots = set(ctx.out.free_roots)
@@ -316,12 +354,7 @@ def add_keyframe(ctx: BuildContext, model: Any) -> None:
             qvel[adr : adr + 3] = v
             qvel[adr + 3 : adr + 6] = r.T @ w  # free-joint angular velocity is in the body frame
         elif np.any(v != 0) or np.any(w != 0):
-            ctx.note(
-                INFO,
-                "A120",
-                f"{path}: initial velocity of a body attached by a mate is ignored (it follows its joints)",
-                body,
-            )
+            _joint_velocities(ctx, model, path, body, v, w, qvel)
     qpos = np.array(model.qpos0)
     for jn, (angle, speed) in ctx.shaft_init.items():
         jid = model.joint(jn).id

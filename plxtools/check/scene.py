@@ -160,6 +160,11 @@ class Mate:
     initial_distance: float = 0.0
     enabled: bool = True
     source: Source | None = None
+    target_distance: float | None = None  # Distance: the held distance (None: initial_distance)
+    # friction on the free DOF(s), (rotation, translation): a constant limit (N m or N, dry) and a
+    # viscous coefficient (N m s/rad or N s/m)
+    friction_limit: tuple[float, float] = (0.0, 0.0)
+    viscous_friction: tuple[float, float] = (0.0, 0.0)
 
 
 @dataclass(slots=True)

@@ -228,6 +228,10 @@ CASES: list[Case] = [
          lambda r: slope(r.trace.t, r.trace["axle.qdot"], 0.2, 2.0), 0.01,
          "Saturated at max_effort 3 N m against a 1 N m load: alpha = (3 - 1) / (m r^2 / 2).",
          must_not_report=frozenset({"A101", "A134", "A135"})),
+    Case("hinge friction (constant limit)", "hinge_friction.openplx", 2.0, "deceleration (rad/s^2)", 0.9 / _FLYWHEEL_I,
+         lambda r: -slope(r.trace.t, r.trace["axle.qdot"], 0.1, 2.0), 0.005,
+         "ConstantLimitFriction limit 0.9 N m on the hinge (MuJoCo frictionloss): alpha = 0.9 / 0.45; the "
+         "flywheel's initial angular velocity becomes the hinge speed."),
     Case("prismatic range stops a falling weight", "prismatic_range.openplx", 2.0,
          "position at rest on the stop (m)", -0.5, lambda r: float(r.trace["slide.q"][-1]), 0.002,
          "The range's start is -0.5 m; 2 mm absolute: MuJoCo limits are stiff springs, here with a time "

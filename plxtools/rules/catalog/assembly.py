@@ -170,7 +170,9 @@ rule("A035", "duplicate-contact-model", E,
      "The runtime rejects this (AGXUnity `DuplicateMaterialPairForSurfaceContactModelDefinitionError`): it "
      "cannot know which friction to use.", stage=C)
 rule("A036", "invalid-contact-parameter", E,
-     "A contact model has a negative friction coefficient, or a restitution outside [0, 1].",
+     "A contact model has a negative friction coefficient, or a restitution outside [0, 1]; or a mate's "
+     "joint friction (ConstantLimitFriction.limit, ConstantViscousSurfaceFriction.viscosity) is negative or "
+     "not finite.",
      "Friction coefficients are >= 0 and restitution is a fraction of the normal speed kept after impact.",
      stage=C)
 rule("A037", "unplaced-body-overlaps", W,
@@ -271,8 +273,10 @@ rule("A118", "mesh-format-unsupported", W, "MuJoCo cannot read this mesh file fo
 rule("A119", "range-effort-ignored", I, "A range's effort limits are not modelled: MuJoCo limits are hard.",
      "Ranges become joint limits in MuJoCo.", stage=SIM)
 rule("A120", "initial-velocity-ignored", I,
-     "An initial velocity of a body attached by a mate is ignored (it follows its joints).",
-     "Only free bodies (the roots of the MuJoCo tree) take an initial velocity.", stage=SIM)
+     "Part of the initial velocity of a body attached by a mate is ignored: the body starts with the joint "
+     "speed its velocity gives (the rotation about a hinge axis, the translation along a slide), relative to "
+     "its parent; the components the mate does not allow are left out, and named.",
+     "Free bodies (the roots of the MuJoCo tree) take their whole initial velocity.", stage=SIM)
 rule("A121", "kinematic-body", I,
      "A kinematic body (`is_dynamic: false`, or listed in a system's `kinematically_controlled`) with a "
      "velocity moves at that constant velocity, whatever hits it, as a MuJoCo mocap body.",
