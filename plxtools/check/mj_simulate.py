@@ -502,9 +502,14 @@ MONITORS: tuple[type[Monitor], ...] = (BadControl, Trace, BodyMotion, FallThroug
                                        MotorTracking, Energy)
 
 
-def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options: Any) -> SimulationResult:
+def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller: Any = None,
+                      **options: Any) -> SimulationResult:
     """Run ``compiled`` for ``duration`` seconds, sampling every ``sample_dt`` with the monitors;
-    ``options`` are the fields of :class:`SimOptions`."""
+    ``options`` are the fields of :class:`SimOptions`.
+
+    ``controller(t, model, data)``, when given, is called before every step with the state at time
+    ``t`` (between ``mj_step1`` and ``mj_step2``, so positions and velocities are current) and once
+    more after the last step; what it writes (``data.ctrl``, ...) acts from that step on."""
     import mujoco
 
     opt = SimOptions(**options)
@@ -535,7 +540,13 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options:
     t_wall = time.perf_counter()
     while done < n_steps:
         k = min(chunk, n_steps - done)
-        mujoco.mj_step(model, data, nstep=k)
+        if controller is None:
+            mujoco.mj_step(model, data, nstep=k)
+        else:
+            for i in range(k):
+                mujoco.mj_step1(model, data)
+                controller((done + i) * h, model, data)
+                mujoco.mj_step2(model, data)
         mujoco.mj_forward(model, data)  # mj_step leaves positions-derived data one step behind
         done += k
         t = done * h
@@ -543,6 +554,8 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options:
             break
         for m in monitors:
             m.sample(run, t)
+    if controller is not None and res.blowup is None:
+        controller(done * h, model, data)  # the final state (mj_forward ran after the last chunk)
     res.wall_time_s = time.perf_counter() - t_wall
     res.steps = done
     res.simulated_time = done * h
