@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
-from plxtools.check.scenario import Expect, Loc, Scenario, ScenarioError, bind, display_path, parse
+from plxtools.check.scenario import SUFFIX, Expect, Loc, Scenario, ScenarioError, bind, display_path, parse
 from plxtools.diagnostics import Diagnostic, Pos, Severity, Span
 
 PASSED, FAILED, ERROR = "passed", "failed", "error"
@@ -106,7 +106,8 @@ def run_scenario(path: Path, *, bundle_path: list[str] | tuple = (), openplx_ver
     """Parse, bind and run one scenario file.  Never raises for bad input."""
     t0 = time.perf_counter()
     sc, errors = parse(path)
-    res = ScenarioResult(display_path(path), sc.name if sc else path.name)
+    stem = path.name[: -len(SUFFIX)] if path.name.endswith(SUFFIX) else path.stem
+    res = ScenarioResult(display_path(path), sc.name if sc else stem)
     if sc is None or errors:
         return _error(res, errors)
     try:
