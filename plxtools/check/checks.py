@@ -131,7 +131,7 @@ class StaticChecks:
         if info is not None and info.mapped:
             return None
         why = f": {info.why}" if info is not None and info.why else ""
-        return f"{obj.display} ({qn}): this signal is not simulated by the MuJoCo backend{why}"
+        return f"{obj.display} ({qn}): not simulated by the MuJoCo backend{why}"
 
     # ------------------------------------------------------------------ mass
 

@@ -158,7 +158,7 @@ def classify(obj: Any, ev: Any, kinds: Any) -> SignalInfo | None:
     elif skind is None:
         info.why = f"its source {src.display} ({kinds.p.concrete(src.model).qname}) has no MuJoCo mapping"
     else:
-        info.why = f"{_short(qn)} of a {skind.replace('_', ' ')} is not simulated by the MuJoCo backend"
+        info.why = f"{_short(qn)} of a {skind.replace('_', ' ')} has no MuJoCo mapping"
     return info
 
 
