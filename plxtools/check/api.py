@@ -174,7 +174,7 @@ def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str
             openplx_version: str | None = None) -> Prepared:
     """Check, assemble and compile ``path`` (raises ModelError when it cannot be simulated)."""
     from plxtools.check import mujoco_backend as mjb
-    from plxtools.check.assemble import RIGID_BODY, Kinds
+    from plxtools.check.assemble import Kinds
     from plxtools.check.convert import _source
     from plxtools.check.evaluate import Evaluator
     from plxtools.check.instance import Builder
@@ -210,7 +210,6 @@ def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str
     signals = collect(owned, ev, kinds, lambda o: _source(fc.rep, o))
     objects = {o.display: program.concrete(o.model).qname for o in owned}
     bodies = [n.path for n in fc.assembly.bodies]
-    del RIGID_BODY
     return Prepared(str(p), fc.model or "", fc, compiled, signals, objects, bodies)
 
 

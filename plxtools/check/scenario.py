@@ -435,7 +435,6 @@ def bind(sc: Scenario, signals: list[SignalInfo], bodies: list[str], bound: set[
     by_path = {s.path: s for s in signals}
     inputs = [s.path for s in signals if s.direction == "input"]
     outputs = [s.path for s in signals if s.direction == "output"]
-    end = sc.end
     if sc.duration is not None:
         for x in [*sc.inputs, *sc.expects]:
             t = x.at if x.at is not None else x.during[1]  # type: ignore[union-attr,index]
@@ -475,7 +474,6 @@ def bind(sc: Scenario, signals: list[SignalInfo], bodies: list[str], bound: set[
         if e.unit == "deg" and not e.angular:
             errors.append(ScenarioError(f"unit = \"deg\" but {e.of} is not an angle or an angular speed",
                                         e.keys.get("unit", e.loc)))
-    del end
     return errors
 
 
