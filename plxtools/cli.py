@@ -97,6 +97,22 @@ def _add_check(sub) -> None:
     p.set_defaults(func=_run_check)
 
 
+def _add_test(sub) -> None:
+    p = sub.add_parser("test", help="run scenario files: drive a model's inputs, check its outputs",
+                       description="Run scenario files (*.scenario.toml: inputs over time and expectations on "
+                       "outputs and body poses) against their models in MuJoCo, and report like pytest. Exit 0 "
+                       "when every scenario passes, 1 when one fails (an expectation, or a model that cannot be "
+                       "simulated), 2 when a scenario file is invalid, on usage or internal errors.")
+    p.add_argument("paths", nargs="*", default=["."], metavar="PATH",
+                   help="scenario files or folders searched for *.scenario.toml (default: .)")
+    p.add_argument("--output-format", choices=("text", "json", "github", "sarif", "junit"), default="text",
+                   help="text (default), json, github (workflow annotations), sarif (SARIF 2.1.0) or junit (XML)")
+    p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
+                   help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
+    _add_bundle_options(p)
+    p.set_defaults(func=_run_test)
+
+
 def _add_bundle_options(p) -> None:
     p.add_argument("--openplx-version", metavar="VERSION",
                    help="lint against this openplx-bundles release (fetched into plx's cache on first use); "
@@ -147,6 +163,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_lint(sub)
     _add_fmt(sub)
     _add_check(sub)
+    _add_test(sub)
     _add_lsp(sub)
     _add_rule(sub)
     _add_bundles(sub)
@@ -205,6 +222,12 @@ def _run_check(args) -> int:
     from plxtools.check.cli import run_check
 
     return run_check(args)
+
+
+def _run_test(args) -> int:
+    from plxtools.check.testrun import run_test
+
+    return run_test(args)
 
 
 def _run_lsp(args) -> int:

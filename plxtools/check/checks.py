@@ -98,7 +98,7 @@ class StaticChecks:
                 msg = f"{obj.display} ({qn}): {UNSUPPORTED_BUNDLES[ns]} is not supported by the MuJoCo backend; " \
                       f"it is not simulated"
             elif qn.startswith(SIGNAL_NAMESPACES) and obj.decl is not None and obj.decl[0].unit is self.rep.unit:
-                msg = f"{obj.display} ({qn}): signals are not simulated by the MuJoCo backend"
+                msg = self._unmapped_signal(obj, qn)
             elif qn == "Physics.KinematicLock":
                 msg = f"{obj.display}: Physics.KinematicLock is not supported by the MuJoCo backend (the bodies " \
                       f"move independently)"
@@ -141,6 +141,17 @@ class StaticChecks:
                       f"{{0, 0, -9.80665}} is used"
                 self.rep.add("A040", msg, obj=g)
                 self.col.unsupported.append(("Simulation.PointGravitationalField", g, msg))
+
+    def _unmapped_signal(self, obj: Obj, qn: str) -> str | None:
+        """The A040 text for a signal declared in the file that the MuJoCo run cannot map (None when
+        it maps: plxtools/check/signals.py)."""
+        from plxtools.check.signals import classify
+
+        info = classify(obj, self.ev, self.k)
+        if info is not None and info.mapped:
+            return None
+        why = f": {info.why}" if info is not None and info.why else ""
+        return f"{obj.display} ({qn}): not simulated by the MuJoCo backend{why}"
 
     # ------------------------------------------------------------------ mass
 

@@ -205,6 +205,7 @@ class SimRun:
     bodies: list[tuple[str, int, bool]]  # (path, MuJoCo body id, dynamic)
     speed: dict[str, float] = field(default_factory=dict)  # body path -> speed at the last sample
     movers: list["KinematicMover"] = field(default_factory=list)
+    controlled: bool = False  # a controller (signal inputs) writes to the state between steps
 
     @property
     def dyn(self) -> list[tuple[str, int]]:
@@ -598,7 +599,8 @@ class Energy(Monitor):
         self.gain, self.gain_time = 0.0, 0.0
         masses = [float(model.body_mass[i]) for _, i in run.dyn]
         self.floor = sum(masses) * float(np.linalg.norm(model.opt.gravity)) * 1e-3
-        self.checked = not run.movers  # a kinematic body pushing things does work we do not count
+        # a kinematic body pushing things, or a controller setting velocities, does work not counted here
+        self.checked = not run.movers and not run.controlled
         # the actuators, as arrays: the work they do is summed over every step (see after_step)
         acts = [a for a in run.compiled.actuators]
         self.per_step = bool(acts)
@@ -715,9 +717,14 @@ MONITORS: tuple[type[Monitor], ...] = (BadControl, Trace, BodyMotion, FallThroug
                                        MotorTracking, Plausibility, Energy)
 
 
-def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options: Any) -> SimulationResult:
+def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller: Any = None,
+                      **options: Any) -> SimulationResult:
     """Run ``compiled`` for ``duration`` seconds, sampling every ``sample_dt`` with the monitors;
-    ``options`` are the fields of :class:`SimOptions`."""
+    ``options`` are the fields of :class:`SimOptions`.
+
+    ``controller(t, model, data)``, when given, is called before every step with the state at time
+    ``t`` (between ``mj_step1`` and ``mj_step2``, so positions and velocities are current) and once
+    more after the last step; what it writes (``data.ctrl``, ...) acts from that step on."""
     import mujoco
 
     opt = SimOptions(**options)
@@ -739,6 +746,7 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options:
             bodies.append((b.path, model.body(n).id, b.is_dynamic))
     run = SimRun(mujoco, compiled, model, data, res, opt, float(duration), bodies)
     run.movers = kinematic_movers(compiled, model, data)
+    run.controlled = controller is not None
 
     initial_penetrations(run)
     monitors: list[Monitor] = [m(run) for m in MONITORS if m is not Trace or opt.record]
@@ -755,14 +763,19 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options:
                     f"at t={done * h:.3f} s of {duration:g} s; the motion after that is not checked", None)
             break
         k = min(chunk, n_steps - done)
-        if run.movers or per_step:
+        if run.movers or per_step or controller is not None:
             for _ in range(k):
-                done += 1
                 for mv in run.movers:
-                    mv.place(data, done * h)
+                    mv.place(data, (done + 1) * h)
                 for m in per_step:
                     m.before_step(run)
-                mujoco.mj_step(model, data)
+                if controller is None:
+                    mujoco.mj_step(model, data)
+                else:
+                    mujoco.mj_step1(model, data)
+                    controller(done * h, model, data)
+                    mujoco.mj_step2(model, data)
+                done += 1
                 for m in per_step:
                     m.after_step(run)
         else:
@@ -774,6 +787,8 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, **options:
             break
         for m in monitors:
             m.sample(run, t)
+    if controller is not None and res.blowup is None:
+        controller(done * h, model, data)  # the final state (mj_forward ran after the last chunk)
     res.wall_time_s = time.perf_counter() - t_wall
     res.steps = done
     res.simulated_time = done * h

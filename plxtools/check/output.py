@@ -242,7 +242,7 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
         found = findings(fc)
         if s.energy:
             e = s.energy
-            checked = "" if e.get("checked", True) else " (not checked: kinematic bodies do work)"
+            checked = "" if e.get("checked", True) else " (not checked: kinematic bodies or signal inputs do work)"
             _line(stream, console, f"  energy: {e['initial_total']:.6g} J at the start, {e['final_total']:.6g} J at the "
                   f"end, motors' work {e.get('actuator_work', 0.0):.4g} J{checked}", None)
         if found:

@@ -27,7 +27,7 @@ from tests.conftest import REPO
 
 DOCS = REPO / "docs"
 # the pages whose ```sh blocks are runnable examples (pages written by other teams are not listed)
-PAGES = ["getting-started.md", "index.md", "examples.md", "lint.md", "cli.md"]
+PAGES = ["getting-started.md", "index.md", "examples.md", "lint.md", "cli.md", "testing.md"]
 SETUP = re.compile(r"^(python3? -m venv |\. \.venv/bin/activate$|pip install )")
 FENCE = re.compile(r"^```(?P<lang>[\w-]*)\n(?P<body>.*?)^```[ \t]*$", re.S | re.M)
 EXITS = re.compile(r"\s+#\s*exits\s+(\d+)\s*$")

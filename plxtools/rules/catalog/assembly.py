@@ -189,7 +189,7 @@ rule("A039", "body-not-in-system", W,
      "Bodies belong directly to systems; to attach one body to another use a mate (a Lock).", stage=C)
 rule("A040", "unsupported-feature", W,
      "Something that the MuJoCo backend of `plx check --simulate` cannot represent: Physics1D, DriveTrain, "
-     "Terrain, Sensors, Vehicles and Robotics objects, signals, KinematicLock, restitution, non-dry friction "
+     "Terrain, Sensors, Vehicles and Robotics objects, signals it does not map (see docs/testing.md), KinematicLock, restitution, non-dry friction "
      "models, PointGravitationalField, unknown mate or interaction types.",
      "It is named, never dropped silently: the simulation runs without it, so its results may differ "
      "from AGX's.", stage=C)
@@ -323,7 +323,8 @@ rule("A134", "energy-gain", W,
      "Contacts, damping and friction only remove energy, so a gain means motion the model does not "
      "describe: a spring or mate too stiff for the integrator, an initial overlap pushed apart, or a gap in "
      "the MuJoCo mapping. The message gives the gain, the time and the most energetic body. Not checked "
-     "when kinematic bodies move (they do work on what they push).", stage=SIM)
+     "when kinematic bodies move (they do work on what they push) or when signal inputs drive the run "
+     "(`plx test`, the Python API).", stage=SIM)
 rule("A135", "implausible-speed", W,
      "A body moved faster than anything in the scene explains: its start speed plus free fall over the "
      "whole run plus the motors' target speeds (rotational ones times the scene's size) plus the speed the "
@@ -336,3 +337,25 @@ rule("A132", "mjcf-export-unloadable", E,
      "The file is not written (the command exits with 2); the message names the MuJoCo element and "
      "the line of the OpenPLX object it comes from. Bring the sizes or masses of the scene into a "
      "physical range.", stage=SIM)
+
+# ---------------------------------------------------------------- plx test (scenario files)
+T = "test"
+rule("A140", "expectation-failed", E,
+     "An expectation of a scenario file does not hold: the value measured in the simulation is outside "
+     "what the `[[expect]]` table states (`below`, `above`, `abs_below`, `between`, `equals` with a "
+     "`tolerance`).",
+     "The message names the scenario line, the expected and the measured value and the time of the "
+     "measurement (for `during`, the first failing sample and the worst one). A wrong motor sign or hub "
+     "axis shows up here as a truck that does not move the way the scenario drives it.",
+     example='[[expect]]\nat = 2.0\nof = "box_truck.chassis.x"\nbelow = -1.0', stage=T)
+rule("A141", "invalid-scenario", E,
+     "A scenario file cannot be run as written: invalid TOML, an unknown key, an unknown signal or body "
+     "path (with a did-you-mean), a value of the wrong kind for an input, a time before 0 or after the "
+     "run's `duration`, or a `root` model that is not in the model file.",
+     "`plx test` reports it at the line of the scenario and exits 2, like a pytest collection error: "
+     "the scenario says nothing about the model until it is fixed.", stage=T)
+rule("A142", "scenario-model-not-simulated", E,
+     "The model a scenario names cannot be simulated: it has errors that make its scene unreliable, or "
+     "MuJoCo cannot compile it.",
+     "The scenario fails (exit 1) with the model's first errors; `plx check --simulate` on the model "
+     "shows all of them.", stage=T)

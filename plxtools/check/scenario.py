@@ -1,0 +1,549 @@
+"""Scenario files (``*.scenario.toml``): inputs over time and expectations on outputs and body poses.
+
+Format (docs/testing.md)::
+
+    model = "boxtruck.openplx"   # the model file, relative to this file (required)
+    root = "Scene"               # the model in that file (default: its last model)
+    duration = 4.0               # seconds (default: the latest time below)
+    name = "drive"               # default: the file name without .scenario.toml
+
+    [[input]]                    # from `at` on, the input has `value`
+    at = 0.0
+    signal = "box_truck.front_left_motor.target_angular_velocity_input"
+    value = 3.0
+
+    [[expect]]                   # at `at` (or at every step of `during = [t0, t1]`)
+    at = 2.0
+    of = "box_truck.chassis.x"   # an output path (+ .x/.y/.z, .roll/.pitch/.yaw) or <body>.x|y|z|roll|...
+    below = -1.0                 # and/or above, abs_below, between = [lo, hi], equals + tolerance
+    unit = "deg"                 # optional: thresholds of angles in degrees (deg/s for angular speeds)
+
+:func:`parse` checks the file on its own (TOML, keys, kinds of values); :func:`bind` checks it
+against the loaded model (paths, value kinds, times).  Every problem is a :class:`ScenarioError`
+with its line: nothing here raises anything else on bad input.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from plxtools.check.signals import KIND_TEXT, SignalInfo, SignalValueError, coerce, did_you_mean
+
+SUFFIX = ".scenario.toml"
+TOP_KEYS = ("model", "root", "duration", "name", "description", "input", "expect")
+INPUT_KEYS = ("at", "signal", "value")
+EXPECT_KEYS = ("at", "during", "of", "below", "above", "abs_below", "between", "equals", "tolerance", "unit")
+COMPARATORS = ("below", "above", "abs_below", "between", "equals")
+UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
+
+
+@dataclass(frozen=True, slots=True)
+class Loc:
+    file: str
+    line: int  # 1-based
+    column: int = 1
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.column}"
+
+
+class ScenarioError(Exception):
+    """A located problem in a scenario file (rule A141)."""
+
+    def __init__(self, message: str, loc: Loc, help: str | None = None):
+        super().__init__(message)
+        self.message = message
+        self.loc = loc
+        self.help = help
+
+
+@dataclass
+class InputStep:
+    at: float
+    signal: str
+    value: Any
+    loc: Loc
+    keys: dict[str, Loc]
+    info: SignalInfo | None = None  # after bind
+    coerced: Any = None
+
+
+@dataclass
+class Expect:
+    at: float | None
+    during: tuple[float, float] | None
+    of: str
+    checks: list[tuple[str, Any]]  # (comparator, threshold(s)) in the unit written
+    tolerance: float | None
+    unit: str | None
+    loc: Loc
+    keys: dict[str, Loc]
+    # after bind
+    output: str = ""  # the output signal path read
+    index: int | None = None  # component of a vector output; None with norm=True
+    norm: bool = False  # |v| of a vector output ("speed")
+    angular: bool = False
+
+    def describe(self) -> str:
+        """``box_truck.chassis.x below -1`` / ``|...yaw| below 2 deg``, as written."""
+        u = f" {self.unit}" if self.unit else ""
+        parts = []
+        for op, v in self.checks:
+            if op == "between":
+                parts.append(f"{self.of} between {v[0]:g} and {v[1]:g}{u}")
+            elif op == "abs_below":
+                parts.append(f"|{self.of}| below {v:g}{u}")
+            elif op == "equals":
+                parts.append(f"{self.of} equals {v:g}{u} +- {self.tolerance:g}")
+            else:
+                parts.append(f"{self.of} {op} {v:g}{u}")
+        when = f"at t={self.at:g} s" if self.at is not None else \
+            f"during [{self.during[0]:g}, {self.during[1]:g}] s"  # type: ignore[index]
+        return f"{' and '.join(parts)} {when}"
+
+    def scale(self) -> float:
+        return UNITS.get(self.unit or "rad", 1.0) if self.angular else 1.0
+
+    def failures(self, measured: float) -> list[str]:
+        """The comparisons ``measured`` (SI) fails, as text in the unit written ([] when it passes)."""
+        s = self.scale()
+        m = measured / s
+        bad = []
+        for op, v in self.checks:
+            ok = {
+                "below": lambda: m < v,
+                "above": lambda: m > v,
+                "abs_below": lambda: abs(m) < v,
+                "between": lambda: v[0] <= m <= v[1],
+                "equals": lambda: abs(m - v) <= (self.tolerance or 0.0),
+            }[op]()
+            if not (ok and math.isfinite(m)):
+                bad.append(op)
+        return bad
+
+    def violation(self, measured: float) -> float:
+        """How far ``measured`` (SI) is outside the expectation, in the unit written (0 when it holds)."""
+        m = measured / self.scale()
+        if not math.isfinite(m):
+            return math.inf
+        worst = 0.0
+        for op, v in self.checks:
+            gap = {
+                "below": lambda: m - v,
+                "above": lambda: v - m,
+                "abs_below": lambda: abs(m) - v,
+                "between": lambda: max(v[0] - m, m - v[1]),
+                "equals": lambda: abs(m - v) - (self.tolerance or 0.0),
+            }[op]()
+            worst = max(worst, gap)
+        return worst
+
+    def show(self, measured: float) -> str:
+        u = f" {self.unit}" if self.unit and self.angular else ""
+        return f"{measured / self.scale():.6g}{u}"
+
+    def expected_text(self) -> str:
+        u = f" {self.unit}" if self.unit else ""
+        out = []
+        for op, v in self.checks:
+            if op == "between":
+                out.append(f"between {v[0]:g} and {v[1]:g}{u}")
+            elif op == "abs_below":
+                out.append(f"|value| below {v:g}{u}")
+            elif op == "equals":
+                out.append(f"{v:g}{u} +- {self.tolerance:g}")
+            else:
+                out.append(f"{op} {v:g}{u}")
+        return " and ".join(out)
+
+
+@dataclass
+class Scenario:
+    path: str
+    name: str
+    model_file: Path | None
+    model_loc: Loc
+    root: str | None
+    root_loc: Loc | None
+    duration: float | None
+    duration_loc: Loc | None
+    inputs: list[InputStep] = field(default_factory=list)
+    expects: list[Expect] = field(default_factory=list)
+
+    @property
+    def end(self) -> float:
+        """The run's length: ``duration`` or the latest time named."""
+        if self.duration is not None:
+            return self.duration
+        times = [i.at for i in self.inputs] + [e.at if e.at is not None else e.during[1]  # type: ignore[index]
+                                               for e in self.expects]
+        return max(times, default=0.0)
+
+
+# ----------------------------------------------------------------------------- locating keys
+
+
+_HEADER = re.compile(r"^\s*\[\[\s*([A-Za-z_][\w-]*)\s*\]\]\s*(#.*)?$")
+_TABLE = re.compile(r"^\s*\[\s*([^\]]+)\]\s*(#.*)?$")
+_KEY = re.compile(r"^\s*([A-Za-z_][\w-]*|\"[^\"]*\")\s*=")
+
+
+class _Lines:
+    """Where each key of the top level and of each ``[[input]]`` / ``[[expect]]`` table is written."""
+
+    def __init__(self, text: str, file: str):
+        self.file = file
+        self.top: dict[str, Loc] = {}
+        self.tables: dict[str, list[tuple[Loc, dict[str, Loc]]]] = {}
+        cur: dict[str, Loc] | None = self.top
+        for n, line in enumerate(text.splitlines(), 1):
+            m = _HEADER.match(line)
+            if m:
+                keys: dict[str, Loc] = {}
+                self.tables.setdefault(m.group(1), []).append((Loc(file, n, line.index("[") + 1), keys))
+                cur = keys
+                continue
+            if _TABLE.match(line):
+                cur = None
+                continue
+            k = _KEY.match(line)
+            if k and cur is not None:
+                key = k.group(1).strip('"')
+                cur.setdefault(key, Loc(file, n, line.index(k.group(1)) + 1))
+
+    def table(self, kind: str, i: int) -> tuple[Loc, dict[str, Loc]]:
+        rows = self.tables.get(kind, [])
+        if i < len(rows):
+            return rows[i]
+        return Loc(self.file, 1), {}
+
+
+# ----------------------------------------------------------------------------- parse
+
+
+def _is_num(v: Any) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def _kind(v: Any) -> str:
+    if isinstance(v, bool):
+        return "a boolean"
+    if _is_num(v):
+        return "a number"
+    if isinstance(v, str):
+        return "a text"
+    if isinstance(v, list):
+        return "a list"
+    if isinstance(v, dict):
+        return "a table"
+    return type(v).__name__
+
+
+def display_path(path: Path) -> str:
+    try:
+        return str(path.resolve().relative_to(Path.cwd().resolve()))
+    except ValueError:
+        return str(path)
+
+
+def parse(path: Path) -> tuple[Scenario | None, list[ScenarioError]]:
+    """Read a scenario file; the errors say what is wrong and where (the scenario is None when it
+    cannot be used at all)."""
+    file = display_path(path)
+    errors: list[ScenarioError] = []
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except OSError as exc:
+        return None, [ScenarioError(f"cannot read the scenario: {exc.strerror or exc}", Loc(file, 1))]
+    except UnicodeDecodeError:
+        return None, [ScenarioError("the scenario is not UTF-8 text", Loc(file, 1))]
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        m = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
+        loc = Loc(file, int(m.group(1)), int(m.group(2))) if m else Loc(file, 1)
+        msg = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(exc)) if m else str(exc)
+        return None, [ScenarioError(f"invalid TOML: {msg}", loc)]
+    lines = _Lines(text, file)
+
+    def at_key(keys: dict[str, Loc], key: str, fallback: Loc) -> Loc:
+        return keys.get(key, fallback)
+
+    first = Loc(file, 1)
+    for k in doc:
+        if k not in TOP_KEYS:
+            hint = did_you_mean(k, list(TOP_KEYS))
+            errors.append(ScenarioError(f"unknown key '{k}'" + (f"; did you mean '{hint}'?" if hint else ""),
+                                        at_key(lines.top, k, first), help=f"top-level keys: {', '.join(TOP_KEYS)}"))
+    model = doc.get("model")
+    model_loc = at_key(lines.top, "model", first)
+    model_file = None
+    if model is None:
+        errors.append(ScenarioError("the scenario names no model: add model = \"FILE.openplx\"", first))
+    elif not isinstance(model, str) or not model:
+        errors.append(ScenarioError(f"model must be a file name, not {_kind(model)}", model_loc))
+    else:
+        model_file = (path.parent / model)
+        if not model_file.is_file():
+            errors.append(ScenarioError(f"model file '{model}' not found (looked for {display_path(model_file)})",
+                                        model_loc))
+            model_file = None
+    root = doc.get("root")
+    root_loc = lines.top.get("root")
+    if root is not None and (not isinstance(root, str) or not root):
+        errors.append(ScenarioError(f"root must be a model name, not {_kind(root)}", root_loc or first))
+        root = None
+    duration = doc.get("duration")
+    dur_loc = lines.top.get("duration")
+    if duration is not None and (not _is_num(duration) or not math.isfinite(duration) or duration <= 0
+                                 or duration > 3600):
+        errors.append(ScenarioError(f"duration must be a number of seconds in (0, 3600], not "
+                                    f"{duration!r}" if _is_num(duration) else
+                                    f"duration must be a number of seconds, not {_kind(duration)}", dur_loc or first))
+        duration = None
+    name = doc.get("name")
+    if not isinstance(name, str) or not name:
+        name = path.name[: -len(SUFFIX)] if path.name.endswith(SUFFIX) else path.stem
+    sc = Scenario(file, name, model_file, model_loc, root, root_loc, float(duration) if duration else None, dur_loc)
+
+    for kind, keys_allowed in (("input", INPUT_KEYS), ("expect", EXPECT_KEYS)):
+        rows = doc.get(kind, [])
+        if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
+            errors.append(ScenarioError(f"'{kind}' must be tables written [[{kind}]]", at_key(lines.top, kind, first)))
+            continue
+        for i, row in enumerate(rows):
+            loc, keys = lines.table(kind, i)
+            for k in row:
+                if k not in keys_allowed:
+                    hint = did_you_mean(k, list(keys_allowed))
+                    errors.append(ScenarioError(f"unknown key '{k}' in [[{kind}]]" +
+                                                (f"; did you mean '{hint}'?" if hint else ""), at_key(keys, k, loc),
+                                                help=f"[[{kind}]] keys: {', '.join(keys_allowed)}"))
+            if kind == "input":
+                item = _parse_input(row, loc, keys, errors)
+                if item is not None:
+                    sc.inputs.append(item)
+            else:
+                exp = _parse_expect(row, loc, keys, errors)
+                if exp is not None:
+                    sc.expects.append(exp)
+    if not errors and not sc.expects:
+        errors.append(ScenarioError("the scenario expects nothing: add an [[expect]] table", first))
+    if not errors and sc.end <= 0:
+        errors.append(ScenarioError("the scenario runs for 0 s: give a duration or a time after 0", dur_loc or first))
+    return sc, errors
+
+
+def _time(v: Any, what: str, loc: Loc, errors: list[ScenarioError]) -> float | None:
+    if not _is_num(v) or not math.isfinite(v):
+        errors.append(ScenarioError(f"{what} must be a time in seconds, not {_kind(v) if not _is_num(v) else v}", loc))
+        return None
+    if v < 0:
+        errors.append(ScenarioError(f"{what} = {v:g} is before the run starts (t = 0)", loc))
+        return None
+    return float(v)
+
+
+def _parse_input(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[ScenarioError]) -> InputStep | None:
+    n = len(errors)
+    at = _time(row.get("at", 0.0), "at", keys.get("at", loc), errors)
+    sig = row.get("signal")
+    if not isinstance(sig, str) or not sig:
+        errors.append(ScenarioError("[[input]] needs signal = \"dotted.path.of.an.input\"" if sig is None else
+                                    f"signal must be a dotted path, not {_kind(sig)}", keys.get("signal", loc)))
+    if "value" not in row:
+        errors.append(ScenarioError("[[input]] needs a value", loc))
+    if len(errors) > n:
+        return None
+    return InputStep(at, sig, row["value"], loc, keys)  # type: ignore[arg-type]
+
+
+def _parse_expect(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[ScenarioError]) -> Expect | None:
+    n = len(errors)
+    at = during = None
+    if "at" in row and "during" in row:
+        errors.append(ScenarioError("give either at or during, not both", keys.get("during", loc)))
+    elif "during" in row:
+        d = row["during"]
+        dl = keys.get("during", loc)
+        if not (isinstance(d, list) and len(d) == 2):
+            errors.append(ScenarioError(f"during must be [start, end] in seconds, not {_kind(d)}", dl))
+        else:
+            t0, t1 = _time(d[0], "during start", dl, errors), _time(d[1], "during end", dl, errors)
+            if t0 is not None and t1 is not None:
+                if t0 > t1:
+                    errors.append(ScenarioError(f"during = [{t0:g}, {t1:g}] ends before it starts", dl))
+                during = (t0, t1)
+    elif "at" in row:
+        at = _time(row["at"], "at", keys.get("at", loc), errors)
+    else:
+        errors.append(ScenarioError("[[expect]] needs a time: at = SECONDS or during = [START, END]", loc))
+    of = row.get("of")
+    if not isinstance(of, str) or not of:
+        errors.append(ScenarioError("[[expect]] needs of = \"an.output.path\" or \"a.body.x\"" if of is None else
+                                    f"of must be a dotted path, not {_kind(of)}", keys.get("of", loc)))
+    checks: list[tuple[str, Any]] = []
+    for op in COMPARATORS:
+        if op not in row:
+            continue
+        v, kl = row[op], keys.get(op, loc)
+        if op == "between":
+            if not (isinstance(v, list) and len(v) == 2 and all(_is_num(x) and math.isfinite(x) for x in v)):
+                errors.append(ScenarioError(f"between must be [low, high], not {_kind(v)}", kl))
+                continue
+            if v[0] > v[1]:
+                errors.append(ScenarioError(f"between = [{v[0]:g}, {v[1]:g}]: low is above high", kl))
+                continue
+            checks.append((op, (float(v[0]), float(v[1]))))
+        elif not _is_num(v) or not math.isfinite(v):
+            errors.append(ScenarioError(f"{op} must be a number, not {_kind(v) if not _is_num(v) else v}", kl))
+        else:
+            checks.append((op, float(v)))
+    if not checks and not any(op in row for op in COMPARATORS):
+        errors.append(ScenarioError(f"[[expect]] states nothing: add one of {', '.join(COMPARATORS)}", loc))
+    tol = row.get("tolerance")
+    if "equals" in row and tol is None:
+        errors.append(ScenarioError("equals needs a tolerance (tolerance = 0.05)", keys.get("equals", loc)))
+    elif tol is not None and (not _is_num(tol) or not math.isfinite(tol) or tol < 0):
+        errors.append(ScenarioError(f"tolerance must be a number >= 0, not {tol!r}", keys.get("tolerance", loc)))
+    elif tol is not None and "equals" not in row:
+        errors.append(ScenarioError("tolerance only goes with equals", keys.get("tolerance", loc)))
+    unit = row.get("unit")
+    if unit is not None and unit not in UNITS:
+        errors.append(ScenarioError(f"unit must be \"deg\" or \"rad\", not {unit!r}", keys.get("unit", loc)))
+    if len(errors) > n:
+        return None
+    return Expect(at, during, of, checks, float(tol) if tol is not None else None, unit, loc, keys)  # type: ignore
+
+
+# ----------------------------------------------------------------------------- bind to a model
+
+
+def bind(sc: Scenario, signals: list[SignalInfo], bodies: list[str], bound: set[str],
+         unbound: dict[str, str], model_file: str) -> list[ScenarioError]:
+    """Check the scenario's paths, values and times against the loaded model; fills in what each
+    input and expectation refers to.  ``bound`` are the signal paths that act on the MuJoCo model,
+    ``unbound`` why the others do not."""
+    from plxtools.check.api import ANGULAR_OUTPUTS, BODY_QUANTITIES, component_index
+
+    errors: list[ScenarioError] = []
+    by_path = {s.path: s for s in signals}
+    inputs = [s.path for s in signals if s.direction == "input"]
+    outputs = [s.path for s in signals if s.direction == "output"]
+    if sc.duration is not None:
+        for x in [*sc.inputs, *sc.expects]:
+            t = x.at if x.at is not None else x.during[1]  # type: ignore[union-attr,index]
+            if t > sc.duration + 1e-12:
+                key = "at" if x.at is not None else "during"
+                errors.append(ScenarioError(f"{key} = {t:g} s is after the end of the run (duration = "
+                                            f"{sc.duration:g} s)", x.keys.get(key, x.loc)))
+    for step in sc.inputs:
+        kl = step.keys.get("signal", step.loc)
+        info = by_path.get(step.signal)
+        if info is None or info.direction != "input":
+            if info is not None:
+                errors.append(ScenarioError(f"{step.signal} is an output; [[input]] sends to an input", kl))
+                continue
+            hint = did_you_mean(step.signal, inputs)
+            errors.append(ScenarioError(f"{model_file} has no input '{step.signal}'" +
+                                        (f"; did you mean '{hint}'?" if hint else ""), kl))
+            continue
+        if step.signal not in bound:
+            errors.append(ScenarioError(unbound.get(step.signal, f"{step.signal} is not simulated"), kl))
+            continue
+        try:
+            step.coerced = coerce(info, step.value)
+        except SignalValueError as exc:
+            errors.append(ScenarioError(str(exc), step.keys.get("value", step.loc),
+                                        help=f"{info.type} takes {KIND_TEXT[info.value_kind or 'real']}"))
+            continue
+        step.info = info
+    for e in sc.expects:
+        kl = e.keys.get("of", e.loc)
+        err = _bind_subject(e, by_path, bodies, outputs, bound, unbound, model_file, BODY_QUANTITIES,
+                            component_index)
+        if err is not None:
+            errors.append(ScenarioError(err, kl))
+            continue
+        e.angular = by_path[e.output].type.endswith(ANGULAR_OUTPUTS) and not e.norm
+        if e.unit == "deg" and not e.angular:
+            errors.append(ScenarioError(f"unit = \"deg\" but {e.of} is not an angle or an angular speed",
+                                        e.keys.get("unit", e.loc)))
+    return errors
+
+
+def _bind_subject(e: Expect, by_path: dict, bodies: list[str], outputs: list[str], bound: set[str],
+                  unbound: dict[str, str], model_file: str, body_q: dict, component_index) -> str | None:
+    path, comp = e.of, None
+    info = by_path.get(path)
+    if info is None and "." in path:
+        head, tail = path.rsplit(".", 1)
+        if head in by_path:
+            info, comp = by_path[head], tail
+        elif head in bodies and tail in body_q:
+            out, idx = body_q[tail]
+            info = by_path.get(f"{head}.{out}")
+            if info is None:
+                return f"the body {head} has no {out}"
+            e.output, e.index, e.norm = info.path, idx, idx is None
+            return None if info.path in bound else unbound.get(info.path, f"{info.path} is not simulated")
+        elif head in bodies:
+            return f"{tail!r} is not a body quantity; use one of {', '.join(body_q)}"
+    if info is None:
+        cands = outputs + [f"{b}.{q}" for b in bodies for q in ("x", "y", "z", "yaw")]
+        hint = did_you_mean(path, cands)
+        return f"{model_file} has no output or body quantity '{path}'" + (f"; did you mean '{hint}'?" if hint else "")
+    if info.direction != "output":
+        return f"{info.path} is an input; expectations read outputs (or body quantities such as {info.source}.x)"
+    if info.path not in bound:
+        return unbound.get(info.path, f"{info.path} is not simulated")
+    kind = info.value_kind
+    e.output = info.path
+    if kind == "real":
+        if comp is not None:
+            return f"{info.path} is a single number; it has no component '{comp}'"
+        return None
+    if comp is None:
+        names = ", ".join(f"{info.path}.{c}" for c in _components(info))
+        return f"{info.path} is {KIND_TEXT[kind or 'real']}: name one component ({names})"
+    idx = component_index(info, comp)
+    if idx is None:
+        return f"{info.path} has no component '{comp}'; use one of {', '.join(_components(info))}"
+    e.index = idx
+    return None
+
+
+def _components(info: SignalInfo) -> list[str]:
+    from plxtools.check.signals import COMPONENTS, RPY_COMPONENTS
+
+    if info.quantity == "body_rpy":
+        return list(RPY_COMPONENTS)
+    return list(COMPONENTS.get(info.value_kind or "", ()))
+
+
+def discover(paths: list[str]) -> list[Path]:
+    """The scenario files named or found (recursively, ``*.scenario.toml``) under ``paths``;
+    raises FileNotFoundError for a path that does not exist."""
+    out: list[Path] = []
+    for p in paths:
+        q = Path(p)
+        if q.is_dir():
+            out.extend(sorted(x for x in q.rglob("*" + SUFFIX) if x.is_file() and not any(
+                part.startswith(".") or part in ("node_modules", "__pycache__") for part in x.relative_to(q).parts)))
+        elif q.is_file():
+            out.append(q)
+        else:
+            raise FileNotFoundError(p)
+    seen: set[Path] = set()
+    uniq = []
+    for x in out:
+        r = x.resolve()
+        if r not in seen:
+            seen.add(r)
+            uniq.append(x)
+    return uniq

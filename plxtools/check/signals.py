@@ -1,0 +1,441 @@
+"""Signals (``Physics.Signals`` / ``Physics3D.Signals`` inputs and outputs) on a MuJoCo run.
+
+Two halves:
+
+* :func:`classify` / :func:`collect` read the assembled object tree (no MuJoCo): every Input and
+  Output object with its dotted path, its ``source`` (the motor, mate, spring or body it belongs to)
+  and what it maps to, or why it does not map.  ``checks.py`` asks :func:`classify` whether a signal
+  the user declared is simulated (A040 otherwise).
+* :class:`SignalRuntime` binds those to a compiled MuJoCo model: an input writes the value it names
+  (a control, an actuator force range, a spring reference, a free body's velocity); an output reads
+  a joint coordinate, an actuator force or a body's pose and velocity.  mujoco is never imported
+  here: the bindings only touch ``model`` / ``data`` arrays and call the module given to them.
+
+Conventions: values are SI (rad, rad/s, m, m/s, N, N m).  1D joint values are in the OpenPLX sign of
+the mate (``connectors[1]`` relative to ``connectors[0]``), motor values in the motor's own
+coordinate (as the compiled actuator's gear makes them).  Body outputs are world-frame: position of
+the body frame origin, RPY with ``R = Rz(yaw) Ry(pitch) Rx(roll)``, linear velocity of the centre of
+mass and angular velocity.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+INPUT = "Physics.Signals.Input"
+OUTPUT = "Physics.Signals.Output"
+
+# source type -> source kind (most derived first)
+SOURCE_KINDS = {
+    "Physics3D.Interactions.RotationalVelocityMotor": "rotational_velocity_motor",
+    "Physics3D.Interactions.LinearVelocityMotor": "linear_velocity_motor",
+    "Physics3D.Interactions.TorqueMotor": "torque_motor",
+    "Physics3D.Interactions.ForceMotor": "force_motor",
+    "Physics3D.Interactions.TorsionSpring": "torsion_spring",
+    "Physics3D.Interactions.LinearSpring": "linear_spring",
+    "Physics3D.Interactions.RotationalRange": "rotational_range",
+    "Physics3D.Interactions.LinearRange": "linear_range",
+    "Physics3D.Interactions.Hinge": "hinge",
+    "Physics3D.Interactions.Prismatic": "prismatic",
+    "Physics3D.Interactions.Cylindrical": "cylindrical",
+    "Physics3D.Interactions.Distance": "distance",
+    "Physics3D.Interactions.Lock": "lock",
+    "Physics3D.Interactions.Ball": "ball",
+    "Physics3D.Interactions.MateConnector": "connector",
+    "Physics3D.Bodies.RigidBody": "body",
+}
+ROT_MOTOR, LIN_MOTOR = "rotational_velocity_motor", "linear_velocity_motor"
+
+# (signal type, source kinds) -> quantity; the first matching row wins.  A quantity names how the
+# runtime reads or writes it (see SignalRuntime._bind_*); its value kind is in VALUE_KIND.
+INPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
+    ("Physics.Signals.AngularVelocity1DInput", (ROT_MOTOR,), "target_speed"),
+    ("Physics.Signals.LinearVelocity1DInput", (LIN_MOTOR,), "target_speed"),
+    ("Physics.Signals.Torque1DInput", ("torque_motor",), "effort"),
+    ("Physics.Signals.Force1DInput", ("force_motor",), "effort"),
+    ("Physics.Signals.TorqueRangeInput", (ROT_MOTOR,), "effort_range"),
+    ("Physics.Signals.ForceRangeInput", (LIN_MOTOR,), "effort_range"),
+    ("Physics.Signals.AngleInput", ("torsion_spring",), "spring_rest"),
+    ("Physics.Signals.Position1DInput", ("linear_spring",), "spring_rest"),
+    ("Physics3D.Signals.LinearVelocity3DInput", ("body",), "body_linear_velocity"),
+    ("Physics3D.Signals.AngularVelocity3DInput", ("body",), "body_angular_velocity"),
+)
+OUTPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
+    ("Physics.Signals.AngleOutput", ("hinge", "cylindrical"), "joint_position"),
+    ("Physics.Signals.AngleOutput", ("torsion_spring",), "spring_rest"),
+    ("Physics.Signals.Position1DOutput", ("prismatic", "cylindrical"), "joint_position"),
+    ("Physics.Signals.Position1DOutput", ("linear_spring",), "spring_rest"),
+    ("Physics.Signals.AngularVelocity1DOutput", ("hinge", "cylindrical"), "joint_velocity"),
+    ("Physics.Signals.LinearVelocity1DOutput", ("prismatic", "cylindrical"), "joint_velocity"),
+    ("Physics.Signals.AngularVelocity1DOutput", (ROT_MOTOR,), "target_speed"),
+    ("Physics.Signals.LinearVelocity1DOutput", (LIN_MOTOR,), "target_speed"),
+    ("Physics.Signals.Torque1DOutput", (ROT_MOTOR, "torque_motor"), "actuator_effort"),
+    ("Physics.Signals.Force1DOutput", (LIN_MOTOR, "force_motor"), "actuator_effort"),
+    ("Physics.Signals.Torque1DOutput", ("torsion_spring",), "spring_effort"),
+    ("Physics.Signals.Force1DOutput", ("linear_spring",), "spring_effort"),
+    ("Physics.Signals.TorqueRangeOutput", (ROT_MOTOR,), "effort_range"),
+    ("Physics.Signals.ForceRangeOutput", (LIN_MOTOR,), "effort_range"),
+    ("Physics3D.Signals.Position3DOutput", ("body",), "body_position"),
+    ("Physics3D.Signals.RPYOutput", ("body",), "body_rpy"),
+    ("Physics3D.Signals.LinearVelocity3DOutput", ("body",), "body_linear_velocity"),
+    ("Physics3D.Signals.AngularVelocity3DOutput", ("body",), "body_angular_velocity"),
+)
+VALUE_KIND = {
+    "target_speed": "real", "effort": "real", "effort_range": "vec2", "spring_rest": "real",
+    "joint_position": "real", "joint_velocity": "real", "actuator_effort": "real", "spring_effort": "real",
+    "body_position": "vec3", "body_rpy": "vec3", "body_linear_velocity": "vec3", "body_angular_velocity": "vec3",
+}
+# what a value kind looks like, for messages
+KIND_TEXT = {"real": "a number", "vec2": "two numbers [min, max]", "vec3": "three numbers [x, y, z]"}
+# the components an expectation may pick from a vector output
+COMPONENTS = {"vec3": ("x", "y", "z"), "vec2": ("min", "max")}
+RPY_COMPONENTS = ("roll", "pitch", "yaw")
+
+
+@dataclass(slots=True)
+class SignalInfo:
+    """One Input or Output object of the scene."""
+
+    path: str  # dotted from the root, e.g. box_truck.front_left_motor.target_angular_velocity_input
+    direction: str  # "input" | "output"
+    type: str  # qualified type, e.g. Physics.Signals.AngularVelocity1DInput
+    source: str | None  # path of the motor / mate / body it belongs to
+    source_kind: str | None  # a SOURCE_KINDS value
+    quantity: str | None  # what it maps to (None: not simulated)
+    why: str = ""  # when quantity is None: why not
+    enabled: bool = True  # outputs: the model's `enabled`
+    location: Any = None  # plxtools.check.scene.Source of the declaration, when known
+
+    @property
+    def value_kind(self) -> str | None:
+        return VALUE_KIND.get(self.quantity) if self.quantity else None
+
+    @property
+    def mapped(self) -> bool:
+        return self.quantity is not None
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"path": self.path, "direction": self.direction, "type": self.type, "source": self.source,
+                "mapped": self.mapped, "quantity": self.quantity, "value": self.value_kind,
+                **({"why": self.why} if not self.mapped else {})}
+
+
+def _source_kind(obj: Any, kinds: Any) -> str | None:
+    return kinds.first(obj, SOURCE_KINDS) if obj is not None else None
+
+
+def classify(obj: Any, ev: Any, kinds: Any) -> SignalInfo | None:
+    """The signal ``obj`` is (None when it is no Input or Output), and what it maps to."""
+    from plxtools.check.instance import Obj
+
+    if kinds.isa(obj, INPUT):
+        direction, table = "input", INPUT_MAP
+    elif kinds.isa(obj, OUTPUT):
+        direction, table = "output", OUTPUT_MAP
+    else:
+        return None
+    qn = kinds.p.concrete(obj.model).qname
+    src = ev.child(obj, "source") if "source" in obj.children else None
+    src = src if isinstance(src, Obj) else None
+    skind = _source_kind(src, kinds)
+    enabled = True
+    if direction == "output":
+        try:
+            enabled = bool(ev.get(obj, "enabled", True))
+        except Exception:  # an unevaluable flag: the check reports it; the output stays readable
+            enabled = True
+    info = SignalInfo(obj.display, direction, qn, src.display if src is not None else None, skind, None,
+                      enabled=enabled)
+    for sig_type, sources, quantity in table:
+        if kinds.isa(obj, sig_type):
+            if skind in sources:
+                info.quantity = quantity
+                return info
+    if src is None:
+        info.why = "it has no source"
+    elif skind is None:
+        info.why = f"its source {src.display} ({kinds.p.concrete(src.model).qname}) has no MuJoCo mapping"
+    else:
+        info.why = f"{_short(qn)} of a {skind.replace('_', ' ')} has no MuJoCo mapping"
+    return info
+
+
+def _short(qn: str) -> str:
+    return qn.rsplit(".", 1)[-1]
+
+
+def collect(owned: list, ev: Any, kinds: Any, locate: Callable[[Any], Any] | None = None) -> list[SignalInfo]:
+    """Every Input and Output among the ``owned`` objects, in declaration order."""
+    out = []
+    for obj in owned:
+        info = classify(obj, ev, kinds)
+        if info is not None:
+            if locate is not None:
+                info.location = locate(obj)
+            out.append(info)
+    return out
+
+
+def mapping_summary() -> dict[str, list[str]]:
+    """The signal types mapped, by direction (docs and the closing note)."""
+    return {"input": sorted({t for t, _, _ in INPUT_MAP}), "output": sorted({t for t, _, _ in OUTPUT_MAP})}
+
+
+# ---------------------------------------------------------------------------------------------- runtime
+
+
+class SignalValueError(ValueError):
+    """A value of the wrong kind for a signal (the message says which kind it takes)."""
+
+
+def _num(x: Any) -> float | None:
+    """``x`` as a float when it is a real number (not a boolean), else None."""
+    if isinstance(x, bool) or type(x).__name__ == "bool_":
+        return None
+    if isinstance(x, (int, float)):
+        return float(x)
+    if type(x).__module__ == "numpy" and hasattr(x, "dtype") and getattr(x, "ndim", 1) == 0 \
+            and x.dtype.kind in "iuf":
+        return float(x)
+    return None
+
+
+def coerce(info: SignalInfo, value: Any) -> Any:
+    """``value`` as the signal takes it (a float, or a tuple of floats), or SignalValueError."""
+    kind = info.value_kind or "real"
+    wrong = SignalValueError(f"{info.path} takes {KIND_TEXT[kind]}, not {_describe(value)}")
+    if kind == "real":
+        v = _num(value)
+        if v is None:
+            raise wrong
+        if not math.isfinite(v):
+            raise SignalValueError(f"{info.path} takes a finite number, not {v}")
+        return v
+    if isinstance(value, (str, bytes, dict)):
+        raise wrong
+    try:
+        items = list(value)
+    except TypeError:
+        raise wrong from None
+    vals = tuple(_num(x) for x in items)
+    if len(vals) != (3 if kind == "vec3" else 2) or any(x is None for x in vals):
+        raise wrong
+    if not all(math.isfinite(x) for x in vals):
+        raise SignalValueError(f"{info.path} takes finite numbers, not {list(vals)}")
+    if kind == "vec2" and vals[0] > vals[1]:
+        raise SignalValueError(f"{info.path}: the range [{vals[0]:g}, {vals[1]:g}] has min > max")
+    return vals
+
+
+def _describe(value: Any) -> str:
+    if isinstance(value, bool):
+        return f"the boolean {str(value).lower()}"
+    if isinstance(value, str):
+        return f"the text {value!r}"
+    if isinstance(value, (list, tuple)):
+        return f"a list of {len(value)} item{'s' if len(value) != 1 else ''}"
+    if isinstance(value, dict):
+        return "a table"
+    return f"{type(value).__name__} {value!r}"
+
+
+@dataclass(slots=True)
+class Binding:
+    info: SignalInfo
+    read: Callable[[Any, Any], Any] | None = None  # (model, data) -> value
+    write: Callable[[Any, Any, Any], None] | None = None  # (model, data, value)
+
+
+@dataclass
+class SignalRuntime:
+    """The scene's signals bound to a compiled MuJoCo model.  ``unbound`` says, for each signal that
+    cannot act on this model, why (not simulated, its motor was dropped, its mate closes a loop...)."""
+
+    mujoco: Any
+    compiled: Any  # CompiledScene
+    infos: dict[str, SignalInfo]
+    bindings: dict[str, Binding] = field(default_factory=dict)
+    unbound: dict[str, str] = field(default_factory=dict)
+
+    @classmethod
+    def bind(cls, mujoco: Any, compiled: Any, infos: list[SignalInfo]) -> "SignalRuntime":
+        rt = cls(mujoco, compiled, {i.path: i for i in infos})
+        model = compiled.model
+        acts = {a.path: (a, model.actuator(a.name).id) for a in compiled.actuators}
+        for info in infos:
+            if not info.mapped:
+                rt.unbound[info.path] = f"{info.path} is not simulated: {info.why}"
+                continue
+            try:
+                b = rt._binding(info, acts)
+            except _Unbindable as exc:
+                rt.unbound[info.path] = f"{info.path} cannot act on the MuJoCo model: {exc}"
+                continue
+            rt.bindings[info.path] = b
+        return rt
+
+    # -- helpers over the compiled model --------------------------------------------------------
+
+    def _joint(self, mate_path: str, dof: str) -> tuple[int, int, int]:
+        """(qpos address, dof address, sign) of a mate's joint for a rotational / linear DOF."""
+        c, model = self.compiled, self.compiled.model
+        names = c.joints.get(mate_path)
+        if not names:
+            if mate_path in c.loop_mates:
+                raise _Unbindable(f"{mate_path} closes a kinematic loop (an equality constraint, no joint)")
+            raise _Unbindable(f"{mate_path} is not simulated (see the check notes)")
+        name = names[0]
+        if len(names) > 1:
+            name = next((n for n in names if n.endswith(":rot" if dof == "rotational" else ":slide")), names[0])
+        jid = model.joint(name).id
+        return int(model.jnt_qposadr[jid]), int(model.jnt_dofadr[jid]), int(c.joint_sign[mate_path])
+
+    def _controller_joint(self, ctl_path: str) -> tuple[int, int, int]:
+        scene = self.compiled.scene
+        ctl = next((x for x in scene.controllers if x.path == ctl_path), None)
+        if ctl is None or not ctl.enabled:
+            raise _Unbindable(f"{ctl_path} is not simulated (see the check notes)")
+        pair = (ctl.connectors[0].path, ctl.connectors[1].path)
+        for m in scene.mates:
+            key = (m.connectors[0].path, m.connectors[1].path)
+            if key == pair or key == pair[::-1]:
+                qadr, dadr, sign = self._joint(m.path, ctl.dof)
+                return qadr, dadr, sign * (-1 if key != pair else 1)
+        raise _Unbindable(f"no mate of {ctl_path} is simulated")
+
+    def _body(self, path: str) -> int:
+        name = self.compiled.names.name("body", path)
+        if name is None:
+            raise _Unbindable(f"the body {path} is not simulated")
+        return int(self.compiled.model.body(name).id)
+
+    def _binding(self, info: SignalInfo, acts: dict) -> Binding:  # noqa: C901 - one table of small cases
+        q, src, mj = info.quantity, info.source or "", self.mujoco
+        b = Binding(info)
+        if q in ("target_speed", "effort", "actuator_effort", "effort_range"):
+            if src not in acts:
+                raise _Unbindable(f"its motor {src} is not simulated (see the check notes)")
+            act, aid = acts[src]
+            if q == "actuator_effort":
+                b.read = lambda m, d: float(d.actuator_force[aid])
+            elif q == "effort_range":
+                def read_range(m, d):
+                    if m.actuator_forcelimited[aid]:
+                        return (float(m.actuator_forcerange[aid][0]), float(m.actuator_forcerange[aid][1]))
+                    return (-math.inf, math.inf)
+
+                def write_range(m, d, v):
+                    m.actuator_forcelimited[aid] = 1
+                    m.actuator_forcerange[aid] = [v[0], v[1]]
+
+                b.read, b.write = read_range, write_range
+            else:
+                b.read = lambda m, d: float(d.ctrl[aid])
+
+                def write_ctrl(m, d, v):
+                    d.ctrl[aid] = v
+
+                b.write = write_ctrl
+            return b
+        if q in ("joint_position", "joint_velocity"):
+            rotational = info.type.endswith(("AngleOutput", "AngularVelocity1DOutput"))
+            dof = "rotational" if rotational else "linear"
+            qadr, dadr, sign = self._joint(src, dof)
+            if q == "joint_position":
+                b.read = lambda m, d: sign * float(d.qpos[qadr])
+            else:
+                b.read = lambda m, d: sign * float(d.qvel[dadr])
+            return b
+        if q in ("spring_rest", "spring_effort"):
+            qadr, dadr, sign = self._controller_joint(src)
+            if q == "spring_effort":
+                b.read = lambda m, d: sign * float(d.qfrc_spring[dadr])
+            else:
+                b.read = lambda m, d: sign * float(m.qpos_spring[qadr])
+
+                def write_rest(m, d, v):
+                    m.qpos_spring[qadr] = sign * v
+
+                b.write = write_rest
+            return b
+        bid = self._body(src)
+        if q == "body_position":
+            b.read = lambda m, d: tuple(float(x) for x in d.xpos[bid])
+        elif q == "body_rpy":
+            b.read = lambda m, d: rpy_of_mat(d.xmat[bid])
+        elif q in ("body_linear_velocity", "body_angular_velocity"):
+            lin = q == "body_linear_velocity"
+
+            def read_vel(m, d):
+                import numpy as np
+
+                res = np.zeros(6)
+                mj.mj_objectVelocity(m, d, mj.mjtObj.mjOBJ_BODY, bid, res, 0)
+                return tuple(float(x) for x in (res[3:] if lin else res[:3]))
+
+            b.read = read_vel
+            if info.direction == "input":
+                jname = self.compiled.names.name("joint", src, ":free")
+                if src not in self.compiled.free_roots or jname is None:
+                    raise _Unbindable(f"{src} is attached to other bodies by mates (only a free body's velocity "
+                                      f"can be set)")
+                dadr = int(self.compiled.model.jnt_dofadr[self.compiled.model.joint(jname).id])
+
+                def write_vel(m, d, v):
+                    import numpy as np
+
+                    if lin:
+                        d.qvel[dadr:dadr + 3] = v
+                    else:
+                        r = np.asarray(d.xmat[bid]).reshape(3, 3)
+                        d.qvel[dadr + 3:dadr + 6] = r.T @ np.asarray(v)  # free-joint angular velocity: body frame
+
+                b.write = write_vel
+        else:  # pragma: no cover - the tables and this function are kept in step by tests
+            raise _Unbindable(f"quantity {q} has no binding")
+        return b
+
+    # -- use --------------------------------------------------------------------------------------
+
+    def write(self, path: str, value: Any, model: Any, data: Any) -> None:
+        b = self.bindings[path]
+        assert b.write is not None
+        b.write(model, data, value)
+
+    def read(self, path: str, model: Any, data: Any) -> Any:
+        b = self.bindings[path]
+        assert b.read is not None
+        return b.read(model, data)
+
+
+class _Unbindable(Exception):
+    pass
+
+
+def rpy_of_mat(xmat: Any) -> tuple[float, float, float]:
+    """(roll, pitch, yaw) of a row-major 3x3 rotation, ``R = Rz(yaw) Ry(pitch) Rx(roll)``."""
+    r = [float(x) for x in xmat]
+    r00, r10, r20, r21, r22 = r[0], r[3], r[6], r[7], r[8]
+    pitch = math.asin(max(-1.0, min(1.0, -r20)))
+    return (math.atan2(r21, r22), pitch, math.atan2(r10, r00))
+
+
+# ---------------------------------------------------------------------------------------------- names
+
+
+def did_you_mean(name: str, candidates: list[str]) -> str | None:
+    """The candidate closest to ``name`` (same last part first), or None."""
+    import difflib
+
+    if not candidates:
+        return None
+    last = name.rsplit(".", 1)[-1]
+    close = difflib.get_close_matches(name, candidates, n=1, cutoff=0.6)
+    if close:
+        return close[0]
+    same_tail = [c for c in candidates if c.rsplit(".", 1)[-1] == last]
+    if same_tail:
+        return difflib.get_close_matches(name, same_tail, n=1, cutoff=0.0)[0]
+    return None
