@@ -29,6 +29,7 @@ class BuildContext:
     geoms_by_material: dict[str, list[tuple[str, str]]] = field(default_factory=dict)  # -> [(geom, body path)]
     joint_limits: dict[str, list[float]] = field(default_factory=dict)  # joint name -> [lo, hi]
     spring_count: dict[str, int] = field(default_factory=dict)  # joint name -> springs on it
+    violated: set[str] = field(default_factory=set)  # mates that start apart (pulled together by equalities)
     shaft_init: dict[str, tuple[float, float]] = field(default_factory=dict)  # shaft joint -> (angle, speed)
 
     @classmethod

@@ -39,7 +39,7 @@ class BodyReport:
 class MateReport:
     path: str
     kind: str
-    role: str  # tree (a MuJoCo joint) | loop (equality) | distance | open (not enforced)
+    role: str  # tree (a MuJoCo joint) | loop (equality) | distance | open (not enforced) | pulled (started apart)
     initial_separation: (
         float  # m (perpendicular to the axis for prismatic/cylindrical; |d - target| for distance)
     )
@@ -49,6 +49,8 @@ class MateReport:
     max_misalignment: float
     max_misalignment_time: float
     pulled_apart: bool
+    final_separation: float = 0.0
+    final_misalignment: float = 0.0
 
 
 @dataclass(slots=True)
@@ -485,6 +487,8 @@ class _MateTrack:
     max_misalignment: float
     max_separation_time: float = 0.0
     max_misalignment_time: float = 0.0
+    separation: float = 0.0  # at the last sample
+    misalignment: float = 0.0
 
 
 class MateSeparation(Monitor):
@@ -502,6 +506,7 @@ class MateSeparation(Monitor):
         for m, ids in self.mons:
             sep, mis = _monitor_measure(m, ids, run.data)
             tr = self.track[m.path]
+            tr.separation, tr.misalignment = sep, (mis if mis is not None else 0.0)
             if sep > tr.max_separation:
                 tr.max_separation, tr.max_separation_time = sep, t
             if mis is not None and mis > tr.max_misalignment:
@@ -510,11 +515,18 @@ class MateSeparation(Monitor):
     def finish(self, run: SimRun) -> None:
         for m, _ in self.mons:
             tr = self.track[m.path]
-            pulled = tr.max_separation > run.opt.mate_tol or tr.max_misalignment > run.opt.angle_tol
+            if m.role == "pulled":  # started apart (A016): did the equality close it?
+                pulled = tr.separation > run.opt.mate_tol or tr.misalignment > run.opt.angle_tol
+            else:
+                pulled = tr.max_separation > run.opt.mate_tol or tr.max_misalignment > run.opt.angle_tol
             run.res.mates[m.path] = MateReport(
                 m.path, m.kind, m.role, tr.initial_separation, tr.max_separation, tr.max_separation_time,
-                tr.initial_misalignment, tr.max_misalignment, tr.max_misalignment_time, pulled)
-            if pulled:
+                tr.initial_misalignment, tr.max_misalignment, tr.max_misalignment_time, pulled,
+                tr.separation, tr.misalignment)
+            if pulled and m.role == "pulled":
+                run.add(WARNING, "A103", f"{m.path} started {tr.initial_separation:.4g} m apart and is still "
+                        f"{tr.separation:.4g} m apart at the end (axes {math.degrees(tr.misalignment):.3g} deg)", m.path)
+            elif pulled:
                 run.add(WARNING, "A103",
                         f"{m.path} came apart: max separation {tr.max_separation:.4g} m at t="
                         f"{tr.max_separation_time:.3f} s, max axis misalignment "
@@ -661,8 +673,8 @@ class Energy(Monitor):
                 f"the scene gained {self.gain:.4g} J of energy that no motor supplied "
                 f"({100 * self.gain / scale:.3g} % of its energy scale {scale:.4g} J), largest at "
                 f"t={self.gain_time:.3f} s" + (f"; the most energetic body is {worst}" if worst else "")
-                + ": the motion is not physical (too stiff a spring or mate, an overlap pushed apart, or a gap "
-                "in the MuJoCo mapping)", worst)
+                + ": the motion is not physical (too stiff a spring or mate, an overlap pushed apart, a mate that "
+                "started apart pulled together, or a gap in the MuJoCo mapping)", worst)
 
 
 class Plausibility(Monitor):

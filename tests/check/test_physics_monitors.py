@@ -105,3 +105,12 @@ def test_redirected_connector_moves_with_its_redirected_parent_in_static_checks_
     assert code == 0 and "A017" not in {d["code"] for d in doc["diagnostics"]}
     arm = next(iter(doc["simulation"].values()))["bodies"]["arm"]
     assert arm["final"]["position"][0] < 0  # swung down through the vertical to the other side
+
+
+def test_a_mate_that_starts_apart_is_pulled_together():
+    code, doc = _json("--simulate", str(CASES / "physics" / "pulled_together.openplx"))
+    codes = [d["code"] for d in doc["diagnostics"]]
+    assert codes.count("A016") == 1 and "A131" not in codes and "A103" not in codes  # one finding, no plx bug
+    mate = next(iter(doc["simulation"].values()))["mates"]["joint"]
+    assert mate["role"] == "pulled" and mate["initial_separation"] == pytest.approx(0.3)
+    assert mate["final_separation"] < 0.002 and not mate["pulled_apart"]
