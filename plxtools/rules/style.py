@@ -15,6 +15,23 @@ SNAKE = re.compile(r"^[a-z_][a-z0-9_]*$")
 UPPER = re.compile(r"^[A-Z][A-Z0-9_]*$")
 
 
+def _block_column(body: list, parent_col: int) -> int:
+    """The indentation a block means: the one most of its lines have; on a tie, the one a usual
+    step (4 spaces) below its parent, else its first line's.  The odd lines are then the ones
+    reported, so a first line 3 spaces short is flagged itself, not the correct line after it."""
+    counts: dict[int, int] = {}
+    for s in body:
+        counts[s.header.start.column] = counts.get(s.header.start.column, 0) + 1
+    best = max(counts.values())
+    tied = [c for c, n in counts.items() if n == best]
+    if len(tied) == 1:
+        return tied[0]
+    for c in tied:
+        if c - parent_col == 4:
+            return c
+    return body[0].header.start.column
+
+
 def style_diagnostics(program: Program, unit, occurrences, root: ModelSym | None = None) -> list[Diagnostic]:
     out: list[Diagnostic] = []
     tree = unit.tree
@@ -25,21 +42,21 @@ def style_diagnostics(program: Program, unit, occurrences, root: ModelSym | None
     # C006: siblings whose indentation differs (official files do it; fmt aligns them).
     # Lines where the parser already reported the cause (S015, an ambiguous tab) are skipped.
     caused = {d.span.start.line for d in tree.diagnostics if d.code in ("S003", "S015") and d.severity is Severity.ERROR}
-    stack = [tree.statements]
+    stack: list[tuple[list, int]] = [(tree.statements, 0)]
     while stack:
-        body = stack.pop()
+        body, parent_col = stack.pop()
         if body:
-            col = body[0].header.start.column
-            for s in body[1:]:
+            col = _block_column(body, parent_col)
+            for s in body:
                 if s.header.start.column != col and s.header.start.line not in caused:
-                    add("C006", f"this line is indented {s.header.start.column} spaces but the block's first "
-                        f"line is indented {col}", s.header, Severity.INFO,
-                        "align it with the lines above; a missing ':' on the line above would also cause this "
+                    add("C006", f"this line is indented {s.header.start.column} spaces but the other lines of its "
+                        f"block are indented {col}", s.header, Severity.INFO,
+                        f"indent it {col} spaces; a missing ':' on the line above would also cause this "
                         "(`plx fmt` aligns siblings)")
             for s in body:
                 b = ast.body_of(s)
                 if b:
-                    stack.append(b)
+                    stack.append((b, s.header.start.column))
 
     # C001: naming conventions of definitions made in this file
     for s in tree.statements:

@@ -58,3 +58,18 @@ def test_check_does_not_repeat_what_follows_from_the_typo(tmp_path):
     f.write_text(WHEEL.format(geometry="        raduis: 0.4\n        height: 0.3"), encoding="utf-8")
     r = run_plx("check", "--output-format", "json", str(f))
     assert [d["code"] for d in json.loads(r.stdout)["diagnostics"]] == ["N002"], r.stdout
+
+
+def test_a_block_whose_first_line_is_three_spaces_short_is_flagged_on_that_line(tmp_path):
+    p = tmp_path / "wheel.openplx"
+    p.write_text("Wheel is Physics3D.Bodies.RigidBody:\n"
+                 "    inertia.mass: 10\n"
+                 "    connector is Physics3D.Interactions.MateConnector:\n"
+                 "     main_axis: {0, -1, 0}\n"
+                 "        normal: {1, 0, 0}\n", encoding="utf-8")
+    r = run_plx("lint", "--output-format", "json", str(p))
+    items = [(d["code"], d["range"]["start"]["line"]) for d in json.loads(r.stdout)]
+    assert items == [("C006", 4)], r.stdout  # the short line itself, not the correct line after it
+    assert "indent it 8 spaces" in r.stdout
+    fixed = run_plx("fmt", "-", stdin=p.read_text(encoding="utf-8")).stdout
+    assert "        main_axis: {0, -1, 0}\n        normal: {1, 0, 0}\n" in fixed  # fmt agrees with the help
