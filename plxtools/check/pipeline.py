@@ -148,7 +148,7 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
         else:
             fc.skip = Skip.NO_ROOT
         scan_strings(tree, rep)
-        fc.diagnostics = _finish(tree, raw + rep.diagnostics(), cfg)
+        fc.diagnostics = _finish(tree, _merge(raw, rep.diagnostics()), cfg)
         return fc
     fc.model = root.name
     rep.root_stmt = root.stmt if root.unit is fa.unit else None
@@ -170,7 +170,7 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     fc.scene = to_scene(asm, col, rep, os.path.dirname(os.path.abspath(str(path))))
     fc.timings["assemble"] = time.perf_counter() - t1
     fc.rep, fc.raw, fc.cfg = rep, raw, cfg
-    fc.diagnostics = _finish(tree, raw + rep.diagnostics(), cfg)
+    fc.diagnostics = _finish(tree, _merge(raw, rep.diagnostics()), cfg)
     return fc
 
 
@@ -212,7 +212,7 @@ def run_backend(fc: FileCheck, *, simulate: bool, duration: float, compile_only:
 
 def refresh(fc: FileCheck) -> None:
     """Recompute the file's diagnostics after check added some (lint's and check's, filtered)."""
-    fc.diagnostics = _finish(fc.tree, fc.raw + fc.rep.diagnostics(), fc.cfg)
+    fc.diagnostics = _finish(fc.tree, _merge(fc.raw, fc.rep.diagnostics()), fc.cfg)
 
 
 def add_backend_notes(rep: Reporter, tree: ast.File, notes: list) -> None:
@@ -249,6 +249,13 @@ def _owned_by_lint(lint: list[Diagnostic]) -> frozenset[str]:
     errors = [d.code for d in lint if d.severity == Severity.ERROR]
     return frozenset(code for code, owners in _LINT_OWNED.items()
                      if any(c.startswith(owners) for c in errors))
+
+
+def _merge(lint: list[Diagnostic], check: list[Diagnostic]) -> list[Diagnostic]:
+    """Lint's findings, then check's, without the ones lint already made on the same line (a
+    literal value out of its physical range is lint's, see rules/literals.py)."""
+    made = {(d.code, d.span.start.line) for d in lint}
+    return lint + [d for d in check if (d.code, d.span.start.line) not in made]
 
 
 def _finish(tree: ast.File, diags: list[Diagnostic], cfg) -> list[Diagnostic]:

@@ -18,12 +18,14 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None):
     model. Completeness and the root rules judge that one."""
     from plxtools.model.workspace import FileAnalysis
     from plxtools.rules.completeness import completeness_diagnostics
+    from plxtools.rules.literals import literal_diagnostics
     from plxtools.rules.style import style_diagnostics
 
     fa = workspace.analyse(tree)
     root = _named_model(workspace.program, fa.unit, root_name) if root_name else None
     extra = completeness_diagnostics(workspace.program, fa.unit, list(tree.diagnostics) + fa.diagnostics, root)
     extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences, root)
+    extra += literal_diagnostics(tree, fa.occurrences, tree.path)
     for d in extra:
         d.file = tree.path
     return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.occurrences)

@@ -146,7 +146,8 @@ rule("A024", "inverted-limits", E,
 rule("A030", "non-positive-size", E,
      "A geometry has a size that is not positive: a Box `size` component <= 0 (the default is 0, 0, 0!), a "
      "radius or cylinder height <= 0, a capsule height < 0, a mesh scale <= 0, or a mesh without vertices.",
-     "Such a geometry has no volume: it cannot collide and gives no mass. The MuJoCo backend skips it.",
+     "Such a geometry has no volume: it cannot collide and gives no mass. The MuJoCo backend skips it."
+     " `plx lint` (and so the editor, while you type) reports it when the value is written as a number; `plx check` also finds computed ones.",
      example="geometry is Physics3D.Geometries.Box", use_instead="geometry is Physics3D.Geometries.Box:\n"
      "    size: {1, 0.5, 0.2}", stage=C)
 rule("A031", "missing-file", E,
@@ -155,7 +156,8 @@ rule("A031", "missing-file", E,
      "The runtime fails to load the model, or the geometry is missing from the simulation.",
      example='path: @"whel.obj"', use_instead='path: @"wheel.obj"', stage=C)
 rule("A032", "negative-mass", E, "A body has a negative `inertia.mass` (AGXUnity `NegativeMass`).",
-     "Mass must be positive; 0 means \"compute it from the geometries\".", stage=C)
+     "Mass must be positive; 0 means \"compute it from the geometries\"."
+     " `plx lint` (and so the editor, while you type) reports it when the value is written as a number; `plx check` also finds computed ones.", stage=C)
 rule("A033", "zero-mass-dynamic-body", E,
      "A dynamic body has `inertia.mass` 0 and no contact geometry that gives it mass.",
      "Mass 0 means \"compute from the geometries\" (density x volume); with no geometry that counts the "
@@ -173,7 +175,8 @@ rule("A036", "invalid-contact-parameter", E,
      "A contact model has a negative friction coefficient, or a restitution outside [0, 1]; or a mate's "
      "joint friction (ConstantLimitFriction.limit, ConstantViscousSurfaceFriction.viscosity) is negative or "
      "not finite.",
-     "Friction coefficients are >= 0 and restitution is a fraction of the normal speed kept after impact.",
+     "Friction coefficients are >= 0 and restitution is a fraction of the normal speed kept after impact."
+     " `plx lint` (and so the editor, while you type) reports it when the value is written as a number; `plx check` also finds computed ones.",
      stage=C)
 rule("A037", "unplaced-body-overlaps", W,
      "A body with no declared transform that no mate places stays at its system's origin, where it "
@@ -181,7 +184,8 @@ rule("A037", "unplaced-body-overlaps", W,
      "Bodies that SNAP cannot place keep the identity transform. Several of them pile up at the origin "
      "and the simulation starts by pushing them apart.", stage=C)
 rule("A038", "non-positive-density", W,
-     "A material used by a mass-giving geometry has density <= 0.", "The geometry then adds no mass.",
+     "A material used by a mass-giving geometry has density <= 0.", "The geometry then adds no mass."
+     " `plx lint` (and so the editor, while you type) reports it when the value is written as a number; `plx check` also finds computed ones.",
      stage=C)
 rule("A039", "body-not-in-system", W,
      "A RigidBody is owned by an object that is not a Physics3D.System (AGXUnity "
