@@ -18,7 +18,7 @@ from pathlib import Path
 
 from plxtools.config import Config, ConfigError, config_for
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity
-from plxtools.ide.incremental import IncrementalParser
+from plxtools.syntax.incremental import IncrementalParser
 from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import ast, parse_text
 

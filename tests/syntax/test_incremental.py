@@ -6,7 +6,7 @@ import random
 
 import pytest
 
-from plxtools.ide.incremental import IncrementalParser, same_tree, split_chunks
+from plxtools.syntax.incremental import IncrementalParser, same_tree, split_chunks
 from plxtools.syntax import parse_text
 from tests.conftest import bundle_files
 from tests.ide.conftest import EXAMPLE
@@ -54,3 +54,20 @@ def test_moved_chunks_keep_exact_positions():
     assert same_tree(parser.parse(edited, "f"), parse_text(edited, "f"))
     back = text
     assert same_tree(parser.parse(back, "f"), parse_text(back, "f"))
+
+
+def test_a_tree_handed_out_is_never_changed_by_later_versions():
+    """A reader may still hold version N (a request being answered) while N+1 is parsed."""
+    text = example()
+    parser = IncrementalParser()
+    first = parser.parse(text, "f.openplx")
+    # grow the text at the top: every later chunk moves
+    second_text = "# a new first line\n\n" + text
+    second = parser.parse(second_text, "f.openplx")
+    assert same_tree(second, parse_text(second_text, "f.openplx"))
+    assert same_tree(first, parse_text(text, "f.openplx"))  # the old tree still has its own positions
+    assert parser.stats["reused"] > 0
+    # and back: the copies made for version 2 are not changed either
+    third = parser.parse(text, "f.openplx")
+    assert same_tree(second, parse_text(second_text, "f.openplx"))
+    assert same_tree(third, parse_text(text, "f.openplx"))
