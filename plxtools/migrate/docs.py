@@ -84,6 +84,12 @@ Each consecutive pair of versions is compared:
 
 Additions and new deprecation notes are listed for information.
 
+Every pair of consecutive versions with changes that plx handles is tested end to end
+(`tests/migrate/test_version_pairs.py`, run by CI with `PLX_ALL_VERSIONS=1`): a file that uses every
+moved or renamed model and reads every renamed attribute of the older version is migrated, must
+use only the new names afterwards, and must lint with no more errors under the newer version than
+it had under the older one.
+
 ## Regenerating
 
 When a new `openplx-bundles` version is released:
