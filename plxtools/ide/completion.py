@@ -14,7 +14,6 @@ parse. Contexts:
 
 from __future__ import annotations
 
-import re
 
 from plxtools.ide.context import (
     UNKNOWN,
@@ -31,36 +30,17 @@ from plxtools.ide.context import (
 )
 from plxtools.ide.describe import describe, expr_text, signature
 from plxtools.ide.host import FileState
+from plxtools.ide.line_context import TYPE_KINDS, LineContext, classify, space_triggers, word_before
 from plxtools.ide.types import CompletionItem, CompletionResult
 from plxtools.model.symbols import PRIMITIVES, GlobalSym, MemberSym, MethodSym, ModelSym, Namespace, Ty
 from plxtools.model.values import NsRef
 from plxtools.syntax import ast
 from plxtools.syntax.fragments import dotted_name, ends_in_comment_or_string, fragment_tokens
 
-_WORD_END = re.compile(r"[A-Za-z_]\w*$")
-_QUAL = r"((?:(?:[A-Za-z_]\w*|`[^`]*`)\.)*)"
-_TYPE_AFTER = [
-    ("trait_base", re.compile(r"^\s*trait\s+\w+\s+is\s+" + _QUAL + r"$")),
-    ("with", re.compile(r"\bwith\s+(?:[\w.`]+\s*,\s*)*" + _QUAL + r"$")),
-    ("becomes", re.compile(r"^\s*([\w.`]+)\s+becomes\s+" + _QUAL + r"$")),
-    ("is", re.compile(r"^(\s*)(?:const\s+)?(?:optional\s+)?[\w.`]+\s+is\s+" + _QUAL + r"$")),
-    ("or", re.compile(r"\bis\s+[\w.`]+(?:\[\])?(?:\s+or\s+[\w.`]+(?:\[\])?)*\s+or\s+" + _QUAL + r"$")),
-    ("param", re.compile(r"\bfn\s+\w+\s*\((?:[^()]*,)?\s*\w+\s*:\s*" + _QUAL + r"$")),
-    ("operator_param", re.compile(r"^\s*operator\s*[-+*/]\s*\((?:[^()]*,)?\s*\w+\s*:\s*" + _QUAL + r"$")),
-    ("returns", re.compile(r"\)\s*->\s*" + _QUAL + r"$")),
-]
-_STMT_START = re.compile(r"^(\s*)" + _QUAL + r"$")
-_ANNOTATION = re.compile(r"^\s*\.$")
-_VALUE = re.compile(r"^\s*(?:const\s+)?(?:optional\s+)?([\w.`]+)(\s+(?:is|becomes)\s+[^:#\"]*)?\s*:(.*)$")
-_EXPR_DOT = re.compile(r"\.$")
-
 TOP_KEYWORDS = ["const", "trait", "operator", "import"]
 BLOCK_KEYWORDS = ["with", "optional", "fn", "static fn"]
 
 RANK_BEST, RANK_GOOD, RANK_OK, RANK_REST, RANK_KEYWORD = "0", "1", "2", "3", "4"
-
-
-_SPACE_TRIGGERS = re.compile(r"(?:\b(?:is|becomes|with|or|reference)|[:,(\[{]|->)\s$")
 
 
 def complete(st: FileState, offset: int, trigger: str | None = None) -> CompletionResult:
@@ -70,14 +50,13 @@ def complete(st: FileState, offset: int, trigger: str | None = None) -> Completi
     pos = idx.pos(offset)
     line = idx.line_text(pos.line)
     before = line[: pos.column]
-    m = _WORD_END.search(before)
-    word = m.group() if m else ""
+    word = word_before(before)
     start = offset - len(word)
     end = offset
     while end < len(st.text) and (st.text[end].isalnum() or st.text[end] == "_"):
         end += 1
     empty = CompletionResult([], start, end)
-    if trigger == " " and not _SPACE_TRIGGERS.search(before):
+    if trigger == " " and not space_triggers(before):
         return empty
     if st.program is None or st.unit is None or _in_comment_or_string(st, before, offset):
         return empty
@@ -110,21 +89,18 @@ def _in_comment_or_string(st: FileState, before: str, offset: int) -> bool:
 
 
 def _dispatch(st: FileState, line_no: int, line: str, head: str, offset: int):
-    for kind, rx in _TYPE_AFTER:
-        m = rx.search(head)
-        if m:
-            return _type_items(st, line_no, line, kind, m)
-    if _ANNOTATION.match(head):
+    lc = classify(head)
+    if lc is None:
+        return None
+    if lc.kind in TYPE_KINDS:
+        return _type_items(st, line_no, line, lc)
+    if lc.kind == "annotation":
         names = sorted(st.known_annotations or {"doc"})
         return [CompletionItem(n, "keyword", "annotation", insert_text=f"{n}: ",
                                sort_text=(RANK_BEST if n == "doc" else RANK_GOOD) + n) for n in names]
-    m = _VALUE.match(head)
-    if m:
-        return _value_items(st, line_no, line, m, head, offset)
-    m = _STMT_START.match(head)
-    if m:
-        return _statement_items(st, line_no, m.group(1), m.group(2))
-    return None
+    if lc.kind == "value":
+        return _value_items(st, line_no, line, lc, head, offset)
+    return _statement_items(st, line_no, lc.indent, lc.qual)
 
 
 # ------------------------------------------------------------------ blocks
@@ -211,19 +187,19 @@ def _attribute_item(st: FileState, mem: MemberSym, outer, set_names, rank=None, 
 # ------------------------------------------------------------------ types
 
 
-def _type_items(st: FileState, line_no: int, line: str, kind: str, m: re.Match):
+def _type_items(st: FileState, line_no: int, line: str, lc: LineContext):
     p = st.program
-    qual = m.group(m.lastindex)
-    parts = _qualifier(qual)
+    kind = lc.kind
+    parts = _qualifier(lc.qual)
     want = {"with": "trait", "trait_base": "trait"}.get(kind, "any")
-    top_level = kind == "is" and not m.group(1)
+    top_level = kind == "is" and not lc.indent
     if kind == "is" and top_level:
         want = "model"
     subtype_of = None
     if kind == "becomes":
         indent = line_indent(line)
         owners, ctx = _context(st, line_no, indent)
-        old, _mem = path_type(st, ctx, _qualifier(m.group(1) + "."))
+        old, _mem = path_type(st, ctx, _qualifier(lc.target + "."))
         if old.model is not None and not old.array:
             subtype_of = p.concrete(old.model)
     prims = kind in ("is", "or", "param", "operator_param", "returns") and not parts
@@ -357,11 +333,11 @@ def _ns_item(ns: Namespace, rank: str) -> CompletionItem:
 # ------------------------------------------------------------------ values
 
 
-def _value_items(st: FileState, line_no: int, line: str, m: re.Match, head: str, offset: int):
+def _value_items(st: FileState, line_no: int, line: str, lc: LineContext, head: str, offset: int):
     p = st.program
     indent = line_indent(line)
     owners, ctx = _context(st, line_no, indent)
-    value_text = m.group(3)
+    value_text = lc.value
     # after a dot: members of whatever the chain before it is
     if value_text.rstrip().endswith(".") and value_text.strip() != ".":
         chain = chain_before(head, len(head) - 1)
@@ -370,7 +346,7 @@ def _value_items(st: FileState, line_no: int, line: str, m: re.Match, head: str,
         outer = ctx.outer
         base = eval_chain(st, outer, chain)
         return _member_items(st, base)
-    expected = _expected_type(st, ctx, m, value_text)
+    expected = _expected_type(st, ctx, lc, value_text)
     items: list[CompletionItem] = []
     outer = ctx.outer
     if expected.primitive == "Bool" and not expected.array:
@@ -429,10 +405,10 @@ def _global_items(st: FileState, sym, label: str, expected: Ty):
     return []
 
 
-def _expected_type(st: FileState, ctx: BlockContext, m: re.Match, value_text: str) -> Ty:
+def _expected_type(st: FileState, ctx: BlockContext, lc: LineContext, value_text: str) -> Ty:
     p = st.program
-    path = _qualifier(m.group(1) + ".")
-    decl = fragment_tokens(m.group(2) or "")
+    path = _qualifier(lc.target + ".")
+    decl = fragment_tokens(lc.decl)
     if decl and decl[0].type in ("IS", "BECOMES"):
         # `is T[] with A`: the declared type's name, from the lexer's tokens
         names, after = dotted_name(decl, 1)
