@@ -158,9 +158,13 @@ def run_fmt(args) -> int:
     except (UsageError, ConfigError) as exc:
         _say(f"plx fmt: {exc}")
         return 2
+    from plxtools.gcpolicy import command_collector, file_done
+
     tally = _Tally()
-    for path in files:
-        _format_file(path, args, tally)
+    with command_collector():
+        for path in files:
+            _format_file(path, args, tally)
+            file_done()
     if not args.quiet or tally.failed:
         _say(_summary(tally, args.check or args.diff))
     return _exit_code(tally, args.check)

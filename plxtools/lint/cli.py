@@ -33,6 +33,14 @@ def _check_config_codes(cfg: Config, seen: set) -> None:
 
 
 def run_lint(args) -> int:
+    from plxtools.gcpolicy import command_collector
+
+    with command_collector():
+        return _run_lint(args)
+
+
+def _run_lint(args) -> int:
+    from plxtools.gcpolicy import file_done
     from plxtools.rules.registry import check_selectors
     from plxtools.rules.reporters import render
 
@@ -108,6 +116,11 @@ def run_lint(args) -> int:
                 fixes_applied += n
                 diags = lint_file(f, cfg, workspace).diagnostics
         all_diags.extend(diags)
+        if len(files) > 1:  # the last file's tree and symbols simply live until exit
+            if result.tree is not None and result.tree.path:
+                workspace.forget_loose(result.tree.path)
+            del result
+            file_done()
     if args.diff:
         return 0
     out = sys.stderr if stdin and args.fix else sys.stdout
