@@ -314,34 +314,60 @@ class _BodyTrack:
 
 
 class BodyMotion(Monitor):
-    """Per dynamic body: path length, heading change, top speed, lowest point; the body reports."""
+    """Per dynamic body: path length, heading change, top speed, lowest point; the body reports.
+
+    Every sample reads all dynamic bodies at once (numpy over arrays indexed by body id): the
+    speed at the body origin is MuJoCo's `mj_objectVelocity` (com-based `cvel` moved from the
+    subtree's centre of mass to `xpos`) done for all bodies in one expression."""
 
     def __init__(self, run: SimRun) -> None:
-        data = run.data
+        data, model = run.data, run.model
         self.start = {p: (data.xpos[i].copy(), data.xquat[i].copy()) for p, i, _ in run.bodies}
-        self.track = {p: _BodyTrack(data.xpos[i].copy(), data.xquat[i].copy(), data.xpos[i].copy(),
-                                    yaw_of_mat(data.xmat[i].reshape(3, 3)), float(data.xpos[i][2]))
-                      for p, i in run.dyn}
-        self.vel6 = np.zeros(6)
+        dyn = run.dyn
+        self.paths = [p for p, _ in dyn]
+        self.ids = np.array([i for _, i in dyn], dtype=int)
+        self.roots = np.array([model.body_rootid[i] for _, i in dyn], dtype=int)
+        self.initial_pos = {p: data.xpos[i].copy() for p, i in dyn}
+        self.initial_quat = {p: data.xquat[i].copy() for p, i in dyn}
+        x = data.xpos[self.ids]
+        self.last_pos = x.copy()
+        self.yaw_last = self._yaw(data)
+        self.min_z = x[:, 2].copy()
+        n = len(self.paths)
+        self.path_length = np.zeros(n)
+        self.yaw_total = np.zeros(n)
+        self.max_speed = np.zeros(n)
+        self.track: dict[str, _BodyTrack] = {}
+
+    def _yaw(self, data) -> np.ndarray:
+        m = data.xmat[self.ids]  # row-major 3x3: r[1, 0] is column 3, r[0, 0] column 0
+        return np.arctan2(m[:, 3], m[:, 0])
 
     def sample(self, run: SimRun, t: float) -> None:
+        if not self.paths:
+            return
         data = run.data
-        for p, i in run.dyn:
-            tr = self.track[p]
-            x = data.xpos[i]
-            tr.path_length += float(np.linalg.norm(x - tr.last_pos))
-            tr.last_pos = x.copy()
-            y = yaw_of_mat(data.xmat[i].reshape(3, 3))
-            tr.yaw_total += (y - tr.yaw_last + math.pi) % (2 * math.pi) - math.pi
-            tr.yaw_last = y
-            run.mujoco.mj_objectVelocity(run.model, data, run.mujoco.mjtObj.mjOBJ_BODY, i, self.vel6, 0)
-            sp = float(np.linalg.norm(self.vel6[3:]))
-            tr.max_speed = max(tr.max_speed, sp)
-            run.speed[p] = sp
-            tr.min_z = min(tr.min_z, float(x[2]))
+        x = data.xpos[self.ids]
+        step = x - self.last_pos
+        self.path_length += np.sqrt((step * step).sum(axis=1))
+        self.last_pos = x
+        y = self._yaw(data)
+        self.yaw_total += (y - self.yaw_last + math.pi) % (2 * math.pi) - math.pi
+        self.yaw_last = y
+        cvel = data.cvel[self.ids]
+        dif = x - data.subtree_com[self.roots]
+        lin = cvel[:, 3:] - np.cross(dif, cvel[:, :3])
+        sp = np.sqrt((lin * lin).sum(axis=1))
+        np.maximum(self.max_speed, sp, out=self.max_speed)
+        run.speed.update(zip(self.paths, sp.tolist()))
+        np.minimum(self.min_z, x[:, 2], out=self.min_z)
 
     def finish(self, run: SimRun) -> None:
         data = run.data
+        for k, p in enumerate(self.paths):
+            self.track[p] = _BodyTrack(self.initial_pos[p], self.initial_quat[p], self.last_pos[k].copy(),
+                                       float(self.yaw_last[k]), float(self.min_z[k]), float(self.path_length[k]),
+                                       float(self.yaw_total[k]), float(self.max_speed[k]))
         fell = {f["body"]: f["time"] for f in run.res.fall_through}
         for p, i, d in run.bodies:
             p0, q0 = self.start[p]
@@ -387,7 +413,10 @@ class _MateTrack:
 
 
 class MateSeparation(Monitor):
-    """How far each mate's connectors drift apart, in position and axis (A103)."""
+    """How far each mate's connectors drift apart, in position and axis (A103).
+
+    All mates are measured at once per sample (`_MateArrays`: the same formulas as
+    `_monitor_measure`, over arrays); the running maxima are arrays too."""
 
     def __init__(self, run: SimRun) -> None:
         self.mons = [(m, (run.model.body(m.body0).id, run.model.body(m.body1).id)) for m in run.compiled.monitors]
@@ -396,17 +425,31 @@ class MateSeparation(Monitor):
             sep, mis = _monitor_measure(m, ids, run.data)
             mis = mis if mis is not None else 0.0
             self.track[m.path] = _MateTrack(sep, mis, sep, mis)
+        self.arrays = _MateArrays([m for m, _ in self.mons], [ids for _, ids in self.mons])
+        n = len(self.mons)
+        self.max_sep = np.array([self.track[m.path].max_separation for m, _ in self.mons], dtype=float)
+        self.max_mis = np.array([self.track[m.path].max_misalignment for m, _ in self.mons], dtype=float)
+        self.max_sep_t = np.zeros(n)
+        self.max_mis_t = np.zeros(n)
 
     def sample(self, run: SimRun, t: float) -> None:
-        for m, ids in self.mons:
-            sep, mis = _monitor_measure(m, ids, run.data)
-            tr = self.track[m.path]
-            if sep > tr.max_separation:
-                tr.max_separation, tr.max_separation_time = sep, t
-            if mis is not None and mis > tr.max_misalignment:
-                tr.max_misalignment, tr.max_misalignment_time = mis, t
+        if not self.mons:
+            return
+        sep, mis = self.arrays.measure(run.data)
+        up = sep > self.max_sep
+        if up.any():
+            self.max_sep[up] = sep[up]
+            self.max_sep_t[up] = t
+        up = mis > self.max_mis  # -inf where a mate has no axis to compare
+        if up.any():
+            self.max_mis[up] = mis[up]
+            self.max_mis_t[up] = t
 
     def finish(self, run: SimRun) -> None:
+        for k, (m, _) in enumerate(self.mons):
+            tr = self.track[m.path]
+            tr.max_separation, tr.max_separation_time = float(self.max_sep[k]), float(self.max_sep_t[k])
+            tr.max_misalignment, tr.max_misalignment_time = float(self.max_mis[k]), float(self.max_mis_t[k])
         for m, _ in self.mons:
             tr = self.track[m.path]
             pulled = tr.max_separation > run.opt.mate_tol or tr.max_misalignment > run.opt.angle_tol
@@ -418,6 +461,58 @@ class MateSeparation(Monitor):
                         f"{m.path} came apart: max separation {tr.max_separation:.4g} m at t="
                         f"{tr.max_separation_time:.3f} s, max axis misalignment "
                         f"{math.degrees(tr.max_misalignment):.3g} deg at t={tr.max_misalignment_time:.3f} s", m.path)
+
+
+class _MateArrays:
+    """`_monitor_measure` for every mate at once: (separations, misalignments), the latter -inf
+    for distance and ball mates (which have none)."""
+
+    def __init__(self, mons: list[MateMonitor], ids: list[tuple[int, int]]) -> None:
+        def stack(name: str) -> np.ndarray:
+            return np.array([np.asarray(getattr(m, name), dtype=float) for m in mons], dtype=float).reshape(-1, 3)
+
+        self.b0 = np.array([i for i, _ in ids], dtype=int)
+        self.b1 = np.array([j for _, j in ids], dtype=int)
+        self.pos0, self.pos1 = stack("pos0")[:, :, None], stack("pos1")[:, :, None]
+        self.axis0, self.axis1 = stack("axis0")[:, :, None], stack("axis1")[:, :, None]
+        self.normal0, self.normal1 = stack("normal0")[:, :, None], stack("normal1")[:, :, None]
+        kinds = [m.kind for m in mons]
+        self.distance = np.array([k == "distance" for k in kinds])
+        self.target = np.array([m.target_distance for m in mons], dtype=float)
+        self.perp = np.array([k in ("prismatic", "cylindrical") for k in kinds])
+        self.no_axis = np.array([k in ("distance", "ball") for k in kinds])
+        self.lock = np.array([k == "lock" for k in kinds])
+        self.any_perp, self.any_lock, self.any_distance = self.perp.any(), self.lock.any(), self.distance.any()
+
+    def measure(self, data) -> tuple[np.ndarray, np.ndarray]:
+        r0 = data.xmat[self.b0].reshape(-1, 3, 3)
+        r1 = data.xmat[self.b1].reshape(-1, 3, 3)
+        p0 = data.xpos[self.b0] + (r0 @ self.pos0)[:, :, 0]
+        p1 = data.xpos[self.b1] + (r1 @ self.pos1)[:, :, 0]
+        a0, a1 = (r0 @ self.axis0)[:, :, 0], (r1 @ self.axis1)[:, :, 0]
+        d = p1 - p0
+        if self.any_perp:
+            along = (d * a0).sum(axis=1)
+            d = np.where(self.perp[:, None], d - along[:, None] * a0, d)
+        sep = np.sqrt((d * d).sum(axis=1))
+        if self.any_distance:
+            sep = np.where(self.distance, np.abs(sep - self.target), sep)
+        mis = _angles(a0, a1)
+        if self.any_lock:
+            mis = np.where(self.lock, np.maximum(mis, _angles((r0 @ self.normal0)[:, :, 0],
+                                                              (r1 @ self.normal1)[:, :, 0])), mis)
+        mis[self.no_axis] = -np.inf
+        return sep, mis
+
+
+def _angles(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """`angle_between` row by row."""
+    def units(v: np.ndarray) -> np.ndarray:
+        n = np.sqrt((v * v).sum(axis=1))
+        safe = np.where(n > 0, n, 1.0)
+        return np.where((n > 0)[:, None], v / safe[:, None], v * 0.0)
+
+    return np.arccos(np.clip((units(a) * units(b)).sum(axis=1), -1.0, 1.0))
 
 
 class JointLimits(Monitor):
