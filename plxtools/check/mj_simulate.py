@@ -249,8 +249,8 @@ class BlowUp:
     def happened(self, run: SimRun, t: float, step: int) -> bool:
         data, model = run.data, run.model
         warns = self._warnings(run)
-        finite = bool(np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel)))
-        vel_max = float(np.max(np.abs(data.qvel))) if finite and model.nv else 0.0
+        finite = bool(np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all())
+        vel_max = float(np.abs(data.qvel).max()) if finite and model.nv else 0.0
         if not (warns > self.warn0 or not finite or vel_max > run.opt.max_speed):
             return False
         if warns > self.warn0:
@@ -356,7 +356,7 @@ class BodyMotion(Monitor):
         self.yaw_last = y
         cvel = data.cvel[self.ids]
         dif = x - data.subtree_com[self.roots]
-        lin = cvel[:, 3:] - np.cross(dif, cvel[:, :3])
+        lin = cvel[:, 3:] - _cross(dif, cvel[:, :3])
         sp = np.sqrt((lin * lin).sum(axis=1))
         np.maximum(self.max_speed, sp, out=self.max_speed)
         run.speed.update(zip(self.paths, sp.tolist()))
@@ -381,20 +381,55 @@ class BodyMotion(Monitor):
 
 
 class FallThrough(Monitor):
-    """A dynamic body whose centre of mass sinks through static geometry it started above (A102)."""
+    """A dynamic body whose centre of mass sinks through static geometry it started above (A102).
+
+    Every (body, support) pair is screened at once per sample with numpy; only the pairs the
+    screen flags (a body at or near its support's surface) go through `_Supports.below`, which
+    decides exactly as before."""
+
+    SCREEN_SLACK = 1e-9  # m: the screen errs towards asking `below`, never away from it
 
     def __init__(self, run: SimRun) -> None:
         self.supports = _Supports(run.model, run.data)
         self.below_of = {p: self.supports.above(run.data.xipos[i]) for p, i in run.dyn}  # by centre of mass
         self.fell: dict[str, float] = {}
+        planes = {g: (pt, n) for g, pt, n in self.supports.planes}
+        boxes = {g: (lo, hi) for g, lo, hi in self.supports.boxes}
+        pairs = [(k, p, i, g) for k, (p, i) in enumerate(run.dyn) for g in self.below_of[p]]
+        self.pairs = pairs
+        self.body = np.array([i for _, _, i, _ in pairs], dtype=int)
+        self.is_plane = np.array([g in planes for *_, g in pairs], dtype=bool)
+        zero = np.zeros(3)
+        self.pt = np.array([planes[g][0] if g in planes else zero for *_, g in pairs], dtype=float).reshape(-1, 3)
+        self.nrm = np.array([planes[g][1] if g in planes else zero for *_, g in pairs], dtype=float).reshape(-1, 3)
+        self.lo = np.array([boxes[g][0] if g in boxes else zero for *_, g in pairs], dtype=float).reshape(-1, 3)
+        self.hi = np.array([boxes[g][1] if g in boxes else zero for *_, g in pairs], dtype=float).reshape(-1, 3)
 
     def sample(self, run: SimRun, t: float) -> None:
+        if not self.pairs or len(self.fell) == len(self.below_of):
+            return
         data = run.data
-        for p, i in run.dyn:
+        margin = run.opt.fall_margin
+        if len(self.pairs) < 16:  # a few pairs: asking each directly is cheaper than the screen
+            self._check(run, t, range(len(run.dyn)))
+            return
+        c = data.xipos[self.body]
+        plane = ((c - self.pt) * self.nrm).sum(axis=1) < -margin + self.SCREEN_SLACK
+        box = ((self.lo[:, 0] <= c[:, 0]) & (c[:, 0] <= self.hi[:, 0]) & (self.lo[:, 1] <= c[:, 1])
+               & (c[:, 1] <= self.hi[:, 1]) & (c[:, 2] < self.hi[:, 2] - margin + self.SCREEN_SLACK))
+        flagged = np.flatnonzero(np.where(self.is_plane, plane, box))
+        if not flagged.size:
+            return
+        self._check(run, t, sorted({self.pairs[j][0] for j in flagged}))
+
+    def _check(self, run: SimRun, t: float, which) -> None:
+        data, margin, dyn = run.data, run.opt.fall_margin, run.dyn
+        for k in which:
+            p, i = dyn[k]
             if p in self.fell:
                 continue
             for g in self.below_of[p]:
-                if self.supports.below(g, data.xipos[i], run.opt.fall_margin):
+                if self.supports.below(g, data.xipos[i], margin):
                     self.fell[p] = t
                     gp = run.compiled.names.path("geom", run.model.geom(g).name)
                     run.res.fall_through.append({"body": p, "time": t, "ground": gp, "com": _vec(data.xipos[i])})
@@ -465,17 +500,20 @@ class MateSeparation(Monitor):
 
 class _MateArrays:
     """`_monitor_measure` for every mate at once: (separations, misalignments), the latter -inf
-    for distance and ball mates (which have none)."""
+    for distance and ball mates (which have none). Both sides of every mate are one stack: one
+    gather of the body frames and a stacked matrix-vector product per vector."""
 
     def __init__(self, mons: list[MateMonitor], ids: list[tuple[int, int]]) -> None:
-        def stack(name: str) -> np.ndarray:
+        def col(name: str) -> np.ndarray:
             return np.array([np.asarray(getattr(m, name), dtype=float) for m in mons], dtype=float).reshape(-1, 3)
 
-        self.b0 = np.array([i for i, _ in ids], dtype=int)
-        self.b1 = np.array([j for _, j in ids], dtype=int)
-        self.pos0, self.pos1 = stack("pos0")[:, :, None], stack("pos1")[:, :, None]
-        self.axis0, self.axis1 = stack("axis0")[:, :, None], stack("axis1")[:, :, None]
-        self.normal0, self.normal1 = stack("normal0")[:, :, None], stack("normal1")[:, :, None]
+        self.n = len(mons)
+        self.bodies = np.array([i for i, _ in ids] + [j for _, j in ids], dtype=int)
+        # both sides stacked, as column vectors: each is rotated by its own matrix-vector product
+        # (one 3x3 product of all three would round differently: matrix kernels fuse multiply-adds)
+        self.pos = np.concatenate([col("pos0"), col("pos1")])[:, :, None]
+        self.axis = np.concatenate([col("axis0"), col("axis1")])[:, :, None]
+        self.normal = np.concatenate([col("normal0"), col("normal1")])[:, :, None]
         kinds = [m.kind for m in mons]
         self.distance = np.array([k == "distance" for k in kinds])
         self.target = np.array([m.target_distance for m in mons], dtype=float)
@@ -485,12 +523,12 @@ class _MateArrays:
         self.any_perp, self.any_lock, self.any_distance = self.perp.any(), self.lock.any(), self.distance.any()
 
     def measure(self, data) -> tuple[np.ndarray, np.ndarray]:
-        r0 = data.xmat[self.b0].reshape(-1, 3, 3)
-        r1 = data.xmat[self.b1].reshape(-1, 3, 3)
-        p0 = data.xpos[self.b0] + (r0 @ self.pos0)[:, :, 0]
-        p1 = data.xpos[self.b1] + (r1 @ self.pos1)[:, :, 0]
-        a0, a1 = (r0 @ self.axis0)[:, :, 0], (r1 @ self.axis1)[:, :, 0]
-        d = p1 - p0
+        n = self.n
+        rot = data.xmat[self.bodies].reshape(-1, 3, 3)
+        p = data.xpos[self.bodies] + (rot @ self.pos)[:, :, 0]
+        axes = (rot @ self.axis)[:, :, 0]
+        a0, a1 = axes[:n], axes[n:]
+        d = p[n:] - p[:n]
         if self.any_perp:
             along = (d * a0).sum(axis=1)
             d = np.where(self.perp[:, None], d - along[:, None] * a0, d)
@@ -499,20 +537,35 @@ class _MateArrays:
             sep = np.where(self.distance, np.abs(sep - self.target), sep)
         mis = _angles(a0, a1)
         if self.any_lock:
-            mis = np.where(self.lock, np.maximum(mis, _angles((r0 @ self.normal0)[:, :, 0],
-                                                              (r1 @ self.normal1)[:, :, 0])), mis)
+            normals = (rot @ self.normal)[:, :, 0]
+            mis = np.where(self.lock, np.maximum(mis, _angles(normals[:n], normals[n:])), mis)
         mis[self.no_axis] = -np.inf
         return sep, mis
 
 
+def _units(v: np.ndarray) -> np.ndarray:
+    """`unit` row by row (a zero row stays zero)."""
+    n = np.sqrt((v * v).sum(axis=1))
+    if n.all():
+        return v / n[:, None]
+    return np.where((n > 0)[:, None], v / np.where(n > 0, n, 1.0)[:, None], v * 0.0)
+
+
 def _angles(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """`angle_between` row by row."""
-    def units(v: np.ndarray) -> np.ndarray:
-        n = np.sqrt((v * v).sum(axis=1))
-        safe = np.where(n > 0, n, 1.0)
-        return np.where((n > 0)[:, None], v / safe[:, None], v * 0.0)
+    return np.arccos(np.clip((_units(a) * _units(b)).sum(axis=1), -1.0, 1.0))
 
-    return np.arccos(np.clip((units(a) * units(b)).sum(axis=1), -1.0, 1.0))
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise cross product, as `np.cross` (and MuJoCo's `mju_cross`) compute it, without
+    np.cross's per-call axis handling."""
+    a0, a1, a2 = a[:, 0], a[:, 1], a[:, 2]
+    b0, b1, b2 = b[:, 0], b[:, 1], b[:, 2]
+    out = np.empty_like(a)
+    out[:, 0] = a1 * b2 - a2 * b1
+    out[:, 1] = a2 * b0 - a0 * b2
+    out[:, 2] = a0 * b1 - a1 * b0
+    return out
 
 
 class JointLimits(Monitor):
