@@ -203,14 +203,21 @@ def _run_check(args) -> int:
 
 
 def _run_lsp(args) -> int:
+    from importlib.util import find_spec
+
+    for name in ("pygls", "lsprotocol"):  # checked without importing them: quickstart answers first
+        if find_spec(name) is None:
+            print(f"plx lsp: the language server needs {name}, which is not installed", file=sys.stderr)
+            return 2
+    from plxtools.lsp.quickstart import start
+
     try:
-        from plxtools.lsp.server import run_server
+        return start(args)
     except ImportError as exc:
         if (exc.name or "").startswith("plxtools"):
             raise  # our own code is never optional
         print(f"plx lsp: the language server needs {exc.name}, which is not installed: {exc}", file=sys.stderr)
         return 2
-    return run_server(args)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -48,9 +48,18 @@ class PlxProtocol(LanguageServerProtocol):
     """pygls' protocol with the server's own text model (`Documents`), quiet writes and cancellation
     of requests that were running when the client cancelled them."""
 
+    init_replay = None  # quickstart.InitReplay: the first initialize, maybe answered from the cache
+
     def _send_raw(self, body: str) -> None:
         if self.writer is None:
             return
+        replay = self.init_replay
+        if replay is not None and '"id"' in body:
+            drop = replay.filter(body)
+            if not isinstance(replay.msg_id, (int, str)):
+                self.init_replay = None  # the initialize reply went by: no more filtering
+            if drop:
+                return
         data = body.encode("utf-8")
         self.writer.write(b"Content-Length: %d\r\n\r\n" % len(data) + data)
 
@@ -1078,14 +1087,16 @@ def _configure_logging(log_file: str | None) -> None:
     logging.getLogger("pygls").setLevel(logging.WARNING if not log_file else logging.INFO)
 
 
-def run_server(args) -> int:
-    """Entry point of `plx lsp`: serve over stdin/stdout until the client says exit."""
+def run_server(args, first: bytes | None = None, replay=None) -> int:
+    """Entry point of `plx lsp`: serve over stdin/stdout until the client says exit. `first` and
+    `replay` come from quickstart.py (the first message, already read; its cached answer)."""
     _configure_logging(getattr(args, "log_file", None))
     server = create_server()
+    server.protocol.init_replay = replay
     log.info("plx lsp %s starting (python %s)", __version__, sys.version.split()[0])
     from plxtools.lsp.transport import serve
 
-    code = serve(server, sys.stdin.buffer, sys.stdout.buffer)
+    code = serve(server, sys.stdin.buffer, sys.stdout.buffer, first=first)
     # stdout is closed when the client says exit; later flushes must not fail on it
     for name in ("stdout", "stderr"):
         stream = getattr(sys, name)
