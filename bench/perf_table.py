@@ -144,7 +144,7 @@ class Bench:
         self.row(f"lint, {len(files)} official bundle files ({n_b:,} lines)", ["lint", "--exit-zero", "-q",
                  str(bundle_root())], [(f"flake8 ({count_lines(py_b):,} stdlib lines)", f8(py_b))], "cpu", runs, n_b)
         many = corpus.openplx_files(self.tmp / "many10k", 10_000)
-        many_py = corpus.python_files(self.tmp / "many10kpy", 10_000)
+        corpus.python_files(self.tmp / "many10kpy", 10_000)
         n_m = count_lines(many)
         self.row(f"lint, {n_m:,} lines in {len(many)} files", ["lint", "--exit-zero", "-q", str(self.tmp / "many10k")],
                  [("flake8", f8([self.tmp / "many10kpy"])), ("ruff", ruff_check([self.tmp / "many10kpy"]))],

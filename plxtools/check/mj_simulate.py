@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mj_compile import VISUAL_GROUP, CompiledScene, MateMonitor
-from plxtools.check.mj_math import angle_between, yaw_of_mat
+from plxtools.check.mj_math import angle_between
 from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
 
 
