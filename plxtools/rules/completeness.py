@@ -116,8 +116,8 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
         visit(Ty(root), set(), "", anchor, 0, ())
     finally:
         # `visit` calls itself through its closure cell: a reference cycle that would keep the memo
-        # (thousands of sets) alive until a collector pass; clearing the name frees it now
-        del visit
+        # (thousands of sets) alive until a collector pass; emptying the cell frees it now
+        visit = None  # noqa: F841
     return _one_per_location(found)
 
 
