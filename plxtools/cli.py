@@ -39,7 +39,8 @@ def _add_lint(sub) -> None:
     p.add_argument("--ignore", metavar="CODES", help="comma-separated codes or prefixes to disable (adds to config)")
     p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
                    help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
-    p.add_argument("--no-cache", action="store_true", help="do not read or write the bundle symbol cache")
+    p.add_argument("--no-cache", action="store_true",
+                   help="do not read or write plx's caches (the bundle program, and each unchanged file's results)")
     p.add_argument("-q", "--quiet", action="store_true", help="print diagnostics only, no summary line")
     _add_bundle_options(p)
     p.add_argument("--show-settings", action="store_true",
@@ -68,6 +69,8 @@ def _add_fmt(sub) -> None:
     p.add_argument("--stdin-filename", metavar="PATH",
                    help="the path of the file given on stdin (for config and messages)")
     p.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
+    p.add_argument("--no-cache", action="store_true",
+                   help="do not read or write the cache of files already formatted (re-check every file)")
     p.set_defaults(func=_run_fmt)
 
 

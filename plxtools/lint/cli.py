@@ -9,7 +9,8 @@ from pathlib import Path
 
 from plxtools.config import Config, ConfigError, config_for
 from plxtools.diagnostics import Severity
-from plxtools.lint.runner import FileResult, UsageError, discover, fixed_text, lint_file, unified_diff
+from plxtools.discovery import UsageError, discover
+from plxtools.fileio import unified_diff
 
 
 def _codes(s: str | None) -> list[str]:
@@ -58,22 +59,41 @@ def _run_lint(args) -> int:
     except (UsageError, ConfigError, ValueError) as exc:
         print(f"plx lint: {exc}", file=sys.stderr)
         return 2
-    from plxtools.model.workspace import workspace_for_cli
+    from plxtools.model.versions import resolve_bundle_set
 
+    use_cache = not args.no_cache
     try:
         targets = [f for f in files if f.exists()] if stdin else files
-        workspace = workspace_for_cli(args.bundle_path, targets, use_cache=not args.no_cache,
-                                      openplx_version=getattr(args, "openplx_version", None))
+        bundle_set = resolve_bundle_set(list(targets), args.bundle_path, getattr(args, "openplx_version", None))
     except (UsageError, ConfigError, ValueError) as exc:
         print(f"plx lint: {exc}", file=sys.stderr)
         return 2
+    loaded: list = []
+
+    def workspace():
+        """The bundle program, loaded on first need: not at all when every file's result is cached."""
+        if not loaded:
+            from plxtools.model.workspace import workspace_for_set
+
+            loaded.append(workspace_for_set(bundle_set, use_cache))
+        return loaded[0]
+
     if getattr(args, "show_settings", False):
         from plxtools.bundles_cli import print_settings
 
-        return print_settings(workspace)
-    note = workspace.bundle_set.announcement()
+        try:
+            return print_settings(workspace())
+        except (UsageError, ConfigError, ValueError) as exc:
+            print(f"plx lint: {exc}", file=sys.stderr)
+            return 2
+    note = bundle_set.announcement()
     if note and not args.quiet and args.output_format == "text":
         print(f"plx lint: {note}", file=sys.stderr)
+    results = None
+    if use_cache and not stdin and not args.fix and not args.diff:
+        from plxtools.lint.resultcache import ResultCache
+
+        results = ResultCache(bundle_set)
     all_diags = []
     fixed_files = 0
     fixes_applied = 0
@@ -89,8 +109,22 @@ def _run_lint(args) -> int:
             cfg.select = _codes(args.select)
         if args.ignore:
             cfg.ignore = cfg.ignore + _codes(args.ignore)
-        result = _lint_stdin(f, cfg, workspace) if stdin else lint_file(f, cfg, workspace)
+        key = results.key(f, cfg) if results is not None else None
+        cached = results.get(key) if key is not None else None
+        if cached is not None:
+            all_diags.extend(cached)
+            continue
+        try:
+            ws = workspace()
+        except (UsageError, ConfigError, ValueError) as exc:
+            print(f"plx lint: {exc}", file=sys.stderr)
+            return 2
+        from plxtools.lint.runner import fixed_text, lint_file
+
+        result = _lint_stdin(f, cfg, ws) if stdin else lint_file(f, cfg, ws)
         diags = result.diagnostics
+        if key is not None:
+            results.put(key, diags)
         fixable = (args.fix or args.diff) and result.tree is not None and not result.tree.has_errors_of_syntax()
         new_text, n = fixed_text(result.tree, diags, args.unsafe_fixes) if fixable else (None, 0)
         if stdin and args.fix:
@@ -100,7 +134,7 @@ def _run_lint(args) -> int:
             if n:
                 fixes_applied += n
                 fixed_files += 1
-                diags = _lint_text(str(f), text, cfg, workspace).diagnostics
+                diags = _lint_text(str(f), text, cfg, ws).diagnostics
         elif n:
             if args.diff:
                 sys.stdout.write(unified_diff(str(f), result.tree.text, new_text))
@@ -114,11 +148,11 @@ def _run_lint(args) -> int:
                     return 2
                 fixed_files += 1
                 fixes_applied += n
-                diags = lint_file(f, cfg, workspace).diagnostics
+                diags = lint_file(f, cfg, ws).diagnostics
         all_diags.extend(diags)
         if len(files) > 1:  # the last file's tree and symbols simply live until exit
             if result.tree is not None and result.tree.path:
-                workspace.forget_loose(result.tree.path)
+                ws.forget_loose(result.tree.path)
             del result
             file_done()
     if args.diff:
@@ -140,8 +174,9 @@ def _run_lint(args) -> int:
     return 0 if (args.exit_zero or not has_error) else 1
 
 
-def _lint_stdin(name: Path, cfg: Config, workspace) -> FileResult:
+def _lint_stdin(name: Path, cfg: Config, workspace):
     data = sys.stdin.buffer.read()
+    from plxtools.lint.runner import FileResult
     from plxtools.rules.analysis import analyse_tree
     from plxtools.syntax import parse_bytes
 
@@ -149,7 +184,8 @@ def _lint_stdin(name: Path, cfg: Config, workspace) -> FileResult:
     return FileResult(name, tree, analyse_tree(tree, cfg, workspace))
 
 
-def _lint_text(name: str, text: str, cfg: Config, workspace) -> FileResult:
+def _lint_text(name: str, text: str, cfg: Config, workspace):
+    from plxtools.lint.runner import FileResult
     from plxtools.rules.analysis import analyse_tree
     from plxtools.syntax import parse_text
 

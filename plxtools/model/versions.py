@@ -54,14 +54,23 @@ def version_key(v: str) -> tuple[int, ...]:
 
 def installed() -> tuple[Path, str | None] | None:
     """The installed openplx-bundles package: (folder holding Math/, Physics/..., version)."""
-    try:
-        import openplxbundles
-    except ImportError:
-        return None
-    root = Path(openplxbundles.package_dir())
+    module = sys.modules.get("openplxbundles")
+    if module is not None:
+        root = Path(module.package_dir())
+    else:
+        # found, not imported: the package's __init__ imports logging (~10 ms) only to say where it is
+        from importlib.util import find_spec
+
+        try:
+            spec = find_spec("openplxbundles")
+        except (ImportError, ValueError):
+            return None
+        if spec is None or not spec.origin:
+            return None
+        root = Path(os.path.dirname(os.path.abspath(spec.origin)))
     if not (root / "Math" / "config.openplx").is_file():
         return None
-    v = _dist_info_version(Path(openplxbundles.__file__).parent.parent)
+    v = _dist_info_version(root.parent)
     if v is None:
         try:
             from importlib.metadata import version
