@@ -60,11 +60,22 @@ def run(cmd: list[str], env: dict | None = None, stdin: bytes | None = None) -> 
     return wall, ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024
 
 
-def medians(cmds: list[tuple[list[str], dict | None]], runs: int) -> list[tuple[float, float, float]]:
+def forget_results(env: dict | None) -> None:
+    """Empty plx's per-file result caches (not the bundle program's): a throughput run must check
+    every file, not find it unchanged."""
+    if env and env.get("PLX_CACHE_DIR"):
+        for name in ("lint-results", "fmt-formatted"):
+            shutil.rmtree(Path(env["PLX_CACHE_DIR"]) / "plxtools" / name, ignore_errors=True)
+
+
+def medians(cmds: list[tuple[list[str], dict | None]], runs: int, keep_results: bool = False
+            ) -> list[tuple[float, float, float]]:
     """Interleaved runs of several commands; per command the median wall, CPU and peak."""
     got: list[list[tuple[float, float, float]]] = [[] for _ in cmds]
     for _ in range(runs):
         for k, (cmd, env) in enumerate(cmds):
+            if not keep_results:
+                forget_results(env)
             got[k].append(run(cmd, env))
     return [tuple(statistics.median(x[i] for x in g) for i in range(3)) for g in got]
 
@@ -83,6 +94,11 @@ class Bench:
         self.args = args
         self.tmp = Path(tempfile.mkdtemp(prefix="plx-perf-"))
         self.env = dict(os.environ, PLX_CACHE_DIR=str(self.tmp / "cache"))
+        # bytecode is cached, as for any installed tool (a sandbox may turn it off for everything)
+        self.env.pop("PYTHONDONTWRITEBYTECODE", None)
+        subprocess.run([sys.executable, "-m", "compileall", "-q", str(REPO / "plxtools")]
+                       + ([str(Path(args.baseline) / "plxtools")] if args.baseline else []),
+                       env=self.env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         self.plx = [sys.executable, "-m", "plxtools"]
         exe = Path(sys.executable).parent / "plx"
         if exe.exists():
@@ -100,12 +116,13 @@ class Bench:
         return cmds
 
     def row(self, what: str, plx_args: list[str], peers: list[tuple[str, list[str] | None]], measure: str,
-            runs: int, lines: int | None = None) -> None:
-        """One row: plx (and the baseline) and each peer, interleaved; `measure` is wall, cpu or peak."""
+            runs: int, lines: int | None = None, keep_results: bool = False) -> None:
+        """One row: plx (and the baseline) and each peer, interleaved; `measure` is wall, cpu or peak.
+        plx's per-file result caches are emptied before each run unless `keep_results`."""
         idx = {"wall": 0, "cpu": 1, "peak": 2}[measure]
         cmds = self.plx_cmds(*plx_args)
         live = [(n, c) for n, c in peers if c is not None]
-        res = medians(cmds + [(c, self.env) for _, c in live], runs)
+        res = medians(cmds + [(c, self.env) for _, c in live], runs, keep_results)
         mine = res[0][idx]
         unit = "MB" if measure == "peak" else "s"
         fmt = (lambda v: f"{v:,.0f} MB") if measure == "peak" else (lambda v: f"{v:.3f} s")
@@ -156,6 +173,21 @@ class Bench:
                  [("flake8", f8([one_py])), ("ruff", ruff_check([one_py]))], "cpu", runs * 2)
         self.row("lint, one 117-line file", ["lint", "--exit-zero", "-q", str(one)],
                  [("flake8", f8([one_py])), ("ruff", ruff_check([one_py]))], "wall", runs * 2)
+        for measure in ("cpu", "wall"):
+            self.row("lint, one unchanged 117-line file (result cache)", ["lint", "--exit-zero", "-q", str(one)],
+                     [("flake8", f8([one_py])), ("ruff (its cache)", self.ruff + ["check", "--exit-zero", "-q",
+                      "--cache-dir", str(self.tmp / "ruffcache"), str(one_py)] if self.ruff else None)],
+                     measure, runs * 2, keep_results=True)
+        self.row("fmt --check, one unchanged 117-line file (result cache)", ["fmt", "--check", "-q", str(one)],
+                 [("black (its cache)", self.black + ["--check", "-q", str(one_py)] if self.black else None),
+                  ("ruff format (its cache)", self.ruff + ["format", "--check", "-q", "--cache-dir",
+                   str(self.tmp / "ruffcache"), str(one_py)] if self.ruff else None)], "wall", runs * 2,
+                 keep_results=True)
+        self.row(f"lint, {n_m:,} lines in {len(many)} files, unchanged (result cache)",
+                 ["lint", "--exit-zero", "-q", str(self.tmp / "many10k")],
+                 [("flake8", f8([self.tmp / "many10kpy"])), ("ruff (its cache)", self.ruff + [
+                     "check", "--exit-zero", "-q", "--cache-dir", str(self.tmp / "ruffcache"),
+                     str(self.tmp / "many10kpy")] if self.ruff else None)], "cpu", runs, n_m, keep_results=True)
         self.row("lint, bundle corpus", ["lint", "--exit-zero", "-q", str(bundle_root())],
                  [("ruff check", ruff_check(py_b))], "wall", runs)
         self.cold_row(one, runs)
@@ -177,6 +209,7 @@ class Bench:
         for k in range(runs):
             env = dict(self.env, PLX_CACHE_DIR=str(self.tmp / f"cold{k}"))
             colds.append(run(self.plx + ["lint", "--exit-zero", "-q", str(one)], env)[0])
+            forget_results(env)  # warm: the bundle program is cached, the file is checked again
             warms.append(run(self.plx + ["lint", "--exit-zero", "-q", str(one)], env)[0])
         c, w = statistics.median(colds), statistics.median(warms)
         self.rows.append(("lint cold (no cache) vs warm, one file", "wall", f"{c:.3f} s / {w:.3f} s", "", "-",
