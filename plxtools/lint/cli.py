@@ -98,17 +98,19 @@ def _run_lint(args) -> int:
     fixed_files = 0
     fixes_applied = 0
     seen_configs: set = set()
+    parallel: dict = {}
+    if not stdin and not args.fix and not args.diff and len(files) >= PARALLEL_MIN_FILES and (os.cpu_count() or 1) > 1:
+        parallel = _lint_in_parallel(files, args, results, workspace, bundle_set)
     for f in files:
         try:
-            cfg = config_for(f if not stdin or f.name != "-" else Path(os.getcwd()) / "-")
+            cfg = _config(f, stdin, args)
             _check_config_codes(cfg, seen_configs)
         except (ConfigError, ValueError) as exc:
             print(f"plx lint: {exc}", file=sys.stderr)
             return 2
-        if args.select:
-            cfg.select = _codes(args.select)
-        if args.ignore:
-            cfg.ignore = cfg.ignore + _codes(args.ignore)
+        if f in parallel:
+            all_diags.extend(parallel[f])
+            continue
         key = results.key(f, cfg) if results is not None else None
         cached = results.get(key) if key is not None else None
         if cached is not None:
@@ -172,6 +174,81 @@ def _run_lint(args) -> int:
         print(f"Fixed {_plural(fixes_applied, 'problem')} in {_plural(fixed_files, 'file')}.", file=out)
     has_error = any(d.severity == Severity.ERROR for d in all_diags)
     return 0 if (args.exit_zero or not has_error) else 1
+
+
+def _config(f: Path, stdin: bool, args) -> Config:
+    cfg = config_for(f if not stdin or f.name != "-" else Path(os.getcwd()) / "-")
+    if args.select:
+        cfg.select = _codes(args.select)
+    if args.ignore:
+        cfg.ignore = cfg.ignore + _codes(args.ignore)
+    return cfg
+
+
+# Many loose files are linted by a pool of worker processes (forked after the bundle program is
+# loaded, so they share it), from this much work on: below it, starting the pool costs more than
+# the second core gives back (see docs/benchmarks.md).
+PARALLEL_MIN_FILES = 8
+PARALLEL_MIN_BYTES = 256 * 1024
+_WORKER_WORKSPACE = None
+
+
+def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -> dict:
+    """{file: diagnostics} for the files that are not cached, computed by worker processes, or {}
+    when the run is too small, a file is in a bundle (files of a bundle see each other), or a
+    config is broken (the ordinary loop then reports it where it did)."""
+    from plxtools.lint.resultcache import _in_bundle
+
+    stop = {bundle_set.official_root.resolve()} if bundle_set.official_root is not None else set()
+    todo = []
+    size = 0
+    try:
+        for f in files:
+            if f.name == "config.openplx" or _in_bundle(f, stop):
+                return {}
+            cfg = _config(f, False, args)
+            key = results.key(f, cfg) if results is not None else None
+            if key is not None and results.get(key) is not None:
+                continue
+            todo.append((f, cfg, key))
+            size += f.stat().st_size
+    except (ConfigError, ValueError, OSError):
+        return {}
+    if len(todo) < PARALLEL_MIN_FILES or size < PARALLEL_MIN_BYTES:
+        return {}
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    global _WORKER_WORKSPACE
+    _WORKER_WORKSPACE = workspace()  # loaded once, here: the forked workers inherit it
+    workers = min(os.cpu_count() or 1, 8)
+    per = max(1, -(-len(todo) // (workers * 4)))  # a few chunks per worker: an even finish
+    chunks = [[(f, cfg) for f, cfg, _ in todo[i:i + per]] for i in range(0, len(todo), per)]
+    with ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork")) as pool:
+        done = [d for chunk in pool.map(_lint_chunk, chunks) for d in chunk]
+    out = {}
+    for (f, _cfg, key), diags in zip(todo, done):
+        out[f] = diags
+        if key is not None:
+            results.put(key, diags)
+    return out
+
+
+def _lint_chunk(chunk: list) -> list:
+    """In a worker: each file's diagnostics, as the ordinary loop computes them."""
+    from plxtools.gcpolicy import file_done
+    from plxtools.lint.runner import lint_file
+
+    ws = _WORKER_WORKSPACE
+    out = []
+    for f, cfg in chunk:
+        result = lint_file(f, cfg, ws)
+        out.append(result.diagnostics)
+        if result.tree is not None and result.tree.path:
+            ws.forget_loose(result.tree.path)
+        del result
+        file_done()
+    return out
 
 
 def _lint_stdin(name: Path, cfg: Config, workspace):

@@ -79,3 +79,30 @@ def test_fmt_remembers_formatted_files_only(tmp_path):
     assert changed.returncode == 1 and "would reformat" in changed.stderr
     assert len(_entries(cache, "fmt-formatted")) == 1
     assert run_plx("fmt", "--no-cache", "--check", str(f), env=env).returncode == 1
+
+
+def test_many_files_in_parallel_report_what_one_by_one_runs_do(tmp_path):
+    """Enough loose files to use the worker pool (8 files, over 256 KB): the same diagnostics in
+    the same order as linting each file on its own."""
+    import json
+
+    part = ("Part{i} is Physics3D.Bodies.RigidBody:\n    inertia.mass: {i}.5\n"
+            "    geometry is Physics3D.Geometries.Box:\n        size: Math.Vec3.from_xyz(0.1, 1.0, 2.0)\n\n")
+    files = []
+    for k in range(8):
+        body = "".join(part.format(i=i) for i in range(300))
+        if k % 3 == 0:
+            body += "Bad is Physics3D.Bodies.RigidBody:\n    inertia.mas: 1\n\n"
+        body += "Scene is Physics3D.System:\n" + "".join(f"    p{i} is Part{i}\n" for i in range(300))
+        f = tmp_path / f"f{k}.openplx"
+        f.write_text(body)
+        files.append(f)
+    assert sum(f.stat().st_size for f in files) > 256 * 1024
+    env = {"PLX_CACHE_DIR": str(tmp_path / "cache")}
+    together = run_plx("lint", "--no-cache", "--output-format", "json", str(tmp_path), env=env)
+    alone = []
+    for f in files:
+        r = run_plx("lint", "--no-cache", "--output-format", "json", str(f), env=env)
+        alone += json.loads(r.stdout)
+    assert json.loads(together.stdout) == alone
+    assert together.returncode == 1 and any(d["code"] == "N002" for d in alone)
