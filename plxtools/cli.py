@@ -39,7 +39,8 @@ def _add_lint(sub) -> None:
     p.add_argument("--ignore", metavar="CODES", help="comma-separated codes or prefixes to disable (adds to config)")
     p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
                    help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
-    p.add_argument("--no-cache", action="store_true", help="do not read or write the bundle symbol cache")
+    p.add_argument("--no-cache", action="store_true",
+                   help="do not read or write plx's caches (the bundle program, and each unchanged file's results)")
     p.add_argument("-q", "--quiet", action="store_true", help="print diagnostics only, no summary line")
     _add_bundle_options(p)
     p.add_argument("--show-settings", action="store_true",
@@ -68,6 +69,8 @@ def _add_fmt(sub) -> None:
     p.add_argument("--stdin-filename", metavar="PATH",
                    help="the path of the file given on stdin (for config and messages)")
     p.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
+    p.add_argument("--no-cache", action="store_true",
+                   help="do not read or write the cache of files already formatted (re-check every file)")
     p.set_defaults(func=_run_fmt)
 
 
@@ -231,14 +234,21 @@ def _run_test(args) -> int:
 
 
 def _run_lsp(args) -> int:
+    from importlib.util import find_spec
+
+    for name in ("pygls", "lsprotocol"):  # checked without importing them: quickstart answers first
+        if find_spec(name) is None:
+            print(f"plx lsp: the language server needs {name}, which is not installed", file=sys.stderr)
+            return 2
+    from plxtools.lsp.quickstart import start
+
     try:
-        from plxtools.lsp.server import run_server
+        return start(args)
     except ImportError as exc:
         if (exc.name or "").startswith("plxtools"):
             raise  # our own code is never optional
         print(f"plx lsp: the language server needs {exc.name}, which is not installed: {exc}", file=sys.stderr)
         return 2
-    return run_server(args)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mj_compile import VISUAL_GROUP, CompiledScene, MateMonitor
-from plxtools.check.mj_math import angle_between, yaw_of_mat
+from plxtools.check.mj_math import angle_between
 from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
 
 
@@ -318,8 +318,8 @@ class BlowUp:
     def happened(self, run: SimRun, t: float, step: int) -> bool:
         data, model = run.data, run.model
         warns = self._warnings(run)
-        finite = bool(np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel)))
-        vel_max = float(np.max(np.abs(data.qvel))) if finite and model.nv else 0.0
+        finite = bool(np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all())
+        vel_max = float(np.abs(data.qvel).max()) if finite and model.nv else 0.0
         if not (warns > self.warn0 or not finite or vel_max > run.opt.max_speed):
             return False
         if warns > self.warn0:
@@ -387,91 +387,144 @@ class Trace(Monitor):
             b["angular_velocity"].append(_vec(self.vel6[:3]))
 
 
-@dataclass
-class _BodyTrack:
-    initial_pos: np.ndarray
-    initial_quat: np.ndarray
-    last_pos: np.ndarray
-    yaw_last: float
-    min_z: float
-    path_length: float = 0.0
-    yaw_total: float = 0.0
-    max_speed: float = 0.0
-
-
 class BodyMotion(Monitor):
     """Per moving body: path length, heading change, top speed, lowest point, kinetic and
-    potential energy; the body reports."""
+    potential energy; the body reports.
+
+    Every sample reads all moving bodies at once (numpy over arrays indexed by body id): the
+    velocity of a centre of mass is MuJoCo's com-based `cvel` moved from the subtree's centre of
+    mass to `xipos` (what `mj_objectVelocity` does for one body)."""
 
     def __init__(self, run: SimRun) -> None:
-        data = run.data
+        data, model = run.data, run.model
         self.start = {p: (data.xpos[i].copy(), data.xquat[i].copy()) for p, i, _ in run.bodies}
-        self.track = {p: _BodyTrack(data.xpos[i].copy(), data.xquat[i].copy(), data.xpos[i].copy(),
-                                    yaw_of_mat(data.xmat[i].reshape(3, 3)), float(data.xpos[i][2]))
-                      for p, i in run.moving}
+        moving = run.moving
+        self.paths = [p for p, _ in moving]
+        self.ids = np.array([i for _, i in moving], dtype=int)
+        self.roots = np.array([model.body_rootid[i] for _, i in moving], dtype=int)
+        self.mass = np.array([model.body_mass[i] for _, i in moving], dtype=float)
+        self.inertia = np.array([model.body_inertia[i] for _, i in moving], dtype=float).reshape(-1, 3)
+        x = data.xpos[self.ids]
+        self.last_pos = x.copy()
+        self.yaw_last = self._yaw(data)
+        self.min_z = x[:, 2].copy()
+        n = len(self.paths)
+        self.path_length = np.zeros(n)
+        self.yaw_total = np.zeros(n)
+        self.max_speed = np.zeros(n)
+        self.ke_max = np.zeros(n)
         self.vel6 = np.zeros(6)
-        self.ke_max: dict[str, float] = {}
         self.sample(run, 0.0, first=True)
 
-    def kinetic(self, run: SimRun, i: int) -> tuple[float, float]:
-        """(speed of the centre of mass, kinetic energy) of body ``i`` now."""
+    def _yaw(self, data) -> np.ndarray:
+        m = data.xmat[self.ids]  # row-major 3x3: r[1, 0] is column 3, r[0, 0] column 0
+        return np.arctan2(m[:, 3], m[:, 0])
+
+    def kinetic(self, run: SimRun, i: int) -> float:
+        """Kinetic energy of body ``i`` now (used once per body at the end)."""
         model, data = run.model, run.data
         run.mujoco.mj_objectVelocity(model, data, run.mujoco.mjtObj.mjOBJ_BODY, i, self.vel6, 0)
         v, w = self.vel6[3:], self.vel6[:3]
         w_local = data.ximat[i].reshape(3, 3).T @ w
-        ke = 0.5 * float(model.body_mass[i]) * float(v @ v) + 0.5 * float(model.body_inertia[i] @ (w_local ** 2))
-        return float(np.linalg.norm(v)), ke
+        return 0.5 * float(model.body_mass[i]) * float(v @ v) + 0.5 * float(model.body_inertia[i] @ (w_local ** 2))
 
     def sample(self, run: SimRun, t: float, first: bool = False) -> None:
+        if not self.paths:
+            return
         data = run.data
-        for p, i in run.moving:
-            tr = self.track[p]
-            x = data.xpos[i]
-            if not first:
-                tr.path_length += float(np.linalg.norm(x - tr.last_pos))
-                tr.last_pos = x.copy()
-                y = yaw_of_mat(data.xmat[i].reshape(3, 3))
-                tr.yaw_total += (y - tr.yaw_last + math.pi) % (2 * math.pi) - math.pi
-                tr.yaw_last = y
-            sp, ke = self.kinetic(run, i)
-            tr.max_speed = max(tr.max_speed, sp)
-            self.ke_max[p] = max(self.ke_max.get(p, 0.0), ke)
-            run.speed[p] = sp
-            tr.min_z = min(tr.min_z, float(x[2]))
+        x = data.xpos[self.ids]
+        if not first:
+            step = x - self.last_pos
+            self.path_length += np.sqrt((step * step).sum(axis=1))
+            self.last_pos = x
+            y = self._yaw(data)
+            self.yaw_total += (y - self.yaw_last + math.pi) % (2 * math.pi) - math.pi
+            self.yaw_last = y
+        cvel = data.cvel[self.ids]
+        w = cvel[:, :3]
+        lin = cvel[:, 3:] - _cross(data.xipos[self.ids] - data.subtree_com[self.roots], w)
+        v2 = (lin * lin).sum(axis=1)
+        sp = np.sqrt(v2)
+        rot = data.ximat[self.ids].reshape(-1, 3, 3)
+        w_local = np.einsum("nji,nj->ni", rot, w)
+        ke = 0.5 * self.mass * v2 + 0.5 * (self.inertia * w_local * w_local).sum(axis=1)
+        np.maximum(self.max_speed, sp, out=self.max_speed)
+        np.maximum(self.ke_max, ke, out=self.ke_max)
+        run.speed.update(zip(self.paths, sp.tolist()))
+        np.minimum(self.min_z, x[:, 2], out=self.min_z)
 
     def finish(self, run: SimRun) -> None:
         data, model = run.data, run.model
         g = np.asarray(model.opt.gravity, dtype=float)
+        k_of = {p: k for k, p in enumerate(self.paths)}
         fell = {f["body"]: f["time"] for f in run.res.fall_through}
         for p, i, d in run.bodies:
             p0, q0 = self.start[p]
             p1, q1 = data.xpos[i].copy(), data.xquat[i].copy()
             disp = p1 - p0
-            tr = self.track.get(p)
-            ke = self.kinetic(run, i)[1] if tr else 0.0
+            k = k_of.get(p)
+            ke = self.kinetic(run, i) if k is not None else 0.0
             pe = -float(model.body_mass[i]) * float(g @ data.xipos[i])
             run.res.bodies[p] = BodyReport(
                 p, d, _vec(p0), _vec(q0), _vec(p1), _vec(q1), _vec(disp), float(np.linalg.norm(disp)),
-                float(np.linalg.norm(disp[:2])), tr.path_length if tr else 0.0, tr.yaw_total if tr else 0.0,
-                tr.max_speed if tr else 0.0, tr.min_z if tr else float(p0[2]), fell.get(p),
-                ke, self.ke_max.get(p, 0.0), pe)
+                float(np.linalg.norm(disp[:2])),
+                float(self.path_length[k]) if k is not None else 0.0,
+                float(self.yaw_total[k]) if k is not None else 0.0,
+                float(self.max_speed[k]) if k is not None else 0.0,
+                float(self.min_z[k]) if k is not None else float(p0[2]), fell.get(p),
+                ke, float(self.ke_max[k]) if k is not None else 0.0, pe)
 
 
 class FallThrough(Monitor):
-    """A dynamic body whose centre of mass sinks through static geometry it started above (A102)."""
+    """A dynamic body whose centre of mass sinks through static geometry it started above (A102).
+
+    Every (body, support) pair is screened at once per sample with numpy; only the pairs the
+    screen flags (a body at or near its support's surface) go through `_Supports.below`, which
+    decides exactly as before."""
+
+    SCREEN_SLACK = 1e-9  # m: the screen errs towards asking `below`, never away from it
 
     def __init__(self, run: SimRun) -> None:
         self.supports = _Supports(run.model, run.data)
         self.below_of = {p: self.supports.above(run.data.xipos[i]) for p, i in run.dyn}  # by centre of mass
         self.fell: dict[str, float] = {}
+        planes = {g: (pt, n) for g, pt, n in self.supports.planes}
+        boxes = {g: (lo, hi) for g, lo, hi in self.supports.boxes}
+        pairs = [(k, p, i, g) for k, (p, i) in enumerate(run.dyn) for g in self.below_of[p]]
+        self.pairs = pairs
+        self.body = np.array([i for _, _, i, _ in pairs], dtype=int)
+        self.is_plane = np.array([g in planes for *_, g in pairs], dtype=bool)
+        zero = np.zeros(3)
+        self.pt = np.array([planes[g][0] if g in planes else zero for *_, g in pairs], dtype=float).reshape(-1, 3)
+        self.nrm = np.array([planes[g][1] if g in planes else zero for *_, g in pairs], dtype=float).reshape(-1, 3)
+        self.lo = np.array([boxes[g][0] if g in boxes else zero for *_, g in pairs], dtype=float).reshape(-1, 3)
+        self.hi = np.array([boxes[g][1] if g in boxes else zero for *_, g in pairs], dtype=float).reshape(-1, 3)
 
     def sample(self, run: SimRun, t: float) -> None:
+        if not self.pairs or len(self.fell) == len(self.below_of):
+            return
         data = run.data
-        for p, i in run.dyn:
+        margin = run.opt.fall_margin
+        if len(self.pairs) < 16:  # a few pairs: asking each directly is cheaper than the screen
+            self._check(run, t, range(len(run.dyn)))
+            return
+        c = data.xipos[self.body]
+        plane = ((c - self.pt) * self.nrm).sum(axis=1) < -margin + self.SCREEN_SLACK
+        box = ((self.lo[:, 0] <= c[:, 0]) & (c[:, 0] <= self.hi[:, 0]) & (self.lo[:, 1] <= c[:, 1])
+               & (c[:, 1] <= self.hi[:, 1]) & (c[:, 2] < self.hi[:, 2] - margin + self.SCREEN_SLACK))
+        flagged = np.flatnonzero(np.where(self.is_plane, plane, box))
+        if not flagged.size:
+            return
+        self._check(run, t, sorted({self.pairs[j][0] for j in flagged}))
+
+    def _check(self, run: SimRun, t: float, which) -> None:
+        data, margin, dyn = run.data, run.opt.fall_margin, run.dyn
+        for k in which:
+            p, i = dyn[k]
             if p in self.fell:
                 continue
             for g in self.below_of[p]:
-                if self.supports.below(g, data.xipos[i], run.opt.fall_margin):
+                if self.supports.below(g, data.xipos[i], margin):
                     self.fell[p] = t
                     gp = run.compiled.names.path("geom", run.model.geom(g).name)
                     run.res.fall_through.append({"body": p, "time": t, "ground": gp, "com": _vec(data.xipos[i])})
@@ -492,7 +545,10 @@ class _MateTrack:
 
 
 class MateSeparation(Monitor):
-    """How far each mate's connectors drift apart, in position and axis (A103)."""
+    """How far each mate's connectors drift apart, in position and axis (A103).
+
+    All mates are measured at once per sample (`_MateArrays`: the same formulas as
+    `_monitor_measure`, over arrays); the running maxima are arrays too."""
 
     def __init__(self, run: SimRun) -> None:
         self.mons = [(m, (run.model.body(m.body0).id, run.model.body(m.body1).id)) for m in run.compiled.monitors]
@@ -501,18 +557,37 @@ class MateSeparation(Monitor):
             sep, mis = _monitor_measure(m, ids, run.data)
             mis = mis if mis is not None else 0.0
             self.track[m.path] = _MateTrack(sep, mis, sep, mis)
+        self.arrays = _MateArrays([m for m, _ in self.mons], [ids for _, ids in self.mons])
+        n = len(self.mons)
+        self.max_sep = np.array([self.track[m.path].max_separation for m, _ in self.mons], dtype=float)
+        self.max_mis = np.array([self.track[m.path].max_misalignment for m, _ in self.mons], dtype=float)
+        self.max_sep_t = np.zeros(n)
+        self.max_mis_t = np.zeros(n)
+        self.last_sep: np.ndarray | None = None
+        self.last_mis: np.ndarray | None = None
 
     def sample(self, run: SimRun, t: float) -> None:
-        for m, ids in self.mons:
-            sep, mis = _monitor_measure(m, ids, run.data)
-            tr = self.track[m.path]
-            tr.separation, tr.misalignment = sep, (mis if mis is not None else 0.0)
-            if sep > tr.max_separation:
-                tr.max_separation, tr.max_separation_time = sep, t
-            if mis is not None and mis > tr.max_misalignment:
-                tr.max_misalignment, tr.max_misalignment_time = mis, t
+        if not self.mons:
+            return
+        sep, mis = self.arrays.measure(run.data)
+        self.last_sep, self.last_mis = sep, mis
+        up = sep > self.max_sep
+        if up.any():
+            self.max_sep[up] = sep[up]
+            self.max_sep_t[up] = t
+        up = mis > self.max_mis  # -inf where a mate has no axis to compare
+        if up.any():
+            self.max_mis[up] = mis[up]
+            self.max_mis_t[up] = t
 
     def finish(self, run: SimRun) -> None:
+        for k, (m, _) in enumerate(self.mons):
+            tr = self.track[m.path]
+            tr.max_separation, tr.max_separation_time = float(self.max_sep[k]), float(self.max_sep_t[k])
+            tr.max_misalignment, tr.max_misalignment_time = float(self.max_mis[k]), float(self.max_mis_t[k])
+            if self.last_sep is not None:
+                tr.separation = float(self.last_sep[k])
+                tr.misalignment = max(float(self.last_mis[k]), 0.0)
         for m, _ in self.mons:
             tr = self.track[m.path]
             if m.role == "pulled":  # started apart (A016): did the equality close it?
@@ -531,6 +606,76 @@ class MateSeparation(Monitor):
                         f"{m.path} came apart: max separation {tr.max_separation:.4g} m at t="
                         f"{tr.max_separation_time:.3f} s, max axis misalignment "
                         f"{math.degrees(tr.max_misalignment):.3g} deg at t={tr.max_misalignment_time:.3f} s", m.path)
+
+
+class _MateArrays:
+    """`_monitor_measure` for every mate at once: (separations, misalignments), the latter -inf
+    for distance and ball mates (which have none). Both sides of every mate are one stack: one
+    gather of the body frames and a stacked matrix-vector product per vector."""
+
+    def __init__(self, mons: list[MateMonitor], ids: list[tuple[int, int]]) -> None:
+        def col(name: str) -> np.ndarray:
+            return np.array([np.asarray(getattr(m, name), dtype=float) for m in mons], dtype=float).reshape(-1, 3)
+
+        self.n = len(mons)
+        self.bodies = np.array([i for i, _ in ids] + [j for _, j in ids], dtype=int)
+        # both sides stacked, as column vectors: each is rotated by its own matrix-vector product
+        # (one 3x3 product of all three would round differently: matrix kernels fuse multiply-adds)
+        self.pos = np.concatenate([col("pos0"), col("pos1")])[:, :, None]
+        self.axis = np.concatenate([col("axis0"), col("axis1")])[:, :, None]
+        self.normal = np.concatenate([col("normal0"), col("normal1")])[:, :, None]
+        kinds = [m.kind for m in mons]
+        self.distance = np.array([k == "distance" for k in kinds])
+        self.target = np.array([m.target_distance for m in mons], dtype=float)
+        self.perp = np.array([k in ("prismatic", "cylindrical") for k in kinds])
+        self.no_axis = np.array([k in ("distance", "ball") for k in kinds])
+        self.lock = np.array([k == "lock" for k in kinds])
+        self.any_perp, self.any_lock, self.any_distance = self.perp.any(), self.lock.any(), self.distance.any()
+
+    def measure(self, data) -> tuple[np.ndarray, np.ndarray]:
+        n = self.n
+        rot = data.xmat[self.bodies].reshape(-1, 3, 3)
+        p = data.xpos[self.bodies] + (rot @ self.pos)[:, :, 0]
+        axes = (rot @ self.axis)[:, :, 0]
+        a0, a1 = axes[:n], axes[n:]
+        d = p[n:] - p[:n]
+        if self.any_perp:
+            along = (d * a0).sum(axis=1)
+            d = np.where(self.perp[:, None], d - along[:, None] * a0, d)
+        sep = np.sqrt((d * d).sum(axis=1))
+        if self.any_distance:
+            sep = np.where(self.distance, np.abs(sep - self.target), sep)
+        mis = _angles(a0, a1)
+        if self.any_lock:
+            normals = (rot @ self.normal)[:, :, 0]
+            mis = np.where(self.lock, np.maximum(mis, _angles(normals[:n], normals[n:])), mis)
+        mis[self.no_axis] = -np.inf
+        return sep, mis
+
+
+def _units(v: np.ndarray) -> np.ndarray:
+    """`unit` row by row (a zero row stays zero)."""
+    n = np.sqrt((v * v).sum(axis=1))
+    if n.all():
+        return v / n[:, None]
+    return np.where((n > 0)[:, None], v / np.where(n > 0, n, 1.0)[:, None], v * 0.0)
+
+
+def _angles(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """`angle_between` row by row."""
+    return np.arccos(np.clip((_units(a) * _units(b)).sum(axis=1), -1.0, 1.0))
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise cross product, as `np.cross` (and MuJoCo's `mju_cross`) compute it, without
+    np.cross's per-call axis handling."""
+    a0, a1, a2 = a[:, 0], a[:, 1], a[:, 2]
+    b0, b1, b2 = b[:, 0], b[:, 1], b[:, 2]
+    out = np.empty_like(a)
+    out[:, 0] = a1 * b2 - a2 * b1
+    out[:, 1] = a2 * b0 - a0 * b2
+    out[:, 2] = a0 * b1 - a1 * b0
+    return out
 
 
 class JointLimits(Monitor):

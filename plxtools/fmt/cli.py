@@ -14,7 +14,6 @@ from pathlib import Path
 
 from plxtools.config import ConfigError, config_for
 from plxtools.fileio import write_atomic
-from plxtools.fmt.api import FormatResult, format_bytes
 from plxtools.discovery import UsageError, discover
 from plxtools.fileio import unified_diff
 
@@ -52,7 +51,7 @@ def collect_files(paths: list[str]) -> list[Path]:
     return out
 
 
-def _report_refusal(name: str, result: FormatResult) -> None:
+def _report_refusal(name: str, result) -> None:
     if result.internal_error is not None:
         _say(f"{name}: internal error: {result.internal_error}; the file was left unchanged")
         _say("This is a bug in plxtools; please report it with the file.")
@@ -62,7 +61,9 @@ def _report_refusal(name: str, result: FormatResult) -> None:
     _say(f"{name}: not formatted: it has syntax errors")
 
 
-def _format_file(path: Path, args, tally: _Tally) -> None:
+def _format_file(path: Path, args, tally: _Tally, formatted=None) -> None:
+    """Format one file; `formatted` (a runcache.Store) remembers the contents already in canonical
+    form, so an unchanged, formatted file is not parsed again."""
     name = str(path)
     try:
         data = path.read_bytes()
@@ -70,7 +71,21 @@ def _format_file(path: Path, args, tally: _Tally) -> None:
         _say(f"{name}: cannot read: {exc.strerror}")
         tally.failed += 1
         return
+    key = None
+    if formatted is not None:
+        import hashlib
+
+        from plxtools.runcache import code_stamp
+
+        key = hashlib.sha256(code_stamp() + b"\0fmt\0" + data).hexdigest()
+        if formatted.get(key) is True:  # formatted already, byte for byte: nothing to do
+            tally.unchanged += 1
+            return
+    from plxtools.fmt.api import format_bytes
+
     result = format_bytes(data, name)
+    if key is not None and result.text is not None and not result.changed:
+        formatted.put(key, True)
     if result.text is None:
         _report_refusal(name, result)
         tally.failed += 1
@@ -133,6 +148,8 @@ def _run_stdin(args) -> int:
         if not (args.check or args.diff):
             sys.stdout.buffer.write(data)
         return 0
+    from plxtools.fmt.api import format_bytes
+
     result = format_bytes(data, name)
     if result.text is None:
         _report_refusal(name, result)
@@ -158,9 +175,16 @@ def run_fmt(args) -> int:
     except (UsageError, ConfigError) as exc:
         _say(f"plx fmt: {exc}")
         return 2
+    from plxtools.gcpolicy import command_collector, file_done
+
+    from plxtools.runcache import Store
+
     tally = _Tally()
-    for path in files:
-        _format_file(path, args, tally)
+    formatted = None if getattr(args, "no_cache", False) else Store("fmt-formatted")
+    with command_collector():
+        for path in files:
+            _format_file(path, args, tally, formatted)
+            file_done()
     if not args.quiet or tally.failed:
         _say(_summary(tally, args.check or args.diff))
     return _exit_code(tally, args.check)

@@ -9,7 +9,8 @@ from pathlib import Path
 
 from plxtools.config import Config, ConfigError, config_for
 from plxtools.diagnostics import Severity
-from plxtools.lint.runner import FileResult, UsageError, discover, fixed_text, lint_file, unified_diff
+from plxtools.discovery import UsageError, discover
+from plxtools.fileio import unified_diff
 
 
 def _codes(s: str | None) -> list[str]:
@@ -33,6 +34,14 @@ def _check_config_codes(cfg: Config, seen: set) -> None:
 
 
 def run_lint(args) -> int:
+    from plxtools.gcpolicy import command_collector
+
+    with command_collector():
+        return _run_lint(args)
+
+
+def _run_lint(args) -> int:
+    from plxtools.gcpolicy import file_done
     from plxtools.rules.registry import check_selectors
     from plxtools.rules.reporters import render
 
@@ -50,39 +59,74 @@ def run_lint(args) -> int:
     except (UsageError, ConfigError, ValueError) as exc:
         print(f"plx lint: {exc}", file=sys.stderr)
         return 2
-    from plxtools.model.workspace import workspace_for_cli
+    from plxtools.model.versions import resolve_bundle_set
 
+    use_cache = not args.no_cache
     try:
         targets = [f for f in files if f.exists()] if stdin else files
-        workspace = workspace_for_cli(args.bundle_path, targets, use_cache=not args.no_cache,
-                                      openplx_version=getattr(args, "openplx_version", None))
+        bundle_set = resolve_bundle_set(list(targets), args.bundle_path, getattr(args, "openplx_version", None))
     except (UsageError, ConfigError, ValueError) as exc:
         print(f"plx lint: {exc}", file=sys.stderr)
         return 2
+    loaded: list = []
+
+    def workspace():
+        """The bundle program, loaded on first need: not at all when every file's result is cached."""
+        if not loaded:
+            from plxtools.model.workspace import workspace_for_set
+
+            loaded.append(workspace_for_set(bundle_set, use_cache))
+        return loaded[0]
+
     if getattr(args, "show_settings", False):
         from plxtools.bundles_cli import print_settings
 
-        return print_settings(workspace)
-    note = workspace.bundle_set.announcement()
+        try:
+            return print_settings(workspace())
+        except (UsageError, ConfigError, ValueError) as exc:
+            print(f"plx lint: {exc}", file=sys.stderr)
+            return 2
+    note = bundle_set.announcement()
     if note and not args.quiet and args.output_format == "text":
         print(f"plx lint: {note}", file=sys.stderr)
+    results = None
+    if use_cache and not stdin and not args.fix and not args.diff:
+        from plxtools.lint.resultcache import ResultCache
+
+        results = ResultCache(bundle_set)
     all_diags = []
     fixed_files = 0
     fixes_applied = 0
     seen_configs: set = set()
+    parallel: dict = {}
+    if not stdin and not args.fix and not args.diff and len(files) >= PARALLEL_MIN_FILES and (os.cpu_count() or 1) > 1:
+        parallel = _lint_in_parallel(files, args, results, workspace, bundle_set)
     for f in files:
         try:
-            cfg = config_for(f if not stdin or f.name != "-" else Path(os.getcwd()) / "-")
+            cfg = _config(f, stdin, args)
             _check_config_codes(cfg, seen_configs)
         except (ConfigError, ValueError) as exc:
             print(f"plx lint: {exc}", file=sys.stderr)
             return 2
-        if args.select:
-            cfg.select = _codes(args.select)
-        if args.ignore:
-            cfg.ignore = cfg.ignore + _codes(args.ignore)
-        result = _lint_stdin(f, cfg, workspace) if stdin else lint_file(f, cfg, workspace)
+        if f in parallel:
+            all_diags.extend(parallel[f])
+            continue
+        key = results.key(f, cfg) if results is not None else None
+        cached = results.get(key) if key is not None else None
+        if cached is not None:
+            all_diags.extend(cached)
+            continue
+        try:
+            ws = workspace()
+        except (UsageError, ConfigError, ValueError) as exc:
+            print(f"plx lint: {exc}", file=sys.stderr)
+            return 2
+        from plxtools.lint.runner import fixed_text, lint_file
+
+        result = _lint_stdin(f, cfg, ws) if stdin else lint_file(f, cfg, ws)
         diags = result.diagnostics
+        if key is not None:
+            results.put(key, diags)
         fixable = (args.fix or args.diff) and result.tree is not None and not result.tree.has_errors_of_syntax()
         new_text, n = fixed_text(result.tree, diags, args.unsafe_fixes) if fixable else (None, 0)
         if stdin and args.fix:
@@ -92,7 +136,7 @@ def run_lint(args) -> int:
             if n:
                 fixes_applied += n
                 fixed_files += 1
-                diags = _lint_text(str(f), text, cfg, workspace).diagnostics
+                diags = _lint_text(str(f), text, cfg, ws).diagnostics
         elif n:
             if args.diff:
                 sys.stdout.write(unified_diff(str(f), result.tree.text, new_text))
@@ -106,8 +150,13 @@ def run_lint(args) -> int:
                     return 2
                 fixed_files += 1
                 fixes_applied += n
-                diags = lint_file(f, cfg, workspace).diagnostics
+                diags = lint_file(f, cfg, ws).diagnostics
         all_diags.extend(diags)
+        if len(files) > 1:  # the last file's tree and symbols simply live until exit
+            if result.tree is not None and result.tree.path:
+                ws.forget_loose(result.tree.path)
+            del result
+            file_done()
     if args.diff:
         return 0
     out = sys.stderr if stdin and args.fix else sys.stdout
@@ -127,8 +176,84 @@ def run_lint(args) -> int:
     return 0 if (args.exit_zero or not has_error) else 1
 
 
-def _lint_stdin(name: Path, cfg: Config, workspace) -> FileResult:
+def _config(f: Path, stdin: bool, args) -> Config:
+    cfg = config_for(f if not stdin or f.name != "-" else Path(os.getcwd()) / "-")
+    if args.select:
+        cfg.select = _codes(args.select)
+    if args.ignore:
+        cfg.ignore = cfg.ignore + _codes(args.ignore)
+    return cfg
+
+
+# Many loose files are linted by a pool of worker processes (forked after the bundle program is
+# loaded, so they share it), from this much work on: below it, starting the pool costs more than
+# the second core gives back (see docs/benchmarks.md).
+PARALLEL_MIN_FILES = 8
+PARALLEL_MIN_BYTES = 256 * 1024
+_WORKER_WORKSPACE = None
+
+
+def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -> dict:
+    """{file: diagnostics} for the files that are not cached, computed by worker processes, or {}
+    when the run is too small, a file is in a bundle (files of a bundle see each other), or a
+    config is broken (the ordinary loop then reports it where it did)."""
+    from plxtools.lint.resultcache import _in_bundle
+
+    stop = {bundle_set.official_root.resolve()} if bundle_set.official_root is not None else set()
+    todo = []
+    size = 0
+    try:
+        for f in files:
+            if f.name == "config.openplx" or _in_bundle(f, stop):
+                return {}
+            cfg = _config(f, False, args)
+            key = results.key(f, cfg) if results is not None else None
+            if key is not None and results.get(key) is not None:
+                continue
+            todo.append((f, cfg, key))
+            size += f.stat().st_size
+    except (ConfigError, ValueError, OSError):
+        return {}
+    if len(todo) < PARALLEL_MIN_FILES or size < PARALLEL_MIN_BYTES:
+        return {}
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    global _WORKER_WORKSPACE
+    _WORKER_WORKSPACE = workspace()  # loaded once, here: the forked workers inherit it
+    workers = min(os.cpu_count() or 1, 8)
+    per = max(1, -(-len(todo) // (workers * 4)))  # a few chunks per worker: an even finish
+    chunks = [[(f, cfg) for f, cfg, _ in todo[i:i + per]] for i in range(0, len(todo), per)]
+    with ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork")) as pool:
+        done = [d for chunk in pool.map(_lint_chunk, chunks) for d in chunk]
+    out = {}
+    for (f, _cfg, key), diags in zip(todo, done):
+        out[f] = diags
+        if key is not None:
+            results.put(key, diags)
+    return out
+
+
+def _lint_chunk(chunk: list) -> list:
+    """In a worker: each file's diagnostics, as the ordinary loop computes them."""
+    from plxtools.gcpolicy import file_done
+    from plxtools.lint.runner import lint_file
+
+    ws = _WORKER_WORKSPACE
+    out = []
+    for f, cfg in chunk:
+        result = lint_file(f, cfg, ws)
+        out.append(result.diagnostics)
+        if result.tree is not None and result.tree.path:
+            ws.forget_loose(result.tree.path)
+        del result
+        file_done()
+    return out
+
+
+def _lint_stdin(name: Path, cfg: Config, workspace):
     data = sys.stdin.buffer.read()
+    from plxtools.lint.runner import FileResult
     from plxtools.rules.analysis import analyse_tree
     from plxtools.syntax import parse_bytes
 
@@ -136,7 +261,8 @@ def _lint_stdin(name: Path, cfg: Config, workspace) -> FileResult:
     return FileResult(name, tree, analyse_tree(tree, cfg, workspace))
 
 
-def _lint_text(name: str, text: str, cfg: Config, workspace) -> FileResult:
+def _lint_text(name: str, text: str, cfg: Config, workspace):
+    from plxtools.lint.runner import FileResult
     from plxtools.rules.analysis import analyse_tree
     from plxtools.syntax import parse_text
 

@@ -11,6 +11,7 @@ from plxtools.discovery import UsageError, discover  # noqa: F401 - the lint com
 from plxtools.fileio import unified_diff  # noqa: F401
 from plxtools.rules.analysis import analyse_tree
 from plxtools.syntax import ast, parse_bytes
+from plxtools.syntax.lexer import forget_last
 
 
 @dataclass(slots=True)
@@ -40,6 +41,7 @@ def lint_file(path: Path, cfg: Config | None = None, workspace=None) -> FileResu
                 pass
     if tree is None:
         tree = parse_bytes(data, str(path))
+        forget_last()  # lint does not format: the tokens need not outlive the parse
     return FileResult(path, tree, analyse_tree(tree, cfg, workspace))
 
 

@@ -15,7 +15,6 @@ must never leave the server deaf:
 
 from __future__ import annotations
 
-import asyncio
 import json
 import logging
 import re
@@ -250,8 +249,11 @@ def _short(exc: Exception) -> str:
     return text[:300]
 
 
-def serve(server, stdin, stdout) -> int:
-    """Run the server until `exit` or the end of input; returns the exit code."""
+def serve(server, stdin, stdout, first: bytes | None = None) -> int:
+    """Run the server until `exit` or the end of input; returns the exit code. `first` is a body
+    read before the server existed (quickstart.py): it is handled before anything else is read."""
+    import asyncio  # here, not at the top: quickstart.py reads the first frame before this is needed
+
     writer = Writer(stdout)
     server.protocol.set_writer(writer)
     server.writer = writer
@@ -264,9 +266,10 @@ def serve(server, stdin, stdout) -> int:
         done = loop.create_future()
 
         def read_all() -> None:
+            pending = first
             try:
                 while True:
-                    body = reader.next_body()
+                    body, pending = (pending, None) if pending is not None else (reader.next_body(), None)
                     if body is None:
                         break
                     try:

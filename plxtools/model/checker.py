@@ -659,62 +659,24 @@ class Checker:
         edges: dict[str, list[tuple[str, Span]]] = {}
         spans: dict[str, Span] = {}
 
-        def refs(expr) -> list[tuple[str, Span]]:
-            out = []
-            stack = [expr]
-            while stack:
-                x = stack.pop()
-                if isinstance(x, ast.Member) or isinstance(x, ast.Name):
-                    chain = []
-                    cur = x
-                    while isinstance(cur, ast.Member):
-                        chain.append(cur.name.name)
-                        cur = cur.obj
-                    if isinstance(cur, ast.Name):
-                        chain.append(cur.ident.name)
-                        out.append((".".join(reversed(chain)), x.span))
-                        continue
-                    stack.append(cur)
-                elif isinstance(x, ast.Call):
-                    stack.append(x.func)
-                    stack.extend(x.args)
-                elif isinstance(x, (ast.Binary,)):
-                    stack.extend([x.left, x.right])
-                elif isinstance(x, ast.Unary):
-                    stack.append(x.operand)
-                elif isinstance(x, ast.Paren):
-                    stack.append(x.inner)
-                elif isinstance(x, (ast.Brace, ast.Array)):
-                    stack.extend(x.items)
-                elif isinstance(x, ast.Index):
-                    stack.extend([x.obj, x.index])
-            return out
-
-        def visit(body, prefix: str) -> None:
-            for s in body:
-                if isinstance(s, (ast.Declaration, ast.Assignment)):
-                    key = prefix + s.path.text
-                    if getattr(s, "value", None) is not None:
-                        edges.setdefault(key, []).extend(refs(s.value))
-                        spans.setdefault(key, s.path.span)
-                    if getattr(s, "body", None):
-                        visit(s.body, key + ".")
-
         body = getattr(m.stmt, "body", None)
         if not body:
             return
-        visit(body, "")
+        _default_edges(body, "", edges, spans)
         if not edges:
             return
         keys = list(edges)
+        order = {k: i for i, k in enumerate(keys)}
 
         def deps(key: str) -> list[str]:
+            # every key that is the reference or a dotted prefix of it (a reference to a whole
+            # object, 'source: logic', is not a value dependency), in the keys' order: a lookup per
+            # prefix, not a scan of all keys per reference
             out = []
             for r, _ in edges.get(key, []):
-                for k in keys:
-                    # a reference to a whole object ('source: logic') is not a value dependency
-                    if k == r or r.startswith(k + "."):
-                        out.append(k)
+                parts = r.split(".")
+                found = [order[p] for p in (".".join(parts[:n]) for n in range(1, len(parts) + 1)) if p in order]
+                out.extend(keys[i] for i in sorted(found))
             return out
 
         color: dict[str, int] = {}
@@ -762,3 +724,49 @@ def _declared_name(text: str) -> str | None:
             continue
         return str(tok) if tok.type == "NAME" else None
     return None
+
+
+def _value_refs(expr) -> list[tuple[str, Span]]:
+    """The dotted names an expression reads, with their spans (for M006)."""
+    out = []
+    stack = [expr]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, ast.Member) or isinstance(x, ast.Name):
+            chain = []
+            cur = x
+            while isinstance(cur, ast.Member):
+                chain.append(cur.name.name)
+                cur = cur.obj
+            if isinstance(cur, ast.Name):
+                chain.append(cur.ident.name)
+                out.append((".".join(reversed(chain)), x.span))
+                continue
+            stack.append(cur)
+        elif isinstance(x, ast.Call):
+            stack.append(x.func)
+            stack.extend(x.args)
+        elif isinstance(x, (ast.Binary,)):
+            stack.extend([x.left, x.right])
+        elif isinstance(x, ast.Unary):
+            stack.append(x.operand)
+        elif isinstance(x, ast.Paren):
+            stack.append(x.inner)
+        elif isinstance(x, (ast.Brace, ast.Array)):
+            stack.extend(x.items)
+        elif isinstance(x, ast.Index):
+            stack.extend([x.obj, x.index])
+    return out
+
+
+def _default_edges(body, prefix: str, edges: dict, spans: dict) -> None:
+    """What each default value reads, by dotted attribute path. Module-level (not a closure that
+    calls itself) so a check leaves no reference cycles behind for the collector."""
+    for s in body:
+        if isinstance(s, (ast.Declaration, ast.Assignment)):
+            key = prefix + s.path.text
+            if getattr(s, "value", None) is not None:
+                edges.setdefault(key, []).extend(_value_refs(s.value))
+                spans.setdefault(key, s.path.span)
+            if getattr(s, "body", None):
+                _default_edges(s.body, key + ".", edges, spans)

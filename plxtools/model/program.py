@@ -64,15 +64,19 @@ class Program:
         if unit is None:
             return
         targets = [unit.namespace.symbols, unit.locals]
+        removed = []
         for table in targets:
             for name in [n for n, s in table.items() if getattr(s, "unit", None) is unit]:
-                del table[name]
+                removed.append(table.pop(name))
         for op, lst in self.operators.items():
             self.operators[op] = [o for o in lst if o.unit is not unit]
         self.duplicates = [d for d in self.duplicates if d[0] is not unit]
         self.cycles.clear()
         if unit.bundle is not None:
             self.invalidate()
+        else:
+            _dismantle(removed)
+
 
     def invalidate(self) -> None:
         """Drop cached member tables and resolved types (after files changed)."""
@@ -397,3 +401,28 @@ class Program:
 
 def _comment_lines(tree: ast.File) -> dict[int, str]:
     return {c.span.start.line: c.text for c in tree.comments if c.own_line}
+
+
+def _dismantle(symbols: list) -> None:
+    """Cut the reference cycles inside a forgotten loose file's symbols (a member points at its
+    model, a model's layers include itself, ...), so reference counting frees the old version of a
+    file, and its syntax tree, as soon as it is replaced: the language server then needs no
+    collector pass over everything to reclaim it. No other file can name a loose file's symbols."""
+    stack = [s for s in symbols if isinstance(s, ModelSym)]
+    while stack:
+        m = stack.pop()
+        for mem in m.members.values():
+            if mem.anon is not None:
+                stack.append(mem.anon)
+            mem.ty = None
+        for extra in m.path_members.values():
+            for mem in extra.values():
+                if mem.anon is not None:
+                    stack.append(mem.anon)
+                mem.ty = None
+        m.members = {}
+        m.path_members = {}
+        m.methods = {}
+        m._lin = m._inherited = m._all = m._methods = m._open = None
+        m.base = None
+        m.traits = None

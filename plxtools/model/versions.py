@@ -18,10 +18,7 @@ from __future__ import annotations
 
 import os
 import re
-import shutil
-import subprocess
 import sys
-import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -57,20 +54,49 @@ def version_key(v: str) -> tuple[int, ...]:
 
 def installed() -> tuple[Path, str | None] | None:
     """The installed openplx-bundles package: (folder holding Math/, Physics/..., version)."""
-    try:
-        import openplxbundles
-    except ImportError:
-        return None
-    root = Path(openplxbundles.package_dir())
+    module = sys.modules.get("openplxbundles")
+    if module is not None:
+        root = Path(module.package_dir())
+    else:
+        # found, not imported: the package's __init__ imports logging (~10 ms) only to say where it is
+        from importlib.util import find_spec
+
+        try:
+            spec = find_spec("openplxbundles")
+        except (ImportError, ValueError):
+            return None
+        if spec is None or not spec.origin:
+            return None
+        root = Path(os.path.dirname(os.path.abspath(spec.origin)))
     if not (root / "Math" / "config.openplx").is_file():
         return None
-    try:
-        from importlib.metadata import version
+    v = _dist_info_version(root.parent)
+    if v is None:
+        try:
+            from importlib.metadata import version
 
-        v: str | None = version(PACKAGE)
-    except Exception:  # metadata missing: the bundles still work, the version is just unknown
-        v = _version_in(root)
+            v = version(PACKAGE)
+        except Exception:  # metadata missing: the bundles still work, the version is just unknown
+            v = _version_in(root)
     return root, v
+
+
+def _dist_info_version(site: Path) -> str | None:
+    """The Version of the one openplx_bundles-*.dist-info beside the package: what
+    importlib.metadata would answer, without its ~30 ms import (email parsing) at every start."""
+    try:
+        found = [p for p in site.iterdir() if p.name.startswith("openplx_bundles-") and p.name.endswith(".dist-info")]
+        if len(found) != 1:
+            return None
+        with open(found[0] / "METADATA", encoding="utf-8") as fh:
+            for line in fh:
+                if line.startswith("Version:"):
+                    return line.split(":", 1)[1].strip() or None
+                if not line.strip():
+                    return None
+    except OSError:
+        return None
+    return None
 
 
 def _version_in(root: Path) -> str | None:
@@ -152,6 +178,9 @@ def install(version: str, force: bool = False) -> Path:
 
 
 def _download(version: str) -> Path:
+    import shutil
+    import subprocess
+
     target = _wheel_dir()
     tmp = target / f".download-{os.getpid()}"
     try:
@@ -199,6 +228,9 @@ def _pip_failure(version: str, out: str) -> str:
 
 def _unpack(wheel: Path, version: str) -> Path:
     """Unzip the wheel's bundle files into cache/bundles/VERSION (atomically: all or nothing)."""
+    import shutil
+    import zipfile
+
     final = _versions_dir() / version
     tmp = _versions_dir() / f".{version}.{os.getpid()}.tmp"
     shutil.rmtree(tmp, ignore_errors=True)

@@ -288,6 +288,14 @@ class Workspace:
             self.program.invalidate()  # a bundle file changed: any model may see its symbols
         return unit
 
+    def forget_loose(self, path: str) -> None:
+        """Drop a loose file's unit once a one-shot command is done with it (no other file can
+        name a loose file's symbols), so a run over many files keeps only the file at hand."""
+        unit = self.program.units.get(path)
+        if unit is not None and unit.bundle is None:
+            self.program.remove_unit(path)
+            self._loose_ns.pop(path, None)
+
     def analyse(self, tree: ast.File) -> FileAnalysis:
         """What the model itself says about a file: names, types, bundle config. The rules that
         judge a resolved file (completeness, conventions) run on top of this in plxtools.rules."""

@@ -112,7 +112,12 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
             visit(mty, sub, full, local_anchor, depth + 1, chain + (id(model),))
 
     anchor = root.stmt.path.span if isinstance(root.stmt, ast.Declaration) else root.stmt.header
-    visit(Ty(root), set(), "", anchor, 0, ())
+    try:
+        visit(Ty(root), set(), "", anchor, 0, ())
+    finally:
+        # `visit` calls itself through its closure cell: a reference cycle that would keep the memo
+        # (thousands of sets) alive until a collector pass; emptying the cell frees it now
+        visit = None  # noqa: F841
     return _one_per_location(found)
 
 

@@ -489,3 +489,10 @@ def lex(text: str) -> LexResult:
     result = Lexer(text).run()
     _last = (text, result)
     return result
+
+
+def forget_last() -> None:
+    """Drop the kept lex result (its tokens take about as much memory as the tree): callers that
+    will not format the text they parsed (lint) call this after parsing."""
+    global _last
+    _last = None

@@ -1,0 +1,93 @@
+"""Per-file lint results kept between runs, as ruff does: an unchanged file is not re-checked.
+
+A result is stored under a key made of everything it depends on:
+
+- the file's path and bytes;
+- its configuration (every field of the Config in effect, --select/--ignore included);
+- the bundle set (its folders and version) and the size and mtime of every .openplx file in the
+  user's bundle folders (of a released official version, its bundles' config files: a release is
+  not edited in place, and reinstalling it rewrites them);
+- plxtools itself (its version and the size and mtime of its source files).
+
+Only loose files are cached: a file inside a bundle is named by its neighbours (and loads them),
+so it is always checked. A result with an unknown name (N001/N003) is not stored either: its help
+may name a bundle folder found near the file, which the key does not cover. `--fix`, `--diff` and
+stdin runs neither read nor write the cache; `--no-cache` turns it off. Entries live in plx's
+cache folder (PLX_CACHE_DIR), one small pickle per file version.
+
+On a hit nothing is parsed and the bundle program is not loaded: a warm one-file run imports
+neither lark nor the model.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+
+from plxtools.runcache import Store, code_stamp, tree_stamp
+
+_NOT_STORED = frozenset({"N001", "N003"})
+
+
+def _in_bundle(path: Path, stop_at: set) -> bool:
+    """model.bundles.find_user_bundle_root(...) is not None, without importing the model (and lark)."""
+    folder = path.resolve().parent
+    for d in (folder, *folder.parents):
+        if d in stop_at:
+            return False
+        if (d / "config.openplx").is_file():
+            return True
+    return False
+
+
+class ResultCache:
+    def __init__(self, bundle_set) -> None:
+        self.store = Store("lint-results")
+        self.bundle_set = bundle_set
+        self.official_root = bundle_set.official_root.resolve() if bundle_set.official_root else None
+        self._stamp: bytes | None = None
+
+    def _run_stamp(self) -> bytes:
+        """The part of every key that is the same for the whole run (computed once, lazily)."""
+        if self._stamp is None:
+            h = hashlib.sha256(code_stamp())
+            h.update(f"\0{self.bundle_set.key()}\0{self.bundle_set.official_version}\n".encode())
+            official = self.bundle_set.official_root
+            if official is not None and self.bundle_set.official_version:
+                # a released version (installed package or plx's cache) is not edited in place: a
+                # reinstall rewrites its bundles' config files, so those stand for the whole tree
+                for cfg in sorted(Path(official).glob("*/config.openplx")):
+                    st = cfg.stat()
+                    h.update(f"{cfg}\0{st.st_size}\0{st.st_mtime_ns}\n".encode())
+            elif official is not None:
+                tree_stamp(Path(official), (".openplx",), h)
+            for src in self.bundle_set.sources:  # the user's own bundle folders: every file
+                tree_stamp(Path(src.path), (".openplx",), h)
+            self._stamp = h.digest()
+        return self._stamp
+
+    def key(self, path: Path, cfg) -> str | None:
+        """The key of this file's result now, or None when it is not cached (a bundle file, an
+        unreadable file)."""
+        if path.name == "config.openplx":
+            return None
+        stop = {self.official_root} if self.official_root is not None else set()
+        try:
+            if _in_bundle(path, stop):
+                return None
+            data = path.read_bytes()
+        except OSError:
+            return None
+        h = hashlib.sha256(self._run_stamp())
+        h.update(f"\0{path}\0{path.resolve()}\0{cfg!r}\0".encode())
+        h.update(data)
+        return h.hexdigest()
+
+    def get(self, key: str | None):
+        value = self.store.get(key)
+        return value if isinstance(value, list) else None
+
+    def put(self, key: str | None, diagnostics: list) -> None:
+        if key is None or any(d.code in _NOT_STORED for d in diagnostics):
+            return
+        self.store.put(key, diagnostics)

@@ -1,0 +1,75 @@
+"""Small per-file results kept between CLI runs (lint's diagnostics, fmt's "already formatted").
+
+Keys are sha256 digests that the caller builds from everything a result depends on, starting
+with `code_stamp()` (plxtools itself). Entries are one small pickle each under plx's cache folder
+(PLX_CACHE_DIR); a broken or unreadable entry is a miss, a failed write is ignored.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import pickle
+from pathlib import Path
+
+from plxtools import __version__
+
+_FORMAT = 1
+_STAMP: bytes | None = None
+
+
+def tree_stamp(root: Path, suffixes: tuple[str, ...], h) -> None:
+    """Feed the path, size and mtime of every file under `root` ending in `suffixes` to `h`."""
+    for folder, dirs, files in os.walk(root):
+        dirs[:] = sorted(d for d in dirs if d != "__pycache__" and not d.startswith("."))
+        for name in sorted(files):
+            if name.endswith(suffixes):
+                try:
+                    st = os.stat(os.path.join(folder, name))
+                except OSError:
+                    continue
+                h.update(f"{folder}/{name}\0{st.st_size}\0{st.st_mtime_ns}\n".encode())
+
+
+def code_stamp() -> bytes:
+    """plxtools' version and the size and mtime of its source and data files (an edited checkout
+    invalidates every entry)."""
+    global _STAMP
+    if _STAMP is None:
+        h = hashlib.sha256(f"{_FORMAT}\0{__version__}\n".encode())
+        tree_stamp(Path(__file__).resolve().parent, (".py", ".lark", ".json", ".gz"), h)
+        _STAMP = h.digest()
+    return _STAMP
+
+
+class Store:
+    def __init__(self, name: str) -> None:
+        from plxtools.model.versions import cache_dir
+
+        self.folder = cache_dir() / name
+
+    def _file(self, key: str) -> Path:
+        return self.folder / key[:2] / f"{key[2:]}.pickle"
+
+    def get(self, key: str | None):
+        if key is None:
+            return None
+        try:
+            with open(self._file(key), "rb") as fh:
+                return pickle.load(fh)
+        except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError, ValueError, TypeError,
+                IndexError):
+            return None
+
+    def put(self, key: str | None, value) -> None:
+        if key is None:
+            return
+        path = self._file(key)
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+            with open(tmp, "wb") as fh:
+                pickle.dump(value, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            os.replace(tmp, path)
+        except (OSError, pickle.PicklingError, TypeError, AttributeError, RecursionError):
+            pass
