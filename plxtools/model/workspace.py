@@ -318,10 +318,10 @@ class Workspace:
         home = self.bundle_of(Path(tree.path))
         wanted = set(home.dependencies) if home is not None else set()
         for d in unknown:
-            m = re.search(r"'([A-Za-z_][A-Za-z0-9_]*)[.']", d.message)
-            if not m or m.group(1) in self.bundles:
+            # the first name of what was written where the diagnostic points (`Name` of `Name.X`)
+            name = tree.text[d.span.start.offset:d.span.end.offset].split(".", 1)[0].strip().strip("`")
+            if not name.isidentifier() or name in self.bundles:
                 continue
-            name = m.group(1)
             if name in nearby:
                 d.help = (f"a bundle named '{name}' is in {nearby[name]} but is not loaded: pass "
                           f"--bundle-path {nearby[name]} or add it to bundle-path in plx.toml / [tool.plx]")
