@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import re
 
+from plxtools.rules import suppress
+
 _DIRECTIVE = re.compile(r"#\s*plx:\s*fmt:\s*(off|on|skip)\s*$")
 
 
@@ -16,9 +18,7 @@ def directive(comment_text: str) -> str | None:
     return m.group(1) if m else None
 
 
-_LINE_SUPPRESSION = re.compile(r"#\s*plx:\s*ignore\b(?!-)")
-
-
 def is_line_suppression(comment_text: str) -> bool:
     """A `# plx: ignore[...]` comment: it covers one line, so what it covers must not move."""
-    return _LINE_SUPPRESSION.search(comment_text) is not None
+    sc = suppress.parse(comment_text)
+    return sc is not None and not sc.file_wide

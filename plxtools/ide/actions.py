@@ -2,14 +2,12 @@
 
 from __future__ import annotations
 
-import re
-
 from plxtools.diagnostics import Diagnostic
 from plxtools.ide.host import FileState
 from plxtools.ide.types import CodeAction, TextEdit
+from plxtools.rules import suppress
 from plxtools.syntax import ast
 
-_SUPPRESS = re.compile(r"#\s*plx:\s*ignore\b(\[([^\]]*)\])?")
 
 
 def _overlaps(d: Diagnostic, start: int, end: int, st: FileState) -> bool:
@@ -85,14 +83,14 @@ def suppress_edit(st: FileState, d: Diagnostic) -> TextEdit | None:
         return None
     comment = next((c for c in st.tree.comments if c.span.start.line == line), None)
     if comment is not None:
-        m = _SUPPRESS.search(comment.text)
-        if m:
-            if m.group(1) is None:
-                return None  # already suppresses every code
-            codes = [c.strip() for c in m.group(2).split(",") if c.strip()]
+        sc = suppress.parse(comment.text)
+        if sc is not None:
+            if sc.file_wide or sc.codes is None:
+                return None  # a file-wide comment, or one that already suppresses every code
+            codes = [c for c, _, _ in sc.codes]
             if d.code in codes:
                 return None
-            insert_at = comment.span.start.offset + m.end(1) - 1
+            insert_at = comment.span.start.offset + sc.list_end
             return TextEdit(insert_at, insert_at, (", " if codes else "") + d.code)
     stripped_end = line_start + len(line_text.rstrip())
     return TextEdit(stripped_end, line_end, f"  # plx: ignore[{d.code}]")

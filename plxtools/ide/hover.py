@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import re
-
 from plxtools.ide.context import (
     block_context,
     chain_before,
@@ -16,10 +14,9 @@ from plxtools.ide.describe import describe, expr_text
 from plxtools.ide.host import FileState
 from plxtools.ide.types import HoverResult
 from plxtools.model.symbols import MemberSym, ModelSym
+from plxtools.rules import suppress
 from plxtools.syntax import ast
 
-_SUPPRESS = re.compile(r"#\s*plx:\s*(?:ignore-file|ignore)\b\[([^\]]*)\]")
-_CODE = re.compile(r"[A-Za-z]+\d+")
 
 
 def hover(st: FileState, offset: int) -> HoverResult | None:
@@ -99,18 +96,17 @@ def _rule_hover(st: FileState, offset: int) -> HoverResult | None:
     for c in st.tree.comments:
         if not (c.span.start.offset <= offset <= c.span.end.offset):
             continue
-        m = _SUPPRESS.search(c.text)
-        if not m:
+        sc = suppress.parse(c.text)
+        if sc is None or sc.codes is None:
             return None
-        base = c.span.start.offset + m.start(1)
-        for cm in _CODE.finditer(m.group(1)):
-            a, b = base + cm.start(), base + cm.end()
+        for code, a, b in sc.codes:
+            a, b = c.span.start.offset + a, c.span.start.offset + b
             if a <= offset <= b:
                 from plxtools.rules.registry import get
 
-                r = get(cm.group())
+                r = get(code)
                 if r is None:
-                    return HoverResult(f"unknown rule `{cm.group()}` (see `plx rule --all`)", span_in(st, a, b))
+                    return HoverResult(f"unknown rule `{code}` (see `plx rule --all`)", span_in(st, a, b))
                 return HoverResult(r.page(), span_in(st, a, b))
         return None
     return None

@@ -16,6 +16,33 @@ from plxtools.syntax import ast
 _RE = re.compile(r"#\s*plx:\s*(ignore-file|ignore)\b(?:\[([^\]]*)\])?")
 
 
+@dataclass(frozen=True, slots=True)
+class Comment:
+    """What a suppression comment says, with offsets into the comment's text, so that hover,
+    code actions and the formatter read it exactly as lint does."""
+
+    file_wide: bool  # `ignore-file`
+    codes: tuple[tuple[str, int, int], ...] | None  # (code as written, start, end); None: every code
+    list_end: int | None  # offset of the closing `]`, None without a list
+
+
+def parse(comment_text: str) -> Comment | None:
+    m = _RE.search(comment_text)
+    if not m:
+        return None
+    if m.group(2) is None:
+        return Comment(m.group(1) == "ignore-file", None, None)
+    codes, at = [], m.start(2)
+    for piece in m.group(2).split(","):
+        word = piece.strip()
+        if word:
+            start = at + piece.index(word)
+            codes.append((word, start, start + len(word)))
+        at += len(piece) + 1
+    codes = tuple(codes)
+    return Comment(m.group(1) == "ignore-file", codes, m.end(2))
+
+
 @dataclass(slots=True)
 class Suppression:
     comment: ast.Comment
@@ -34,13 +61,11 @@ def collect(tree: ast.File) -> list[Suppression]:
     out: list[Suppression] = []
     code_lines: list[int] | None = None
     for c in tree.comments:
-        m = _RE.search(c.text)
-        if not m:
+        sc = parse(c.text)
+        if sc is None:
             continue
-        codes = None
-        if m.group(2) is not None:
-            codes = [x.strip().upper() for x in m.group(2).split(",") if x.strip()]
-        if m.group(1) == "ignore-file":
+        codes = None if sc.codes is None else [code.upper() for code, _, _ in sc.codes]
+        if sc.file_wide:
             out.append(Suppression(c, None, codes))
             continue
         line = c.span.start.line
