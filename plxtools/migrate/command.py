@@ -17,6 +17,16 @@ def _plural(n: int, word: str) -> str:
     return f"{n} {word}{'' if n == 1 else 's'}"
 
 
+def _left_for_a_person(path, fm, to_v: str) -> None:
+    """What the migration could not do, located, with the help that says what changed."""
+    shown = fm.left[:20]
+    for d in shown:
+        line, col = d.span.start.line + 1, d.span.start.column + 1
+        _say(f"  {path}:{line}:{col}: {d.code} {d.message}" + (f"\n    help: {d.help}" if d.help else ""))
+    if len(fm.left) > len(shown):
+        _say(f"  ... and {len(fm.left) - len(shown)} more (plx lint --openplx-version {to_v} {path})")
+
+
 def run_migrate(args) -> int:
     from plxtools.fileio import unified_diff, write_atomic
     from plxtools.model.apiindex import UnknownVersion, check_version, version_key
@@ -63,8 +73,10 @@ def run_migrate(args) -> int:
         if fm.refused:
             refused += 1
             _say(f"{f}: not migrated from {from_v} to {to_v}: {fm.refused}")
+            _left_for_a_person(f, fm, to_v)
             continue
         if not fm.changed:
+            _left_for_a_person(f, fm, to_v)
             continue
         changed += 1
         edits += fm.edits
@@ -78,8 +90,9 @@ def run_migrate(args) -> int:
             except OSError as exc:
                 _say(f"plx migrate: {f}: {exc.strerror}")
                 return 2
-            remain = f"; {_plural(fm.errors_after, 'error')} left for a person (plx lint)" if fm.errors_after else ""
+            remain = f"; {_plural(fm.errors_after, 'error')} left for a person" if fm.errors_after else ""
             _say(f"migrated {f} ({_plural(fm.edits, 'change')}, {from_v} -> {to_v}){remain}")
+        _left_for_a_person(f, fm, to_v)
     verb = "would migrate" if (args.check or args.diff) else "migrated"
     _say(f"{verb.capitalize()} {_plural(changed, 'file')} ({_plural(edits, 'change')}); "
          f"{_plural(len(files) - changed - refused, 'file')} unchanged"

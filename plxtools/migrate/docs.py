@@ -55,9 +55,10 @@ Everything else in the file (comments, layout, blank lines) is kept.
 
 A file is written only when the result parses, the formatter accepts it, and it lints with no
 more errors under the new version than it had under the old one; otherwise it is left as it was
-and plx says why. What needs a person (a removed model or attribute, a changed type, a new
-required attribute) is not touched: lint the result under the new version and look at the change
-list above.
+and plx says why. A file that was in the formatter's style stays in it. What needs a person (a
+removed model or attribute, a changed type, a new required attribute) is not touched: plx lists
+each error that remains under the new version at its line (`file:line:col: code message`), with a
+help line saying which versions have the name, whether the file was migrated or refused.
 
 - `--from VERSION`: the version the files were written for. By default, the version plx lints
   them with: `openplx-version` in `plx.toml` / `[tool.plx]`, a version pinned by a user bundle's

@@ -9,7 +9,9 @@ means the attribute of a mate or interaction, also inside dotted paths.
 
 A rewrite is kept only when the result parses, the formatter accepts it, and it lints with no
 more errors under the target version than the input had under its own; otherwise the file is left
-as it was, with a message saying why.
+as it was, with a message saying why. A file that was in the formatter's style stays in it (a
+longer name may need a line split); any other file keeps its layout exactly, apart from the edits.
+The errors that remain under the target version are handed back, located, for a person.
 """
 
 from __future__ import annotations
@@ -55,6 +57,8 @@ class FileMigration:
     errors_before: int = 0
     errors_after: int = 0
     notes: list[str] = field(default_factory=list)
+    left: list = field(default_factory=list)  # errors under the target version a person must resolve
+    reformatted: bool = False  # the input was formatted, so the result is formatted too
 
     @property
     def changed(self) -> bool:
@@ -126,6 +130,10 @@ def migrate_text(path: Path, text: str, p: Plan, cfg, from_ws, to_ws) -> FileMig
     if not edits:
         fm.new_text = text
         fm.errors_after = fm.errors_before
+        if p.from_version != p.to_version:
+            after = final_diagnostics(tree, cfg, analyse_file(to_ws, tree))
+            fm.errors_after = _errors(after)
+            fm.left = [d for d in after if d.severity is Severity.ERROR]
         return fm
     new_text = apply_edits(text, edits)
     new_tree = parse_text(new_text, str(path))
@@ -136,12 +144,16 @@ def migrate_text(path: Path, text: str, p: Plan, cfg, from_ws, to_ws) -> FileMig
     if formatted.text is None:
         fm.refused = "the formatter refuses the rewritten text (a bug in plx migrate; please report it)"
         return fm
+    if formatted.text != new_text and format_text(text, str(path)).text == text:
+        new_text, fm.reformatted = formatted.text, True
+        new_tree = parse_text(new_text, str(path))
     after = final_diagnostics(new_tree, cfg, analyse_file(to_ws, new_tree))
     fm.errors_after = _errors(after)
+    fm.left = [d for d in after if d.severity is Severity.ERROR]
     if fm.errors_after > fm.errors_before:
-        first = next(d for d in after if d.severity is Severity.ERROR)
-        fm.refused = (f"under {p.to_version} it would have {fm.errors_after} errors (under {p.from_version}: "
-                      f"{fm.errors_before}), e.g. line {first.span.start.line + 1}: {first.code} {first.message}")
+        n = fm.errors_after
+        fm.refused = (f"under {p.to_version} it would have {n} error{'' if n == 1 else 's'} (under "
+                      f"{p.from_version}: {fm.errors_before}); a person must resolve {'it' if n == 1 else 'them'} first")
         return fm
     fm.new_text = new_text
     fm.edits = len(edits)

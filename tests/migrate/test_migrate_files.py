@@ -56,6 +56,8 @@ def test_migrate_rewrites_moved_models_and_renamed_attributes_and_keeps_the_rest
     assert "4 changes" in r.stderr
     lint = run_plx("lint", "--openplx-version", "0.19.0", str(old_model))
     assert lint.returncode == 0, lint.stdout
+    # the input was in the formatter's style, and so is the result
+    assert run_plx("fmt", "--check", str(old_model)).returncode == 0
     again = run_plx("migrate", "--from", "0.19.0", "--to", "0.19.0", "--check", str(old_model))
     assert again.returncode == 0 and "0 files (0 changes)" in again.stderr
     fmt = run_plx("fmt", "--check", str(old_model))
@@ -88,3 +90,20 @@ def test_bad_input_is_a_message_and_the_file_is_untouched(old_model: Path, tmp_p
     assert r.returncode == 2 and "syntax errors" in r.stderr
     assert broken.read_text(encoding="utf-8") == "Scene is Physics3D.System:\n    x is = 1\n"
     assert old_model.read_text(encoding="utf-8") == OLD
+
+
+def test_what_needs_a_person_is_listed_where_it_is_and_the_file_is_untouched(tmp_path, fetched):  # noqa: F811
+    """A model removed between the versions: the safe renames alone would leave an error, so the
+    file stays as it is and the error is shown at its line with what changed."""
+    fetched("0.17.26")
+    f = tmp_path / "probe.openplx"
+    text = ("Probe is Physics3D.Bodies.RigidBody:\n    inertia.mass: 1\n"
+            "    top is Physics3D.Charges.MateConnector:\n        position: {0, 0, 0.5}\n\n"
+            "Scene is Physics3D.System:\n    probe is Probe\n    sensor is Sensors.ForceTorqueSensor\n")
+    f.write_text(text, encoding="utf-8")
+    r = run_plx("migrate", "--from", "0.17.26", "--to", "0.19.0", str(f))
+    assert r.returncode == 2
+    assert "would have 1 error (under 0.17.26: 0)" in r.stderr
+    assert f"{f}:8:15: N001 unknown type 'Sensors.ForceTorqueSensor'" in r.stderr
+    assert "exists in OpenPLX 0.17.0-0.17.26, not in 0.19.0" in r.stderr
+    assert f.read_text(encoding="utf-8") == text
