@@ -211,7 +211,12 @@ class SimRun:
 
     @property
     def dyn(self) -> list[tuple[str, int]]:
-        return [(p, i) for p, i, d in self.bodies if d]
+        """The dynamic bodies (built once: `bodies` does not change during a run, and monitors ask
+        at every sample)."""
+        got = self.__dict__.get("_dyn")
+        if got is None or got[0] is not self.bodies:
+            got = self.__dict__["_dyn"] = (self.bodies, [(p, i) for p, i, d in self.bodies if d])
+        return got[1]
 
     @property
     def moving(self) -> list[tuple[str, int]]:
