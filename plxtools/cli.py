@@ -144,6 +144,8 @@ def _add_migrate(sub) -> None:
                        "new version than before. With --explain, print the API changes between two versions. "
                        "Exit 0 when done, 1 with --check when a file would change (or when some files were "
                        "refused), 2 on usage errors or when nothing could be migrated.")
+    if isinstance(p, _Stub):
+        return
     from plxtools.migrate.command import add_arguments
 
     add_arguments(p)
@@ -154,23 +156,82 @@ def _add_migrate(sub) -> None:
     p.set_defaults(func=_run_migrate)
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+class _Stub:
+    """A subcommand's parser that this run does not use: not built at all (nor the modules that
+    define its options imported). Such a run names a known command first, so the others' names are
+    needed neither to parse it nor for its messages (`plx lint --help` shows lint's options only)."""
+
+    def __getattr__(self, name):
+        return self._ignore
+
+    def _ignore(self, *args, **kwargs):
+        return self
+
+
+class _Skip:
+    def add_parser(self, name, **kwargs):
+        return _Stub()
+
+
+_COLUMNS: list[int] = []
+
+
+def _terminal_columns() -> int:
+    """shutil.get_terminal_size().columns without importing shutil (and bz2, lzma) at every start;
+    asked once per run (argparse makes a formatter for every option it adds)."""
+    if _COLUMNS:
+        return _COLUMNS[0]
+    import os
+
+    try:
+        columns = int(os.environ["COLUMNS"])
+    except (KeyError, ValueError):
+        columns = 0
+    try:
+        lines = int(os.environ["LINES"])
+    except (KeyError, ValueError):
+        lines = 0
+    if columns <= 0 or lines <= 0:
+        try:
+            size = os.get_terminal_size(sys.__stdout__.fileno())
+        except (AttributeError, ValueError, OSError):
+            size = os.terminal_size((80, 24))
+        if columns <= 0:
+            columns = size.columns or 80
+    _COLUMNS.append(columns)
+    return columns
+
+
+class _Formatter(argparse.HelpFormatter):
+    def __init__(self, prog, indent_increment=2, max_help_position=24, width=None):
+        if width is None:
+            width = _terminal_columns() - 2
+        super().__init__(prog, indent_increment, max_help_position, width)
+
+
+class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("formatter_class", _Formatter)
+        super().__init__(*args, **kwargs)
+
+
+_COMMANDS = ("lint", "fmt", "check", "test", "lsp", "rule", "bundles", "migrate")
+
+
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The whole command line, or with `only`, that subcommand's options and the others' names."""
+    parser = _Parser(
         prog="plx",
         description="plxtools: lint, format, check and simulate OpenPLX models, and an editor language server.",
         epilog="Run 'plx COMMAND --help' for a command's options and 'plx rule CODE' to explain a diagnostic. "
         "Docs: docs/getting-started.md in the plxtools repository.",
     )
     parser.add_argument("--version", action="version", version=f"plx {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    _add_lint(sub)
-    _add_fmt(sub)
-    _add_check(sub)
-    _add_test(sub)
-    _add_lsp(sub)
-    _add_rule(sub)
-    _add_bundles(sub)
-    _add_migrate(sub)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    stub = _Skip()
+    for name, add in zip(_COMMANDS, (_add_lint, _add_fmt, _add_check, _add_test, _add_lsp, _add_rule,
+                                     _add_bundles, _add_migrate)):
+        add(sub if only is None or only == name else stub)
     return parser
 
 
@@ -253,7 +314,8 @@ def _run_lsp(args) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     sys.setrecursionlimit(max(sys.getrecursionlimit(), 20000))
-    parser = build_parser()
+    words = sys.argv[1:] if argv is None else argv
+    parser = build_parser(words[0] if words and words[0] in _COMMANDS else None)
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
         parser.print_help()

@@ -15,10 +15,8 @@ in words meant for the user; callers report it and exit 2.
 
 from __future__ import annotations
 
-import difflib
 import os
 import stat
-import tempfile
 from pathlib import Path
 
 
@@ -46,6 +44,8 @@ def write_atomic(path: Path, text: str, had_bom: bool = False) -> None:
     if not st.st_mode & 0o222 or not os.access(real, os.W_OK):
         raise WriteError(f"{path} is read-only; not changing it (make it writable to format it)")
     try:
+        import tempfile
+
         fd, tmp = tempfile.mkstemp(prefix=f".{real.name}.", suffix=".plxtmp", dir=real.parent)
     except OSError as exc:
         raise WriteError(f"cannot write {path}: cannot create a temporary file in {real.parent}: "
@@ -107,6 +107,8 @@ def _sync_folder(folder: Path) -> None:
 
 
 def unified_diff(path: str, old: str, new: str) -> str:
+    import difflib
+
     return "".join(
         difflib.unified_diff(old.splitlines(True), new.splitlines(True), f"a/{path}", f"b/{path}")
     )

@@ -73,11 +73,9 @@ def _format_file(path: Path, args, tally: _Tally, formatted=None) -> None:
         return
     key = None
     if formatted is not None:
-        import hashlib
+        from plxtools.runcache import code_stamp, new_hash
 
-        from plxtools.runcache import code_stamp
-
-        key = hashlib.sha256(code_stamp() + b"\0fmt\0" + data).hexdigest()
+        key = new_hash(code_stamp() + b"\0fmt\0" + data).hexdigest()
         if formatted.get(key) is True:  # formatted already, byte for byte: nothing to do
             tally.unchanged += 1
             return

@@ -21,10 +21,9 @@ neither lark nor the model.
 
 from __future__ import annotations
 
-import hashlib
 from pathlib import Path
 
-from plxtools.runcache import Store, code_stamp, tree_stamp
+from plxtools.runcache import Store, code_stamp, new_hash, tree_stamp
 
 _NOT_STORED = frozenset({"N001", "N003"})
 
@@ -50,7 +49,7 @@ class ResultCache:
     def _run_stamp(self) -> bytes:
         """The part of every key that is the same for the whole run (computed once, lazily)."""
         if self._stamp is None:
-            h = hashlib.sha256(code_stamp())
+            h = new_hash(code_stamp())
             h.update(f"\0{self.bundle_set.key()}\0{self.bundle_set.official_version}\n".encode())
             official = self.bundle_set.official_root
             if official is not None and self.bundle_set.official_version:
@@ -78,7 +77,7 @@ class ResultCache:
             data = path.read_bytes()
         except OSError:
             return None
-        h = hashlib.sha256(self._run_stamp())
+        h = new_hash(self._run_stamp())
         h.update(f"\0{path}\0{path.resolve()}\0{cfg!r}\0".encode())
         h.update(data)
         return h.hexdigest()

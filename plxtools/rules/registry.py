@@ -79,6 +79,9 @@ def unknown_selectors(selectors) -> list[tuple[str, str | None]]:
     """The codes or prefixes in `selectors` that match no rule, each with the nearest real one.
 
     `N0002` in a `select` would otherwise silently select nothing, which reads as "all clear"."""
+    selectors = [s for s in selectors if s.strip()]
+    if not selectors:
+        return []  # nothing to look up: the catalogue is not even loaded
     import difflib
 
     _load()

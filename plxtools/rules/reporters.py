@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 from collections import Counter
 from pathlib import Path
-from urllib.parse import quote
-from typing import Iterable, TextIO
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from typing import Iterable, TextIO
 
 from plxtools import DOCS_BASE_URL, __version__
 from plxtools.diagnostics import Diagnostic, Severity
@@ -87,6 +88,8 @@ def _render_rich(diags: list[Diagnostic], stream: TextIO, *, summary: bool, file
 
 
 def render_json(diags: list[Diagnostic], stream: TextIO) -> None:
+    import json
+
     json.dump([d.to_json() for d in diags], stream, indent=2)
     stream.write("\n")
 
@@ -197,6 +200,8 @@ def _artifact_location(file: str, root: Path) -> dict:
     file outside it: SARIF viewers resolve either, whatever the path's spaces, '#' or accents."""
     rel = _relative_to(file, root)
     if rel is not None:
+        from urllib.parse import quote
+
         return {"uri": quote(rel, safe="/"), "uriBaseId": "%SRCROOT%"}
     return {"uri": _absolute(file).as_uri()}
 
@@ -210,6 +215,8 @@ def render(diags: list[Diagnostic], fmt: str, stream: TextIO | None = None, *,
         render_github(diags, stream)
     elif fmt == "sarif":
         from plxtools.rules.registry import describe_codes
+
+        import json
 
         json.dump(sarif_document(diags, describe_codes({d.code for d in diags})), stream, indent=2)
         stream.write("\n")
