@@ -21,6 +21,9 @@ from plxtools.check.instance import Obj
 from plxtools.check.report import Reporter, span_of
 
 CONTACT_GEOM = "Physics3D.Geometries.ContactGeometry"
+# descriptions the runtime turns into many objects, sizing them itself: a track link's length is
+# computed from the belt's routing, so its Box has no size.x in the file (the track is A040)
+RUNTIME_SIZED = ("Vehicles.Tracks.DefaultLinkDescription",)
 VISUAL_GEOM = "Visuals.Geometries.Geometry"
 GEOM_KINDS = {
     "Physics3D.Geometries.Box": "box",
@@ -76,6 +79,7 @@ class GeomRec:
     enable_collisions: bool = True
     include_in_mass: bool = True
     mesh_file: str | None = None
+    bounds: np.ndarray | None = None  # an external .obj mesh's lowest and highest corner (2x3)
     mesh_scale: np.ndarray = field(default_factory=lambda: np.ones(3))
     vertices: list | None = None
     indices: list | None = None
@@ -114,6 +118,8 @@ class GeomRec:
         if self.vertices:
             v = np.asarray(self.vertices, dtype=float) * self.mesh_scale
             return np.max(np.abs(v), axis=0)
+        if self.bounds is not None:  # an .obj file's bounds
+            return np.max(np.abs(self.bounds * self.mesh_scale), axis=0)
         return None
 
 
@@ -164,7 +170,8 @@ class Collector:
             if self.asm.node_of(obj) is not None:
                 continue
             if self.k.isa(obj, CONTACT_GEOM) or self.k.isa(obj, VISUAL_GEOM):
-                self._geom(obj)
+                if not self._runtime_sized(obj):
+                    self._geom(obj)
             elif self.k.isa(obj, SURFACE_MODEL):
                 self._contact(obj)
             elif self.k.isa(obj, COLLISION_GROUP):
@@ -173,6 +180,15 @@ class Collector:
                 self.pairs.append(obj)
 
     # ------------------------------------------------------------------ geometry
+
+    def _runtime_sized(self, obj: Obj) -> bool:
+        """Is the object part of a description the runtime instantiates and sizes (RUNTIME_SIZED)?"""
+        cur = obj.owner
+        while cur is not None:
+            if any(self.k.isa(cur, q) for q in RUNTIME_SIZED):
+                return True
+            cur = cur.owner
+        return False
 
     def _geom(self, obj: Obj) -> None:
         visual = not self.k.isa(obj, CONTACT_GEOM)
@@ -225,6 +241,8 @@ class Collector:
                     base = os.path.dirname(os.path.abspath(unit.path)) if unit is not None else os.getcwd()
                     full = p if os.path.isabs(p) else os.path.normpath(os.path.join(base, p))
                     g.mesh_file = full
+                    if full.lower().endswith(".obj") and os.path.isfile(full):
+                        self._obj_bounds(g, obj, p, visual)
                     if not os.path.isfile(full) and unit is not self.rep.unit:
                         self.rep.add("A031", f"mesh file {p!r} of {obj.display} does not exist ({full})", obj=obj,
                                      severity="warning" if visual else None)
@@ -260,6 +278,18 @@ class Collector:
                 g.material_key = material_key(self.get, mat)
                 g.density = self.real(mat, "density", 1000.0)
         self.geoms.append(g)
+
+    def _obj_bounds(self, g: "GeomRec", obj: Obj, written: str, visual: bool) -> None:
+        """An OBJ file's bounds (model/imports.py reads it), so the geometry has extents."""
+        from plxtools.model.imports import read_obj
+
+        info = read_obj(g.mesh_file)
+        if info.lo is not None:
+            g.bounds = np.array([info.lo, info.hi], dtype=float)
+        elif info.problem:
+            g.valid = False
+            self.rep.add("A030", f"mesh {obj.display}: {written!r} cannot be used: {info.problem}", obj=obj,
+                         severity="warning" if visual else None)
 
     def _num(self, obj: Obj, path: str) -> float | None:
         try:

@@ -538,6 +538,8 @@ class Evaluator:
             meth = self.p.methods_of(Ty(base.model, False, tuple(base.traits))).get(name)
             if meth is not None:
                 return Bound(None if meth.static else base, meth, meth.qname)
+            if self.b.opaque_import(base) is not None:
+                raise Unavailable(f"{base.display}.{name}")  # inside an imported file: said once (A042)
             raise EvalError("A003", f"{base.display} ({self.p.concrete(base.model).qname}) has no attribute '{name}'",
                             e, unit)
         if base is None:

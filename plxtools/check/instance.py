@@ -33,7 +33,7 @@ from typing import Any
 
 from plxtools.model.natives import STRUCT_TYPES, bind_struct_types
 from plxtools.model.program import Program
-from plxtools.model.resolve import replaces
+from plxtools.model.resolve import opaque_import, replaces
 from plxtools.model.symbols import FileUnit, ModelSym, Ty
 from plxtools.syntax import ast
 
@@ -127,6 +127,8 @@ class Builder:
         self._building_singletons: set[int] = set()
         self.objects = 0
         self.too_deep: list[Obj] = []
+        self.opaque: list[tuple[Obj, ModelSym]] = []  # objects built on an import plx cannot read
+        self._opaque_of: dict[int, ModelSym | None] = {}
 
     # ------------------------------------------------------------------ types
 
@@ -243,8 +245,21 @@ class Builder:
         self._plans[key] = plan
         return plan
 
+    def opaque_import(self, obj: Obj) -> ModelSym | None:
+        """The import plx cannot read (an .agx archive, a URDF) that an object's type builds on."""
+        key = id(obj.model)
+        if key not in self._opaque_of:
+            self._opaque_of[key] = opaque_import(self.p, obj.model)
+        return self._opaque_of[key]
+
     def _build(self, obj: Obj, model: ModelSym, traits: tuple, received: list, depth: int) -> None:
         self.objects += 1
+        imported = self.opaque_import(obj)
+        if imported is not None:
+            # its contents live in a file plx cannot read: nothing in it is instantiated (the
+            # pipeline says so once, A042), so nothing about it is reported as missing or wrong
+            self.opaque.append((obj, imported))
+            return
         struct, templates, info = self._plan(model, traits)
         for e in received:
             if e[0].kind == VALUE:

@@ -156,6 +156,7 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     builder.report = lambda code, msg, obj: rep.add(code, msg, obj=obj)
     obj = builder.root(root)
     fc.objects = builder.objects
+    _not_analysed(builder, fa.unit, rep)
     ev = Evaluator(program, builder, fa.unit,
                    lambda code, msg, node, unit, anchor, help: rep.add(code, msg, node=node, unit=unit, obj=anchor,
                                                                        help=help))
@@ -172,6 +173,24 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     fc.rep, fc.raw, fc.cfg = rep, raw, cfg
     fc.diagnostics = _finish(tree, _merge(raw, rep.diagnostics()), cfg)
     return fc
+
+
+def _not_analysed(builder: Builder, unit, rep: Reporter) -> None:
+    """One A042 (info) per imported file that plx cannot read and the scene uses: what is not analysed."""
+    by_import: dict[int, tuple[ModelSym, list]] = {}
+    for o, imp in builder.opaque:
+        by_import.setdefault(id(imp), (imp, []))[1].append(o)
+    for imp, objs in by_import.values():
+        stmt = getattr(imp, "import_stmt", None)
+        written = stmt.source.raw if stmt is not None else imp.qname
+        names = [o.display for o in objs]
+        shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+        span = stmt.source.span if stmt is not None and imp.unit is unit else None
+        suffix = os.path.splitext(stmt.source.value)[1] if stmt is not None else ""
+        rep.add("A042", f"{shown} {'is' if len(names) == 1 else 'are'} built from {written}, which plx cannot "
+                f"read{f' ({suffix} file)' if suffix else ''}: the bodies, mates and values inside are not "
+                f"analysed or simulated", obj=objs[0], span=span, severity=Severity.INFO,
+                help="plx check analyses what is written in .openplx files (and reads .obj meshes)")
 
 
 def blocking_reason(fc: FileCheck) -> str | None:

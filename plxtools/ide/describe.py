@@ -93,6 +93,8 @@ def official_root_of(program, unit):
 
 
 def model_kind(m: ModelSym) -> str:
+    if m.kind == "import":
+        return "import"
     if m.is_trait:
         return "trait"
     if m.const:

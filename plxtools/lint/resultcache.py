@@ -21,11 +21,32 @@ neither lark nor the model.
 
 from __future__ import annotations
 
+import os
+import re
 from pathlib import Path
 
 from plxtools.runcache import Store, code_stamp, new_hash, tree_stamp
 
 _NOT_STORED = frozenset({"N001", "N003"})
+_IMPORT = re.compile(rb'(?m)^[ \t]*import[ \t]+([@$])"([^"\r\n]*)"')
+_VAR = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
+
+
+def _import_stamp(path: Path, data: bytes, h) -> None:
+    """The files a file imports (`import @"wheel.obj"`): whether each exists, its size and mtime,
+    and the environment variables a `$"..."` path reads, so creating the file updates the result."""
+    folder = path.resolve().parent
+    for m in _IMPORT.finditer(data):
+        text = m.group(2).decode("utf-8", "replace")
+        if m.group(1) == b"$":
+            names = _VAR.findall(text)
+            h.update(repr([(n, os.environ.get(n)) for n in names]).encode())
+            text = _VAR.sub(lambda v: os.environ.get(v.group(1), ""), text)
+        try:
+            st = (folder / text).stat()
+            h.update(f"\0{text}\0{st.st_size}\0{st.st_mtime_ns}".encode())
+        except (OSError, ValueError):
+            h.update(f"\0{text}\0missing".encode())
 
 
 def _in_bundle(path: Path, stop_at: set) -> bool:
@@ -80,6 +101,8 @@ class ResultCache:
         h = new_hash(self._run_stamp())
         h.update(f"\0{path}\0{path.resolve()}\0{cfg!r}\0".encode())
         h.update(data)
+        if b"import" in data:
+            _import_stamp(path, data, h)
         return h.hexdigest()
 
     def get(self, key: str | None):

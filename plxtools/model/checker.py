@@ -7,6 +7,7 @@ go-to-definition, references and rename use in the language server.
 from __future__ import annotations
 
 import difflib
+import os
 from dataclasses import dataclass
 
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity, Span
@@ -163,6 +164,27 @@ class Checker:
         elif isinstance(stmt, ast.ErrorStmt) and stmt.body:
             self.outer = None
             self._block(stmt.body, UNKNOWN, (), None)
+        elif isinstance(stmt, ast.Import):
+            self._import(stmt)
+
+    def _import(self, stmt: ast.Import) -> None:
+        """The name an import binds (a definition for the editor) and the file behind it (N006, N007)."""
+        from plxtools.model import imports
+
+        parts, span = imports.bound_name(stmt)
+        if not all(imports.valid_name(p) for p in parts):
+            self.report("N007", f"the file name {parts[-1]!r} is not a valid OpenPLX name, so the import binds "
+                        f"no name", stmt.source.span, help=f"name it with 'as': import {stmt.source.raw} as "
+                        f"{imports.name_hint(parts[-1])}")
+        else:
+            sym = self.p.lookup(parts, self.unit)
+            if isinstance(sym, imports.ImportSym) and sym.import_stmt is stmt:
+                self.occ(span, sym, "definition")
+        full, unset = imports.resolve_file(stmt, self.unit.path)
+        if full is not None and not unset and not os.path.exists(full):
+            shown = stmt.source.value if stmt.source.kind != "interp" else full
+            self.report("N006", f"imported file {shown!r} does not exist", stmt.source.span,
+                        help="an @\"...\" path is relative to the folder of the .openplx file that imports it")
 
     # ------------------------------------------------------------------ types
 

@@ -117,6 +117,9 @@ class Program:
 
     def _register(self, unit: FileUnit, name: str, sym, stmt: ast.Stmt) -> None:
         table = unit.locals if unit.bundle is None else unit.namespace.symbols
+        if unit.bundle is not None and name in unit.locals:  # a bundle file's own import of that name
+            self.duplicates.append((unit, stmt, unit.locals[name]))
+            return
         if name in table:
             self.duplicates.append((unit, stmt, table[name]))
             return
@@ -146,6 +149,35 @@ class Program:
             self._register(unit, name, trait, stmt)
         elif isinstance(stmt, ast.OperatorDecl):
             self.operators.setdefault(stmt.op, []).append(OperatorSym(stmt.op, stmt, unit))
+        elif isinstance(stmt, ast.Import):
+            self._add_import(unit, stmt)
+
+    def _add_import(self, unit: FileUnit, stmt: ast.Import) -> None:
+        """An import binds a name in the file's own scope (`unit.locals`, bundle files included);
+        `as ns.name` binds `name` in a namespace `ns` of that file only (model/imports.py)."""
+        from plxtools.model.imports import import_symbol
+
+        made = import_symbol(stmt, unit, unit.namespace)
+        if made is None:
+            return  # a name the checker reports (N007)
+        parts, sym = made
+        doc = sym.doc
+        self._fill_model(sym, sym.stmt.body, unit)
+        sym.doc = doc
+        table = unit.locals
+        for i, part in enumerate(parts[:-1]):
+            ns = table.get(part)
+            if ns is None:
+                ns = Namespace(part, tuple(parts[:i + 1]))
+                table[part] = ns
+            elif not isinstance(ns, Namespace):
+                self.duplicates.append((unit, sym.stmt, ns))
+                return
+            table = ns.symbols
+        if parts[-1] in table:
+            self.duplicates.append((unit, sym.stmt, table[parts[-1]]))
+            return
+        table[parts[-1]] = sym
 
     def _fill_model(self, model: ModelSym, body: list[ast.Stmt] | None, unit: FileUnit) -> None:
         if not body:
@@ -202,7 +234,7 @@ class Program:
         """Resolve a dotted name to a symbol, namespace or primitive name; None if nothing matches."""
         if len(parts) == 1 and parts[0] in PRIMITIVES:
             return parts[0]
-        if unit.bundle is None and parts[0] in unit.locals:
+        if parts[0] in unit.locals:  # a loose file's definitions, any file's imports
             return self._walk(unit.locals[parts[0]], parts[1:])
         ns = namespace or unit.namespace
         chain: list[Namespace] = []
@@ -380,6 +412,8 @@ class Program:
         if em is None or am is None:
             return "ok"
         em = self.concrete(em)  # an instance block's anonymous subtype accepts its declared type
+        if resolve.opaque_import(self, am) is not None:
+            return "ok"  # built on a file plx cannot read: it may well be one (no cascades)
         if not self.is_subtype(am, em, actual.traits):
             return "no"
         for t in expected.traits:

@@ -280,9 +280,19 @@ def is_open(p: "Program", model: ModelSym) -> bool:
     """True when some base in the layers does not resolve: attributes are unknown, not absent."""
     for layer in linearize(p, model):  # parents come before the layers built on them
         if layer._open is None:
-            own = (layer.base_ref is not None and p.base_of(layer) is None) or layer.kind == "import"
+            # an import plx cannot read (an .agx archive, a URDF) has no base: its contents are unknown
+            own = (layer.base_ref is not None and p.base_of(layer) is None) or (
+                layer.kind == "import" and layer.base_ref is None)
             layer._open = own or any(x._open for x in direct_parents(p, layer) if x._open is not None)
     return bool(model._open)
+
+
+def opaque_import(p: "Program", model: ModelSym) -> ModelSym | None:
+    """The import plx cannot read that `model` builds on (itself, a base or a trait), if any."""
+    for layer in linearize(p, model):
+        if layer.kind == "import" and layer.base_ref is None:
+            return layer
+    return None
 
 
 def is_subtype(p: "Program", sub: ModelSym, sup: ModelSym, extra_traits: tuple = ()) -> bool:

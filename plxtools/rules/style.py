@@ -88,6 +88,10 @@ def style_diagnostics(program: Program, unit, occurrences, root: ModelSym | None
     for name, sym in unit.locals.items():
         if isinstance(sym, ModelSym) and sym is not root and id(sym) not in used:
             span = sym.stmt.name.span if isinstance(sym.stmt, ast.TraitDef) else sym.stmt.path.span
+            if sym.kind == "import":
+                add("C003", f"imported name '{name}' is never used in this file", span, Severity.WARNING,
+                    "use it or remove the import")
+                continue
             add("C003", f"{'trait' if sym.is_trait else 'model'} '{name}' is defined but never used in this file",
                 span, Severity.WARNING, "use it, move it into a bundle, or remove it")
     if root is not None and not chosen:  # a root chosen by name is not "the last model"
@@ -116,6 +120,8 @@ def _loadable_root(program: Program, unit, root: ModelSym) -> bool:
     kinds = [program.lookup(["Physics3D", "System"], unit), program.lookup(["Physics3D", "Bodies", "RigidBody"], unit)]
     if not any(isinstance(k, ModelSym) for k in kinds):
         return True  # the bundles in use do not say: do not guess
+    if program.is_open(root):
+        return True  # built on an imported file plx cannot read (or an unknown base, reported): unknown
     if any(isinstance(k, ModelSym) and program.is_subtype(root, k) for k in kinds):
         return True
     return any(m.name.endswith("Material") and m.unit is not None and m.unit.official

@@ -197,6 +197,16 @@ rule("A040", "unsupported-feature", W,
      "models, PointGravitationalField, unknown mate or interaction types.",
      "It is named, never dropped silently: the simulation runs without it, so its results may differ "
      "from AGX's.", stage=C)
+rule("A042", "imported-file-not-analysed", I,
+     "The scene uses a model imported from a file plx cannot read (an `.agx` archive, a URDF, any "
+     "format other than `.obj`/`.stl` meshes and images): said once per import, listing the objects built "
+     "from it.",
+     "What such a file holds (bodies, mates, masses) is unknown to plx, so the objects built from it are "
+     "not instantiated, analysed or simulated, and nothing inside them is reported as missing or wrong "
+     "(no \"mass 0\" or \"not owned by a system\" for an imported body specialised with `becomes`). "
+     "Members reached through the import are not errors in lint either.",
+     example='import @"pendulum.agx"\n\nScene is Physics3D.System:\n    pendulum is pendulum',
+     stage=C)
 rule("A041", "non-finite-value", E,
      "A number that assembly reads is NaN or infinite: a mass, size, connector position or axis, initial "
      "velocity, motor gain... (`1e308 * 10` overflows to infinity, `inf - inf` is NaN), or an integer "

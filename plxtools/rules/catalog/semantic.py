@@ -36,6 +36,20 @@ rule("N005", "wrong-kind-of-type", E,
      "Models inherit from one model; traits are applied with `with`. Mixing them up changes what the "
      "object is.", example="Wheel is Physics3D.Bodies.RigidBody with Physics3D.Geometries.Box",
      use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    geometry is Physics3D.Geometries.Box")
+rule("N006", "import-file-not-found", E,
+     "The file an `import` names does not exist: `import @\"wheel.obj\" as WheelMesh` where there is no "
+     "wheel.obj next to the .openplx file.",
+     "An `@\"...\"` path is relative to the folder of the importing file; a `$\"...\"` path is read after "
+     "its `{VAR}` parts are taken from the environment (an unset variable is reported by `plx check`, "
+     "A007). The runtime fails to load a model whose import is missing. The name is still bound, so the "
+     "rest of the file is checked without follow-on errors.",
+     example='import @"whel.obj" as WheelMesh', use_instead='import @"wheel.obj" as WheelMesh')
+rule("N007", "import-needs-alias", E,
+     "An `import` without `as` names a file whose stem is not a valid OpenPLX name (`my-robot.urdf`, "
+     "`2wheels.obj`), so it binds no name.",
+     "Without an alias the imported name is the file's stem; a stem with a dash, a space or a leading digit "
+     "cannot be written as a name, so nothing in the file can use the import.",
+     example='import @"my-robot.urdf"', use_instead='import @"my-robot.urdf" as MyRobot')
 
 # ---------------------------------------------------------------- types
 rule("T001", "type-mismatch", E,
