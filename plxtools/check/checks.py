@@ -381,11 +381,16 @@ class StaticChecks:
 
 
 def scan_strings(tree: ast.File, rep: Reporter) -> None:
-    """``@"..."`` files that do not exist, and ``$"{VAR}"`` variables that are not set (A031, A007)."""
+    """``@"..."`` files that do not exist, and ``$"{VAR}"`` variables that are not set (A031, A007).
+    An import's missing file is lint's N006, so an import's path is only checked for unset variables."""
     base = os.path.dirname(os.path.abspath(tree.path)) if tree.path else os.getcwd()
     stack: list = list(tree.statements)
     while stack:
         node = stack.pop()
+        if isinstance(node, ast.Import):
+            if node.source.kind == "interp":
+                _check_string(node.source, base, rep, variables_only=True)
+            continue
         if isinstance(node, ast.String):
             _check_string(node, base, rep)
             continue
@@ -402,8 +407,8 @@ def scan_strings(tree: ast.File, rep: Reporter) -> None:
                 stack.append(v)
 
 
-def _check_string(s: ast.String, base: str, rep: Reporter) -> None:
-    if s.kind == "path":
+def _check_string(s: ast.String, base: str, rep: Reporter, variables_only: bool = False) -> None:
+    if s.kind == "path" and not variables_only:
         p = s.value
         full = p if os.path.isabs(p) else os.path.normpath(os.path.join(base, p))
         if p and not os.path.exists(full):
@@ -414,7 +419,7 @@ def _check_string(s: ast.String, base: str, rep: Reporter) -> None:
         for v in dict.fromkeys(unset):
             rep.add("A007", f"environment variable {v} in {s.raw} is not set; the path cannot be resolved here",
                     span=s.span, help=f"set {v} (for AGX_DATA_DIR: install AGX), or use @\"...\" with a relative path")
-        if not unset:
+        if not unset and not variables_only:
             val = _INTERP.sub(lambda m: os.environ.get(m.group(1), ""), s.value)
             looks_like_file = "/" in val or os.sep in val or re.search(r"\.[A-Za-z0-9]{2,4}$", val)
             if looks_like_file and not os.path.exists(val if os.path.isabs(val) else os.path.join(base, val)):

@@ -181,9 +181,13 @@ class Checker:
             if isinstance(sym, imports.ImportSym) and sym.import_stmt is stmt:
                 self.occ(span, sym, "definition")
         full, unset = imports.resolve_file(stmt, self.unit.path)
-        if full is not None and not unset and not os.path.exists(full):
+        if full is None and not unset:
+            self.report("N006", "the import names no file (an empty path)", stmt.source.span,
+                        help="write the file's path between the quotes: import @\"mesh.obj\" as Mesh")
+        elif full is not None and not unset and not os.path.isfile(full):
             shown = stmt.source.value if stmt.source.kind != "interp" else full
-            self.report("N006", f"imported file {shown!r} does not exist", stmt.source.span,
+            what = "is a folder, not a file" if os.path.isdir(full) else "does not exist"
+            self.report("N006", f"imported file {shown!r} {what}", stmt.source.span,
                         help="an @\"...\" path is relative to the folder of the .openplx file that imports it")
 
     # ------------------------------------------------------------------ types

@@ -77,6 +77,22 @@ def test_missing_import_is_an_error_at_the_import_line(tmp_path):
     assert "info A042 arm is built from @\"arm.urdf\"" in r.stdout and "error" not in r.stdout
 
 
+def test_a_missing_empty_or_folder_import_is_one_n006_each_also_in_check(tmp_path):
+    (tmp_path / "parts").mkdir()
+    (tmp_path / "scene.openplx").write_text(
+        'import @"gone.agx" as Gone\nimport @"" as Nothing\nimport @"parts" as Parts\n\n'
+        'Scene is Physics3D.System:\n    a is Gone\n    b is Nothing\n    c is Parts\n', encoding="utf-8")
+    r = run_plx("check", "--output-format", "json", "scene.openplx", cwd=tmp_path)
+    assert "Traceback" not in r.stderr, r.stderr
+    doc = json.loads(r.stdout)
+    found = [(d["code"], d["range"]["start"]["line"], d["message"]) for d in doc["diagnostics"]
+             if d["code"] in ("N006", "A031")]
+    # lint owns a missing import (N006); check does not add its own A031 for the same file
+    assert found == [("N006", 1, "imported file 'gone.agx' does not exist"),
+                     ("N006", 2, "the import names no file (an empty path)"),
+                     ("N006", 3, "imported file 'parts' is a folder, not a file")], found
+
+
 def test_env_path_import(tmp_path):
     (tmp_path / "models").mkdir()
     shutil.copy(IMPORTS / "arm.urdf", tmp_path / "models" / "arm.urdf")

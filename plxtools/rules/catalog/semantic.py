@@ -38,7 +38,7 @@ rule("N005", "wrong-kind-of-type", E,
      use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    geometry is Physics3D.Geometries.Box")
 rule("N006", "import-file-not-found", E,
      "The file an `import` names does not exist: `import @\"wheel.obj\" as WheelMesh` where there is no "
-     "wheel.obj next to the .openplx file.",
+     "wheel.obj next to the .openplx file. An empty path and a path that names a folder are reported too.",
      "An `@\"...\"` path is relative to the folder of the importing file; a `$\"...\"` path is read after "
      "its `{VAR}` parts are taken from the environment (an unset variable is reported by `plx check`, "
      "A007). The runtime fails to load a model whose import is missing. The name is still bound, so the "
