@@ -202,10 +202,25 @@ async function main() {
       await waitFor('an error squiggle', async () => (await squiggles('error')) > 0, SERVER_TIMEOUT);
       const status = await page.locator('#status\\.problems').first().getAttribute('aria-label');
       assert.match(status ?? '', /Errors: [1-9]/, `status bar problems: ${status}`);
-      await editorArea().locator('.squiggly-error').first().hover();
-      const hover = page.locator('.monaco-hover').filter({ hasText: 'mas' }).first();
-      await hover.waitFor({ timeout: UI_TIMEOUT });
-      console.log(`      hover: ${(await hover.innerText()).split('\n')[0]}`);
+      // Go to Next Problem (F8) shows the diagnostic's message under its line. While the line was
+      // typed, the server may have reported the half-typed line: wait for the final diagnostic.
+      const message = await waitFor('the unknown-attribute diagnostic (N002)', async () => {
+        await goTo(1, 1);
+        await page.keyboard.press('F8');
+        const widget = page.locator('.marker-widget').first();
+        await widget.waitFor({ timeout: UI_TIMEOUT });
+        const text = await widget.innerText();
+        await page.keyboard.press('Escape');
+        return /plx\(N002\)/.test(text) ? text : undefined;
+      }, SERVER_TIMEOUT);
+      assert.match(message, /'mas' is not an attribute/, message);
+      // F8 moved the cursor to the start of the diagnostic: `mas` on the typed line
+      await goTo(1, 1);
+      await page.keyboard.press('F8');
+      await page.locator('.marker-widget').first().waitFor({ timeout: UI_TIMEOUT });
+      const selection = page.locator('#status\\.editor\\.selection').first();
+      await waitFor('the cursor on `mas` of the typed line (Ln 5, Col 17)', async () => (await selection.innerText()).trim() === 'Ln 5, Col 17', 5000);
+      console.log(`      ${message.split('\n').filter(Boolean).join(' | ')}`);
       await page.keyboard.press('Escape');
     });
 
@@ -216,6 +231,10 @@ async function main() {
       await page.keyboard.type('inertia.mass: 5', { delay: 20 });
       await page.keyboard.press('Escape');
       await waitFor('no error squiggle', async () => (await squiggles('error')) === 0, SERVER_TIMEOUT);
+      await page.waitForTimeout(1500); // and it stays so
+      assert.equal(await squiggles('error'), 0);
+      const status = await page.locator('#status\\.problems').first().getAttribute('aria-label');
+      assert.match(status ?? '', /No Problems|Errors: 0/, `status bar problems: ${status}`);
     });
 
     await step('completion offers an attribute of the body', async () => {
