@@ -52,7 +52,7 @@ step "package (vsce)"
 # What goes into the package: only the bundle, the declarative files and the docs.
 files="$(npx --no-install vsce ls --no-dependencies)"
 echo "$files"
-if grep -E '^(src|test|scripts|node_modules|out)/|\.map$|\.ts$' <<<"$files"; then
+if grep -E '^(src|test|e2e|scripts|node_modules|out)/|\.map$|\.ts$' <<<"$files"; then
   echo "error: the files above must not be packaged (see .vscodeignore)" >&2
   exit 1
 fi

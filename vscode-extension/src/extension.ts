@@ -63,7 +63,7 @@ async function discover(resource?: vscode.Uri): Promise<DiscoveryResult> {
   // Registered once the Python extension is active (discovery may just have activated it).
   pythonListener ??= onPythonInterpreterChanged(() => {
     // Only matters when the interpreter setting and server.path are not in charge.
-    if (!invocation || invocation.source === 'python-extension' || invocation.source === 'PATH') {
+    if (!invocation || invocation.source === 'python-extension' || invocation.source === 'startup-PATH' || invocation.source === 'PATH') {
       log.info('The Python interpreter changed; restarting the server.');
       scheduleRestart();
     }

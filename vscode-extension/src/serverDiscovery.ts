@@ -10,10 +10,16 @@
  *  2. `openplx.interpreter`: a Python interpreter. Use `plx` from that interpreter's scripts folder,
  *     else `<python> -m plxtools` when the package is importable there. Explicit, so no fallback.
  *  3. The Python extension's active interpreter (same two checks). Implicit: on failure, go on.
- *  4. `plx` on the PATH of the extension host process.
- *  5. `plx` on the PATH of the user's login shell (editors started from a desktop menu, or
+ *  4. `plx` on the PATH the editor was started with: the environment the extension host's parent
+ *     process (the code-server or VS Code server process) was started with, read from
+ *     `/proc/<ppid>/environ` (Linux only). A VS Code server (code-server, Remote-SSH) replaces the
+ *     extension host's PATH with the login shell's, so without this step the PATH of the shell that
+ *     started code-server (say, with a virtual environment activated) is never searched.
+ *     Skipped when it cannot be read or equals the extension host's PATH.
+ *  5. `plx` on the PATH of the extension host process.
+ *  6. `plx` on the PATH of the user's login shell (editors started from a desktop menu, or
  *     code-server started by a service, may not have the shell's PATH). Not on Windows.
- *  6. A virtual environment in the workspace: `.venv`, `venv`, `env` (`bin/plx`, `Scripts\plx.exe`).
+ *  7. A virtual environment in the workspace: `.venv`, `venv`, `env` (`bin/plx`, `Scripts\plx.exe`).
  */
 import * as fs from 'node:fs';
 import * as os from 'node:os';
@@ -22,7 +28,14 @@ import { execFile } from 'node:child_process';
 
 export const INSTALL_COMMAND = 'pip install plxtools';
 
-export type PlxSource = 'server.path' | 'interpreter' | 'python-extension' | 'PATH' | 'login-shell' | 'workspace-venv';
+export type PlxSource =
+  | 'server.path'
+  | 'interpreter'
+  | 'python-extension'
+  | 'startup-PATH'
+  | 'PATH'
+  | 'login-shell'
+  | 'workspace-venv';
 
 /** How to run `plx <subcommand>`: `command ...prefixArgs <subcommand> ...`. */
 export interface PlxInvocation {
@@ -56,12 +69,36 @@ export interface DiscoveryInput {
   workspaceFolder?: string;
   /** Returns true when `import plxtools` would work in `python`. Injectable for tests. */
   hasPlxtoolsModule?: (python: string, env: Env) => Promise<boolean>;
+  /**
+   * The PATH the editor process was started with (undefined when it cannot be read). Defaults to
+   * {@link readStartupPath}. Injectable for tests.
+   */
+  startupPath?: () => Promise<string | undefined>;
   /** The PATH of the user's login shell (undefined when it cannot be read). Injectable for tests. */
   loginShellPath?: (env: Env) => Promise<string | undefined>;
 }
 
 /** Folders of a workspace where a virtual environment usually lives. */
 export const WORKSPACE_VENVS = ['.venv', 'venv', 'env'];
+
+/**
+ * The PATH in the environment process `pid` (by default the extension host's parent) was started
+ * with, from `/proc/<pid>/environ`. Undefined where there is no /proc (Windows, macOS) or the file
+ * cannot be read. The file holds the environment given at exec time, so it is the PATH of the shell
+ * (or service) that started code-server, whatever the server did to its own `process.env` later.
+ */
+export async function readStartupPath(pid: number = process.ppid): Promise<string | undefined> {
+  if (process.platform !== 'linux' || !pid) {
+    return undefined;
+  }
+  try {
+    const environ = await fs.promises.readFile(`/proc/${pid}/environ`, 'utf8');
+    const entry = environ.split('\0').find((e) => e.startsWith('PATH='));
+    return entry === undefined ? undefined : entry.slice('PATH='.length);
+  } catch {
+    return undefined;
+  }
+}
 
 /** Asks `$SHELL -lc` for its PATH (2 s at most); undefined when there is no such shell or it fails. */
 export function readLoginShellPath(env: Env): Promise<string | undefined> {
@@ -320,14 +357,27 @@ export async function discoverPlx(input: DiscoveryInput): Promise<DiscoveryResul
     }
   }
 
-  // 4. The extension host's PATH
+  // 4. The PATH the editor was started with (before the extension host's own, which a VS Code
+  //    server sets to the login shell's PATH).
+  if (platform !== 'win32') {
+    const startupPath = await (input.startupPath ?? readStartupPath)();
+    if (startupPath && startupPath !== getEnv(input.env, 'PATH', platform)) {
+      const onStartupPath = findOnPath('plx', { ...input.env, PATH: startupPath }, platform);
+      if (onStartupPath) {
+        return plxFound(attempts, onStartupPath, 'startup-PATH', 'the PATH the editor was started with');
+      }
+      attempts.push({ source: 'startup-PATH', candidate: 'plx on the PATH the editor was started with', outcome: 'not found' });
+    }
+  }
+
+  // 5. The extension host's PATH
   const onPath = findOnPath('plx', input.env, platform);
   if (onPath) {
     return plxFound(attempts, onPath, 'PATH', 'PATH');
   }
   attempts.push({ source: 'PATH', candidate: 'plx on PATH', outcome: 'not found' });
 
-  // 5. The login shell's PATH
+  // 6. The login shell's PATH
   if (platform !== 'win32') {
     const shellPath = await (input.loginShellPath ?? readLoginShellPath)(input.env);
     const onShellPath = shellPath ? findOnPath('plx', { ...input.env, PATH: shellPath }, platform) : undefined;
@@ -338,7 +388,7 @@ export async function discoverPlx(input: DiscoveryInput): Promise<DiscoveryResul
                     outcome: shellPath ? 'not found' : 'could not be read' });
   }
 
-  // 6. A virtual environment in the workspace
+  // 7. A virtual environment in the workspace
   if (input.workspaceFolder) {
     for (const name of WORKSPACE_VENVS) {
       const candidate = platform === 'win32'

@@ -1,4 +1,5 @@
 import * as assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
@@ -9,6 +10,7 @@ import {
   findOnPath,
   getEnv,
   probePlxtoolsModule,
+  readStartupPath,
   resolveSettingPath,
   scriptCandidates,
 } from '../../src/serverDiscovery';
@@ -44,6 +46,7 @@ function input(overrides: Partial<DiscoveryInput>): DiscoveryInput {
     env: { PATH: '' },
     platform: 'linux',
     hasPlxtoolsModule: async () => false,
+    startupPath: async () => undefined,
     loginShellPath: async () => undefined,
     ...overrides,
   };
@@ -336,6 +339,72 @@ posixOnly('discoverPlx: the login shell and the workspace', () => {
     assert.deepEqual(r.attempts.map((a) => a.source),
       ['PATH', 'login-shell', 'workspace-venv', 'workspace-venv', 'workspace-venv']);
     assert.ok(r.message.includes(path.join(tmp, 'empty-ws', '.venv', 'bin', 'plx')), r.message);
+  });
+});
+
+posixOnly('discoverPlx: the PATH the editor was started with (code-server)', () => {
+  // Under code-server the extension host's PATH is the login shell's (here with a pyenv shim that
+  // runs some other plx); the shell that started code-server had the project's venv on its PATH.
+  it("prefers plx on the PATH code-server was started with over the extension host's PATH", async () => {
+    const venvPlx = file('project/.venv/bin/plx');
+    file('shims/plx');
+    const r = expectFound(await discoverPlx(input({
+      env: { PATH: [path.join(tmp, 'remote-cli'), path.join(tmp, 'shims')].join(':') },
+      startupPath: async () => [path.dirname(venvPlx), path.join(tmp, 'shims')].join(':'),
+      loginShellPath: async () => { throw new Error('the login shell should not be asked'); },
+    })));
+    assert.equal(r.invocation.command, venvPlx);
+    assert.equal(r.invocation.source, 'startup-PATH');
+    assert.match(r.invocation.description, /from the PATH the editor was started with/);
+    assert.deepEqual(r.attempts.map((a) => a.source), ['startup-PATH']);
+  });
+
+  it("falls through to the extension host's PATH, then the login shell, when it has no plx", async () => {
+    const shellPlx = file('shellbin/plx');
+    const r = expectFound(await discoverPlx(input({
+      env: { PATH: path.join(tmp, 'empty') },
+      startupPath: async () => path.join(tmp, 'nothing'),
+      loginShellPath: async () => path.dirname(shellPlx),
+    })));
+    assert.equal(r.invocation.source, 'login-shell');
+    assert.deepEqual(r.attempts.map((a) => [a.source, a.outcome]), [
+      ['startup-PATH', 'not found'],
+      ['PATH', 'not found'],
+      ['login-shell', 'found'],
+    ]);
+  });
+
+  it("is not searched twice when it equals the extension host's PATH", async () => {
+    const r = expectNotFound(await discoverPlx(input({
+      env: { PATH: path.join(tmp, 'empty') },
+      startupPath: async () => path.join(tmp, 'empty'),
+    })));
+    assert.deepEqual(r.attempts.map((a) => a.source), ['PATH', 'login-shell']);
+  });
+
+  it('is not asked when openplx.server.path is set', async () => {
+    const plx = file('given/plx');
+    const r = expectFound(await discoverPlx(input({
+      serverPath: plx,
+      startupPath: async () => { throw new Error('the startup PATH should not be read'); },
+    })));
+    assert.equal(r.invocation.source, 'server.path');
+  });
+
+  const linuxOnly = process.platform === 'linux' ? it : it.skip;
+  linuxOnly("readStartupPath reads the PATH a process was started with from /proc", async () => {
+    const PATH = [path.join(tmp, 'a b'), '/usr/bin', '/bin'].join(':');
+    const child = spawn(process.execPath, ['-e', 'process.env.PATH = "changed"; setTimeout(() => {}, 10000)'], {
+      env: { PATH, OTHER: 'x' },
+      stdio: 'ignore',
+    });
+    try {
+      await new Promise((resolve) => setTimeout(resolve, 300));
+      assert.equal(await readStartupPath(child.pid), PATH);
+    } finally {
+      child.kill();
+    }
+    assert.equal(await readStartupPath(2 ** 22 + 12345), undefined);
   });
 });
 
