@@ -961,7 +961,7 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
         if isinstance(got, BackgroundCheck):
             got = await got.wait()
             if got is None:
-                raise ServerCancelled("a newer version of the document arrived", {"retriggerRequest": True})
+                raise ServerCancelled(message="a newer version of the document arrived", data={"retriggerRequest": True})
         if got is None:
             return types.RelatedFullDocumentDiagnosticReport(items=[])
         version, diags = got
