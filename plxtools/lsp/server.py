@@ -254,6 +254,7 @@ class PlxServer(LanguageServer):
         self.max_document_size = MAX_DOCUMENT_SIZE  # characters; 0: no limit (setting maxDocumentSize)
         self.background_size = int(os.environ.get("PLX_LSP_BACKGROUND_SIZE") or BACKGROUND_SIZE)
         self._background: dict[str, BackgroundCheck] = {}  # uri -> the forked check running for it
+        self._migration: tuple | None = None  # (path, text, migrate_action.Migration | None) last computed
         self.counters: dict[str, int] = {}  # background checks started, finished, cancelled (plx/stats)
 
     def report_server_error(self, error: Exception, source) -> None:
@@ -359,6 +360,39 @@ class PlxServer(LanguageServer):
             return None
         path = self.sync(uri) or self.path_of(uri)
         return self.host.quick_state(path) if quick else self.host.state(path)
+
+    # -------------------------------------------------------------- migrate this file
+
+    def migrate_action(self, st, only) -> types.CodeAction | None:
+        """`source.migrate.plx` (migrate_action.py): computed when asked for source actions or when
+        the file has U001/U002 diagnostics, once per version of the text."""
+        from plxtools.lsp import migrate_action as ma
+
+        if not ma.wanted(only):
+            return None
+        if only is None and not any(d.code in ("U001", "U002") for d in st.diagnostics):
+            return None
+        cached = self._migration
+        if cached is not None and cached[0] == st.path and cached[1] is st.text:
+            m = cached[2]
+        else:
+            try:
+                m = ma.migration(self.host, st)
+            except Exception:  # noqa: BLE001 - the other actions are still answered
+                log.exception("migrating %s failed", st.path)
+                m = None
+            self._migration = (st.path, st.text, m)
+        if m is None:
+            return None
+        if m.new_text is None:
+            if not self.cap("text_document.code_action.disabled_support"):
+                return None
+            return types.CodeAction(title=m.title, kind=ma.KIND,
+                                    disabled=types.CodeActionDisabled(reason=m.reason or "refused"))
+        pos = self.positions(st.path, st)
+        edit = types.TextEdit(range=pos.offsets_range(0, len(st.text)), new_text=m.new_text)
+        return types.CodeAction(title=m.title, kind=ma.KIND,
+                                edit=types.WorkspaceEdit(changes={self.uri_of(st.path): [edit]}))
 
     # -------------------------------------------------------------- large documents
 
@@ -1233,7 +1267,8 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
 
     @server_feature(types.TEXT_DOCUMENT_CODE_ACTION,
                     types.CodeActionOptions(code_action_kinds=[types.CodeActionKind.QuickFix,
-                                                               types.CodeActionKind.SourceFixAll]))
+                                                               types.CodeActionKind.SourceFixAll,
+                                                               "source.migrate.plx"]))
     def code_action(ls: PlxServer, params: types.CodeActionParams):
         st = ls.state(params.text_document.uri)
         if st is None:
@@ -1258,6 +1293,9 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
                 diags.append(match or ls.lsp_diagnostic(d, pos))
             out.append(types.CodeAction(title=a.title, kind=a.kind, diagnostics=diags or None,
                                         is_preferred=a.preferred or None, edit=types.WorkspaceEdit(changes=changes)))
+        migrate = ls.migrate_action(st, only)
+        if migrate is not None:
+            out.append(migrate)
         return out
 
     @server.feature("plx/stats")
