@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import asyncio
 import gc
+import json
 import logging
 import os
 import sys
@@ -39,6 +40,61 @@ class RequestFailed(JsonRpcException):
     """LSP's RequestFailed (-32803): the request was valid but cannot be answered."""
 
     CODE = -32803
+
+
+class ServerCancelled(JsonRpcException):
+    """LSP's ServerCancelled (-32802): the server dropped the request (a newer version arrived)."""
+
+    CODE = -32802
+
+
+MAX_DOCUMENT_SIZE = 1_000_000  # characters: above it a document is not analysed (maxDocumentSize)
+BACKGROUND_SIZE = 200_000  # characters: a loose document this large is checked in a forked process
+
+
+class BackgroundCheck:
+    """A forked process checking one version of a large document."""
+
+    __slots__ = ("uri", "version", "text", "pid", "fd", "chunks", "waiters", "fallback")
+
+    def __init__(self, uri: str, version, text: str, pid: int, fd: int):
+        self.uri, self.version, self.text, self.pid, self.fd = uri, version, text, pid, fd
+        self.chunks: list[bytes] = []
+        self.waiters: list[asyncio.Future] = []
+        self.fallback = False
+
+    async def wait(self):
+        fut = asyncio.get_running_loop().create_future()
+        self.waiters.append(fut)
+        return await fut
+
+    def settle(self, result) -> None:
+        for fut in self.waiters:
+            if not fut.done():
+                fut.set_result(result)
+        self.waiters = []
+
+
+def memory_report() -> dict:
+    from plxtools.syntax import ast
+
+    gc.unfreeze()  # frozen objects are invisible to gc.get_objects(); freezing again is constant time
+    try:
+        trees = [{"path": o.path, "chars": len(o.text)} for o in gc.get_objects() if type(o) is ast.File]
+    finally:
+        gc.freeze()
+    rss = 0
+    try:
+        with open(f"/proc/{os.getpid()}/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("VmRSS:"):
+                    rss = int(line.split()[1])
+    except OSError:
+        pass
+    import tracemalloc
+
+    traced = tracemalloc.get_traced_memory()[0] // 1024 if tracemalloc.is_tracing() else None
+    return {"trees": trees, "rss_kb": rss, "python_kb": traced, "frozen": gc.get_freeze_count()}
 
 
 # ------------------------------------------------------------------ protocol: tolerate odd clients
@@ -195,6 +251,11 @@ class PlxServer(LanguageServer):
         self._completion_keys: list = []
         self._shown: set[str] = set()
         self.timings: dict[str, list[tuple[float, float]]] = {}  # kind -> recent (wall ms, CPU ms)
+        self.max_document_size = MAX_DOCUMENT_SIZE  # characters; 0: no limit (setting maxDocumentSize)
+        self.background_size = int(os.environ.get("PLX_LSP_BACKGROUND_SIZE") or BACKGROUND_SIZE)
+        self._background: dict[str, BackgroundCheck] = {}  # uri -> the forked check running for it
+        self._migration: tuple | None = None  # (path, text, migrate_action.Migration | None) last computed
+        self.counters: dict[str, int] = {}  # background checks started, finished, cancelled (plx/stats)
 
     def report_server_error(self, error: Exception, source) -> None:
         """Errors outside a request (a failing notification, a bad message) are logged; the editor is
@@ -280,6 +341,9 @@ class PlxServer(LanguageServer):
         path = self.path_of(uri)
         if doc is None:
             return None
+        if self.too_big(doc):
+            self.forget_analysis(path)  # the text alone is kept; nothing is parsed
+            return None
         if path not in self.host.docs:
             self.uris[path] = uri
             self.host.open_document(path, doc.text, doc.version)
@@ -290,8 +354,186 @@ class PlxServer(LanguageServer):
     def state(self, uri: str, quick: bool = False):
         """The analysis of a document; `quick` (completion, signature help) skips the checker when the
         buffer changed since the last check, so typing does not wait for the diagnostics."""
+        doc = self.documents.get(uri)
+        if doc is not None and self.too_big(doc):
+            self.forget_analysis(self.path_of(uri))
+            return None
         path = self.sync(uri) or self.path_of(uri)
         return self.host.quick_state(path) if quick else self.host.state(path)
+
+    # -------------------------------------------------------------- migrate this file
+
+    def migrate_action(self, st, only) -> types.CodeAction | None:
+        """`source.migrate.plx` (migrate_action.py): computed when asked for source actions or when
+        the file has U001/U002 diagnostics, once per version of the text."""
+        from plxtools.lsp import migrate_action as ma
+
+        if not ma.wanted(only):
+            return None
+        if only is None and not any(d.code in ("U001", "U002") for d in st.diagnostics):
+            return None
+        cached = self._migration
+        if cached is not None and cached[0] == st.path and cached[1] is st.text:
+            m = cached[2]
+        else:
+            try:
+                m = ma.migration(self.host, st)
+            except Exception:  # noqa: BLE001 - the other actions are still answered
+                log.exception("migrating %s failed", st.path)
+                m = None
+            self._migration = (st.path, st.text, m)
+        if m is None:
+            return None
+        if m.new_text is None:
+            if not self.cap("text_document.code_action.disabled_support"):
+                return None
+            return types.CodeAction(title=m.title, kind=ma.KIND,
+                                    disabled=types.CodeActionDisabled(reason=m.reason or "refused"))
+        pos = self.positions(st.path, st)
+        edit = types.TextEdit(range=pos.offsets_range(0, len(st.text)), new_text=m.new_text)
+        return types.CodeAction(title=m.title, kind=ma.KIND,
+                                edit=types.WorkspaceEdit(changes={self.uri_of(st.path): [edit]}))
+
+    # -------------------------------------------------------------- large documents
+
+    def too_big(self, doc) -> bool:
+        return bool(self.max_document_size) and len(doc.text) > self.max_document_size
+
+    def forget_analysis(self, path: str) -> None:
+        """Drop the host's buffer, tree and analysis of a document (kept by the server as text only)."""
+        self._positions.pop(path, None)
+        if path in self.host.docs:
+            self.host.close_document(path)
+
+    def size_diagnostic(self, doc) -> types.Diagnostic:
+        size = len(doc.text)
+        message = (f"not analysed: this document has {size:,} characters, over the language server's limit of "
+                   f"{self.max_document_size:,} (setting maxDocumentSize; 0 lifts it); `plx lint` checks it")
+        key = f"size:{doc.uri}"
+        if key not in self._shown:
+            self._shown.add(key)
+            name = doc.uri.rsplit("/", 1)[-1]
+            self.window_show_message(types.ShowMessageParams(type=types.MessageType.Warning,
+                                                             message=f"plx: {name}: {message}"))
+        return types.Diagnostic(range=types.Range(start=types.Position(line=0, character=0),
+                                                  end=types.Position(line=0, character=0)),
+                                message=message, severity=types.DiagnosticSeverity.Warning, source="plx")
+
+    def in_background(self, uri: str, doc) -> bool:
+        """A large loose document is checked in a forked process: the server keeps answering, and a
+        newer version or closing the document kills that process (a bundle file's symbols are seen
+        by other files, so it is checked in the server itself)."""
+        if not hasattr(os, "fork") or len(doc.text) < self.background_size or self.loop is None:
+            return False
+        ws = self.host._ws
+        if ws is None:
+            return False
+        unit = ws.program.units.get(self.path_of(uri))
+        return unit is None or unit.bundle is None
+
+    def start_background(self, uri: str, doc) -> "BackgroundCheck":
+        self.cancel_background(uri)
+        r, w = os.pipe()
+        import warnings
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DeprecationWarning)  # fork with the reader thread alive
+            pid = os.fork()
+        if pid == 0:  # the child: check, write the diagnostics, exit without any cleanup
+            status = 0
+            try:
+                os.close(r)
+                gc.disable()
+                got = self.diagnostics_of(uri, background=False)
+                diags = got[1] if got is not None else []
+                data = json.dumps({"diagnostics": self.protocol._converter.unstructure(diags),
+                                   "timing": self.timings.get("check", [[0, 0]])[-1]}).encode("utf-8")
+                view = memoryview(data)
+                while view:
+                    view = view[os.write(w, view):]
+            except BaseException:  # noqa: BLE001 - the parent sees a short read and checks in-process
+                status = 1
+            finally:
+                os._exit(status)
+        os.close(w)
+        os.set_blocking(r, False)
+        bg = BackgroundCheck(uri, doc.version, doc.text, pid, r)
+        self._background[uri] = bg
+        self._count("background-started")
+        self.loop.add_reader(r, self._background_readable, bg)
+        return bg
+
+    def cancel_background(self, uri: str) -> None:
+        bg = self._background.pop(uri, None)
+        if bg is None:
+            return
+        self._end_child(bg, kill=True)
+        self._count("background-cancelled")
+        bg.settle(None)
+
+    def _end_child(self, bg: "BackgroundCheck", kill: bool) -> None:
+        import signal
+
+        try:
+            self.loop.remove_reader(bg.fd)
+        except Exception:  # noqa: BLE001 - the loop may be closing
+            pass
+        try:
+            os.close(bg.fd)
+        except OSError:
+            pass
+        if kill:
+            try:
+                os.kill(bg.pid, signal.SIGKILL)
+            except OSError:
+                pass
+        try:
+            os.waitpid(bg.pid, 0)
+        except ChildProcessError:
+            pass
+
+    def _background_readable(self, bg: "BackgroundCheck") -> None:
+        while True:
+            try:
+                chunk = os.read(bg.fd, 1 << 20)
+            except BlockingIOError:
+                return
+            except OSError:
+                chunk = b""
+            if not chunk:
+                break
+            bg.chunks.append(chunk)
+        if self._background.get(bg.uri) is bg:
+            del self._background[bg.uri]
+        self._end_child(bg, kill=False)
+        try:
+            got = json.loads(b"".join(bg.chunks))
+            diags = self.protocol._converter.structure(got["diagnostics"], list[types.Diagnostic])
+        except Exception:  # noqa: BLE001 - the child failed: check in the server itself
+            log.warning("the background check of %s failed; checking it here", bg.uri)
+            bg.settle(None)
+            doc = self.documents.get(bg.uri)
+            if doc is not None and doc.text is bg.text:
+                bg.fallback = True
+                self._check_one(bg.uri, False, background=False)
+            return
+        bg.chunks = []
+        self._count("background-finished")
+        timing = got.get("timing") or [0, 0]
+        rec = self.timings.setdefault("check-background", [])
+        rec.append((float(timing[0]), float(timing[1])))
+        del rec[:-200]
+        doc = self.documents.get(bg.uri)
+        if doc is None or doc.text is not bg.text:
+            bg.settle(None)
+            return  # superseded (normally cancelled before it got here)
+        bg.settle((bg.version, diags))
+        if not self.pull_diagnostics:
+            self._push(bg.uri, bg.version, diags)
+        self.notify_messages()
+
+    def _count(self, name: str) -> None:
+        self.counters[name] = self.counters.get(name, 0) + 1
 
     def notify_messages(self) -> None:
         while self.host.messages:
@@ -330,11 +572,20 @@ class PlxServer(LanguageServer):
                                 "edits": [[e.start, e.end, e.text] for e in d.fix.edits]}}
         return out
 
-    def diagnostics_of(self, uri: str):
-        """(version, LSP diagnostics) of a document's current text, checked now."""
+    def diagnostics_of(self, uri: str, background: bool = False):
+        """(version, LSP diagnostics) of a document's current text, checked now (or, with
+        `background`, the BackgroundCheck started for a large document)."""
         doc = self.documents.get(uri)
         if doc is None:
             return None
+        if self.too_big(doc):
+            self.forget_analysis(self.path_of(uri))
+            return doc.version, [self.size_diagnostic(doc)]
+        if background and self.in_background(uri, doc):
+            bg = self._background.get(uri)
+            if bg is not None and bg.text is doc.text:
+                return bg
+            return self.start_background(uri, doc)
         t0, c0 = time.perf_counter(), time.process_time()
         with no_gc():
             st = self.state(uri)
@@ -345,22 +596,29 @@ class PlxServer(LanguageServer):
             self._record("check", t0, c0)
         return doc.version, diags
 
-    def publish(self, uri: str) -> None:
+    def publish(self, uri: str, background: bool = True) -> None:
         """Check a document now and push its diagnostics for the version they were computed for;
         the same diagnostics for the same version are not sent twice."""
-        got = self.diagnostics_of(uri)
-        if got is None:
-            return
+        doc = self.documents.get(uri)
+        if doc is not None and background and self.pull_diagnostics and not self.too_big(doc) \
+                and self.in_background(uri, doc):
+            return  # the editor pulls them: its request starts the check in another process
+        got = self.diagnostics_of(uri, background=background)
+        if got is None or isinstance(got, BackgroundCheck):
+            return  # a large document: its check runs in another process (_background_readable)
         version, diags = got
         if self.pull_diagnostics:
             self.notify_messages()
             return
+        self._push(uri, version, diags)
+        self.notify_messages()
+
+    def _push(self, uri: str, version, diags) -> None:
         key = (version, [(d.range, d.code, d.message, d.severity) for d in diags])
         if self._published.get(uri) != key:
             self._published[uri] = key
             self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
                 uri=uri, version=version, diagnostics=diags))
-        self.notify_messages()
 
     def _record(self, kind: str, t0: float, c0: float) -> None:
         got = self.timings.setdefault(kind, [])
@@ -408,9 +666,9 @@ class PlxServer(LanguageServer):
         if self._dirty:
             self._wake()
 
-    def _check_one(self, uri: str, cascade: bool) -> None:
+    def _check_one(self, uri: str, cascade: bool, background: bool = True) -> None:
         try:
-            self.publish(uri)
+            self.publish(uri, background)
             if cascade:
                 self.schedule_dependents(self.path_of(uri))
         except Exception:  # noqa: BLE001 - a failing check must not stop the server
@@ -467,6 +725,14 @@ class PlxServer(LanguageServer):
         s.ignore = [c.upper() for c in ign]
         mode = merged.get("diagnosticMode")
         self.diagnostic_mode = mode if mode in ("auto", "push", "pull") else "auto"
+        size = merged.get("maxDocumentSize")
+        if isinstance(size, (int, float)) and not isinstance(size, bool) and size >= 0:
+            self.max_document_size = int(size)
+        elif size is not None:
+            self.host.messages.append(f"maxDocumentSize must be a number of characters (0: no limit), not {size!r}")
+            self.max_document_size = MAX_DOCUMENT_SIZE
+        else:
+            self.max_document_size = MAX_DOCUMENT_SIZE
         url = merged.get("ruleDocsUrl")
         self.rule_docs_url = url if isinstance(url, str) and url else None
         if self.host.configure(s):  # a new bundle path: the old model is garbage now
@@ -679,15 +945,23 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
         uri = params.text_document.uri
         path = ls.path_of(uri)
         ls.uris[path] = uri
+        ls._published.pop(uri, None)
+        ls.cancel_background(uri)
+        doc = ls.documents.get(uri)
+        if doc is not None and ls.too_big(doc):
+            ls.schedule(uri, cascade=False)  # the size message, nothing parsed
+            return
         before = ls.host.text_of(path)  # what the model knew: the file on disk, if any
         ls.host.open_document(path, params.text_document.text, params.text_document.version)
-        ls._published.pop(uri, None)
         ls.schedule(uri, cascade=before is not None and before != params.text_document.text)
 
     @server_feature(types.TEXT_DOCUMENT_DID_CHANGE)
     def did_change(ls: PlxServer, params: types.DidChangeTextDocumentParams) -> None:
         uri = params.text_document.uri
+        ls.cancel_background(uri)  # a newer version: the check of the older one is dropped at once
         if ls.sync(uri) is None:
+            if ls.documents.get(uri) is not None:
+                ls.schedule(uri, cascade=False)  # over the size limit: the message for this version
             return
         ls.schedule(uri)
 
@@ -697,6 +971,8 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
         path = ls.path_of(uri)
         ls._dirty.pop(uri, None)
         ls._positions.pop(path, None)
+        ls.cancel_background(uri)
+        ls._shown.discard(f"size:{uri}")
         deps = ls.host.dependents(path)
         ls.host.close_document(path)
         ls.uris.pop(path, None)
@@ -707,11 +983,19 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
     @server_feature(types.TEXT_DOCUMENT_DIAGNOSTIC,
                     types.DiagnosticOptions(inter_file_dependencies=True, workspace_diagnostics=False,
                                             identifier="plx"))
-    def document_diagnostic(ls: PlxServer, params: types.DocumentDiagnosticParams):
-        """Pull diagnostics: the current version's, computed now (or unchanged since `previous_result_id`)."""
+    async def document_diagnostic(ls: PlxServer, params: types.DocumentDiagnosticParams):
+        """Pull diagnostics: the current version's, computed now (or unchanged since `previous_result_id`).
+        A large document's are computed in another process; a newer version cancels the request
+        with ServerCancelled and `retriggerRequest` (LSP 3.17), so the editor asks again."""
         uri = params.text_document.uri
         ls._dirty.pop(uri, None)
-        got = ls.diagnostics_of(uri)
+        if os.environ.get("PLX_LSP_FAULT") == types.TEXT_DOCUMENT_DIAGNOSTIC:
+            raise RuntimeError(f"injected fault in {types.TEXT_DOCUMENT_DIAGNOSTIC} (PLX_LSP_FAULT)")
+        got = ls.diagnostics_of(uri, background=True)
+        if isinstance(got, BackgroundCheck):
+            got = await got.wait()
+            if got is None:
+                raise ServerCancelled(message="a newer version of the document arrived", data={"retriggerRequest": True})
         if got is None:
             return types.RelatedFullDocumentDiagnosticReport(items=[])
         version, diags = got
@@ -983,7 +1267,8 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
 
     @server_feature(types.TEXT_DOCUMENT_CODE_ACTION,
                     types.CodeActionOptions(code_action_kinds=[types.CodeActionKind.QuickFix,
-                                                               types.CodeActionKind.SourceFixAll]))
+                                                               types.CodeActionKind.SourceFixAll,
+                                                               "source.migrate.plx"]))
     def code_action(ls: PlxServer, params: types.CodeActionParams):
         st = ls.state(params.text_document.uri)
         if st is None:
@@ -1008,12 +1293,24 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
                 diags.append(match or ls.lsp_diagnostic(d, pos))
             out.append(types.CodeAction(title=a.title, kind=a.kind, diagnostics=diags or None,
                                         is_preferred=a.preferred or None, edit=types.WorkspaceEdit(changes=changes)))
+        migrate = ls.migrate_action(st, only)
+        if migrate is not None:
+            out.append(migrate)
         return out
 
     @server.feature("plx/stats")
     def stats(ls: PlxServer, params) -> dict:
         """Recent server-side timings (wall and CPU ms) of checks and completions, for bench/lsp_bench.py."""
-        return {kind: [list(x) for x in vals] for kind, vals in ls.timings.items()}
+        out: dict = {kind: [list(x) for x in vals] for kind, vals in ls.timings.items()}
+        out["counters"] = dict(ls.counters)
+        return out
+
+    @server.feature("plx/memory")
+    def memory(ls: PlxServer, params) -> dict:
+        """What the server holds (for tests and bench/lsp_large_doc.py): the syntax trees alive
+        (path and length of their text, found by the collector, frozen objects included), resident
+        memory, and Python's own allocations when tracemalloc traces."""
+        return memory_report()
 
     @server.feature("plx/documentText")
     def document_text(ls: PlxServer, params) -> dict | None:

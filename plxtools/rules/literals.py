@@ -76,8 +76,12 @@ def literal_diagnostics(tree: ast.File, occurrences, path: str) -> list[Diagnost
                                       file=path, help=help_ or None))
                 return
 
-    def visit(body) -> None:
-        for s in body or ():
+    # an explicit stack, not a self-calling closure: such a closure is a reference cycle that would
+    # keep `target` (and through it the file's symbols and tree) alive until a collector pass, and
+    # the language server freezes what a check leaves (plxtools/lsp/server.py: no_gc)
+    stack = [tree.statements]
+    while stack:
+        for s in stack.pop() or ():
             value = getattr(s, "value", None)
             parts = s.path.parts if isinstance(s, (ast.Assignment, ast.Declaration)) else []
             if value is not None and parts:
@@ -90,7 +94,6 @@ def literal_diagnostics(tree: ast.File, occurrences, path: str) -> list[Diagnost
                         parent = member(parts[-2])  # size.z: 0 -> Box.size, component z
                         if parent in LIMITS:
                             judge(parent, v, value.span, f" ({parts[-1].name})")
-            visit(ast.body_of(s))
-
-    visit(tree.statements)
+            stack.append(ast.body_of(s))
+    out.sort(key=lambda d: d.span.start.offset)
     return out

@@ -167,6 +167,9 @@ class IncrementalParser:
 
     def _full(self, text: str, path: str) -> ast.File:
         self.stats["full"] += 1
+        # the chunks of an older version would outlive it (a 200,000-line document shrunk to one
+        # line kept its whole tree here): a full parse starts over
+        self._chunks.pop(path, None)
         return parse_text(text, path)
 
 

@@ -1,0 +1,116 @@
+"""The "migrate this file" source action (kind `source.migrate.plx`): `plx migrate`'s safe rewrites
+of a whole buffer, from the OpenPLX version it was written for to the workspace's.
+
+Offered when the file has U001/U002 diagnostics (names of an older version) or its bundle pins an
+older version than the workspace uses. The version it was written for is the pin, else the oldest
+version those diagnostics point at (U001: the newest older version that has the old name; U002: the
+version before the rename). Its bundles must be on this machine (installed or in plx's cache: `plx
+bundles install VERSION`); the server never fetches them. The rewrite and its safety checks are
+`plxtools.migrate.rewrite.migrate_text`, exactly as on the command line; the models of both versions
+are separate from the server's own (its open buffers are never touched).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+KIND = "source.migrate.plx"
+_U001 = re.compile(r"\(OpenPLX (\d+\.\d+\.\d+) -> ")
+_U002 = re.compile(r"renamed '[^']*' in OpenPLX (\d+\.\d+\.\d+)")
+
+
+@dataclass
+class Migration:
+    title: str
+    new_text: str | None  # None: refused (see `reason`)
+    reason: str | None = None
+    changes: int = 0
+
+
+def wanted(only: list[str] | None) -> bool:
+    return only is None or any(KIND == k or KIND.startswith(k + ".") for k in only)
+
+
+def _available(version: str) -> bool:
+    from plxtools.model.versions import cached_root, installed
+
+    inst = installed()
+    return (inst is not None and inst[1] == version) or cached_root(version) is not None
+
+
+def source_version(path: str, diagnostics, to_v: str) -> str | None:
+    """The version the file was written for, when it is older than `to_v` (else None)."""
+    from plxtools.model.apiindex import version_key, versions
+
+    if os.path.isabs(path):
+        try:
+            from plxtools.model.versions import resolve_bundle_set
+
+            pinned = resolve_bundle_set([Path(path)], [], None).official_version
+        except Exception:  # noqa: BLE001 - a setup plx cannot use: fall back to the diagnostics
+            pinned = None
+        if pinned and version_key(pinned) < version_key(to_v):
+            return pinned
+    found: list[str] = []
+    known = list(versions())
+    for d in diagnostics:
+        if d.code == "U001" and (m := _U001.search(d.message)):
+            found.append(m.group(1))
+        elif d.code == "U002" and (m := _U002.search(d.message)) and m.group(1) in known:
+            i = known.index(m.group(1))
+            if i > 0:
+                found.append(known[i - 1])
+    found = [v for v in found if version_key(v) < version_key(to_v)]
+    return min(found, key=version_key) if found else None
+
+
+def migration(host, st) -> Migration | None:
+    """The action for a file state, or None when there is nothing to migrate."""
+    ws = host.workspace
+    bs = getattr(ws, "bundle_set", None)
+    to_v = getattr(bs, "official_version", None)
+    if not to_v or not st.checked:
+        return None
+    if not any(d.code in ("U001", "U002") for d in st.diagnostics) and not os.path.isabs(st.path):
+        return None
+    from_v = source_version(st.path, st.diagnostics, to_v)
+    if from_v is None:
+        return None
+    title = f"Migrate this file from OpenPLX {from_v} to {to_v}"
+    if not _available(from_v):
+        from plxtools.model.apiindex import version_key
+        from plxtools.model.versions import cached_root
+
+        # the newest version on this machine that is not newer than the one written for
+        from plxtools.model.apiindex import versions
+
+        have = [v for v in versions() if version_key(v) <= version_key(from_v) and cached_root(v) is not None]
+        if not have:
+            return Migration(title, None, f"the bundles of OpenPLX {from_v} are not on this machine: "
+                                          f"`plx bundles install {from_v}`, then try again")
+        from_v = have[-1]
+        title = f"Migrate this file from OpenPLX {from_v} to {to_v}"
+    from plxtools.migrate.rewrite import migrate_text, plan
+    from plxtools.model.versions import resolve_bundle_set
+    from plxtools.model.workspace import workspace_for_set
+
+    targets = [Path(st.path)] if os.path.isabs(st.path) else []
+    try:
+        from_ws = workspace_for_set(resolve_bundle_set(targets, [], from_v))
+        to_ws = workspace_for_set(bs)  # the same set as the server's, in a model of its own
+    except Exception as exc:  # noqa: BLE001 - a version plx cannot load: the action says why
+        return Migration(title, None, f"cannot load OpenPLX {from_v}: {exc}")
+    fm = migrate_text(Path(st.path), st.text, plan(from_v, to_v), host.config(st.path), from_ws, to_ws)
+    # the models of the migration must not keep this buffer's symbols
+    for w in (from_ws, to_ws):
+        if st.path in w.program.units and w.program.units[st.path].bundle is None:
+            w.program.remove_unit(st.path)
+    if fm.refused:
+        return Migration(title, None, fm.refused)
+    if not fm.changed:
+        return None
+    n = fm.edits
+    return Migration(f"{title} ({n} change{'' if n == 1 else 's'})", fm.new_text, None, n)

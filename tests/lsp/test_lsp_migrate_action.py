@@ -1,0 +1,80 @@
+"""The "migrate this file" source action (`source.migrate.plx`) over stdio (issue 13)."""
+
+from __future__ import annotations
+
+from tests.bundles.conftest import fetched  # noqa: F401 - provides the 0.17 bundles, as plx migrate's tests
+from tests.lsp.rawclient import RawServer
+from tests.migrate.test_migrate_files import NEW, OLD
+
+END = {"line": OLD.count("\n"), "character": 0}
+
+
+def apply(text: str, edit: dict) -> str:
+    lines = text.split("\n")
+    r = edit["range"]
+    start = sum(len(x) + 1 for x in lines[:r["start"]["line"]]) + r["start"]["character"]
+    end = sum(len(x) + 1 for x in lines[:r["end"]["line"]]) + r["end"]["character"]
+    return text[:start] + edit["newText"] + text[end:]
+
+
+def actions(s: RawServer, uri: str, only=None) -> list[dict]:
+    ctx = {"diagnostics": []}
+    if only is not None:
+        ctx["only"] = only
+    got = s.request("textDocument/codeAction", {"textDocument": {"uri": uri}, "context": ctx, "range": {
+        "start": {"line": 0, "character": 0}, "end": {"line": 0, "character": 0}}}, timeout=120)
+    return got["result"] or []
+
+
+def test_a_file_written_for_0_17_is_migrated_by_the_source_action(tmp_path, fetched):  # noqa: F811
+    fetched("0.17.26")
+    f = tmp_path / "pendulum.openplx"
+    f.write_text(OLD, encoding="utf-8")
+    (tmp_path / "plx.toml").write_text('openplx-version = "0.19.0"\n', encoding="utf-8")
+    uri = f.as_uri()
+    s = RawServer()
+    try:
+        caps = {"textDocument": {"codeAction": {"disabledSupport": True}}}
+        init = s.initialize(caps, {"diagnosticMode": "push"})
+        kinds = init["result"]["capabilities"]["codeActionProvider"]["codeActionKinds"]
+        assert "source.migrate.plx" in kinds
+        s.open(uri, OLD)
+        diags = s.notification("textDocument/publishDiagnostics", timeout=120, where=lambda p: p["uri"] == uri)
+        assert {"U001", "U002"} <= {d.get("code") for d in diags["diagnostics"]}
+        # offered without asking (U001/U002 are there) and when asked for source actions
+        for only in (None, ["source"], ["source.migrate.plx"]):
+            got = [a for a in actions(s, uri, only) if a.get("kind") == "source.migrate.plx"]
+            assert len(got) == 1, (only, got)
+        action = got[0]
+        assert action["title"].startswith("Migrate this file from OpenPLX 0.1") and "to 0.19.0" in action["title"]
+        assert "(4 changes)" in action["title"]
+        (edit,) = action["edit"]["changes"][uri]
+        assert apply(OLD, edit) == NEW
+        # not offered for quick fixes only
+        assert not [a for a in actions(s, uri, ["quickfix"]) if a.get("kind") == "source.migrate.plx"]
+        # after the migration there is nothing to migrate
+        s.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 2},
+                                            "contentChanges": [{"text": NEW}]})
+        s.notification("textDocument/publishDiagnostics", timeout=120,
+                       where=lambda p: p["uri"] == uri and p.get("version") == 2)
+        assert not [a for a in actions(s, uri, ["source"]) if a.get("kind") == "source.migrate.plx"]
+    finally:
+        s.close()
+
+
+def test_a_refused_migration_is_a_disabled_action_with_the_reason(tmp_path, fetched):  # noqa: F811
+    fetched("0.17.26")
+    f = tmp_path / "broken.openplx"
+    text = OLD + "Broken is Physics3D.Charges.Box:\n    size: {1, 1,\n"  # a syntax error: refused
+    f.write_text(text, encoding="utf-8")
+    (tmp_path / "plx.toml").write_text('openplx-version = "0.19.0"\n', encoding="utf-8")
+    uri = f.as_uri()
+    s = RawServer()
+    try:
+        s.initialize({"textDocument": {"codeAction": {"disabledSupport": True}}}, {"diagnosticMode": "push"})
+        s.open(uri, text)
+        s.notification("textDocument/publishDiagnostics", timeout=120, where=lambda p: p["uri"] == uri)
+        got = [a for a in actions(s, uri, ["source"]) if a.get("kind") == "source.migrate.plx"]
+        assert len(got) == 1 and "syntax errors" in got[0]["disabled"]["reason"] and "edit" not in got[0]
+    finally:
+        s.close()
