@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from plxtools.diagnostics import Span
 from plxtools.model.symbols import ModelSym, Namespace

@@ -198,7 +198,7 @@ def _copier(cls: type):
     fn = _COPIERS.get(cls)
     if fn is None:
         spans, others = _fields_of(cls)
-        lines = [f"def copy(n, m, Node=Node, new=new, cls=cls):", "    c = new(cls)"]
+        lines = ["def copy(n, m, Node=Node, new=new, cls=cls):", "    c = new(cls)"]
         for name in spans:
             lines.append(f"    c.{name} = m.span(n.{name})")
         for name in others:
