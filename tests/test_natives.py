@@ -15,7 +15,6 @@ from plxtools.model import natives as n
 from plxtools.model.natives import (
     FUNCTIONS,
     OPERATORS,
-    STRUCT_TYPES,
     UNSUPPORTED,
     ElementaryTransform,
     Line,
@@ -42,24 +41,28 @@ def f(name: str):
 @pytest.fixture(scope="module", autouse=True)
 def official_struct_types():
     """The math types' fields and defaults come from the bundle program, as in `plx check`."""
-    from plxtools.model.natives import bind_struct_types
     from plxtools.model.workspace import Workspace
 
-    program = Workspace().program
-    bind_struct_types(program)
-    return program
+    return Workspace().program
 
 
-def test_struct_fields_and_defaults_are_read_from_the_bundles(official_struct_types):
+@pytest.fixture(scope="module")
+def structs(official_struct_types):
+    from plxtools.model.natives import struct_types
+
+    return struct_types(official_struct_types)
+
+
+def test_struct_fields_and_defaults_are_read_from_the_bundles(official_struct_types, structs):
     p = official_struct_types
     for name in ("Math.Vec2", "Math.Vec3", "Math.Quat", "Math.Matrix3x3", "Math.Matrix4x4", "Math.AffineTransform",
                  "Math.Line"):
         model = p.lookup_outside_visibility(name.split("."))
-        assert STRUCT_TYPES[name].fields == tuple(p.all_members(model)), name
+        assert structs[name].fields == tuple(p.all_members(model)), name
     quat = p.lookup_outside_visibility(["Math", "Quat"])
-    assert p.all_members(quat)["w"].value.value == 1 and STRUCT_TYPES["Math.Quat"].defaults["w"] == 1.0
-    assert STRUCT_TYPES["Math.AffineTransform"].field_types == {"position": "Math.Vec3", "rotation": "Math.Quat"}
-    assert "e00" not in STRUCT_TYPES["Math.Matrix4x4"].defaults  # the bundle gives Matrix4x4 no defaults
+    assert p.all_members(quat)["w"].value.value == 1 and structs["Math.Quat"].defaults["w"] == 1.0
+    assert structs["Math.AffineTransform"].field_types == {"position": "Math.Vec3", "rotation": "Math.Quat"}
+    assert "e00" not in structs["Math.Matrix4x4"].defaults  # the bundle gives Matrix4x4 no defaults
 
 
 def close(a, b, tol=1e-9) -> bool:
@@ -195,8 +198,8 @@ def test_every_declared_math_operator_is_implemented():
     assert sorted(DECLARED_OPERATORS - set(OPERATORS), key=str) == []
 
 
-def test_codec_fields_match_bundle_attributes():
-    for type_name, codec in STRUCT_TYPES.items():
+def test_codec_fields_match_bundle_attributes(structs):
+    for type_name, codec in structs.items():
         assert list(codec.fields) == DECLARED_ATTRIBUTES[type_name][: len(codec.fields)], type_name
         assert set(DECLARED_ATTRIBUTES[type_name]) == set(codec.fields), type_name
 
@@ -525,7 +528,7 @@ def test_transform_composition_and_inverse():
         assert close(inv_of.position, inv.position) and close(inv_of.rotation, inv.rotation)
 
 
-def test_transform_hand_checked():
+def test_transform_hand_checked(structs):
     q = f("Math.Quat.angle_axis")(math.pi / 2, Z)
     t = f("Math.AffineTransform.from")([1.0, 0.0, 0.0], q)
     assert close(f("Math.AffineTransform.transform_vec3_point")(t, X), [1.0, 1.0, 0.0])
@@ -534,7 +537,7 @@ def test_transform_hand_checked():
     assert close(inv.position, [0.0, 1.0, 0.0])
     created = f("Math.AffineTransform.create")()
     assert created == Transform(np.zeros(3), ID_Q)
-    assert created == STRUCT_TYPES["Math.AffineTransform"].default()
+    assert created == structs["Math.AffineTransform"].default()
 
 
 def test_transform_is_immutable_value():
@@ -609,11 +612,11 @@ def test_line():
     assert f("Math.Line.length")(line) == 5.0
 
 
-def test_inertia_symmetric_tensor():
+def test_inertia_symmetric_tensor(structs):
     t = f("Physics3D.Bodies.Inertia.symmetric_tensor")([1.0, 2.0, 3.0], 0.1, 0.2, 0.3)
     assert close(t, [[1.0, 0.1, 0.2], [0.1, 2.0, 0.3], [0.2, 0.3, 3.0]])
     assert close(t, t.T)
-    assert STRUCT_TYPES["Math.Matrix3x3"].to_fields(t)["e12"] == 0.3
+    assert structs["Math.Matrix3x3"].to_fields(t)["e12"] == 0.3
 
 
 def test_elementary_transform_sequence_fkine():
@@ -856,7 +859,7 @@ def test_call_helper():
 # ------------------------------------------------------------------------------------------------
 
 
-def test_codec_round_trips():
+def test_codec_round_trips(structs):
     rng = np.random.default_rng(7)
     samples = {
         "Math.Vec2": rng.normal(size=2),
@@ -868,9 +871,9 @@ def test_codec_round_trips():
         "Math.Line": Line(rng.normal(size=3), rng.normal(size=3)),
         "Robotics.Kinematics.ElementaryTransform": ElementaryTransform("Ry", 0.5, True, True),
     }
-    assert set(samples) == set(STRUCT_TYPES)
+    assert set(samples) == set(structs)
     for type_name, value in samples.items():
-        codec = STRUCT_TYPES[type_name]
+        codec = structs[type_name]
         fields = codec.to_fields(value)
         assert list(fields) == list(codec.fields)
         back = codec.from_fields(fields)
@@ -881,33 +884,33 @@ def test_codec_round_trips():
         assert type_of(back) == type_name
 
 
-def test_codec_field_values():
-    q = STRUCT_TYPES["Math.Quat"].to_fields(np.array([0.1, 0.2, 0.3, 0.9]))
+def test_codec_field_values(structs):
+    q = structs["Math.Quat"].to_fields(np.array([0.1, 0.2, 0.3, 0.9]))
     assert q == {"x": 0.1, "y": 0.2, "z": 0.3, "w": 0.9}
     assert all(type(v) is float for v in q.values())
-    m = STRUCT_TYPES["Math.Matrix3x3"].to_fields(np.arange(9.0).reshape(3, 3))
+    m = structs["Math.Matrix3x3"].to_fields(np.arange(9.0).reshape(3, 3))
     assert m["e01"] == 1.0 and m["e10"] == 3.0 and m["e22"] == 8.0
-    t = STRUCT_TYPES["Math.AffineTransform"].from_fields({"position": np.array([1.0, 2.0, 3.0])})
+    t = structs["Math.AffineTransform"].from_fields({"position": np.array([1.0, 2.0, 3.0])})
     assert close(t.rotation, ID_Q)
-    assert STRUCT_TYPES["Math.Vec3"].from_fields({"x": 1, "z": 2, "extra": "ignored"}).tolist() == [1.0, 0.0, 2.0]
+    assert structs["Math.Vec3"].from_fields({"x": 1, "z": 2, "extra": "ignored"}).tolist() == [1.0, 0.0, 2.0]
 
 
-def test_codec_defaults():
-    assert close(STRUCT_TYPES["Math.Vec3"].default(), np.zeros(3))
-    assert close(STRUCT_TYPES["Math.Quat"].default(), ID_Q)
-    assert close(STRUCT_TYPES["Math.Matrix3x3"].default(), np.eye(3))
-    assert STRUCT_TYPES["Math.AffineTransform"].default() == Transform(np.zeros(3), ID_Q)
+def test_codec_defaults(structs):
+    assert close(structs["Math.Vec3"].default(), np.zeros(3))
+    assert close(structs["Math.Quat"].default(), ID_Q)
+    assert close(structs["Math.Matrix3x3"].default(), np.eye(3))
+    assert structs["Math.AffineTransform"].default() == Transform(np.zeros(3), ID_Q)
     with pytest.raises(NativeError, match="missing value for field 'e00'"):
-        STRUCT_TYPES["Math.Matrix4x4"].default()
+        structs["Math.Matrix4x4"].default()
 
 
-def test_codec_errors():
+def test_codec_errors(structs):
     with pytest.raises(NativeError):
-        STRUCT_TYPES["Math.Vec3"].from_fields({"x": "1"})
+        structs["Math.Vec3"].from_fields({"x": "1"})
     with pytest.raises(NativeError):
-        STRUCT_TYPES["Math.AffineTransform"].from_fields({"position": np.zeros(2)})
+        structs["Math.AffineTransform"].from_fields({"position": np.zeros(2)})
     with pytest.raises(NativeError):
-        STRUCT_TYPES["Math.AffineTransform"].to_fields(np.zeros(3))
+        structs["Math.AffineTransform"].to_fields(np.zeros(3))
 
 
 def test_type_of():
@@ -935,3 +938,18 @@ def test_import_is_cheap():
     root = Path(__file__).resolve().parents[1]
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=root)
     assert out.stdout.strip() == "[]"
+
+
+def test_codecs_belong_to_their_program(structs, official_struct_types):
+    """Two programs never share codecs: one that declares no math types has none of them, and the
+    bundles' program keeps its own (they used to live in one module-level table)."""
+    from plxtools.model.natives import struct_types
+
+    class NoMath:
+        def lookup_outside_visibility(self, parts):
+            return None
+
+    bare = struct_types(NoMath())
+    assert set(bare) == {"Robotics.Kinematics.ElementaryTransform"}
+    assert "Math.Vec3" in struct_types(official_struct_types)
+    assert struct_types(official_struct_types) is structs

@@ -28,7 +28,7 @@ import numpy as np
 
 from plxtools.check.instance import VALUE, Builder, Obj, Prim, Ref
 from plxtools.model import natives, resolve
-from plxtools.model.natives import STRUCT_TYPES, NativeError, Transform
+from plxtools.model.natives import NativeError, Transform, struct_types
 from plxtools.model.program import Program
 from plxtools.model.symbols import GlobalSym, MethodSym, ModelSym, Ty
 from plxtools.model.values import MethodRef, NsRef, TypeObj
@@ -71,20 +71,20 @@ _MISSING = object()
 _INTERP = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
 
 
-def _codec_field_type(tname: str, sub: tuple) -> str | None:
+def _codec_field_type(structs: dict, tname: str, sub: tuple) -> str | None:
     cur = tname
     for f in sub:
-        codec = STRUCT_TYPES.get(cur)
+        codec = structs.get(cur)
         if codec is None or f not in codec.field_types:
             return None
         cur = codec.field_types[f]
     return cur
 
 
-def _component(value: Any, tname: str, sub: tuple) -> Any:
+def _component(structs: dict, value: Any, tname: str, sub: tuple) -> Any:
     cur, t = value, tname
     for f in sub:
-        codec = STRUCT_TYPES[t]
+        codec = structs[t]
         cur = codec.to_fields(cur)[f]
         t = codec.field_types[f]
     return cur
@@ -94,6 +94,7 @@ class Evaluator:
     def __init__(self, program: Program, builder: Builder, unit, report: Callable[..., None]):
         """``report(code, message, span_node_or_None, unit_or_None, anchor_obj, help)``."""
         self.p = program
+        self.structs = struct_types(program)
         self.b = builder
         self.unit = unit
         self.report = report
@@ -117,7 +118,7 @@ class Evaluator:
         parts = path.split(".") if path else []
         for i, name in enumerate(parts):
             if isinstance(cur, SView):
-                ftype = _codec_field_type(cur.tname, (name,))
+                ftype = _codec_field_type(self.structs, cur.tname, (name,))
                 if ftype is None:
                     if default is not _MISSING:
                         return default
@@ -213,7 +214,7 @@ class Evaluator:
 
     def _attr(self, obj: Obj, name: str) -> Any:
         if obj.struct is not None:
-            ftype = _codec_field_type(obj.struct, (name,))
+            ftype = _codec_field_type(self.structs, obj.struct, (name,))
             if ftype is None:
                 return _MISSING
             return SView(obj, (name,), ftype)
@@ -343,23 +344,23 @@ class Evaluator:
                     best, best_rel, deeper_after = i, rel, False
             elif rel[: len(sub)] == sub:
                 deeper_after = True
-        codec = STRUCT_TYPES.get(tname)
+        codec = self.structs.get(tname)
         if best >= 0 and not (codec is not None and deeper_after):
             e = obj.effects[best]
-            whole_t = _codec_field_type(obj.struct, best_rel) if obj.struct else None
+            whole_t = _codec_field_type(self.structs, obj.struct, best_rel) if obj.struct else None
             v = self._eval_effect(e, whole_t or tname)
             v = self.value(v)
-            if whole_t is not None and whole_t in STRUCT_TYPES:
+            if whole_t is not None and whole_t in self.structs:
                 v = self._coerce_struct(v, whole_t, e[0].expr, e[0].unit)
-                v = _component(v, whole_t, sub[len(best_rel):])
+                v = _component(self.structs, v, whole_t, sub[len(best_rel):])
             elif sub[len(best_rel):]:
                 raise EvalError("A003", f"{obj.display}: cannot take a field of this value", e[0].expr, e[0].unit)
             if codec is None:
                 return self._coerce(v, Ty(tname), e[0].expr, e[0].unit, obj.display)
             return v
         if codec is None:  # a primitive field with no assignment: the parent codec's default
-            parent = _codec_field_type(obj.struct, sub[:-1]) if sub else None
-            pc = STRUCT_TYPES.get(parent) if parent else None
+            parent = _codec_field_type(self.structs, obj.struct, sub[:-1]) if sub else None
+            pc = self.structs.get(parent) if parent else None
             if pc is not None and sub[-1] in pc.defaults:
                 d = pc.defaults[sub[-1]]
                 return float(d) if isinstance(d, (int, float, np.floating)) else d
@@ -419,7 +420,7 @@ class Evaluator:
         return v
 
     def _coerce_struct(self, v: Any, sname: str, node, unit) -> Any:
-        codec = STRUCT_TYPES[sname]
+        codec = self.structs[sname]
         if isinstance(v, codec.python_type):
             if isinstance(v, np.ndarray):
                 want = natives.SHAPES.get(sname)
@@ -525,9 +526,9 @@ class Evaluator:
                 return Bound(None, ref.method, ref.method.qname)
             raise EvalError("A003", f"{getattr(base.sym, 'qname', base.sym)} has no static function '{name}'", e, unit)
         if isinstance(base, SView):
-            ftype = _codec_field_type(base.tname, (name,))
+            ftype = _codec_field_type(self.structs, base.tname, (name,))
             if ftype is not None:
-                if ftype in STRUCT_TYPES:
+                if ftype in self.structs:
                     return SView(base.obj, base.sub + (name,), ftype)
                 return self.struct_value(base.obj, base.sub + (name,), ftype)
             return self._method_on_value(self.value(base), base.tname, name, e, unit)
@@ -545,8 +546,8 @@ class Evaluator:
         if base is None:
             raise EvalError("A005", f"'.{name}' on an unbound optional reference", e, unit)
         tname = natives.type_of(base)
-        if tname in STRUCT_TYPES:
-            codec = STRUCT_TYPES[tname]
+        if tname in self.structs:
+            codec = self.structs[tname]
             if name in codec.fields:
                 return codec.to_fields(base)[name]
         if tname is not None:
@@ -605,18 +606,18 @@ class Evaluator:
     def _brace(self, e: ast.Brace, scope, unit, expected: Any) -> Any:
         tname = None
         if isinstance(expected, str):
-            tname = expected if expected in STRUCT_TYPES else None
+            tname = expected if expected in self.structs else None
         elif isinstance(expected, Ty):
             if expected.alts:
                 for a in expected.alts:
                     sn = self.b.struct_name(a.model) if a.model is not None else None
-                    if sn is not None and len(STRUCT_TYPES[sn].fields) == len(e.items):
+                    if sn is not None and len(self.structs[sn].fields) == len(e.items):
                         tname = sn
                         break
             elif expected.model is not None and not expected.array:
                 tname = self.b.struct_name(expected.model)
         # no guessing from the item count (a 4-item literal is not always a Quat): the expected type decides
-        codec = STRUCT_TYPES.get(tname) if tname else None
+        codec = self.structs.get(tname) if tname else None
         if codec is None or tname in ("Math.AffineTransform", "Math.Line"):
             raise EvalError("A003", f"a {{...}} literal of {len(e.items)} values has no known type here", e, unit)
         if len(e.items) != len(codec.fields):

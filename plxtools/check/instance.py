@@ -31,7 +31,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from plxtools.model.natives import STRUCT_TYPES, bind_struct_types
+from plxtools.model.natives import struct_types
 from plxtools.model.program import Program
 from plxtools.model.resolve import opaque_import, replaces
 from plxtools.model.symbols import FileUnit, ModelSym, Ty
@@ -97,7 +97,7 @@ class Obj:
     traits: tuple
     owner: "Obj | None"
     decl: Eff | None  # the winning declaration that created it (None for the root / singletons)
-    struct: str | None = None  # the STRUCT_TYPES name for value types
+    struct: str | None = None  # the struct_types() name for value types
     effects: list = field(default_factory=list)  # struct objects only: every effect, in order
     children: dict = field(default_factory=dict)  # name -> Obj | Ref
     prims: dict = field(default_factory=dict)  # name -> Prim
@@ -118,7 +118,7 @@ class Builder:
 
     def __init__(self, program: Program, report=None):
         self.p = program
-        bind_struct_types(program)  # Vec3, Quat, ... fields and defaults as the bundles declare them
+        self.structs = struct_types(program)  # Vec3, Quat, ... as this program's bundles declare them
         self.report = report  # callable(code, message, obj) for instantiation problems
         self._templates: dict[int, list[TEff]] = {}
         self._struct: dict[int, str | None] = {}
@@ -140,7 +140,7 @@ class Builder:
         if key not in self._struct:
             found = None
             for m in self.p.ancestors(model):
-                if not m.anonymous and m.qname in STRUCT_TYPES:
+                if not m.anonymous and m.qname in self.structs:
                     found = m.qname
                     break
             self._struct[key] = found

@@ -69,6 +69,7 @@ from __future__ import annotations
 
 import functools
 import math
+import weakref
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -81,9 +82,8 @@ __all__ = [
     "Line",
     "ElementaryTransform",
     "StructCodec",
-    "STRUCT_TYPES",
     "SHAPES",
-    "bind_struct_types",
+    "struct_types",
     "FUNCTIONS",
     "OPERATORS",
     "UNSUPPORTED",
@@ -1264,7 +1264,7 @@ def _array_repr(type_name: str):
 
 
 # Only the Python representation is hand-written; fields, field types and defaults are read from the
-# bundle program by `bind_struct_types` (the bundles declare them: `x is Real: 0` in Math/Vec3).
+# bundle program by `struct_types`, once per program (the bundles declare them: `x is Real: 0` in Math/Vec3).
 _REPRESENTATIONS: dict[str, Callable] = {
     _V2: _array_repr(_V2),
     _V3: _array_repr(_V3),
@@ -1289,22 +1289,23 @@ _ET_CODEC = StructCodec(
     _split=lambda e: {"type": e.type, "c": e.c, "free": e.free, "flip": e.flip},
 )
 
-STRUCT_TYPES: dict[str, StructCodec] = {_ET_CODEC.type_name: _ET_CODEC}
-"""Codecs by qualified model name; the math types are added by `bind_struct_types`."""
-_BOUND: list = [None]  # the program the codecs were read from
+# the value types whose representation is an object of ours (the rest are numpy arrays, by shape)
+_OBJECT_TYPES = ((Transform, _T), (Line, "Math.Line"), (ElementaryTransform, _ET_CODEC.type_name))
+
+_STRUCTS_OF: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()  # program -> its codecs
 
 
-def bind_struct_types(program) -> None:
-    """Read the math value types' fields, field types and defaults from a bundle program.
-
-    Called by whoever evaluates against a program (check's Builder); re-reading for the same program
-    is free. A type the program does not declare has no codec (its values cannot be built).
-    """
-    if _BOUND[0] is program:
-        return
+def struct_types(program) -> dict[str, StructCodec]:
+    """Codecs by qualified model name for the value types of ``program``: the math types' fields,
+    field types and defaults as that program's bundles declare them (`x is Real: 0` in Math/Vec3),
+    plus ElementaryTransform. Read once per program (and forgotten with it), so programs of different
+    versions in one process never share them. A type the program does not declare has no codec."""
+    cached = _STRUCTS_OF.get(program)
+    if cached is not None:
+        return cached
     from plxtools.syntax import ast
 
-    codecs: dict[str, StructCodec] = {}
+    codecs: dict[str, StructCodec] = {_ET_CODEC.type_name: _ET_CODEC}
     for name in _REPRESENTATIONS:  # dependencies first: Vec3/Quat before AffineTransform and Line
         model = program.lookup_outside_visibility(name.split("."))
         if model is None or not hasattr(model, "members"):
@@ -1327,10 +1328,8 @@ def bind_struct_types(program) -> None:
                     pass
         python_type, build, split = _REPRESENTATIONS[name](names)
         codecs[name] = StructCodec(name, names, types, defaults, python_type, build, split)
-    for name in _REPRESENTATIONS:
-        STRUCT_TYPES.pop(name, None)
-    STRUCT_TYPES.update(codecs)
-    _BOUND[0] = program
+    _STRUCTS_OF[program] = codecs
+    return codecs
 
 
 def _literal(expr, ast) -> Any:
@@ -1364,7 +1363,7 @@ def type_of(value: Any) -> str | None:
         return "String"
     if isinstance(value, np.ndarray):
         return _SHAPE_TYPES.get(value.shape)
-    for codec in STRUCT_TYPES.values():
-        if codec.python_type is not np.ndarray and isinstance(value, codec.python_type):
-            return codec.type_name
+    for python_type, type_name in _OBJECT_TYPES:
+        if isinstance(value, python_type):
+            return type_name
     return None
