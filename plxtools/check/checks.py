@@ -13,6 +13,7 @@ from itertools import combinations
 
 import numpy as np
 
+from plxtools import envpath
 from plxtools.check import coverage, drivetrain
 from plxtools.check.assemble import DOF_OF_MATE, Assembler, Assembly, CtrlRec, Kinds, MateRec, Node, Placement
 from plxtools.check.convert import Collector, GeomRec
@@ -33,7 +34,6 @@ UNSUPPORTED_BUNDLES = {
 SIGNAL_NAMESPACES = ("Physics.Signals", "Physics3D.Signals")
 DRY_MODELS = ("dry", "dry_cone", "dry_box", "dry_scale_box", "dry_constant_normal_force",
               "dry_depth_scaled_constant_normal_force")
-_INTERP = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
 
 
 class StaticChecks:
@@ -415,12 +415,11 @@ def _check_string(s: ast.String, base: str, rep: Reporter, variables_only: bool 
             rep.add("A031", f"file {p!r} does not exist (looked for {full})", span=s.span,
                     help="paths in @\"...\" are relative to the folder of the .openplx file")
     elif s.kind == "interp":
-        unset = [v for v in _INTERP.findall(s.value) if os.environ.get(v) is None]
-        for v in dict.fromkeys(unset):
+        val, unset = envpath.expand(s.value)
+        for v in unset:
             rep.add("A007", f"environment variable {v} in {s.raw} is not set; the path cannot be resolved here",
                     span=s.span, help=f"set {v} (for AGX_DATA_DIR: install AGX), or use @\"...\" with a relative path")
         if not unset and not variables_only:
-            val = _INTERP.sub(lambda m: os.environ.get(m.group(1), ""), s.value)
             looks_like_file = "/" in val or os.sep in val or re.search(r"\.[A-Za-z0-9]{2,4}$", val)
             if looks_like_file and not os.path.exists(val if os.path.isabs(val) else os.path.join(base, val)):
                 rep.add("A031", f"file {val!r} (from {s.raw}) does not exist", span=s.span, severity="warning")

@@ -18,14 +18,13 @@ reported once, as a located diagnostic (through ``report``), and the caller gets
 from __future__ import annotations
 
 import math
-import os
-import re
 import sys
 from dataclasses import dataclass
 from typing import Any, Callable
 
 import numpy as np
 
+from plxtools import envpath
 from plxtools.check.instance import VALUE, Builder, Obj, Prim, Ref
 from plxtools.model import natives, resolve
 from plxtools.model.natives import NativeError, Transform, struct_types
@@ -68,7 +67,6 @@ class Bound:
 
 
 _MISSING = object()
-_INTERP = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
 
 
 def _codec_field_type(structs: dict, tname: str, sub: tuple) -> str | None:
@@ -102,7 +100,6 @@ class Evaluator:
         self._active: dict[Any, str] = {}  # keys being evaluated -> display name (cycle detection)
         self._stack: list[str] = []
         self._failed: set = set()
-        self.unset_vars: dict[str, list] = {}
         # values may chain through thousands of others; each link takes ~10 Python frames (3.11 does
         # not use the C stack for them).  Deeper chains end in a located A006, not a crash.
         if sys.getrecursionlimit() < 20000:
@@ -437,14 +434,8 @@ class Evaluator:
         if isinstance(e, ast.Bool):
             return e.value
         if isinstance(e, ast.String):
-            if e.kind == "interp":
-                def sub(m: re.Match) -> str:
-                    val = os.environ.get(m.group(1))
-                    if val is None:
-                        self.unset_vars.setdefault(m.group(1), []).append(e)
-                        return ""
-                    return val
-                return _INTERP.sub(sub, e.value)
+            if e.kind == "interp":  # an unset variable reads as "" (check reports it: A007)
+                return envpath.expand(e.value)[0]
             return e.value
         if isinstance(e, ast.Paren):
             return self.eval(e.inner, scope, unit, expected)

@@ -39,6 +39,7 @@ TOP_KEYS = ("model", "root", "duration", "name", "description", "input", "expect
 INPUT_KEYS = ("at", "signal", "value")
 EXPECT_KEYS = ("at", "during", "of", "below", "above", "abs_below", "between", "equals", "tolerance", "unit")
 COMPARATORS = ("below", "above", "abs_below", "between", "equals")
+_STRICT = frozenset({"below", "above", "abs_below"})  # the comparisons that fail at equality
 UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
 
 
@@ -89,39 +90,47 @@ class Expect:
     norm: bool = False  # |v| of a vector output ("speed")
     angular: bool = False
 
+    def _condition(self, op: str, v, of: str | None) -> str:
+        """One comparison as written: about ``of`` (``x between 1 and 2``) or alone (``between 1 and 2``)."""
+        u = f" {self.unit}" if self.unit else ""
+        subject = f"{of} " if of else ""
+        if op == "between":
+            return f"{subject}between {v[0]:g} and {v[1]:g}{u}"
+        if op == "abs_below":
+            return f"|{of or 'value'}| below {v:g}{u}"
+        if op == "equals":
+            return f"{subject}{'equals ' if of else ''}{v:g}{u} +- {self.tolerance:g}"
+        return f"{subject}{op} {v:g}{u}"
+
     def describe(self) -> str:
         """``box_truck.chassis.x below -1`` / ``|...yaw| below 2 deg``, as written."""
-        u = f" {self.unit}" if self.unit else ""
-        parts = []
-        for op, v in self.checks:
-            if op == "between":
-                parts.append(f"{self.of} between {v[0]:g} and {v[1]:g}{u}")
-            elif op == "abs_below":
-                parts.append(f"|{self.of}| below {v:g}{u}")
-            elif op == "equals":
-                parts.append(f"{self.of} equals {v:g}{u} +- {self.tolerance:g}")
-            else:
-                parts.append(f"{self.of} {op} {v:g}{u}")
         when = f"at t={self.at:g} s" if self.at is not None else \
             f"during [{self.during[0]:g}, {self.during[1]:g}] s"  # type: ignore[index]
-        return f"{' and '.join(parts)} {when}"
+        return f"{' and '.join(self._condition(op, v, self.of) for op, v in self.checks)} {when}"
 
     def scale(self) -> float:
         return UNITS.get(self.unit or "rad", 1.0) if self.angular else 1.0
 
+    def _gap(self, op: str, v, m: float) -> float:
+        """How far ``m`` (in the unit written) is past the limit of one comparison; it holds when
+        the gap is below 0 (strict comparisons) or at most 0 (ranges, equals within tolerance)."""
+        if op == "below":
+            return m - v
+        if op == "above":
+            return v - m
+        if op == "abs_below":
+            return abs(m) - v
+        if op == "between":
+            return max(v[0] - m, m - v[1])
+        return abs(m - v) - (self.tolerance or 0.0)  # equals
+
     def failures(self, measured: float) -> list[str]:
         """The comparisons ``measured`` (SI) fails, as text in the unit written ([] when it passes)."""
-        s = self.scale()
-        m = measured / s
+        m = measured / self.scale()
         bad = []
         for op, v in self.checks:
-            ok = {
-                "below": lambda: m < v,
-                "above": lambda: m > v,
-                "abs_below": lambda: abs(m) < v,
-                "between": lambda: v[0] <= m <= v[1],
-                "equals": lambda: abs(m - v) <= (self.tolerance or 0.0),
-            }[op]()
+            gap = self._gap(op, v, m)
+            ok = gap < 0 if op in _STRICT else gap <= 0
             if not (ok and math.isfinite(m)):
                 bad.append(op)
         return bad
@@ -131,35 +140,14 @@ class Expect:
         m = measured / self.scale()
         if not math.isfinite(m):
             return math.inf
-        worst = 0.0
-        for op, v in self.checks:
-            gap = {
-                "below": lambda: m - v,
-                "above": lambda: v - m,
-                "abs_below": lambda: abs(m) - v,
-                "between": lambda: max(v[0] - m, m - v[1]),
-                "equals": lambda: abs(m - v) - (self.tolerance or 0.0),
-            }[op]()
-            worst = max(worst, gap)
-        return worst
+        return max([0.0] + [self._gap(op, v, m) for op, v in self.checks])
 
     def show(self, measured: float) -> str:
         u = f" {self.unit}" if self.unit and self.angular else ""
         return f"{measured / self.scale():.6g}{u}"
 
     def expected_text(self) -> str:
-        u = f" {self.unit}" if self.unit else ""
-        out = []
-        for op, v in self.checks:
-            if op == "between":
-                out.append(f"between {v[0]:g} and {v[1]:g}{u}")
-            elif op == "abs_below":
-                out.append(f"|value| below {v:g}{u}")
-            elif op == "equals":
-                out.append(f"{v:g}{u} +- {self.tolerance:g}")
-            else:
-                out.append(f"{op} {v:g}{u}")
-        return " and ".join(out)
+        return " and ".join(self._condition(op, v, None) for op, v in self.checks)
 
 
 @dataclass

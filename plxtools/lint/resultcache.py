@@ -25,11 +25,11 @@ import os
 import re
 from pathlib import Path
 
+from plxtools import envpath
 from plxtools.runcache import Store, code_stamp, new_hash, tree_stamp
 
 _NOT_STORED = frozenset({"N001", "N003"})
 _IMPORT = re.compile(rb'(?m)^[ \t]*import[ \t]+([@$])"([^"\r\n]*)"')
-_VAR = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
 
 
 def _import_stamp(path: Path, data: bytes, h) -> None:
@@ -39,9 +39,8 @@ def _import_stamp(path: Path, data: bytes, h) -> None:
     for m in _IMPORT.finditer(data):
         text = m.group(2).decode("utf-8", "replace")
         if m.group(1) == b"$":
-            names = _VAR.findall(text)
-            h.update(repr([(n, os.environ.get(n)) for n in names]).encode())
-            text = _VAR.sub(lambda v: os.environ.get(v.group(1), ""), text)
+            h.update(repr([(n, os.environ.get(n)) for n in envpath.variables(text)]).encode())
+            text, _ = envpath.expand(text)
         try:
             st = (folder / text).stat()
             h.update(f"\0{text}\0{st.st_size}\0{st.st_mtime_ns}".encode())

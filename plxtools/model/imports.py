@@ -25,6 +25,7 @@ import os
 import re
 from dataclasses import dataclass
 
+from plxtools import envpath
 from plxtools.diagnostics import Span
 from plxtools.model.symbols import ModelSym, Namespace
 from plxtools.pickling import fast_pickling
@@ -34,7 +35,6 @@ MESH_SUFFIXES = frozenset({".obj", ".stl"})
 IMAGE_SUFFIXES = frozenset({".png", ".jpg", ".jpeg", ".bmp", ".tga", ".gif", ".tif", ".tiff", ".exr", ".hdr"})
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _URI_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]+:")  # an editor buffer (`untitled:...`), not a file
-_INTERP = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
 
 MESH_BASE = ("Visuals", "Geometries", "ExternalTriMeshGeometry")
 IMAGE_BASE = ("Visuals", "Materials", "TextureMaterial")
@@ -131,10 +131,9 @@ def resolve_file(stmt: ast.Import, file_path: str | None) -> tuple[str | None, l
     s = stmt.source
     value = s.value
     if s.kind == "interp":
-        unset = [v for v in _INTERP.findall(value) if os.environ.get(v) is None]
+        value, unset = envpath.expand(value)
         if unset:
-            return None, list(dict.fromkeys(unset))
-        value = _INTERP.sub(lambda m: os.environ.get(m.group(1), ""), value)
+            return None, unset
     if not value:
         return None, []
     if os.path.isabs(value):

@@ -1,0 +1,21 @@
+"""`$"..."` strings: their `{VAR}` parts are read from the environment (the runtime finds AGX's data
+folder this way). One reading for the checker, `plx check` and lint's result cache, which must not
+import the parser, so this sits below every layer."""
+
+from __future__ import annotations
+
+import os
+import re
+
+_VAR = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
+
+
+def variables(value: str) -> list[str]:
+    """The variables ``value`` reads, each once, in order."""
+    return list(dict.fromkeys(_VAR.findall(value)))
+
+
+def expand(value: str) -> tuple[str, list[str]]:
+    """(``value`` with every `{VAR}` replaced by its value, "" when unset; the unset variables)."""
+    unset = [v for v in variables(value) if os.environ.get(v) is None]
+    return _VAR.sub(lambda m: os.environ.get(m.group(1), ""), value), unset
