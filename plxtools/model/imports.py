@@ -34,7 +34,12 @@ from plxtools.syntax import ast
 MESH_SUFFIXES = frozenset({".obj", ".stl"})
 IMAGE_SUFFIXES = frozenset({".png", ".jpg", ".jpeg", ".bmp", ".tga", ".gif", ".tif", ".tiff", ".exr", ".hdr"})
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
-_URI_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]+:")  # an editor buffer (`untitled:...`), not a file
+_URI_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]+:")  # a scheme of 2+ letters: not a drive letter
+
+
+def is_editor_buffer(path: str) -> bool:
+    """An editor's buffer name (`untitled:Untitled-1`), not a file: it has no folder of its own."""
+    return _URI_NAME.match(path) is not None
 
 MESH_BASE = ("Visuals", "Geometries", "ExternalTriMeshGeometry")
 IMAGE_BASE = ("Visuals", "Materials", "TextureMaterial")
@@ -138,7 +143,7 @@ def resolve_file(stmt: ast.Import, file_path: str | None) -> tuple[str | None, l
         return None, []
     if os.path.isabs(value):
         return os.path.normpath(value), []
-    if not file_path or _URI_NAME.match(file_path):
+    if not file_path or is_editor_buffer(file_path):
         base = os.getcwd()
     else:
         base = os.path.dirname(os.path.abspath(file_path))

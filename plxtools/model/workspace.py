@@ -11,7 +11,6 @@ import functools
 import zlib
 import os
 import pickle
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -19,13 +18,13 @@ from plxtools import __version__
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix, Severity
 from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
 from plxtools.model.checker import Checker, Occurrence
+from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
 from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, cache_dir, explicit_bundle_set
 from plxtools.syntax import ast, parse_file
 
 
-_URI_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]+:")  # a scheme of 2+ letters: not a drive letter
 
 
 class WorkspaceError(BundleSetError):
@@ -264,7 +263,7 @@ class Workspace:
         if existing is not None and existing.tree.text == tree.text:
             return existing
         # an editor buffer named by a URI (`untitled:Untitled-1`) is no file: it belongs to no bundle
-        bundle = self.bundle_of(Path(path)) if tree.path and not _URI_NAME.match(path) else None
+        bundle = self.bundle_of(Path(path)) if tree.path and not is_editor_buffer(path) else None
         if existing is None and bundle is not None:
             # finding the bundle may just have loaded it, this file included
             existing = self.program.units.get(str(Path(path).resolve())) or self.program.units.get(path)
@@ -312,7 +311,7 @@ class Workspace:
     def _help_for_unloaded_bundles(self, tree: ast.File, diags: list[Diagnostic]) -> None:
         """`Name.X` unknown and a bundle called Name sits nearby but is not loaded: say how to load it."""
         unknown = [d for d in diags if d.code in ("N001", "N003") and not d.help]
-        if not unknown or not tree.path or _URI_NAME.match(tree.path):
+        if not unknown or not tree.path or is_editor_buffer(tree.path):
             return
         nearby = self.nearby_bundles(Path(tree.path).resolve().parent)
         home = self.bundle_of(Path(tree.path))
