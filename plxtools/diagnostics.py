@@ -72,6 +72,8 @@ class Diagnostic:
     help: str | None = None
     fix: Fix | None = None
     related: list[tuple[str, Span, str]] = field(default_factory=list)
+    # U001/U002: the newest official version the written name belongs to (what a migration starts from)
+    older_version: str | None = None
 
     def sort_key(self) -> tuple:
         return (self.file, self.span.start.offset, self.code)

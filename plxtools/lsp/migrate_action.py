@@ -13,13 +13,10 @@ are separate from the server's own (its open buffers are never touched).
 from __future__ import annotations
 
 import os
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
 KIND = "source.migrate.plx"
-_U001 = re.compile(r"\(OpenPLX (\d+\.\d+\.\d+) -> ")
-_U002 = re.compile(r"renamed '[^']*' in OpenPLX (\d+\.\d+\.\d+)")
 
 
 @dataclass
@@ -43,7 +40,7 @@ def _available(version: str) -> bool:
 
 def source_version(path: str, diagnostics, to_v: str) -> str | None:
     """The version the file was written for, when it is older than `to_v` (else None)."""
-    from plxtools.model.apiindex import version_key, versions
+    from plxtools.model.apiindex import version_key
 
     if os.path.isabs(path):
         try:
@@ -54,15 +51,7 @@ def source_version(path: str, diagnostics, to_v: str) -> str | None:
             pinned = None
         if pinned and version_key(pinned) < version_key(to_v):
             return pinned
-    found: list[str] = []
-    known = list(versions())
-    for d in diagnostics:
-        if d.code == "U001" and (m := _U001.search(d.message)):
-            found.append(m.group(1))
-        elif d.code == "U002" and (m := _U002.search(d.message)) and m.group(1) in known:
-            i = known.index(m.group(1))
-            if i > 0:
-                found.append(known[i - 1])
+    found = [d.older_version for d in diagnostics if d.code in ("U001", "U002") and d.older_version]
     found = [v for v in found if version_key(v) < version_key(to_v)]
     return min(found, key=version_key) if found else None
 

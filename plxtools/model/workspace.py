@@ -358,6 +358,7 @@ class Workspace:
             if new is not None and self._resolves(new, tree):
                 d.code = "U001"
                 d.message = f"'{written}' was renamed '{new}' (OpenPLX {older[-1]} -> {using})"
+                d.older_version = older[-1]
                 d.help = f"write '{new}'; `plx migrate --to {using}` updates whole files"
                 d.fix = Fix(f"replace with '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=True)
                 continue
@@ -382,6 +383,7 @@ class Workspace:
             owners = ", ".join(sorted({m for _, m, _ in targets})[:3])
             d.code = "U002"
             d.message = f"'{written}' was renamed '{new}' in OpenPLX {since} (in {owners})"
+            d.older_version = _version_before(since)
             d.help = f"write '{new}' if this is one of those models; `plx migrate --to {using}` updates whole files"
             d.fix = Fix(f"rename to '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=False)
 
@@ -490,6 +492,15 @@ def _moved_to(qname: str, old_v: str, new_v: str) -> str | None:
 
 
 @functools.lru_cache(maxsize=8)
+def _version_before(version: str) -> str | None:
+    """The official version indexed just before ``version`` (None for the first)."""
+    from plxtools.model.apiindex import versions
+
+    known = list(versions())
+    i = known.index(version) if version in known else 0
+    return known[i - 1] if i > 0 else None
+
+
 def _renamed_attributes_before(using: str) -> dict[str, list[tuple[str, str, str]]]:
     """old attribute name -> [(new name, model, first version)] for renames from the oldest indexed
     version up to `using`, one to one (from the index or the reviewed table)."""
