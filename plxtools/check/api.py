@@ -174,10 +174,7 @@ def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str
             openplx_version: str | None = None) -> Prepared:
     """Check, assemble and compile ``path`` (raises ModelError when it cannot be simulated)."""
     from plxtools.check import mujoco_backend as mjb
-    from plxtools.check.assemble import Kinds
     from plxtools.check.convert import _source
-    from plxtools.check.evaluate import Evaluator
-    from plxtools.check.instance import Builder
     from plxtools.check.pipeline import analyse, blocking_reason
     from plxtools.config import ConfigError, config_for
     from plxtools.diagnostics import Severity
@@ -204,10 +201,10 @@ def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str
         msgs = "; ".join(n.message for n in compiled.notes if n.severity == "error")
         raise ModelError(f"{p}: MuJoCo cannot compile {fc.model}: {msgs}")
     program = ws.program
-    kinds = Kinds(program)
-    ev = Evaluator(program, Builder(program), fc.rep.unit, lambda *a: None)
+    ev = fc.evaluator  # the assembly's own: its values are already evaluated
+    ev.report = lambda *a: None  # the file's diagnostics are final; reading signals adds none
     owned = fc.assembly.owned[1:]
-    signals = collect(owned, ev, kinds, lambda o: _source(fc.rep, o))
+    signals = collect(owned, ev, fc.kinds, lambda o: _source(fc.rep, o))
     objects = {o.display: program.concrete(o.model).qname for o in owned}
     bodies = [n.path for n in fc.assembly.bodies]
     return Prepared(str(p), fc.model or "", fc, compiled, signals, objects, bodies)

@@ -60,6 +60,8 @@ class FileCheck:
     rep: Reporter | None = field(default=None, repr=False)  # the check diagnostics, before merging
     raw: list[Diagnostic] = field(default_factory=list, repr=False)  # lint's, before filtering
     cfg: Any = field(default=None, repr=False)
+    evaluator: Any = field(default=None, repr=False)  # the Evaluator the assembly used (its values memoised)
+    kinds: Any = field(default=None, repr=False)  # the Kinds the assembly used
 
     @property
     def skipped(self) -> str | None:
@@ -171,6 +173,7 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     fc.scene = to_scene(asm, col, rep, os.path.dirname(os.path.abspath(str(path))))
     fc.timings["assemble"] = time.perf_counter() - t1
     fc.rep, fc.raw, fc.cfg = rep, raw, cfg
+    fc.evaluator, fc.kinds = ev, kinds
     fc.diagnostics = _finish(tree, _merge(raw, rep.diagnostics()), cfg)
     return fc
 
