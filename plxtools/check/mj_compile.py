@@ -25,7 +25,6 @@ Mapping decisions (see also the module docstring of ``mujoco_backend``):
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
