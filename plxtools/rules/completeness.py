@@ -71,53 +71,81 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
             got = memo[id(m)] = _assigned(program, m)
         return got
 
-    def visit(ty: Ty, outer: set[tuple[str, ...]], path: str, anchor: Span, depth: int, chain: tuple) -> None:
+    walked: dict[tuple, tuple[list, frozenset, int]] = {}
+
+    def walk(ty: Ty, outer: set[tuple[str, ...]], depth: int, chain: tuple) -> tuple[list, frozenset, int, bool]:
+        """What is missing below `ty`, relative to it: (findings, models met, height, cut short).
+
+        A finding is (kind, path below ty, type shown, member name, declaring model, anchor or None
+        for "the nearest anchor above"). The objects a root creates are instances of few models, so
+        a subtree is walked once per (model, traits, values given from outside) and re-used; only
+        when re-using it cannot differ from walking it again (no cycle or depth cut inside, none of
+        its models on the current chain, still within the depth limit)."""
         model = ty.model
-        if model is None or depth > MAX_DEPTH or id(model) in chain:
-            return
+        if model is None:
+            return [], frozenset(), 0, False
+        if depth > MAX_DEPTH or id(model) in chain:
+            return [], frozenset(), 0, True
+        key = (id(model), tuple(id(t) for t in ty.traits), frozenset(outer))
+        hit = walked.get(key)
+        if hit is not None and depth + hit[2] <= MAX_DEPTH and hit[1].isdisjoint(chain):
+            return hit[0], hit[1], hit[2], False
         assigned = assigned_in(model) | outer
         for t in ty.traits:
             assigned |= assigned_in(t)
+        finds: list = []
+        models = {id(model)}
+        height = 0
+        cut = False
+        inner = chain + (id(model),)
         for name, mem in program.members_of(ty).items():
             mty = program.member_type(mem)
             here = (name,) in assigned or mem.value is not None
-            local_anchor = anchor
-            if mem.owner.unit is unit and mem.stmt.path is not None:
-                local_anchor = mem.stmt.path.span
-            full = f"{path}.{name}" if path else name
+            local = mem.stmt.path.span if mem.owner.unit is unit and mem.stmt.path is not None else None
             if mem.reference:
-                if not here and not mem.optional and (full, "ref") not in seen and not caused(local_anchor, name):
-                    seen.add((full, "ref"))
-                    found.append((Diagnostic(
-                        "M008", _message("M008", full, mty.display()),
-                        local_anchor, Severity.ERROR, file=unit.path,
-                        help=f"give it an existing object: '{name}: ...' (declared in {mem.owner.qname})"),
-                        name, full, mty.display()))
+                if not here and not mem.optional:
+                    finds.append(("ref", (name,), mty.display(), name, mem.owner.qname, local))
                 continue
             if mty.unknown or mty.alts or mty.array:
                 continue
             if mty.primitive is not None:
-                if (mty.primitive in REQUIRED_PRIMITIVES and not here and not mem.optional
-                        and (full, "val") not in seen and not caused(local_anchor, name)):
-                    seen.add((full, "val"))
-                    found.append((Diagnostic(
-                        "M007", _message("M007", full, mty.primitive),
-                        local_anchor, Severity.ERROR, file=unit.path,
-                        help=f"give it a value, e.g. '{name}: ...' (declared without a default in {mem.owner.qname})"),
-                        name, full, mty.primitive))
+                if mty.primitive in REQUIRED_PRIMITIVES and not here and not mem.optional:
+                    finds.append(("val", (name,), mty.primitive, name, mem.owner.qname, local))
                 continue
             if mem.value is not None or (name,) in assigned:
                 continue  # given an existing object or a computed value (checked where it is made)
             sub = {p[1:] for p in assigned if len(p) > 1 and p[0] == name}
-            visit(mty, sub, full, local_anchor, depth + 1, chain + (id(model),))
+            below, met, h, c = walk(mty, sub, depth + 1, inner)
+            for kind, rel, shown, n, owner, a in below:
+                finds.append((kind, (name,) + rel, shown, n, owner, a if a is not None else local))
+            models.update(met)
+            height = max(height, h + 1)
+            cut = cut or c
+        got = (finds, frozenset(models), height)
+        if not cut:
+            walked[key] = got
+        return got[0], got[1], got[2], cut
 
     anchor = root.stmt.path.span if isinstance(root.stmt, ast.Declaration) else root.stmt.header
     try:
-        visit(Ty(root), set(), "", anchor, 0, ())
+        finds = walk(Ty(root), set(), 0, ())[0]
     finally:
-        # `visit` calls itself through its closure cell: a reference cycle that would keep the memo
-        # (thousands of sets) alive until a collector pass; emptying the cell frees it now
-        visit = None  # noqa: F841
+        # `walk` calls itself through its closure cell: a reference cycle that would keep the memos
+        # alive until a collector pass; emptying the cell frees them now
+        walk = None  # noqa: F841
+    for kind, rel, shown, name, owner, a in finds:
+        local_anchor = a if a is not None else anchor
+        full = ".".join(rel)
+        if (full, kind) in seen or caused(local_anchor, name):
+            continue
+        seen.add((full, kind))
+        if kind == "ref":
+            d = Diagnostic("M008", _message("M008", full, shown), local_anchor, Severity.ERROR, file=unit.path,
+                           help=f"give it an existing object: '{name}: ...' (declared in {owner})")
+        else:
+            d = Diagnostic("M007", _message("M007", full, shown), local_anchor, Severity.ERROR, file=unit.path,
+                           help=f"give it a value, e.g. '{name}: ...' (declared without a default in {owner})")
+        found.append((d, name, full, shown))
     return _one_per_location(found)
 
 
