@@ -4,7 +4,7 @@ Every feature is a call into `plxtools.ide` (offsets in, data out); this module 
 (`convert.Positions`, the one place that knows the client's encoding), shapes LSP objects to the
 client's capabilities, schedules checks without a fixed delay and keeps errors inside the request that
 caused them. The wire (framing, validation, cancellation) is `transport.py`; the text model is
-`convert.py` plus `Documents`.
+`convert.py` plus `documents.py`.
 """
 
 from __future__ import annotations
@@ -16,7 +16,6 @@ import logging
 import os
 import sys
 import time
-from urllib.parse import unquote
 
 from lsprotocol import types
 from pygls.exceptions import JsonRpcException
@@ -29,6 +28,7 @@ from plxtools import __version__, ide
 from plxtools.diagnostics import Diagnostic, Severity
 from plxtools.ide.host import AnalysisHost, Settings
 from plxtools.lsp.convert import Positions
+from plxtools.lsp.documents import Documents
 
 log = logging.getLogger("plxtools.lsp")
 
@@ -175,54 +175,6 @@ class PlxProtocol(LanguageServerProtocol):
         self._server.documents.close(params.text_document.uri)
         if (handler := self.fm.features.get(types.TEXT_DOCUMENT_DID_CLOSE)) is not None:
             yield handler, (params,), None
-
-
-class OpenDocument:
-    __slots__ = ("uri", "text", "version")
-
-    def __init__(self, uri: str, text: str, version):
-        self.uri = uri
-        self.text = text
-        self.version = version
-
-
-class Documents:
-    """The editor's buffers as the server sees them (keyed by the unquoted URI)."""
-
-    def __init__(self) -> None:
-        self.by_key: dict[str, OpenDocument] = {}
-
-    def get(self, uri: str) -> OpenDocument | None:
-        return self.by_key.get(unquote(uri))
-
-    def __iter__(self):
-        return iter([d.uri for d in self.by_key.values()])
-
-    def open(self, uri: str, text: str, version) -> None:
-        self.by_key[unquote(uri)] = OpenDocument(uri, text, version)
-
-    def change(self, uri: str, version, changes, encoding) -> bool:
-        from plxtools.lsp.convert import apply_change
-
-        doc = self.get(uri)
-        if doc is None:
-            whole = [c for c in changes if getattr(c, "range", None) is None]
-            if not whole:
-                log.warning("didChange for %s, which is not open: ignored", uri)
-                return False
-            self.open(uri, whole[-1].text, version)
-            return True
-        if isinstance(version, int) and isinstance(doc.version, int) and version <= doc.version:
-            log.warning("document version of %s went from %s to %s: edits out of order?", uri, doc.version, version)
-        text = doc.text
-        for change in changes:
-            text = apply_change(text, change, encoding)
-        doc.text = text
-        doc.version = version
-        return True
-
-    def close(self, uri: str) -> None:
-        self.by_key.pop(unquote(uri), None)
 
 
 # ------------------------------------------------------------------ the server

@@ -9,7 +9,6 @@ PLX_EDITOR_TESTS=1, which turns a missing editor into a failure instead of a ski
 from __future__ import annotations
 
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -17,15 +16,7 @@ from pathlib import Path
 
 import pytest
 
-REPO = Path(__file__).resolve().parents[2]
-REQUIRED = os.environ.get("PLX_EDITOR_TESTS") == "1"
-
-MODEL = """\
-Ball is Physics3D.Bodies.RigidBody:
-    inertia.mass: 1
-    geometry is Physics3D.Geometries.Sphere:
-        raduis: 0.5
-"""
+from tests.editors.common import REQUIRED, doc_blocks, make_project
 
 # what a person does, in elisp; every answer is printed as `RESULT key: value`
 DRIVE = r"""
@@ -64,12 +55,6 @@ DRIVE = r"""
 """
 
 
-def _snippet() -> str:
-    page = (REPO / "docs" / "editors.md").read_text(encoding="utf-8")
-    section = page[page.index("## Emacs (eglot)"):]
-    return re.search(r"```elisp\n(.*?)```", section, re.S).group(1)
-
-
 def _emacs_with_eglot() -> str | None:
     emacs = shutil.which("emacs")
     if emacs is None:
@@ -84,13 +69,9 @@ def test_the_documented_emacs_setup_gives_diagnostics_hover_definition_completio
         if REQUIRED:
             pytest.fail("PLX_EDITOR_TESTS=1 but emacs with eglot is not installed")
         pytest.skip("emacs with eglot not installed (Debian: emacs-nox elpa-eglot)")
-    project = tmp_path / "project"
-    project.mkdir()
-    subprocess.run(["git", "init", "-q", str(project)], check=True)
-    (project / "plx.toml").write_text("", encoding="utf-8")
+    project = make_project(tmp_path)
     model = project / "model.openplx"
-    model.write_text(MODEL, encoding="utf-8")
-    (tmp_path / "snippet.el").write_text(_snippet(), encoding="utf-8")
+    (tmp_path / "snippet.el").write_text(doc_blocks("Emacs (eglot)", "elisp")[0], encoding="utf-8")
     drive = DRIVE.replace("SNIPPET", f'"{tmp_path / "snippet.el"}"').replace("MODEL", f'"{model}"')
     (tmp_path / "drive.el").write_text(drive, encoding="utf-8")
     env = dict(os.environ, HOME=str(tmp_path), PATH=str(Path(sys.executable).parent) + os.pathsep + os.environ["PATH"])

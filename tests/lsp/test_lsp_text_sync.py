@@ -97,3 +97,55 @@ def test_an_edit_past_the_end_of_a_line_stays_on_that_line():
     text = "Scene is Physics3D.System:\n    x is Real: 1\n    y is Real: 2\n"
     change = {"range": {"start": {"line": 1, "character": 17}, "end": {"line": 1, "character": 17}}, "text": " + zzz"}
     assert _diagnostics_after(text, change) == [("N003", 1, 19)]
+
+
+# Helix 25.01 and 25.07 write the didChange notifications of fast typing to the pipe out of order
+# (seen in a real Helix under tmux: versions 7, 8, 6). The server must end with the text the user typed.
+
+def _typing(text: str, line: int, col: int, word: str, first_version: int, step: int = 1) -> list[tuple[int, list]]:
+    """One didChange per character typed at (line, col), versions first_version, +step, ..."""
+    return [(first_version + i * step, [_change(line, col + i, line, col + i, ch)]) for i, ch in enumerate(word)]
+
+
+@settings(max_examples=200, deadline=None)
+@given(data=st.data(), step=st.integers(1, 3))
+def test_edits_that_arrive_out_of_order_give_the_text_typed(data, step):
+    from plxtools.lsp.documents import Documents
+
+    text = "Ball is X:\n    r: 1\n"
+    edits = _typing(text, 1, 4, "radius_", 2, step) + [(2 + 7 * step, [_change(0, 0, 0, 4, "Wheel")])]
+    in_order = text
+    for _, changes in edits:
+        in_order = apply_change(in_order, changes[0])
+    # each edit arrives at most a few places away from where it belongs, as in Helix
+    order = data.draw(st.permutations(range(len(edits))).filter(
+        lambda p: all(abs(p[i] - i) <= 3 for i in range(len(p)))))
+    docs = Documents()
+    docs.open("file:///t.openplx", text, 1)
+    for i in order:
+        version, changes = edits[i]
+        docs.change("file:///t.openplx", version, changes, "utf-16")
+    doc = docs.get("file:///t.openplx")
+    assert (doc.text, doc.version) == (in_order, edits[-1][0])
+
+
+def test_a_shuffled_burst_over_stdio_is_checked_as_typed():
+    s = RawServer()
+    try:
+        s.initialize(options={"diagnosticMode": "push"})
+        uri = "file:///sync/shuffled.openplx"
+        s.open(uri, "Ball is Physics3D.Bodies.RigidBody:\n    inertia.mass: 1\n    \n")
+        s.notification("textDocument/publishDiagnostics", where=lambda p: p["uri"] == uri)
+        edits = _typing("", 2, 4, "is_dynamic: false", 2)
+        for k in (0, 1, 3, 4, 2, 5, 7, 6, 8, 9, 10, 12, 11, 13, 14, 16, 15):  # the order Helix wrote them in
+            version, changes = edits[k]
+            c = changes[0]
+            s.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": version}, "contentChanges": [
+                {"range": {"start": vars(c.range.start), "end": vars(c.range.end)}, "text": c.text}]})
+        got = s.notification("textDocument/publishDiagnostics",
+                             where=lambda p: p["uri"] == uri and p["version"] == edits[-1][0])
+        assert got["diagnostics"] == []
+        assert s.close() == 0
+    finally:
+        if s.proc.poll() is None:
+            s.proc.kill()
