@@ -439,6 +439,8 @@ def main() -> None:
     for r in results:
         srv = r.get("server") or {}
         for kind, vals in srv.items():
+            if not isinstance(vals, list) or not vals:
+                continue  # "counters": background checks started / finished
             wall = statistics.median(v[0] for v in vals)
             cpu = statistics.median(v[1] for v in vals)
             print(f"{r['name']} server-side {kind}: median {wall:.0f} ms wall, {cpu:.0f} ms CPU ({len(vals)} runs)")

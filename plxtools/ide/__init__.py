@@ -9,7 +9,7 @@ Nothing here imports pygls or speaks LSP; `plxtools.lsp` translates. Tests call 
 """
 
 from plxtools.ide.actions import code_actions, fix_all, suppress_edit
-from plxtools.ide.completion import complete, completion_documentation
+from plxtools.ide.completion import complete, complete_line, completion_documentation
 from plxtools.ide.formatting import FormattingRefused, format_document, format_lines
 from plxtools.ide.host import AnalysisHost, FileState, Settings
 from plxtools.ide.hover import hover
@@ -22,7 +22,7 @@ from plxtools.ide.types import RenameError
 
 __all__ = [
     "AnalysisHost", "FileState", "FormattingRefused", "RenameError", "Settings", "TOKEN_MODIFIERS", "TOKEN_TYPES",
-    "code_actions", "complete", "completion_documentation", "declaration", "definition", "document_links",
+    "code_actions", "complete", "complete_line", "completion_documentation", "declaration", "definition", "document_links",
     "document_symbols", "fix_all", "folding_ranges", "format_document", "format_lines", "hover", "inlay_hints",
     "prepare_rename", "references", "rename", "semantic_tokens", "signature_help", "suppress_edit",
     "type_definition", "workspace_symbols",

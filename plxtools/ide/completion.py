@@ -49,19 +49,32 @@ def complete(st: FileState, offset: int, trigger: str | None = None) -> Completi
     idx = st.tree.index
     pos = idx.pos(offset)
     line = idx.line_text(pos.line)
-    before = line[: pos.column]
+    return complete_line(st, pos.line, line, pos.column, offset - pos.column, trigger, pos.line, offset)
+
+
+def complete_line(st: FileState, line_no: int, line: str, column: int, line_start: int, trigger: str | None,
+                  own_line: int, tree_offset: int) -> CompletionResult:
+    """Completion on line `line_no` whose current text is `line` (the cursor at `column`, the line
+    starting at offset `line_start` of the current text), against the analysis `st`.
+
+    `st` may be of an older version of the buffer that differs only on this line (host.line_view):
+    everything above the line is the same, so the blocks it belongs to are too. `own_line` is the
+    line of `st`'s tree that the cursor's line replaces (-1: none, the line is new) and
+    `tree_offset` a place on it in `st`'s text."""
+    before = line[:column]
     word = word_before(before)
-    start = offset - len(word)
-    end = offset
-    while end < len(st.text) and (st.text[end].isalnum() or st.text[end] == "_"):
-        end += 1
+    start = line_start + column - len(word)
+    j = column
+    while j < len(line) and (line[j].isalnum() or line[j] == "_"):
+        j += 1
+    end = line_start + j
     empty = CompletionResult([], start, end)
     if trigger == " " and not space_triggers(before):
         return empty
-    if st.program is None or st.unit is None or _in_comment_or_string(st, before, offset):
+    if st.program is None or st.unit is None or _in_comment_or_string(st, before, tree_offset):
         return empty
     head = before[: len(before) - len(word)]
-    items = _dispatch(st, pos.line, line, head, offset)
+    items = _dispatch(st, line_no, line, head, own_line)
     if items is None:
         return empty
     seen: set[str] = set()
@@ -88,7 +101,7 @@ def _in_comment_or_string(st: FileState, before: str, offset: int) -> bool:
     return False
 
 
-def _dispatch(st: FileState, line_no: int, line: str, head: str, offset: int):
+def _dispatch(st: FileState, line_no: int, line: str, head: str, own_line: int):
     lc = classify(head)
     if lc is None:
         return None
@@ -99,8 +112,8 @@ def _dispatch(st: FileState, line_no: int, line: str, head: str, offset: int):
         return [CompletionItem(n, "keyword", "annotation", insert_text=f"{n}: ",
                                sort_text=(RANK_BEST if n == "doc" else RANK_GOOD) + n) for n in names]
     if lc.kind == "value":
-        return _value_items(st, line_no, line, lc, head, offset)
-    return _statement_items(st, line_no, lc.indent, lc.qual)
+        return _value_items(st, line_no, line, lc, head)
+    return _statement_items(st, line_no, lc.indent, lc.qual, own_line)
 
 
 # ------------------------------------------------------------------ blocks
@@ -115,7 +128,7 @@ def _qualifier(q: str) -> list[str]:
     return [p.strip("`") for p in q.split(".") if p]
 
 
-def _statement_items(st: FileState, line_no: int, indent_text: str, qual: str):
+def _statement_items(st: FileState, line_no: int, indent_text: str, qual: str, own_line: int):
     indent = len(indent_text.expandtabs(4))
     owners, ctx = _context(st, line_no, indent)
     if not owners:
@@ -132,7 +145,7 @@ def _statement_items(st: FileState, line_no: int, indent_text: str, qual: str):
     if ctx.ty.unknown:
         return [CompletionItem(k, "keyword", sort_text=RANK_KEYWORD + k) for k in BLOCK_KEYWORDS]
     mems = path_members(st, ctx, ctx.ty, ctx.prefix)
-    already = _names_set_in_block(owners[-1], line_no)
+    already = _names_set_in_block(owners[-1], own_line)
     items = []
     for mem in mems.values():
         if mem.name in already:
@@ -333,7 +346,7 @@ def _ns_item(ns: Namespace, rank: str) -> CompletionItem:
 # ------------------------------------------------------------------ values
 
 
-def _value_items(st: FileState, line_no: int, line: str, lc: LineContext, head: str, offset: int):
+def _value_items(st: FileState, line_no: int, line: str, lc: LineContext, head: str):
     p = st.program
     indent = line_indent(line)
     owners, ctx = _context(st, line_no, indent)

@@ -82,6 +82,53 @@ class FileState:
 
 
 @dataclass(slots=True)
+class LineView:
+    """A line of the current buffer and the (older) analysis it is read against (host.line_view)."""
+
+    state: FileState
+    line: int
+    text: str  # the line's current text, without its line break
+    start: int  # its offset in the current text (the same in the analysed text)
+    own_line: int  # the analysed tree's line it replaces; -1 when it is a new line
+    old_end: int  # the end of that line in the analysed text (a place in its tree)
+
+
+def changed_lines(old: str, new: str) -> tuple[int, int, int] | None:
+    """(start, old_end, new_end): the whole lines that differ between two texts, as offsets (the
+    start is the same in both; the ends are where the common rest begins). None if equal."""
+    if old == new:
+        return None
+    n = min(len(old), len(new))
+    lo, hi = 0, n  # the longest common prefix, by halving (slice compares run in C)
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if old[lo:mid] == new[lo:mid]:
+            lo = mid
+        else:
+            hi = mid - 1
+    first = new.rfind("\n", 0, lo) + 1
+    room = min(len(old), len(new)) - first
+    lo, hi = 0, room  # the longest common suffix after `first`
+    lo_o, lo_n = len(old), len(new)
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if old[lo_o - mid:lo_o - lo] == new[lo_n - mid:lo_n - lo]:
+            lo = mid
+        else:
+            hi = mid - 1
+    po, pn = len(old) - lo, len(new) - lo
+    at_start_o = po == first or old[po - 1] == "\n"
+    at_start_n = pn == first or new[pn - 1] == "\n"
+    if not (at_start_o and at_start_n):
+        k = new.find("\n", pn)
+        if k == -1:
+            po, pn = len(old), len(new)
+        else:
+            po, pn = po + (k + 1 - pn), k + 1
+    return first, po, pn
+
+
+@dataclass(slots=True)
 class Settings:
     bundle_paths: list[str] = field(default_factory=list)
     openplx_version: str | None = None
@@ -416,6 +463,34 @@ class AnalysisHost:
                        ws.program, unit, frozenset(ws.known_annotations))
         self._states[path] = st
         return st
+
+    def line_view(self, path: str, line: int) -> "LineView | None":
+        """The buffer's line `line` seen through the file's last analysis, when that analysis is of
+        an older text that differs from the buffer on this one line only (a line being typed, or
+        inserted): completion answers from it at once, without parsing or registering the new
+        text. None when the analysis is current (use it) or the edit is not that local."""
+        doc = self.docs.get(path)
+        st = self._states.get(path)
+        if doc is None or st is None or st.text is doc.text or st.text == doc.text or st.unit is None \
+                or st.program is None or st.generation != self.generation or st.program.units.get(path) is not st.unit:
+            return None  # (a replaced unit's symbols are taken apart: only the registered one is usable)
+        old, new = st.text, doc.text
+        if "\r" in old or "\r" in new:
+            return None
+        got = changed_lines(old, new)
+        if got is None:
+            return None
+        first, old_end, new_end = got  # offsets: the changed lines start at `first`, end at old_end / new_end
+        new_region = new[first:new_end]
+        old_region = old[first:old_end]
+        if new_region.count("\n") + (not new_region.endswith("\n")) != 1 or \
+                old_region.count("\n") + (bool(old_region) and not old_region.endswith("\n")) > 1:
+            return None
+        if new.count("\n", 0, first) != line:
+            return None
+        text = new_region[:-1] if new_region.endswith("\n") else new_region
+        own = line if old_region else -1
+        return LineView(st, line, text, first, own, first + (len(old_region.rstrip("\n")) if old_region else 0))
 
     def _lint(self, tree: ast.File, analysis) -> list[Diagnostic]:
         from plxtools.rules.analysis import final_diagnostics

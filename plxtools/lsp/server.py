@@ -313,6 +313,14 @@ class PlxServer(LanguageServer):
         path = self.sync(uri) or self.path_of(uri)
         return self.host.quick_state(path) if quick else self.host.state(path)
 
+    def line_view(self, uri: str, line: int):
+        """host.line_view for an open document within the size limit (None otherwise)."""
+        doc = self.documents.get(uri)
+        if doc is None or self.too_big(doc):
+            return None
+        path = self.sync(uri)
+        return self.host.line_view(path, line) if path is not None else None
+
     # -------------------------------------------------------------- migrate this file
 
     def migrate_action(self, st, only) -> types.CodeAction | None:
@@ -1071,17 +1079,30 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
                     types.CompletionOptions(trigger_characters=[".", " "], resolve_provider=True))
     def completion(ls: PlxServer, params: types.CompletionParams):
         t0, c0 = time.perf_counter(), time.process_time()
-        with no_gc():
-            st = ls.state(params.text_document.uri, quick=True)
-        if st is None:
-            return None
-        pos = ls.positions(st.path, st)
-        offset = pos.offset(params.position)
         ctx = params.context
         trigger = ctx.trigger_character if ctx is not None and ctx.trigger_kind == \
             types.CompletionTriggerKind.TriggerCharacter else None
-        res = ide.complete(st, offset, trigger)
-        rng = pos.offsets_range(res.replace_start, offset)
+        view = ls.line_view(params.text_document.uri, params.position.line)
+        if view is not None:
+            # typing on one line since the last analysis: answer from it and the line's text, at once
+            st = view.state
+            lp = Positions(view.text, ls.encoding)
+            col = lp.offset_at(0, params.position.character)
+            res = ide.complete_line(st, view.line, view.text, col, view.start, trigger, view.own_line,
+                                    min(view.start + col, view.old_end))
+
+            def at(offset: int) -> types.Position:
+                return types.Position(line=view.line, character=lp.offset_position(offset - view.start).character)
+            rng = types.Range(start=at(res.replace_start), end=at(view.start + col))
+        else:
+            with no_gc():
+                st = ls.state(params.text_document.uri, quick=True)
+            if st is None:
+                return None
+            pos = ls.positions(st.path, st)
+            offset = pos.offset(params.position)
+            res = ide.complete(st, offset, trigger)
+            rng = pos.offsets_range(res.replace_start, offset)
         lazy_doc = "documentation" in (ls.cap("text_document.completion.completion_item.resolve_support.properties")
                                        or [])
         label_details = ls.cap("text_document.completion.completion_item.label_details_support")
@@ -1106,7 +1127,7 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
                         item.documentation = ls.doc_markup(doc)
             items.append(item)
             del i
-        ls._record("completion" if st.checked else "completion-while-typing", t0, c0)
+        ls._record("completion" if st.checked and view is None else "completion-while-typing", t0, c0)
         return types.CompletionList(is_incomplete=res.is_incomplete, items=items)
 
     @server_feature(types.COMPLETION_ITEM_RESOLVE)
