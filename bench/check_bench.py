@@ -1,6 +1,6 @@
 """Benchmark: `plx check --simulate` next to bare MuJoCo stepping the model plx exports (goal 5 of issue 17).
 
-    python bench/check_bench.py [--runs 5] [--cases 1x5,1x60,100x10] [--keep DIR]
+    python bench/check_bench.py [--runs 5] [--cases 1x5,1x60,100x10] [--keep DIR] [--baseline DIR]
 
 For each case ``TRUCKSxSECONDS`` (1 is examples/boxtruck; N > 1 is that truck N times on a larger
 plate, the scene bench/perf_table.py uses, written here as ``trucksN.openplx``), measured as
@@ -13,8 +13,11 @@ whole processes, interleaved, median of --runs:
    wrote for the same scene and stepping it the same number of steps (``mj_step(nstep=...)``).
 
 CPU seconds of each child (``wait4`` rusage: user + system) are the figure compared, because the
-machine is shared; wall seconds are printed beside them.  Goal: plx within 2x of the peer.  The
+machine is shared; wall seconds are printed beside them.  Both run with bytecode caches (plxtools
+is byte-compiled first, as an installed tool is).  Goal: plx within 2x of the peer.  The
 JSON reports of the plx runs are kept in --keep DIR (``<case>.json``) for comparing two commits.
+``--baseline DIR`` adds the plx of another checkout (e.g. ``git archive`` of the commit before) as
+a third interleaved column, with its own cache folder.
 """
 
 from __future__ import annotations
@@ -43,6 +46,15 @@ if m.nkey:
 mujoco.mj_step(m, d, nstep=int(sys.argv[2]))
 print(d.time)
 """
+
+
+# runs `plx` from another checkout: the editable install's import hook would otherwise win over
+# PYTHONPATH and run this checkout again
+BASELINE_RUNNER = (
+    "import sys; sys.meta_path[:] = [f for f in sys.meta_path if 'editable' not in repr(f)]; "
+    "sys.path.insert(0, __import__('os').path.abspath(sys.argv[1])); del sys.argv[1]; sys.argv[0] = 'plx'; "
+    "from plxtools.cli import entry; entry()"
+)
 
 
 def plx_command() -> list[str]:
@@ -81,6 +93,7 @@ def main() -> int:
     ap.add_argument("--cases", default="1x5,1x60,100x10",
                     help="comma-separated TRUCKSxSECONDS (default 1x5,1x60,100x10)")
     ap.add_argument("--keep", metavar="DIR", help="keep the JSON report of each case here")
+    ap.add_argument("--baseline", metavar="DIR", help="a plxtools checkout to run as a 'before' column")
     args = ap.parse_args()
     runs = max(3, args.runs)
     try:
@@ -88,7 +101,15 @@ def main() -> int:
     except ValueError:
         ap.error(f"--cases: expected TRUCKSxSECONDS,...; got {args.cases!r}")
     env = dict(os.environ, NO_COLOR="1")
+    # bytecode is cached, as for any installed tool (a sandbox may turn it off for everything)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    subprocess.run([sys.executable, "-m", "compileall", "-q", str(REPO / "plxtools")]
+                   + ([str(Path(args.baseline) / "plxtools")] if args.baseline else []), env=env,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     plx = plx_command()
+    base_env = None
+    if args.baseline:
+        base_env = dict(env, PLX_CACHE_DIR=str(Path(tempfile.gettempdir()) / "plx-check-bench-baseline-cache"))
     import mujoco
 
     keep = Path(args.keep) if args.keep else None
@@ -112,31 +133,39 @@ def main() -> int:
             sim = next(iter(json.loads(report.read_text())["simulation"].values()))
             assert sim["steps"] == steps, (sim["steps"], steps)
             child(floor, env)
-            c_wall, c_cpu, f_wall, f_cpu = [], [], [], []
-            for _ in range(runs):  # interleaved, so that machine load affects both alike
+            base = None
+            if base_env is not None:
+                base = [sys.executable, "-c", BASELINE_RUNNER, args.baseline, *check[len(plx):]]
+                child(base, base_env)
+            c_wall, c_cpu, f_wall, f_cpu, b_cpu = [], [], [], [], []
+            for _ in range(runs):  # interleaved, so that machine load affects all alike
                 w, c = child(check, env)
                 c_wall.append(w)
                 c_cpu.append(c)
                 w, c = child(floor, env)
                 f_wall.append(w)
                 f_cpu.append(c)
+                if base:
+                    b_cpu.append(child(base, base_env)[1])
             med = statistics.median
             rows.append((trucks, seconds, steps, med(c_cpu), med(f_cpu), med(c_wall), med(f_wall),
-                         sim["wall_time_s"]))
-            print(f"  {trucks} x {seconds:g} s: plx {med(c_cpu):.3f} s CPU, bare MuJoCo {med(f_cpu):.3f} s CPU",
-                  file=sys.stderr, flush=True)
+                         sim["wall_time_s"], med(b_cpu) if b_cpu else None))
+            print(f"  {trucks} x {seconds:g} s: plx {med(c_cpu):.3f} s CPU, bare MuJoCo {med(f_cpu):.3f} s CPU"
+                  + (f", baseline {med(b_cpu):.3f} s CPU" if b_cpu else ""), file=sys.stderr, flush=True)
 
     print(f"{time.strftime('%Y-%m-%d')}, {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, "
           f"load average {os.getloadavg()[0]:.1f}, Python {sys.version.split()[0]}, MuJoCo {mujoco.__version__}; "
           f"median of {runs} interleaved runs")
     print()
+    bl = " baseline CPU s (ratio) |" if args.baseline else ""
     print("| scene | simulated | plx check --simulate CPU s | bare MuJoCo CPU s (python + import + load + steps) "
-          "| ratio | goal <= 2x | wall s plx / bare | monitored loop in plx, wall s |")
-    print("|---|---|---:|---:|---:|---|---|---:|")
-    for trucks, seconds, steps, c_cpu, f_cpu, c_wall, f_wall, loop in rows:
+          f"| ratio | goal <= 2x |{bl} wall s plx / bare | monitored loop in plx, wall s |")
+    print("|---|---|---:|---:|---:|---|" + ("---:|" if args.baseline else "") + "---|---:|")
+    for trucks, seconds, steps, c_cpu, f_cpu, c_wall, f_wall, loop, b_cpu in rows:
         ratio = c_cpu / f_cpu
+        bc = f" {b_cpu:.3f} ({b_cpu / f_cpu:.2f}) |" if b_cpu is not None else ""
         print(f"| {trucks} truck{'s' if trucks > 1 else ''} | {seconds:g} s ({steps} steps) | {c_cpu:.3f} | "
-              f"{f_cpu:.3f} | {ratio:.2f} | {'OK' if ratio <= 2 else 'MISSED'} | {c_wall:.3f} / {f_wall:.3f} | "
+              f"{f_cpu:.3f} | {ratio:.2f} | {'OK' if ratio <= 2 else 'MISSED'} |{bc} {c_wall:.3f} / {f_wall:.3f} | "
               f"{loop:.3f} |")
     return 0
 
