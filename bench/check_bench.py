@@ -159,7 +159,7 @@ def main() -> int:
     print()
     bl = " baseline CPU s (ratio) |" if args.baseline else ""
     print("| scene | simulated | plx check --simulate CPU s | bare MuJoCo CPU s (python + import + load + steps) "
-          f"| ratio | goal <= 2x |{bl} wall s plx / bare | monitored loop in plx, wall s |")
+          f"| ratio | goal <= 2x |{bl} wall s plx / bare | monitored loop in plx (warm-up run), wall s |")
     print("|---|---|---:|---:|---:|---|" + ("---:|" if args.baseline else "") + "---|---:|")
     for trucks, seconds, steps, c_cpu, f_cpu, c_wall, f_wall, loop, b_cpu in rows:
         ratio = c_cpu / f_cpu

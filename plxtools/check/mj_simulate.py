@@ -1115,7 +1115,7 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
     blowup = BlowUp(run)
     per_step = [m for m in monitors if m.per_step]
     batched = [m for m in monitors if m.batched]
-    plain = [m for m in monitors if not m.batched]
+    plain = [m for m in monitors if not m.batched and type(m).sample is not Monitor.sample]
     batch = Samples(data)
 
     n_steps = max(1, int(round(duration / h)))
