@@ -16,7 +16,8 @@ CPU seconds of each child (``wait4`` rusage: user + system) are the figure compa
 machine is shared; wall seconds are printed beside them.  Both run with bytecode caches (plxtools
 is byte-compiled first, as an installed tool is).  Goal: plx within 2x of the peer.  The
 JSON reports of the plx runs are kept in --keep DIR (``<case>.json``) for comparing two commits.
-``--baseline DIR`` adds the plx of another checkout (e.g. ``git archive`` of the commit before) as
+``--compare DIR`` checks them against the reports an earlier run kept there (everything but the
+timings and file paths must be equal).  ``--baseline DIR`` adds the plx of another checkout (e.g. ``git archive`` of the commit before) as
 a third interleaved column, with its own cache folder.
 """
 
@@ -77,6 +78,21 @@ def child(cmd: list[str], env: dict, out: Path | None = None) -> tuple[float, fl
     return wall, ru.ru_utime + ru.ru_stime
 
 
+TIMINGS = {"wall_time_s", "compile_ms", "timings", "file"}  # and the path, a temporary folder
+
+
+def _untimed(x):
+    if isinstance(x, dict):
+        return {k: _untimed(v) for k, v in x.items() if k not in TIMINGS}
+    if isinstance(x, list):
+        return [_untimed(v) for v in x]
+    return x
+
+
+def same_report(a: Path, b: Path) -> bool:
+    return _untimed(json.loads(a.read_text())) == _untimed(json.loads(b.read_text()))
+
+
 def scene_file(trucks: int, tmp: Path) -> Path:
     if trucks == 1:
         return MODEL
@@ -94,6 +110,7 @@ def main() -> int:
                     help="comma-separated TRUCKSxSECONDS (default 1x5,1x60,100x10)")
     ap.add_argument("--keep", metavar="DIR", help="keep the JSON report of each case here")
     ap.add_argument("--baseline", metavar="DIR", help="a plxtools checkout to run as a 'before' column")
+    ap.add_argument("--compare", metavar="DIR", help="compare the reports with those an earlier --keep wrote here")
     args = ap.parse_args()
     runs = max(3, args.runs)
     try:
@@ -131,6 +148,10 @@ def main() -> int:
             report = (keep or tmp) / f"{trucks}x{seconds:g}.json"
             child(check, env, report)  # warm the caches; the report of this run is kept
             sim = next(iter(json.loads(report.read_text())["simulation"].values()))
+            if args.compare:
+                ref = Path(args.compare) / report.name
+                verdict = ("identical" if same_report(ref, report) else "DIFFERENT") if ref.is_file() else "missing"
+                print(f"  {report.name}: report {verdict} to {ref}", file=sys.stderr, flush=True)
             assert sim["steps"] == steps, (sim["steps"], steps)
             child(floor, env)
             base = None
