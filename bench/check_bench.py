@@ -1,6 +1,8 @@
-"""Benchmark: `plx check --simulate` next to bare MuJoCo stepping the model plx exports (goal 5 of issue 17).
+"""Benchmark: `plx check --simulate` next to bare MuJoCo stepping the model plx exports (issue 17,
+goal 5).
 
-    python bench/check_bench.py [--runs 5] [--cases 1x5,1x60,100x10] [--keep DIR] [--baseline DIR]
+    python bench/check_bench.py [--runs 5] [--cases 1x5,1x60,100x10] [--keep DIR] [--compare DIR]
+                                [--baseline DIR]
 
 For each case ``TRUCKSxSECONDS`` (1 is examples/boxtruck; N > 1 is that truck N times on a larger
 plate, the scene bench/perf_table.py uses, written here as ``trucksN.openplx``), measured as
@@ -15,10 +17,10 @@ whole processes, interleaved, median of --runs:
 CPU seconds of each child (``wait4`` rusage: user + system) are the figure compared, because the
 machine is shared; wall seconds are printed beside them.  Both run with bytecode caches (plxtools
 is byte-compiled first, as an installed tool is).  Goal: plx within 2x of the peer.  The
-JSON reports of the plx runs are kept in --keep DIR (``<case>.json``) for comparing two commits.
+JSON reports of the plx runs are kept in --keep DIR (``<case>.json``) for comparing two commits:
 ``--compare DIR`` checks them against the reports an earlier run kept there (everything but the
-timings and file paths must be equal).  ``--baseline DIR`` adds the plx of another checkout (e.g. ``git archive`` of the commit before) as
-a third interleaved column, with its own cache folder.
+timings and file paths must be equal).  ``--baseline DIR`` adds the plx of another checkout (e.g.
+``git archive`` of the commit before) as a third interleaved column, with its own cache folder.
 """
 
 from __future__ import annotations
