@@ -1,17 +1,26 @@
-"""Benchmark: `plx check --simulate` on the BoxTruck next to bare MuJoCo running the same model.
+"""Benchmark: `plx check --simulate` next to bare MuJoCo stepping the model plx exports (issue 17,
+goal 5).
 
-    python bench/check_bench.py [--runs 7] [--duration 5]
+    python bench/check_bench.py [--runs 5] [--cases 1x5,1x60,100x10] [--keep DIR] [--compare DIR]
+                                [--baseline DIR]
 
-Measured (wall clock, median of --runs runs, each a fresh process unless said otherwise):
+For each case ``TRUCKSxSECONDS`` (1 is examples/boxtruck; N > 1 is that truck N times on a larger
+plate, the scene bench/perf_table.py uses, written here as ``trucksN.openplx``), measured as
+whole processes, interleaved, median of --runs:
 
-1. ``plx check --simulate examples/boxtruck/boxtruck.openplx --duration 5``: the whole tool, from
-   process start to exit: load the bundles, lint, instantiate, SNAP, checks, import MuJoCo, compile,
-   simulate 2,500 steps with monitoring, report.
-2. The floor, the peer being bare MuJoCo on the MJCF that plx exports for the same scene:
-   a. in process: ``mujoco.MjModel.from_xml_path`` + ``mj_step`` x 2,500 (no Python start);
-   b. as a subprocess: Python start + ``import mujoco`` + the same load and steps.
+1. ``plx check FILE --simulate --duration SECONDS --output-format json``: the whole tool (Python
+   start, bundle loading, lint, instantiation, SNAP, checks, MuJoCo compile, the monitored run,
+   report);
+2. the peer: ``python -c`` importing MuJoCo, loading the MJCF that ``plx check --export-mjcf``
+   wrote for the same scene and stepping it the same number of steps (``mj_step(nstep=...)``).
 
-Goal (design.md): well under 2 s, and within 3x of the floor.
+CPU seconds of each child (``wait4`` rusage: user + system) are the figure compared, because the
+machine is shared; wall seconds are printed beside them.  Both run with bytecode caches (plxtools
+is byte-compiled first, as an installed tool is).  Goal: plx within 2x of the peer.  The
+JSON reports of the plx runs are kept in --keep DIR (``<case>.json``) for comparing two commits:
+``--compare DIR`` checks them against the reports an earlier run kept there (everything but the
+timings and file paths must be equal).  ``--baseline DIR`` adds the plx of another checkout (e.g.
+``git archive`` of the commit before) as a third interleaved column, with its own cache folder.
 """
 
 from __future__ import annotations
@@ -19,7 +28,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import shutil
+import platform
 import statistics
 import subprocess
 import sys
@@ -29,6 +38,7 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
 MODEL = REPO / "examples" / "boxtruck" / "boxtruck.openplx"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 FLOOR_SCRIPT = """
 import sys, mujoco
@@ -41,91 +51,145 @@ print(d.time)
 """
 
 
+# runs `plx` from another checkout: the editable install's import hook would otherwise win over
+# PYTHONPATH and run this checkout again
+BASELINE_RUNNER = (
+    "import sys; sys.meta_path[:] = [f for f in sys.meta_path if 'editable' not in repr(f)]; "
+    "sys.path.insert(0, __import__('os').path.abspath(sys.argv[1])); del sys.argv[1]; sys.argv[0] = 'plx'; "
+    "from plxtools.cli import entry; entry()"
+)
+
+
 def plx_command() -> list[str]:
-    exe = shutil.which("plx")
-    if exe and Path(exe).resolve().parent == Path(sys.executable).resolve().parent:
-        return [exe]
-    return [sys.executable, "-m", "plxtools"]
+    exe = Path(sys.executable).parent / "plx"
+    return [str(exe)] if exe.exists() else [sys.executable, "-m", "plxtools"]
 
 
-def wall(cmd: list[str], runs: int, env: dict | None = None) -> list[float]:
-    out = []
-    for _ in range(runs):
-        t = time.perf_counter()
-        r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, cwd=REPO)
-        out.append(time.perf_counter() - t)
-        if r.returncode not in (0, 1):
-            raise SystemExit(f"{' '.join(cmd)} failed ({r.returncode}):\n{r.stderr.decode()}")
-    return out
+def child(cmd: list[str], env: dict, out: Path | None = None) -> tuple[float, float]:
+    """(wall s, CPU s) of one process; its stdout goes to ``out`` (or nowhere)."""
+    t = time.perf_counter()
+    with open(out, "wb") if out else open(os.devnull, "wb") as fh:
+        p = subprocess.Popen(cmd, stdout=fh, stderr=subprocess.PIPE, env=env, cwd=REPO)
+        _, status, ru = os.wait4(p.pid, 0)
+        p.returncode = os.waitstatus_to_exitcode(status)
+        err = p.stderr.read().decode(errors="replace")
+        p.stderr.close()
+    wall = time.perf_counter() - t
+    if p.returncode not in (0, 1):
+        raise SystemExit(f"{' '.join(cmd)} failed ({p.returncode}):\n{err}")
+    return wall, ru.ru_utime + ru.ru_stime
+
+
+TIMINGS = {"wall_time_s", "compile_ms", "timings", "file"}  # and the path, a temporary folder
+
+
+def _untimed(x):
+    if isinstance(x, dict):
+        return {k: _untimed(v) for k, v in x.items() if k not in TIMINGS}
+    if isinstance(x, list):
+        return [_untimed(v) for v in x]
+    return x
+
+
+def same_report(a: Path, b: Path) -> bool:
+    return _untimed(json.loads(a.read_text())) == _untimed(json.loads(b.read_text()))
+
+
+def scene_file(trucks: int, tmp: Path) -> Path:
+    if trucks == 1:
+        return MODEL
+    from perf_table import trucks as many_trucks
+
+    path = tmp / f"trucks{trucks}.openplx"
+    path.write_text(many_trucks(trucks), encoding="utf-8")
+    return path
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--runs", type=int, default=7, help="runs per measurement (median reported; >= 5)")
-    ap.add_argument("--duration", type=float, default=5.0, help="simulated seconds (default 5)")
+    ap.add_argument("--runs", type=int, default=5, help="runs per measurement (median reported; >= 3)")
+    ap.add_argument("--cases", default="1x5,1x60,100x10",
+                    help="comma-separated TRUCKSxSECONDS (default 1x5,1x60,100x10)")
+    ap.add_argument("--keep", metavar="DIR", help="keep the JSON report of each case here")
+    ap.add_argument("--baseline", metavar="DIR", help="a plxtools checkout to run as a 'before' column")
+    ap.add_argument("--compare", metavar="DIR", help="compare the reports with those an earlier --keep wrote here")
     args = ap.parse_args()
-    runs = max(5, args.runs)
+    runs = max(3, args.runs)
+    try:
+        cases = [(int(a), float(b)) for a, b in (c.lower().split("x") for c in args.cases.split(","))]
+    except ValueError:
+        ap.error(f"--cases: expected TRUCKSxSECONDS,...; got {args.cases!r}")
     env = dict(os.environ, NO_COLOR="1")
+    # bytecode is cached, as for any installed tool (a sandbox may turn it off for everything)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    subprocess.run([sys.executable, "-m", "compileall", "-q", str(REPO / "plxtools")]
+                   + ([str(Path(args.baseline) / "plxtools")] if args.baseline else []), env=env,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     plx = plx_command()
+    base_env = None
+    if args.baseline:
+        base_env = dict(env, PLX_CACHE_DIR=str(Path(tempfile.gettempdir()) / "plx-check-bench-baseline-cache"))
     import mujoco
 
-    with tempfile.TemporaryDirectory() as tmp:
-        xml = Path(tmp) / "boxtruck.xml"
-        r = subprocess.run([*plx, "check", "--export-mjcf", str(xml), "--output-format", "json", str(MODEL)],
-                           capture_output=True, text=True, env=env, cwd=REPO)
-        if not xml.is_file():
-            raise SystemExit(f"export failed:\n{r.stdout}\n{r.stderr}")
-        model = mujoco.MjModel.from_xml_path(str(xml))
-        steps = int(round(args.duration / model.opt.timestep))
+    keep = Path(args.keep) if args.keep else None
+    if keep:
+        keep.mkdir(parents=True, exist_ok=True)
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp_s:
+        tmp = Path(tmp_s)
+        for trucks, seconds in cases:
+            src = scene_file(trucks, tmp)
+            xml = tmp / f"{src.stem}.xml"
+            subprocess.run([*plx, "check", "--export-mjcf", str(xml), str(src)], capture_output=True, env=env,
+                           cwd=REPO)
+            if not xml.is_file():
+                raise SystemExit(f"export of {src} failed")
+            steps = int(round(seconds / mujoco.MjModel.from_xml_path(str(xml)).opt.timestep))
+            check = [*plx, "check", "--simulate", "--duration", f"{seconds:g}", "--output-format", "json", str(src)]
+            floor = [sys.executable, "-c", FLOOR_SCRIPT, str(xml), str(steps)]
+            report = (keep or tmp) / f"{trucks}x{seconds:g}.json"
+            child(check, env, report)  # warm the caches; the report of this run is kept
+            sim = next(iter(json.loads(report.read_text())["simulation"].values()))
+            if args.compare:
+                ref = Path(args.compare) / report.name
+                verdict = ("identical" if same_report(ref, report) else "DIFFERENT") if ref.is_file() else "missing"
+                print(f"  {report.name}: report {verdict} to {ref}", file=sys.stderr, flush=True)
+            assert sim["steps"] == steps, (sim["steps"], steps)
+            child(floor, env)
+            base = None
+            if base_env is not None:
+                base = [sys.executable, "-c", BASELINE_RUNNER, args.baseline, *check[len(plx):]]
+                child(base, base_env)
+            c_wall, c_cpu, f_wall, f_cpu, b_cpu = [], [], [], [], []
+            for _ in range(runs):  # interleaved, so that machine load affects all alike
+                w, c = child(check, env)
+                c_wall.append(w)
+                c_cpu.append(c)
+                w, c = child(floor, env)
+                f_wall.append(w)
+                f_cpu.append(c)
+                if base:
+                    b_cpu.append(child(base, base_env)[1])
+            med = statistics.median
+            rows.append((trucks, seconds, steps, med(c_cpu), med(f_cpu), med(c_wall), med(f_wall),
+                         sim["wall_time_s"], med(b_cpu) if b_cpu else None))
+            print(f"  {trucks} x {seconds:g} s: plx {med(c_cpu):.3f} s CPU, bare MuJoCo {med(f_cpu):.3f} s CPU"
+                  + (f", baseline {med(b_cpu):.3f} s CPU" if b_cpu else ""), file=sys.stderr, flush=True)
 
-        check_cmd = [*plx, "check", "--simulate", "--duration", f"{args.duration:g}", "--output-format", "json",
-                     str(MODEL)]
-        warm = subprocess.run(check_cmd, capture_output=True, text=True, env=env, cwd=REPO)  # warm caches
-        doc = json.loads(warm.stdout)
-        sim = next(iter(doc["simulation"].values()))
-        assert sim["steps"] == steps, (sim["steps"], steps)
-        floor_cmd = [sys.executable, "-c", FLOOR_SCRIPT, str(xml), str(steps)]
-        wall(floor_cmd, 1, env)  # warm
-
-        # interleave the two subprocess measurements so machine load affects both alike
-        t_check, t_floor_proc = [], []
-        for _ in range(runs):
-            t_check += wall(check_cmd, 1, env)
-            t_floor_proc += wall(floor_cmd, 1, env)
-
-        t_floor = []
-        for _ in range(runs):
-            t = time.perf_counter()
-            m = mujoco.MjModel.from_xml_path(str(xml))
-            d = mujoco.MjData(m)
-            if m.nkey:
-                mujoco.mj_resetDataKeyframe(m, d, 0)
-            mujoco.mj_step(m, d, nstep=steps)
-            t_floor.append(time.perf_counter() - t)
-
-    med = statistics.median
-    check, floor_proc, floor = med(t_check), med(t_floor_proc), med(t_floor)
-    rows = [
-        ("plx check --simulate (whole tool, fresh process)", check, min(t_check)),
-        ("  of which: simulation loop inside plx (monitored)", sim["wall_time_s"], sim["wall_time_s"]),
-        (f"bare MuJoCo {mujoco.__version__}: python + import mujoco + load MJCF + {steps} steps", floor_proc,
-         min(t_floor_proc)),
-        (f"bare MuJoCo {mujoco.__version__}: load MJCF + {steps} steps (in process)", floor, min(t_floor)),
-    ]
-    print(f"BoxTruck, {args.duration:g} s simulated = {steps} steps of {model.opt.timestep:g} s; "
-          f"median of {runs} runs; {os.cpu_count()} CPUs; Python {sys.version.split()[0]}")
+    print(f"{time.strftime('%Y-%m-%d')}, {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, "
+          f"load average {os.getloadavg()[0]:.1f}, Python {sys.version.split()[0]}, MuJoCo {mujoco.__version__}; "
+          f"median of {runs} interleaved runs")
     print()
-    w = max(len(r[0]) for r in rows)
-    print(f"| {'measurement':<{w}} | median s | min s |")
-    print(f"|{'-' * (w + 2)}|---------:|------:|")
-    for name, m_, mn in rows:
-        print(f"| {name:<{w}} | {m_:8.3f} | {mn:5.3f} |")
-    print()
-    print(f"plx / floor with Python start and import mujoco: {check / floor_proc:.2f}x "
-          f"(goal: within 3x) -> {'OK' if check <= 3 * floor_proc else 'MISSED'}")
-    print(f"plx / bare in-process load + steps: {check / floor:.1f}x (Python start, bundle loading, lint and "
-          f"assembly have no counterpart there)")
-    print(f"plx wall: {check:.3f} s (goal: well under 2 s) -> {'OK' if check < 2.0 else 'MISSED'}")
+    bl = " baseline CPU s (ratio) |" if args.baseline else ""
+    print("| scene | simulated | plx check --simulate CPU s | bare MuJoCo CPU s (python + import + load + steps) "
+          f"| ratio | goal <= 2x |{bl} wall s plx / bare | monitored loop in plx (warm-up run), wall s |")
+    print("|---|---|---:|---:|---:|---|" + ("---:|" if args.baseline else "") + "---|---:|")
+    for trucks, seconds, steps, c_cpu, f_cpu, c_wall, f_wall, loop, b_cpu in rows:
+        ratio = c_cpu / f_cpu
+        bc = f" {b_cpu:.3f} ({b_cpu / f_cpu:.2f}) |" if b_cpu is not None else ""
+        print(f"| {trucks} truck{'s' if trucks > 1 else ''} | {seconds:g} s ({steps} steps) | {c_cpu:.3f} | "
+              f"{f_cpu:.3f} | {ratio:.2f} | {'OK' if ratio <= 2 else 'MISSED'} |{bc} {c_wall:.3f} / {f_wall:.3f} | "
+              f"{loop:.3f} |")
     return 0
 
 

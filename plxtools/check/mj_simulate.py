@@ -224,9 +224,21 @@ class SimRun:
         kin = {m.path for m in self.movers}
         return [(p, i) for p, i, d in self.bodies if d or p in kin]
 
-    def add(self, sev: str, code: str, msg: str, path: str | None) -> None:
+    # while a batch of samples is evaluated (`Samples.flush`): the findings, keyed by (sample,
+    # monitor, order), put in sample order once every monitor has seen the batch
+    pending: list[tuple[int, int, int, BackendNote]] | None = None
+    monitor_index: int = 0
+    batch_speed: np.ndarray | None = None  # (samples, moving bodies): speeds of the batch (BodyMotion)
+    moving_col: dict[str, int] = field(default_factory=dict)  # body path -> column of batch_speed
+
+    def add(self, sev: str, code: str, msg: str, path: str | None, at: int | None = None) -> None:
+        """A finding; ``at`` is the sample of the batch it was found at (batched monitors)."""
         src = self.compiled.names.sources.get(path) if path else None
-        self.res.notes.append(BackendNote(sev, code, msg, src, path))
+        note = BackendNote(sev, code, msg, src, path)
+        if at is not None and self.pending is not None:
+            self.pending.append((at, self.monitor_index, len(self.pending), note))
+        else:
+            self.res.notes.append(note)
 
 
 @dataclass(slots=True)
@@ -274,11 +286,14 @@ def kinematic_movers(compiled: CompiledScene, model: Any, data: Any) -> list[Kin
 
 
 class Monitor:
-    """One thing watched during the run: set up at t=0, ``sample`` after every chunk of steps,
-    ``finish`` writes its part of the result.  A new check of the motion is a new Monitor.  One
+    """One thing watched during the run: set up at t=0, then every ``sample_dt`` either
+    ``sample`` (the state is in ``run.data``) or, for a ``batched`` monitor, ``samples`` with many
+    samples at once (:class:`Samples`: the state of each sample, copied into arrays when it was
+    taken); ``finish`` writes its part of the result.  A new check of the motion is a Monitor.  One
     with ``per_step`` set also sees every single step (``before_step`` / ``after_step``)."""
 
     per_step = False
+    batched = False
 
     def before_step(self, run: SimRun) -> None:
         pass
@@ -289,8 +304,95 @@ class Monitor:
     def sample(self, run: SimRun, t: float) -> None:
         pass
 
+    def samples(self, run: SimRun, b: "Samples") -> None:
+        pass
+
     def finish(self, run: SimRun) -> None:
         pass
+
+
+# what a sample records for the batched monitors (MjData fields, copied whole)
+SAMPLE_FIELDS = ("xpos", "xmat", "xipos", "ximat", "cvel", "subtree_com", "qpos", "energy",
+                 "actuator_velocity", "actuator_force")
+_SAMPLE_BYTES = 4_000_000  # buffer size that sets how many samples a batch holds (8 to 256)
+MOTOR_WINDOW = 0.8  # MotorTracking averages over t >= MOTOR_WINDOW * duration
+
+
+class Samples:
+    """The state at the last ``n`` samples: each field of :data:`SAMPLE_FIELDS` as an array
+    ``(capacity, *shape)``, filled by ``record`` (one copy per field), with the sample times ``t``
+    and the steps done ``step``.  The batched monitors read rows ``[:n]``; ``flush`` hands them the
+    batch and starts a new one."""
+
+    def __init__(self, data: Any, capacity: int | None = None) -> None:
+        srcs = [getattr(data, f) for f in SAMPLE_FIELDS]
+        if capacity is None:
+            per = 8 * (2 + sum(a.size for a in srcs))
+            capacity = min(256, max(8, _SAMPLE_BYTES // per))
+        self.capacity = capacity
+        self.n = 0
+        self.t = np.zeros(capacity)
+        self.step = np.zeros(capacity, dtype=np.int64)
+        self._copy: list[tuple[np.ndarray, np.ndarray]] = []
+        for f, src in zip(SAMPLE_FIELDS, srcs):
+            buf = np.zeros((capacity, *src.shape))
+            setattr(self, f, buf)
+            self._copy.append((buf, src))
+
+    @classmethod
+    def now(cls, data: Any, t: float = 0.0, step: int = 0) -> "Samples":
+        """A batch of one sample: the current state."""
+        b = cls(data, 1)
+        b.record(t, step)
+        return b
+
+    def record(self, t: float, step: int) -> bool:
+        """Copy the current state; True when the batch is full."""
+        k = self.n
+        self.t[k] = t
+        self.step[k] = step
+        for buf, src in self._copy:
+            buf[k] = src
+        self.n = k + 1
+        return self.n == self.capacity
+
+    def flush(self, run: SimRun, monitors: list[Monitor]) -> None:
+        """Every batched monitor sees the batch, in MONITORS order; their findings are reported
+        in the order the samples were taken (then monitor order), as when they saw one sample at
+        a time."""
+        if not self.n:
+            return
+        run.pending = []
+        try:
+            for k, m in enumerate(monitors):
+                run.monitor_index = k
+                m.samples(run, self)
+            pending = sorted(run.pending, key=lambda e: e[:3])
+        finally:
+            run.pending = None
+            run.batch_speed = None
+        run.res.notes.extend(e[3] for e in pending)
+        self.n = 0
+
+
+def _running_sum(total: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """``total + rows[0] + rows[1] + ...`` added one row at a time, as a loop doing
+    ``total += row`` would (``np.add.accumulate`` is sequential, unlike ``sum``)."""
+    return np.add.accumulate(np.concatenate([total[None], rows]), axis=0)[-1]
+
+
+def _running_max(best: np.ndarray, when: np.ndarray, vals: np.ndarray, times: np.ndarray) -> np.ndarray:
+    """The loop ``if v > best: best, when = v, t`` over the rows of ``vals`` (samples x items),
+    in place: the largest value above ``best`` and the first time it was reached (NaN never wins).
+    Returns the mask of the items that changed."""
+    cand = np.where(vals > best, vals, -np.inf)
+    i = cand.argmax(axis=0)
+    top = cand[i, np.arange(cand.shape[1])]
+    up = top > best
+    if up.any():
+        best[up] = top[up]
+        when[up] = times[i[up]]
+    return up
 
 
 def initial_penetrations(run: SimRun) -> None:
@@ -310,34 +412,49 @@ def initial_penetrations(run: SimRun) -> None:
 
 
 class BlowUp:
-    """NaN/Inf, MuJoCo's bad-state warnings or a generalised velocity above ``max_speed`` (A101)."""
+    """NaN/Inf, MuJoCo's bad-state warnings or a generalised velocity above ``max_speed`` (A101).
+
+    Checked at every sample on the raw state (``qpos``, ``qvel``, warning counters), before
+    anything is computed from it."""
 
     def __init__(self, run: SimRun) -> None:
         mj = run.mujoco
-        self.warn_ids = [mj.mjtWarning.mjWARN_BADQPOS, mj.mjtWarning.mjWARN_BADQVEL, mj.mjtWarning.mjWARN_BADQACC]
-        self.warn0 = self._warnings(run)
+        self.warn_ids = [int(w) for w in (mj.mjtWarning.mjWARN_BADQPOS, mj.mjtWarning.mjWARN_BADQVEL,
+                                          mj.mjtWarning.mjWARN_BADQACC)]
+        self.counts = run.data.warning.number  # a view: the counters as MuJoCo updates them
+        self.qpos, self.qvel = run.data.qpos, run.data.qvel
+        self._abs_p, self._abs_v = np.zeros_like(self.qpos), np.zeros_like(self.qvel)
+        self.warn0 = self._warnings()
+        self.bounded = True  # at the last check: |qpos|, |qvel| <= mjMAXVAL (MuJoCo's own checks pass)
+        self.max_val = float(mj.mjMAXVAL)
 
-    def _warnings(self, run: SimRun) -> int:
-        return sum(int(run.data.warning[w].number) for w in self.warn_ids)
+    def _warnings(self) -> int:
+        c = self.counts
+        a, b, d = self.warn_ids
+        return int(c[a]) + int(c[b]) + int(c[d])
 
-    def happened(self, run: SimRun, t: float, step: int) -> bool:
-        data, model = run.data, run.model
-        warns = self._warnings(run)
-        finite = bool(np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all())
-        vel_max = float(np.abs(data.qvel).max()) if finite and model.nv else 0.0
-        if not (warns > self.warn0 or not finite or vel_max > run.opt.max_speed):
-            return False
+    def check(self, run: SimRun) -> str | None:
+        """Why the run blew up, or None."""
+        warns = self._warnings()
+        top = np.maximum.reduce
+        p = float(top(np.abs(self.qpos, out=self._abs_p))) if self.qpos.size else 0.0
+        v = float(top(np.abs(self.qvel, out=self._abs_v))) if self.qvel.size else 0.0
+        finite = math.isfinite(p) and math.isfinite(v)  # a NaN anywhere makes the max NaN
+        vel_max = v if finite else 0.0
+        self.bounded = p <= self.max_val and v <= self.max_val
         if warns > self.warn0:
-            reason = "MuJoCo reported a NaN/Inf/huge state (mjWARN_BADQPOS/QVEL/QACC) and reset"
-        elif not finite:
-            reason = "NaN or Inf in the state"
-        else:
-            reason = f"generalised velocity {vel_max:.3g} exceeds {run.opt.max_speed:g}"
+            return "MuJoCo reported a NaN/Inf/huge state (mjWARN_BADQPOS/QVEL/QACC) and reset"
+        if not finite:
+            return "NaN or Inf in the state"
+        if vel_max > run.opt.max_speed:
+            return f"generalised velocity {vel_max:.3g} exceeds {run.opt.max_speed:g}"
+        return None
+
+    def report(self, run: SimRun, t: float, step: int, reason: str) -> None:
         worst = max(run.speed, key=lambda p: run.speed[p]) if run.speed else None
         run.res.blowup = {"time": t, "step": step, "reason": reason, "fastest_body": worst}
         run.add(ERROR, "A101", f"numerical blow-up at t={t:.3f} s: {reason}"
                 + (f" (fastest body before: {worst})" if worst else ""), worst)
-        return True
 
 
 class BadControl(Monitor):
@@ -396,22 +513,26 @@ class BodyMotion(Monitor):
     """Per moving body: path length, heading change, top speed, lowest point, kinetic and
     potential energy; the body reports.
 
-    Every sample reads all moving bodies at once (numpy over arrays indexed by body id): the
-    velocity of a centre of mass is MuJoCo's com-based `cvel` moved from the subtree's centre of
-    mass to `xipos` (what `mj_objectVelocity` does for one body)."""
+    A batch of samples is read at once (numpy over samples x bodies): the velocity of a centre
+    of mass is MuJoCo's com-based `cvel` moved from the subtree's centre of mass to `xipos` (what
+    `mj_objectVelocity` does for one body).  The speeds of the batch are left in
+    ``run.batch_speed`` for Plausibility."""
+
+    batched = True
 
     def __init__(self, run: SimRun) -> None:
         data, model = run.data, run.model
         self.start = {p: (data.xpos[i].copy(), data.xquat[i].copy()) for p, i, _ in run.bodies}
         moving = run.moving
         self.paths = [p for p, _ in moving]
+        run.moving_col = {p: k for k, p in enumerate(self.paths)}
         self.ids = np.array([i for _, i in moving], dtype=int)
         self.roots = np.array([model.body_rootid[i] for _, i in moving], dtype=int)
         self.mass = np.array([model.body_mass[i] for _, i in moving], dtype=float)
         self.inertia = np.array([model.body_inertia[i] for _, i in moving], dtype=float).reshape(-1, 3)
         x = data.xpos[self.ids]
         self.last_pos = x.copy()
-        self.yaw_last = self._yaw(data)
+        self.yaw_last = self._yaw(data.xmat[self.ids])
         self.min_z = x[:, 2].copy()
         n = len(self.paths)
         self.path_length = np.zeros(n)
@@ -419,11 +540,13 @@ class BodyMotion(Monitor):
         self.max_speed = np.zeros(n)
         self.ke_max = np.zeros(n)
         self.vel6 = np.zeros(6)
-        self.sample(run, 0.0, first=True)
+        self._motion(run, Samples.now(data), first=True)
+        run.batch_speed = None
 
-    def _yaw(self, data) -> np.ndarray:
-        m = data.xmat[self.ids]  # row-major 3x3: r[1, 0] is column 3, r[0, 0] column 0
-        return np.arctan2(m[:, 3], m[:, 0])
+    @staticmethod
+    def _yaw(m: np.ndarray) -> np.ndarray:
+        # row-major 3x3 in the last axis: r[1, 0] is column 3, r[0, 0] column 0
+        return np.arctan2(m[..., 3], m[..., 0])
 
     def kinetic(self, run: SimRun, i: int) -> float:
         """Kinetic energy of body ``i`` now (used once per body at the end)."""
@@ -433,30 +556,38 @@ class BodyMotion(Monitor):
         w_local = data.ximat[i].reshape(3, 3).T @ w
         return 0.5 * float(model.body_mass[i]) * float(v @ v) + 0.5 * float(model.body_inertia[i] @ (w_local ** 2))
 
-    def sample(self, run: SimRun, t: float, first: bool = False) -> None:
+    def samples(self, run: SimRun, b: Samples) -> None:
+        self._motion(run, b)
+
+    def _motion(self, run: SimRun, b: Samples, first: bool = False) -> None:
         if not self.paths:
             return
-        data = run.data
-        x = data.xpos[self.ids]
+        s, n = b.n, len(self.paths)
+        x = b.xpos[:s, self.ids]  # (samples, bodies, 3)
         if not first:
-            step = x - self.last_pos
-            self.path_length += np.sqrt((step * step).sum(axis=1))
-            self.last_pos = x
-            y = self._yaw(data)
-            self.yaw_total += (y - self.yaw_last + math.pi) % (2 * math.pi) - math.pi
-            self.yaw_last = y
-        cvel = data.cvel[self.ids]
+            prev = np.concatenate([self.last_pos[None], x[:-1]])
+            step = x - prev
+            self.path_length = _running_sum(self.path_length, np.sqrt((step * step).sum(axis=2)))
+            self.last_pos = x[-1].copy()
+            y = self._yaw(b.xmat[:s, self.ids])
+            prev_y = np.concatenate([self.yaw_last[None], y[:-1]])
+            self.yaw_total = _running_sum(self.yaw_total, (y - prev_y + math.pi) % (2 * math.pi) - math.pi)
+            self.yaw_last = y[-1].copy()
+        # every (sample, body) as one row, as the per-sample formulas had one row per body
+        cvel = b.cvel[:s, self.ids].reshape(-1, 6)
         w = cvel[:, :3]
-        lin = cvel[:, 3:] - _cross(data.xipos[self.ids] - data.subtree_com[self.roots], w)
+        lin = cvel[:, 3:] - _cross((b.xipos[:s, self.ids] - b.subtree_com[:s, self.roots]).reshape(-1, 3), w)
         v2 = (lin * lin).sum(axis=1)
-        sp = np.sqrt(v2)
-        rot = data.ximat[self.ids].reshape(-1, 3, 3)
-        w_local = np.einsum("nji,nj->ni", rot, w)
-        ke = 0.5 * self.mass * v2 + 0.5 * (self.inertia * w_local * w_local).sum(axis=1)
-        np.maximum(self.max_speed, sp, out=self.max_speed)
-        np.maximum(self.ke_max, ke, out=self.ke_max)
-        run.speed.update(zip(self.paths, sp.tolist()))
-        np.minimum(self.min_z, x[:, 2], out=self.min_z)
+        sp = np.sqrt(v2).reshape(s, n)
+        rot = b.ximat[:s, self.ids].reshape(-1, 3, 3)
+        w_local = np.einsum("nji,nj->ni", rot, w).reshape(s, n, 3)
+        v2 = v2.reshape(s, n)
+        ke = 0.5 * self.mass * v2 + 0.5 * (self.inertia * w_local * w_local).sum(axis=2)
+        np.maximum(self.max_speed, sp.max(axis=0), out=self.max_speed)
+        np.maximum(self.ke_max, ke.max(axis=0), out=self.ke_max)
+        run.speed.update(zip(self.paths, sp[-1].tolist()))
+        run.batch_speed = sp
+        np.minimum(self.min_z, x[:, :, 2].min(axis=0), out=self.min_z)
 
     def finish(self, run: SimRun) -> None:
         data, model = run.data, run.model
@@ -483,9 +614,11 @@ class BodyMotion(Monitor):
 class FallThrough(Monitor):
     """A dynamic body whose centre of mass sinks through static geometry it started above (A102).
 
-    Every (body, support) pair is screened at once per sample with numpy; only the pairs the
-    screen flags (a body at or near its support's surface) go through `_Supports.below`, which
-    decides exactly as before."""
+    Every (sample, body, support) triple of a batch is screened at once with numpy; only the
+    pairs the screen flags (a body at or near its support's surface) go through
+    `_Supports.below`, which decides exactly."""
+
+    batched = True
 
     SCREEN_SLACK = 1e-9  # m: the screen errs towards asking `below`, never away from it
 
@@ -505,35 +638,31 @@ class FallThrough(Monitor):
         self.lo = np.array([boxes[g][0] if g in boxes else zero for *_, g in pairs], dtype=float).reshape(-1, 3)
         self.hi = np.array([boxes[g][1] if g in boxes else zero for *_, g in pairs], dtype=float).reshape(-1, 3)
 
-    def sample(self, run: SimRun, t: float) -> None:
+    def samples(self, run: SimRun, b: Samples) -> None:
         if not self.pairs or len(self.fell) == len(self.below_of):
             return
-        data = run.data
         margin = run.opt.fall_margin
-        if len(self.pairs) < 16:  # a few pairs: asking each directly is cheaper than the screen
-            self._check(run, t, range(len(run.dyn)))
-            return
-        c = data.xipos[self.body]
-        plane = ((c - self.pt) * self.nrm).sum(axis=1) < -margin + self.SCREEN_SLACK
-        box = ((self.lo[:, 0] <= c[:, 0]) & (c[:, 0] <= self.hi[:, 0]) & (self.lo[:, 1] <= c[:, 1])
-               & (c[:, 1] <= self.hi[:, 1]) & (c[:, 2] < self.hi[:, 2] - margin + self.SCREEN_SLACK))
-        flagged = np.flatnonzero(np.where(self.is_plane, plane, box))
-        if not flagged.size:
-            return
-        self._check(run, t, sorted({self.pairs[j][0] for j in flagged}))
+        c = b.xipos[:b.n, self.body]  # (samples, pairs, 3)
+        plane = ((c - self.pt) * self.nrm).sum(axis=2) < -margin + self.SCREEN_SLACK
+        box = ((self.lo[:, 0] <= c[..., 0]) & (c[..., 0] <= self.hi[:, 0]) & (self.lo[:, 1] <= c[..., 1])
+               & (c[..., 1] <= self.hi[:, 1]) & (c[..., 2] < self.hi[:, 2] - margin + self.SCREEN_SLACK))
+        flagged = np.where(self.is_plane, plane, box)
+        for k in np.flatnonzero(flagged.any(axis=1)).tolist():
+            which = sorted({self.pairs[j][0] for j in np.flatnonzero(flagged[k]).tolist()})
+            self._check(run, float(b.t[k]), which, b.xipos[k], k)
 
-    def _check(self, run: SimRun, t: float, which) -> None:
-        data, margin, dyn = run.data, run.opt.fall_margin, run.dyn
+    def _check(self, run: SimRun, t: float, which, xipos: np.ndarray, at: int) -> None:
+        margin, dyn = run.opt.fall_margin, run.dyn
         for k in which:
             p, i = dyn[k]
             if p in self.fell:
                 continue
             for g in self.below_of[p]:
-                if self.supports.below(g, data.xipos[i], margin):
+                if self.supports.below(g, xipos[i], margin):
                     self.fell[p] = t
                     gp = run.compiled.names.path("geom", run.model.geom(g).name)
-                    run.res.fall_through.append({"body": p, "time": t, "ground": gp, "com": _vec(data.xipos[i])})
-                    run.add(ERROR, "A102", f"{p} fell through static geometry {gp} at t={t:.3f} s", p)
+                    run.res.fall_through.append({"body": p, "time": t, "ground": gp, "com": _vec(xipos[i])})
+                    run.add(ERROR, "A102", f"{p} fell through static geometry {gp} at t={t:.3f} s", p, at=at)
                     break
 
 
@@ -552,8 +681,10 @@ class _MateTrack:
 class MateSeparation(Monitor):
     """How far each mate's connectors drift apart, in position and axis (A103).
 
-    All mates are measured at once per sample (`_MateArrays`: the same formulas as
+    All mates of a batch of samples are measured at once (`_MateArrays`: the same formulas as
     `_monitor_measure`, over arrays); the running maxima are arrays too."""
+
+    batched = True
 
     def __init__(self, run: SimRun) -> None:
         self.mons = [(m, (run.model.body(m.body0).id, run.model.body(m.body1).id)) for m in run.compiled.monitors]
@@ -571,19 +702,14 @@ class MateSeparation(Monitor):
         self.last_sep: np.ndarray | None = None
         self.last_mis: np.ndarray | None = None
 
-    def sample(self, run: SimRun, t: float) -> None:
+    def samples(self, run: SimRun, b: Samples) -> None:
         if not self.mons:
             return
-        sep, mis = self.arrays.measure(run.data)
-        self.last_sep, self.last_mis = sep, mis
-        up = sep > self.max_sep
-        if up.any():
-            self.max_sep[up] = sep[up]
-            self.max_sep_t[up] = t
-        up = mis > self.max_mis  # -inf where a mate has no axis to compare
-        if up.any():
-            self.max_mis[up] = mis[up]
-            self.max_mis_t[up] = t
+        sep, mis = self.arrays.measure(b.xpos[:b.n], b.xmat[:b.n])  # (samples, mates)
+        self.last_sep, self.last_mis = sep[-1].copy(), mis[-1].copy()
+        t = b.t[:b.n]
+        _running_max(self.max_sep, self.max_sep_t, sep, t)
+        _running_max(self.max_mis, self.max_mis_t, mis, t)  # -inf where a mate has no axis to compare
 
     def finish(self, run: SimRun) -> None:
         for k, (m, _) in enumerate(self.mons):
@@ -637,25 +763,30 @@ class _MateArrays:
         self.lock = np.array([k == "lock" for k in kinds])
         self.any_perp, self.any_lock, self.any_distance = self.perp.any(), self.lock.any(), self.distance.any()
 
-    def measure(self, data) -> tuple[np.ndarray, np.ndarray]:
-        n = self.n
-        rot = data.xmat[self.bodies].reshape(-1, 3, 3)
-        p = data.xpos[self.bodies] + (rot @ self.pos)[:, :, 0]
-        axes = (rot @ self.axis)[:, :, 0]
-        a0, a1 = axes[:n], axes[n:]
-        d = p[n:] - p[:n]
+    def measure(self, xpos: np.ndarray, xmat: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Separations and misalignments (samples x mates) from ``xpos``, ``xmat`` (samples x
+        bodies x 3 or 9)."""
+        n, s = self.n, xpos.shape[0]
+        rot = xmat[:, self.bodies].reshape(s, -1, 3, 3)
+        p = xpos[:, self.bodies] + (rot @ self.pos)[..., 0]
+        axes = (rot @ self.axis)[..., 0]
+        # every (sample, mate) as one row, as the per-sample formulas had one row per mate
+        a0, a1 = axes[:, :n].reshape(-1, 3), axes[:, n:].reshape(-1, 3)
+        d = (p[:, n:] - p[:, :n]).reshape(-1, 3)
+        perp, distance, lock = (np.tile(a, s) for a in (self.perp, self.distance, self.lock))
         if self.any_perp:
             along = (d * a0).sum(axis=1)
-            d = np.where(self.perp[:, None], d - along[:, None] * a0, d)
+            d = np.where(perp[:, None], d - along[:, None] * a0, d)
         sep = np.sqrt((d * d).sum(axis=1))
         if self.any_distance:
-            sep = np.where(self.distance, np.abs(sep - self.target), sep)
+            sep = np.where(distance, np.abs(sep - np.tile(self.target, s)), sep)
         mis = _angles(a0, a1)
         if self.any_lock:
-            normals = (rot @ self.normal)[:, :, 0]
-            mis = np.where(self.lock, np.maximum(mis, _angles(normals[:n], normals[n:])), mis)
-        mis[self.no_axis] = -np.inf
-        return sep, mis
+            normals = (rot @ self.normal)[..., 0]
+            mis = np.where(lock, np.maximum(mis, _angles(normals[:, :n].reshape(-1, 3),
+                                                         normals[:, n:].reshape(-1, 3))), mis)
+        mis[np.tile(self.no_axis, s)] = -np.inf
+        return sep.reshape(s, n), mis.reshape(s, n)
 
 
 def _units(v: np.ndarray) -> np.ndarray:
@@ -686,19 +817,33 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 class JointLimits(Monitor):
     """The largest excursion of each limited hinge / slide joint beyond its range (A105)."""
 
+    batched = True
+
     def __init__(self, run: SimRun) -> None:
         model = run.model
         self.limited = [j for j in range(model.njnt) if model.jnt_limited[j] and model.jnt_type[j] in (2, 3)]
-        self.worst: dict[int, tuple[float, float]] = {}  # joint -> (violation, time)
+        self.worst: dict[int, tuple[float, float]] = {}  # joint -> (violation, time), by first excursion
+        self.adr = np.array([model.jnt_qposadr[j] for j in self.limited], dtype=int)
+        self.lo = np.array([model.jnt_range[j][0] for j in self.limited], dtype=float)
+        self.hi = np.array([model.jnt_range[j][1] for j in self.limited], dtype=float)
+        self.best = np.zeros(len(self.limited))
+        self.best_t = np.zeros(len(self.limited))
 
-    def sample(self, run: SimRun, t: float) -> None:
-        model, data = run.model, run.data
-        for j in self.limited:
-            q = float(data.qpos[model.jnt_qposadr[j]])
-            lo, hi = model.jnt_range[j]
-            v = max(lo - q, q - hi, 0.0)
-            if v > self.worst.get(j, (0.0, 0.0))[0]:
-                self.worst[j] = (v, t)
+    def samples(self, run: SimRun, b: Samples) -> None:
+        if not self.limited:
+            return
+        q = b.qpos[:b.n, self.adr]  # (samples, joints)
+        v = np.maximum(np.maximum(self.lo - q, q - self.hi), 0.0)
+        fresh = [c for c, j in enumerate(self.limited) if j not in self.worst]
+        up = _running_max(self.best, self.best_t, v, b.t[:b.n])
+        if not up.any():
+            return
+        # joints are listed in the order they first left their range (then joint order)
+        first = {c: int(np.argmax(v[:, c] > 0.0)) for c in fresh if up[c]}
+        for c in sorted(first, key=lambda c: (first[c], c)):
+            self.worst[self.limited[c]] = (0.0, 0.0)
+        for c in np.flatnonzero(up).tolist():
+            self.worst[self.limited[c]] = (self.best[c], float(self.best_t[c]))
 
     def finish(self, run: SimRun) -> None:
         for j, (v, t) in self.worst.items():
@@ -708,43 +853,41 @@ class JointLimits(Monitor):
                 run.add(WARNING, "A105", f"{jp} exceeded its range by {v:.4g} at t={t:.3f} s", jp)
 
 
-@dataclass
-class _MotorTrack:
-    speed_sum: float = 0.0
-    force_sum: float = 0.0
-    samples: int = 0
-
-
 class MotorTracking(Monitor):
     """Mean speed and effort of every actuator over the last 20 % of the run (A106)."""
 
+    batched = True
+
     def __init__(self, run: SimRun) -> None:
         self.acts = [(a, run.model.actuator(a.name).id) for a in run.compiled.actuators]
-        self.track = {a.path: _MotorTrack() for a, _ in self.acts}
+        self.aid = np.array([aid for _, aid in self.acts], dtype=int)
+        self.speed_sum = np.zeros(len(self.acts))
+        self.force_sum = np.zeros(len(self.acts))
+        self.count = 0
 
-    def sample(self, run: SimRun, t: float) -> None:
-        if t < 0.8 * run.duration:
+    def samples(self, run: SimRun, b: Samples) -> None:
+        if not self.acts:
             return
-        for a, aid in self.acts:
-            tr = self.track[a.path]
-            tr.speed_sum += float(run.data.actuator_velocity[aid])
-            tr.force_sum += float(run.data.actuator_force[aid])
-            tr.samples += 1
+        rows = np.flatnonzero(~(b.t[:b.n] < MOTOR_WINDOW * run.duration))
+        if not rows.size:
+            return
+        self.speed_sum = _running_sum(self.speed_sum, b.actuator_velocity[rows][:, self.aid])
+        self.force_sum = _running_sum(self.force_sum, b.actuator_force[rows][:, self.aid])
+        self.count += int(rows.size)
 
     def finish(self, run: SimRun) -> None:
-        for a, _ in self.acts:
-            tr = self.track[a.path]
-            n = max(tr.samples, 1)
-            mean_v, mean_f = tr.speed_sum / n, tr.force_sum / n
+        for k, (a, _) in enumerate(self.acts):
+            n = max(self.count, 1)
+            mean_v, mean_f = float(self.speed_sum[k]) / n, float(self.force_sum[k]) / n
             err = abs(mean_v - a.target_speed) if a.target_speed is not None else None
             run.res.motors[a.path] = MotorReport(
                 a.path, a.kind, a.target_speed if a.target_speed is not None else a.ctrl, mean_v, mean_f, a.kv, err)
-            if err is not None and tr.samples and err > 0.1 * abs(a.target_speed) + 0.05:
+            if err is not None and self.count and err > 0.1 * abs(a.target_speed) + 0.05:
                 run.add(WARNING, "A106", f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g} over the "
                         f"last 20 % of the run", a.path)
 
 
-_ENERGY_ROWS = 64  # steps recorded before Energy adds up their work (it also does at every sample)
+_ENERGY_ROWS = 1024  # steps Energy buffers at first (it grows when a batch of samples needs more)
 
 
 class Energy(Monitor):
@@ -754,6 +897,8 @@ class Energy(Monitor):
     friction only take it away.  So E(t) - E(0) - W_actuators(t) must stay <= 0 up to the
     integrator's error; a gain above ``energy_tol`` of the run's energy scale (its largest kinetic
     energy plus the actuators' work, at least lifting every body by a millimetre) is a finding."""
+
+    batched = True
 
     def __init__(self, run: SimRun) -> None:
         data, model = run.data, run.model
@@ -779,64 +924,78 @@ class Energy(Monitor):
                             for i in ids])
         self.hi = np.array([float(model.actuator_forcerange[i][1]) if model.actuator_forcelimited[i] else np.inf
                             for i in ids])
-        # per step only the raw readings are copied into these rows; the work is computed for all
-        # the rows at once when the monitors sample (and at the end): the same arithmetic, element
-        # by element and summed step by step in the same order, without a dozen small numpy calls
-        # per step
-        self._q0 = np.zeros((_ENERGY_ROWS, len(acts)))
-        self._q1 = np.zeros((_ENERGY_ROWS, len(acts)))
-        self._ctrl = np.zeros((_ENERGY_ROWS, len(acts)))
+        # per step only the raw readings are copied (whole qvel and ctrl rows); the work of all the
+        # steps since the last batch is computed at once when the monitors see a batch of samples
+        # (and at the end): the same arithmetic, element by element and summed step by step in the
+        # same order.  The speed before a step is the speed after the one before it.
+        self.h = float(model.opt.timestep)
+        self._qvel, self._ctrl_now = data.qvel, data.ctrl
+        self._last = data.qvel.copy()
+        self._qv = np.zeros((_ENERGY_ROWS, model.nv))
+        self._ct = np.zeros((_ENERGY_ROWS, model.nu))
         self._rows = 0
+        self._base = 0  # steps before the first buffered row
 
     @staticmethod
     def _total(run: SimRun) -> float:
         return float(run.data.energy[0] + run.data.energy[1])
 
-    def before_step(self, run: SimRun) -> None:
-        np.take(run.data.qvel, self.dof, out=self._q0[self._rows])
-
     def after_step(self, run: SimRun) -> None:
-        d = run.data
         k = self._rows
-        np.take(d.qvel, self.dof, out=self._q1[k])
-        np.take(d.ctrl, self.aid, out=self._ctrl[k])
+        if k == len(self._qv):
+            self._qv = np.concatenate([self._qv, np.zeros_like(self._qv)])
+            self._ct = np.concatenate([self._ct, np.zeros_like(self._ct)])
+        self._qv[k] = self._qvel
+        self._ct[k] = self._ctrl_now
         self._rows = k + 1
-        if self._rows == _ENERGY_ROWS:
-            self._add_work(run)
 
-    def _add_work(self, run: SimRun) -> None:
-        """The work of the steps recorded since the last call. A velocity servo is integrated
+    def _add_work(self) -> np.ndarray:
+        """The work of the steps recorded since the last call, added to ``work``; returns the
+        work done after each of them, the work before them first.  A velocity servo is integrated
         implicitly, so its force is kv (ctrl - v) at the velocity the step ends with, unless it
         saturates (then MuJoCo uses the clamped explicit force); a motor's force is its clamped
         control."""
         k = self._rows
         if not k:
-            return
+            return np.array([self.work])
+        # C order (indexing columns gives Fortran order): `sum(axis=1)` below then adds each row's
+        # actuators in the same (pairwise) order as on the rows of one step
+        q1 = np.ascontiguousarray(self._qv[:k][:, self.dof])
+        q0 = np.concatenate([self._last[self.dof][None], q1[:-1]])
+        self._last[:] = self._qv[k - 1]
         self._rows = 0
-        v_old = self.gear * self._q0[:k]
-        v_new = self.gear * self._q1[:k]
-        ctrl = self._ctrl[:k]
+        self._base += k
+        v_old = self.gear * q0
+        v_new = self.gear * q1
+        ctrl = np.ascontiguousarray(self._ct[:k][:, self.aid])
         explicit = np.where(self.kv > 0, self.kv * (ctrl - v_old), ctrl)
         clamped = np.clip(explicit, self.lo, self.hi)
         saturated = self.limited & (clamped != explicit)
         implicit = np.where(self.kv > 0, self.kv * (ctrl - v_new), ctrl)
         force = np.where(saturated, clamped, np.clip(implicit, self.lo, self.hi))
-        w = force * 0.5 * (v_old + v_new) * float(run.model.opt.timestep)
-        work, work_abs = self.work, self.work_abs
-        for s, a in zip(w.sum(axis=1).tolist(), np.abs(w).sum(axis=1).tolist()):
-            work += s
-            work_abs += a
-        self.work, self.work_abs = work, work_abs
+        w = force * 0.5 * (v_old + v_new) * self.h
+        cum = np.add.accumulate(np.concatenate([[self.work], w.sum(axis=1)]))
+        self.work = float(cum[-1])
+        self.work_abs = float(np.add.accumulate(np.concatenate([[self.work_abs], np.abs(w).sum(axis=1)]))[-1])
+        return cum
 
-    def sample(self, run: SimRun, t: float) -> None:
-        self._add_work(run)
-        self.max_kinetic = max(self.max_kinetic, float(run.data.energy[1]))
-        g = self._total(run) - self.initial - self.work
-        if g > self.gain:
-            self.gain, self.gain_time = g, t
+    def samples(self, run: SimRun, b: Samples) -> None:
+        n = b.n
+        base = self._base
+        cum = self._add_work()
+        work = cum[b.step[:n] - base] if self.per_step else np.full(n, self.work)
+        ke = b.energy[:n, 1]
+        top = np.where(ke > self.max_kinetic, ke, -np.inf).max()
+        if top > self.max_kinetic:
+            self.max_kinetic = float(top)
+        g = b.energy[:n, 0] + ke - self.initial - work
+        cand = np.where(g > self.gain, g, -np.inf)
+        i = int(cand.argmax())
+        if cand[i] > self.gain:
+            self.gain, self.gain_time = float(cand[i]), float(b.t[i])
 
     def finish(self, run: SimRun) -> None:
-        self._add_work(run)
+        self._add_work()
         scale = max(self.max_kinetic + self.work_abs, self.floor, 1e-12)
         run.res.energy = {"initial_total": self.initial, "final_total": self._total(run),
                           "max_kinetic": self.max_kinetic, "actuator_work": self.work,
@@ -860,6 +1019,8 @@ class Plausibility(Monitor):
     """A body faster than anything in the scene explains (A135): its start speed, free fall over
     the whole run, the motors' target speeds over the scene's size, and the springs' initial energy,
     with a margin of 2."""
+
+    batched = True
 
     def __init__(self, run: SimRun) -> None:
         model, data = run.model, run.data
@@ -889,17 +1050,27 @@ class Plausibility(Monitor):
         self.parts = (v0, g * run.duration, motors, springs)
         self.bound = 2.0 * self.explained + 1.0
 
-    def sample(self, run: SimRun, t: float) -> None:
-        for p, _ in run.dyn:
-            v = run.speed.get(p, 0.0)
-            if v > self.bound and p not in self.reported:
+    def samples(self, run: SimRun, b: Samples) -> None:
+        sp = run.batch_speed  # (samples, moving bodies), from BodyMotion
+        if sp is None or not run.dyn or len(self.reported) == len(run.dyn):
+            return
+        cols = [run.moving_col[p] for p, _ in run.dyn]
+        over = sp[:, cols] > self.bound
+        if not over.any():
+            return
+        for k in np.flatnonzero(over.any(axis=1)).tolist():
+            for c in np.flatnonzero(over[k]).tolist():
+                p = run.dyn[c][0]
+                if p in self.reported:
+                    continue
                 self.reported.add(p)
+                v, t = float(sp[k, cols[c]]), float(b.t[k])
                 v0, ff, mot, spr = self.parts
                 run.res.implausible_speeds.append({"body": p, "time": t, "speed": v, "bound": self.bound})
                 run.add(WARNING, "A135",
                         f"{p} reached {v:.4g} m/s at t={t:.3f} s, more than the scene explains "
                         f"({self.explained:.3g} m/s: start {v0:.3g} + free fall over the run {ff:.3g} + motors "
-                        f"{mot:.3g} + springs {spr:.3g}; twice that plus 1 m/s is tolerated)", p)
+                        f"{mot:.3g} + springs {spr:.3g}; twice that plus 1 m/s is tolerated)", p, at=k)
 
 
 # Everything watched during a run, in the order their findings are reported.  A new check of the
@@ -943,18 +1114,48 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
     monitors: list[Monitor] = [m(run) for m in MONITORS if m is not Trace or opt.record]
     blowup = BlowUp(run)
     per_step = [m for m in monitors if m.per_step]
+    batched = [m for m in monitors if m.batched]
+    plain = [m for m in monitors if not m.batched and type(m).sample is not Monitor.sample]
+    batch = Samples(data)
 
     n_steps = max(1, int(round(duration / h)))
     chunk = max(1, int(round(opt.sample_dt / h)))
+    # Without a controller or moving kinematic bodies, the state at a sample is computed by the
+    # next step's first half (mj_step1: positions and velocities, exactly what mj_forward would
+    # compute for them), instead of an extra mj_forward per sample; the step is then finished
+    # with mj_step2.  A controller reads acceleration-stage data (actuator forces) and a kinematic
+    # body is placed before each step, so those runs use mj_forward.
+    split = controller is None and not run.movers
+    forces_from = MOTOR_WINDOW * duration if model.nu else math.inf  # MotorTracking reads actuator_force
+    primed = False  # mj_step1 of the next step has run
+    fast_after = None
+    if (controller is None and not run.movers and len(per_step) == 1
+            and type(per_step[0]).before_step is Monitor.before_step):
+        fast_after = per_step[0].after_step
     done = 0
     t_wall = time.perf_counter()
     while done < n_steps:
         if opt.timeout is not None and time.perf_counter() - t_wall > opt.timeout:
+            if primed:
+                mujoco.mj_forward(model, data)
+            batch.flush(run, batched)
             run.add(ERROR, "A109", f"the simulation was stopped by the time limit ({opt.timeout:g} s of wall time) "
                     f"at t={done * h:.3f} s of {duration:g} s; the motion after that is not checked", None)
             break
         k = min(chunk, n_steps - done)
-        if run.movers or per_step or controller is not None:
+        if primed:
+            mujoco.mj_step2(model, data)
+            done += 1
+            k -= 1
+            primed = False
+            for m in per_step:
+                m.after_step(run)
+        if fast_after is not None:  # the usual run: only Energy records something per step
+            for _ in range(k):
+                mujoco.mj_step(model, data)
+                fast_after(run)
+            done += k
+        elif run.movers or per_step or controller is not None:
             for _ in range(k):
                 for mv in run.movers:
                     mv.place(data, (done + 1) * h)
@@ -969,15 +1170,30 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
                 done += 1
                 for m in per_step:
                     m.after_step(run)
-        else:
+        elif k:
             mujoco.mj_step(model, data, nstep=k)
             done += k
-        mujoco.mj_forward(model, data)  # mj_step leaves positions-derived data one step behind
         t = done * h
-        if blowup.happened(run, t, done):
+        reason = blowup.check(run)
+        if reason is not None:
+            mujoco.mj_forward(model, data)  # what the report reads of the final state
+            batch.flush(run, batched)  # the speeds before the blow-up
+            blowup.report(run, t, done, reason)
             break
-        for m in monitors:
+        if split and done < n_steps and blowup.bounded:  # bounded: mj_step1's checks will not reset
+            for m in per_step:
+                m.before_step(run)
+            mujoco.mj_step1(model, data)
+            primed = True
+            if t >= forces_from:
+                mujoco.mj_fwdActuation(model, data)
+        else:
+            mujoco.mj_forward(model, data)  # mj_step leaves positions-derived data one step behind
+        for m in plain:
             m.sample(run, t)
+        if batch.record(t, done):
+            batch.flush(run, batched)
+    batch.flush(run, batched)
     if controller is not None and res.blowup is None:
         controller(done * h, model, data)  # the final state (mj_forward ran after the last chunk)
     res.wall_time_s = time.perf_counter() - t_wall
