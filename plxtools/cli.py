@@ -173,16 +173,17 @@ class _Skip:
         return _Stub()
 
 
-_COLUMNS: list[int] = []
+_COLUMNS: dict[tuple, int] = {}
 
 
 def _terminal_columns() -> int:
     """shutil.get_terminal_size().columns without importing shutil (and bz2, lzma) at every start;
-    asked once per run (argparse makes a formatter for every option it adds)."""
-    if _COLUMNS:
-        return _COLUMNS[0]
+    asked once per run and $COLUMNS/$LINES (argparse makes a formatter for every option it adds)."""
     import os
 
+    key = (os.environ.get("COLUMNS"), os.environ.get("LINES"))
+    if key in _COLUMNS:
+        return _COLUMNS[key]
     try:
         columns = int(os.environ["COLUMNS"])
     except (KeyError, ValueError):
@@ -198,7 +199,7 @@ def _terminal_columns() -> int:
             size = os.terminal_size((80, 24))
         if columns <= 0:
             columns = size.columns or 80
-    _COLUMNS.append(columns)
+    _COLUMNS[key] = columns
     return columns
 
 
