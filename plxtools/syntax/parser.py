@@ -18,15 +18,26 @@ from plxtools.syntax.source import LineIndex, decode, decode_text, line_start
 # ------------------------------------------------------------------ building nodes
 
 
+_new = tuple.__new__  # Pos and Span built without their (Python-level) NamedTuple constructors
+
+
 def _sp(x) -> Span:
-    if isinstance(x, Token):
-        return Span(Pos(x.start_pos, x.line, x.column), Pos(x.end_pos, x.end_line, x.end_column))
+    if type(x) is Token:
+        return _new(Span, (_new(Pos, (x.start_pos, x.line, x.column)), _new(Pos, (x.end_pos, x.end_line, x.end_column))))
     return x.span
 
 
 def _cover(children) -> Span:
-    items = [c for c in children if c is not None]
-    return Span(_sp(items[0]).start, _sp(items[-1]).end)
+    """The span from the first child that is there to the last (tokens or nodes)."""
+    for first in children:
+        if first is not None:
+            break
+    for last in reversed(children):
+        if last is not None:
+            break
+    start = _new(Pos, (first.start_pos, first.line, first.column)) if type(first) is Token else first.span.start
+    end = _new(Pos, (last.end_pos, last.end_line, last.end_column)) if type(last) is Token else last.span.end
+    return _new(Span, (start, end))
 
 
 class _Seq(list):
