@@ -76,8 +76,8 @@ class _Build(Transformer):
     # expressions
     def number(self, c):
         t = c[0]
-        text = str(t)
-        is_int = not any(ch in text for ch in ".eE")
+        text = t.value
+        is_int = "." not in text and "e" not in text and "E" not in text
         try:
             value = int(text) if is_int else float(text)
         except ValueError:  # over Python's int-string limit: the lexer has reported it (S005)
@@ -378,30 +378,37 @@ class _NotFast(Exception):
     """The line is not one the fast path builds: the grammar parses it (and reports its errors)."""
 
 
+_Ident, _QName, _Name, _Member, _Call, _Binary = ast.Ident, ast.QName, ast.Name, ast.Member, ast.Call, ast.Binary
 _MAX_FAST_DEPTH = 40  # deeper brackets or `- - -` chains go to the grammar (no recursion limits here)
 _PRIMARY_LITERALS = {"NUMBER": _B.number, "STRING": _B.string, "TRUE": _B.true, "FALSE": _B.false,
                      "THIS": _B.this}
-_SUM_OPS = ("PLUS", "MINUS")
-_PRODUCT_OPS = ("STAR", "SLASH")
+_PREC = {"PLUS": 1, "MINUS": 1, "STAR": 2, "SLASH": 2}
+
+
+def _ident(t: Token) -> ast.Ident:
+    """What the grammar's `name` builds for a NAME or TICKNAME token."""
+    return _Ident(_new(Span, (_new(Pos, (t.start_pos, t.line, t.column)), _new(Pos, (t.end_pos, t.end_line, t.end_column)))),
+                  t.value, t.type == "TICKNAME")
 
 
 def _qname(tokens: list[Token], i: int) -> tuple[ast.QName | None, int]:
+    """What the grammar's `qname` builds from i (None if no name is there), and the next index."""
     n = len(tokens)
     if i >= n or tokens[i].type not in _NAMEISH:
         return None, i
-    items = [_B.name([tokens[i]])]
+    parts = [_ident(tokens[i])]
     i += 1
     while i + 1 < n and tokens[i].type == "DOT" and tokens[i + 1].type in _NAMEISH:
-        items.append(tokens[i])
-        items.append(_B.name([tokens[i + 1]]))
+        parts.append(_ident(tokens[i + 1]))
         i += 2
-    return _B.qname(items), i
+    return _QName(_new(Span, (parts[0].span.start, parts[-1].span.end)), parts), i
 
 
 class _ExprParser:
-    """The grammar's `expr` by recursive descent over one logical line's tokens, building each node
-    with the same builder and the same children as the LALR parser; raises _NotFast on anything
-    else (the grammar then parses the line and words the error)."""
+    """The grammar's `expr` over one logical line's tokens (precedence climbing for the binary
+    operators, a loop for unary minus and the postfix forms), building the nodes the grammar's
+    builders build, with the same spans; raises _NotFast on anything else (the grammar then parses
+    the line and words the error)."""
 
     __slots__ = ("tokens", "n", "depth")
 
@@ -410,99 +417,95 @@ class _ExprParser:
         self.n = len(tokens)
         self.depth = 0
 
-    def expr(self, i: int):
+    def expr(self, i: int, min_prec: int = 1):
+        """`sum` (min_prec 1) or `product` (2) from i: left-associative, `*` `/` above `+` `-`."""
         tokens, n = self.tokens, self.n
-        left, i = self.product(i)
-        while i < n and tokens[i].type in _SUM_OPS:
+        left, i = self.operand(i)
+        while i < n:
             op = tokens[i]
-            right, i = self.product(i + 1)
-            left = _B.binary([left, op, right])
+            prec = _PREC.get(op.type)
+            if prec is None or prec < min_prec:
+                break
+            right, i = self.expr(i + 1, prec + 1)
+            left = _Binary(_new(Span, (left.span.start, right.span.end)), op.value, left, right)
         return left, i
 
-    def product(self, i: int):
-        tokens, n = self.tokens, self.n
-        left, i = self.unary(i)
-        while i < n and tokens[i].type in _PRODUCT_OPS:
-            op = tokens[i]
-            right, i = self.unary(i + 1)
-            left = _B.binary([left, op, right])
-        return left, i
-
-    def unary(self, i: int):
+    def operand(self, i: int):  # noqa: C901 - `unary`, `postfix` and `primary` in one loop
         tokens, n = self.tokens, self.n
         j = i
         while j < n and tokens[j].type == "MINUS":
             j += 1
         if j - i > _MAX_FAST_DEPTH:
             raise _NotFast
-        node, k = self.postfix(j)
-        while j > i:
+        if j >= n:
+            raise _NotFast
+        t = tokens[j]
+        kind = t.type
+        build = _PRIMARY_LITERALS.get(kind)
+        if build is not None:
+            node = build([t])
+            k = j + 1
+        elif kind in _NAMEISH:
+            name = _ident(t)
+            node = _Name(name.span, name)
+            k = j + 1
+        elif kind == "LPAR":
+            self.enter()
+            inner, k = self.expr(j + 1)
+            self.depth -= 1
+            if k >= n or tokens[k].type != "RPAR":
+                raise _NotFast
+            node = _B.paren([t, inner, tokens[k]])
+            k += 1
+        elif kind == "LSQB":
+            args, k = self.args(j + 1, "RSQB")
+            node = _B.array([t, args, tokens[k]])
+            k += 1
+        elif kind == "LBRACE":
+            args, k = self.args(j + 1, "RBRACE")
+            node = _B.brace([t, args, tokens[k]])
+            k += 1
+        else:
+            raise _NotFast
+        while k < n:  # postfix: `.name`, `(args)`, `[index]`
+            t = tokens[k]
+            kind = t.type
+            if kind == "DOT":
+                if k + 1 < n and tokens[k + 1].type in _NAMEISH:
+                    name = _ident(tokens[k + 1])
+                    node = _Member(_new(Span, (node.span.start, name.span.end)), node, name)
+                    k += 2
+                    continue
+                raise _NotFast
+            if kind == "LPAR":
+                args, k = self.args(k + 1, "RPAR")
+                r = tokens[k]
+                node = _Call(_new(Span, (node.span.start, _new(Pos, (r.end_pos, r.end_line, r.end_column)))), node,
+                             args or [])
+                k += 1
+                continue
+            if kind == "LSQB":
+                self.enter()
+                index, m = self.expr(k + 1)
+                self.depth -= 1
+                if m >= n or tokens[m].type != "RSQB":
+                    raise _NotFast
+                node = _B.index([node, t, index, tokens[m]])
+                k = m + 1
+                continue
+            break
+        while j > i:  # unary minus, innermost first
             j -= 1
             node = _B.neg([tokens[j], node])
         return node, k
 
-    def postfix(self, i: int):
-        tokens, n = self.tokens, self.n
-        node, i = self.primary(i)
-        while i < n:
-            t = tokens[i]
-            kind = t.type
-            if kind == "DOT":
-                if i + 1 < n and tokens[i + 1].type in _NAMEISH:
-                    node = _B.member([node, t, _B.name([tokens[i + 1]])])
-                    i += 2
-                    continue
-                raise _NotFast
-            if kind == "LPAR":
-                args, j = self.args(i + 1, "RPAR")
-                node = _B.call([node, t, args, tokens[j]])
-                i = j + 1
-                continue
-            if kind == "LSQB":
-                self.enter()
-                index, j = self.expr(i + 1)
-                self.depth -= 1
-                if j >= n or tokens[j].type != "RSQB":
-                    raise _NotFast
-                node = _B.index([node, t, index, tokens[j]])
-                i = j + 1
-                continue
-            break
-        return node, i
-
-    def primary(self, i: int):
-        tokens, n = self.tokens, self.n
-        if i >= n:
-            raise _NotFast
-        t = tokens[i]
-        kind = t.type
-        build = _PRIMARY_LITERALS.get(kind)
-        if build is not None:
-            return build([t]), i + 1
-        if kind in _NAMEISH:
-            return _B.ref([_B.name([t])]), i + 1
-        if kind == "LPAR":
-            self.enter()
-            inner, j = self.expr(i + 1)
-            self.depth -= 1
-            if j >= n or tokens[j].type != "RPAR":
-                raise _NotFast
-            return _B.paren([t, inner, tokens[j]]), j + 1
-        if kind == "LSQB":
-            args, j = self.args(i + 1, "RSQB")
-            return _B.array([t, args, tokens[j]]), j + 1
-        if kind == "LBRACE":
-            args, j = self.args(i + 1, "RBRACE")
-            return _B.brace([t, args, tokens[j]]), j + 1
-        raise _NotFast
-
     def args(self, i: int, closer: str):
-        """`[args] closer` from i: (the args node or None, the index of the closer)."""
+        """`[args] closer` from i: (the expressions or None, the index of the closer)."""
         tokens, n = self.tokens, self.n
         if i < n and tokens[i].type == closer:
             return None, i
         self.enter()
-        items: list = []
+        items: list = []  # what the grammar's `args` builds: the expressions
         while True:
             item, i = self.expr(i)
             items.append(item)
@@ -510,16 +513,14 @@ class _ExprParser:
                 raise _NotFast
             kind = tokens[i].type
             if kind == closer:
-                items.append(None)  # no trailing comma
                 break
             if kind != "COMMA":
                 raise _NotFast
-            items.append(tokens[i])
             i += 1
             if i < n and tokens[i].type == closer:
                 break
         self.depth -= 1
-        return _B.args(items), i
+        return items, i
 
     def enter(self) -> None:
         self.depth += 1
@@ -586,7 +587,7 @@ def _fast_stmt(tokens: list[Token]) -> ast.Stmt | None:  # noqa: C901 - one line
     first = tokens[0].type
     if first == "DOT":  # `.doc: "..."`
         if n >= 4 and tokens[1].type in _NAMEISH and tokens[2].type == "COLON":
-            return _B.annotation([tokens[0], _B.name([tokens[1]]), tokens[2], _value(tokens, 3)])
+            return _B.annotation([tokens[0], _ident(tokens[1]), tokens[2], _value(tokens, 3)])
         return None
     if first == "WITH":  # `with A.B, C`
         items: list = [tokens[0]]
@@ -672,7 +673,7 @@ def _params(tokens: list[Token], i: int):
     while i < n and tokens[i].type != "RPAR":
         t = tokens[i]
         if t.type in _NAMEISH:
-            name = _B.name([t])
+            name = _ident(t)
         elif t.type == "REFERENCE":
             name = _B.param_kw([t])
         else:
@@ -712,7 +713,7 @@ def _fast_header(tokens: list[Token], first: str) -> ast.Stmt | None:
     if first == "TRAIT":  # trait Name [is Q] [:]
         if n < 2 or tokens[1].type not in _NAMEISH:
             return None
-        name = _B.name([tokens[1]])
+        name = _ident(tokens[1])
         kw = base = colon = None
         i = 2
         if i < n and tokens[i].type == "IS":
@@ -753,7 +754,7 @@ def _fast_header(tokens: list[Token], first: str) -> ast.Stmt | None:
     fn = tokens[i]
     if i + 1 >= n or tokens[i + 1].type not in _NAMEISH:
         return None
-    name = _B.name([tokens[i + 1]])
+    name = _ident(tokens[i + 1])
     params, j = _params(tokens, i + 2)
     arrow, ref = _returns(tokens, j)
     return _B.method([static, fn, name, params, arrow, ref])
