@@ -86,6 +86,7 @@ _SCAN_RE = re.compile(
     """,
     re.VERBOSE | re.DOTALL,
 )
+_SPACES_RE = re.compile(r" *")
 _IDENT_CHAR = re.compile(r"[A-Za-z0-9_.]")
 _BREAK_RE = re.compile(r"\r\n?|\n")  # the line breaks of OpenPLX (and of LSP): \r\n, \r, \n
 MAX_INT_DIGITS = 4300  # Python's int-from-string limit (sys.get_int_max_str_digits)
@@ -153,6 +154,7 @@ class Lexer:
         brackets: list[Token] = []
         match = _TOKEN_RE.match
         scan = _SCAN_RE.match
+        spaces = _SPACES_RE.match
         keyword = KEYWORDS.get
         punct_type = PUNCT.__getitem__
         new = str.__new__
@@ -178,18 +180,21 @@ class Lexer:
         while True:
             while pos < n:
                 if at_line_start:
-                    # measure indentation of the next non-blank line
-                    i = pos
-                    col = 0
+                    # measure indentation of the next non-blank line (spaces: one regex match)
+                    i = spaces(text, pos).end()
+                    col = i - pos
                     tab_at = -1
-                    while i < n and text[i] in " \t\f":
-                        if text[i] == "\t":
-                            if tab_at < 0:
-                                tab_at = i
-                            col = (col // 4 + 1) * 4
-                        else:
-                            col += 1
-                        i += 1
+                    if i < n and text[i] in "\t\f":
+                        i = pos
+                        col = 0
+                        while i < n and text[i] in " \t\f":
+                            if text[i] == "\t":
+                                if tab_at < 0:
+                                    tab_at = i
+                                col = (col // 4 + 1) * 4
+                            else:
+                                col += 1
+                            i += 1
                     if i >= n or text[i] in "\r\n#":
                         pos = i
                         if i < n and text[i] == "#":
