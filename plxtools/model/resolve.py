@@ -278,6 +278,8 @@ def has_cycle(p: "Program", model: ModelSym) -> list[ModelSym] | None:
 
 def is_open(p: "Program", model: ModelSym) -> bool:
     """True when some base in the layers does not resolve: attributes are unknown, not absent."""
+    if model._open is not None:  # known (reset with the linearisation when the program changes)
+        return model._open
     for layer in linearize(p, model):  # parents come before the layers built on them
         if layer._open is None:
             # an import plx cannot read (an .agx archive, a URDF) has no base: its contents are unknown

@@ -243,9 +243,10 @@ class Workspace:
     # ------------------------------------------------------------------ files
 
     def bundle_of(self, path: Path) -> Bundle | None:
-        rp = path.resolve()
+        rp = str(path.resolve())
         for b in self.bundles.values():
-            if b.root in rp.parents:
+            root = str(b.root)  # below the root: the root's path and a separator start the file's
+            if rp.startswith(root) and len(rp) > len(root) and (rp[len(root)] == os.sep or root.endswith(os.sep)):
                 return b
         user_root = find_user_bundle_root(path, {self.official_root})
         if user_root is not None:

@@ -67,6 +67,26 @@ _TOKEN_RE = re.compile(
     """,
     re.VERBOSE | re.DOTALL,
 )
+# the same tokens after the blanks before them (group 1), commonest first; `eof`: blanks end the text
+_SCAN_RE = re.compile(
+    r"""
+    ([ \t\f]*)
+    (?:
+      (?P<name>[A-Za-z_][A-Za-z0-9_]*)
+    | (?P<arrow>->)
+    | (?P<punct>[:.,()\[\]{}+\-*/])
+    | (?P<number>\d+(?:\.\d+)?(?:[eE][+-]?\d+)?)
+    | (?P<nl>\r\n?|\n)
+    | (?P<comment>\#[^\r\n]*)
+    | (?P<str>\"\"\"|[@$]?\")
+    | (?P<tick>`[^`\r\n]*`)
+    | (?P<bad>.)
+    | (?P<eof>\Z)
+    )
+    """,
+    re.VERBOSE | re.DOTALL,
+)
+_SPACES_RE = re.compile(r" *")
 _IDENT_CHAR = re.compile(r"[A-Za-z0-9_.]")
 _BREAK_RE = re.compile(r"\r\n?|\n")  # the line breaks of OpenPLX (and of LSP): \r\n, \r, \n
 MAX_INT_DIGITS = 4300  # Python's int-from-string limit (sys.get_int_max_str_digits)
@@ -133,6 +153,13 @@ class Lexer:
         at_line_start = True
         brackets: list[Token] = []
         match = _TOKEN_RE.match
+        scan = _SCAN_RE.match
+        spaces = _SPACES_RE.match
+        keyword = KEYWORDS.get
+        punct_type = PUNCT.__getitem__
+        new = str.__new__
+        # the position lives in locals here (the helpers below read and update self.*)
+        pos = line = line_start = 0
 
         def finish() -> None:
             nonlocal tokens, line_error, brackets
@@ -151,34 +178,37 @@ class Lexer:
 
         snapshot = None  # where to resume if an open bracket turns out never to close
         while True:
-            while self.pos < n:
+            while pos < n:
                 if at_line_start:
-                    # measure indentation of the next non-blank line
-                    i = self.pos
-                    col = 0
+                    # measure indentation of the next non-blank line (spaces: one regex match)
+                    i = spaces(text, pos).end()
+                    col = i - pos
                     tab_at = -1
-                    while i < n and text[i] in " \t\f":
-                        if text[i] == "\t":
-                            if tab_at < 0:
-                                tab_at = i
-                            col = (col // 4 + 1) * 4
-                        else:
-                            col += 1
-                        i += 1
+                    if i < n and text[i] in "\t\f":
+                        i = pos
+                        col = 0
+                        while i < n and text[i] in " \t\f":
+                            if text[i] == "\t":
+                                if tab_at < 0:
+                                    tab_at = i
+                                col = (col // 4 + 1) * 4
+                            else:
+                                col += 1
+                            i += 1
                     if i >= n or text[i] in "\r\n#":
-                        self.pos = i
+                        pos = i
                         if i < n and text[i] == "#":
                             m = match(text, i)
                             end = m.end()
-                            comments.append((i, self.line, i - self.line_start, end, m.group(), True))
-                            self.pos = end
-                        if self.pos < n:
-                            m = match(text, self.pos)
-                            self._newline(m.end())
-                            self.pos = m.end()
+                            comments.append((i, line, i - line_start, end, m.group(), True))
+                            pos = end
+                        if pos < n:
+                            m = match(text, pos)
+                            pos = line_start = m.end()
+                            line += 1
                         continue
                     if tab_at >= 0:
-                        p = self._p(tab_at)
+                        p = Pos(tab_at, line, tab_at - line_start)
                         diagnostics.append(
                             Diagnostic(
                                 "S003",
@@ -189,78 +219,40 @@ class Lexer:
                             )
                         )
                     indent = col
-                    self.pos = i
+                    pos = i
                     at_line_start = False
                     continue
 
-                m = match(text, self.pos)
+                m = scan(text, pos)
                 kind = m.lastgroup
-                start = self.pos
+                start = m.end(1)
                 end = m.end()
-                if kind == "ws":
-                    self.pos = end
-                    continue
-                if kind == "nl":
-                    self._newline(end)
-                    self.pos = end
-                    if brackets:
-                        kind = self._next_line_kind(indent)
-                        if kind == _STRONG or (kind == _PARAM_LIKE and not _in_params(tokens, brackets)):
-                            fail(_never_closed(brackets[-1]))
-                            finish()
-                            snapshot = None
-                            at_line_start = True
-                        elif kind == _PARAM_LIKE and snapshot is None:
-                            # `b: Real` continues a parameter list, unless the list is never closed:
-                            # remember where to resume if the end of the file proves it was not
-                            snapshot = (self.pos, self.line, self.line_start, len(tokens), len(comments),
-                                        len(diagnostics), list(brackets), line_error)
-                        continue
-                    finish()
-                    at_line_start = True
-                    continue
-                if kind == "comment":
-                    own = not (tokens and tokens[-1].end_line == self.line)
-                    comments.append((start, self.line, start - self.line_start, end, m.group(), own))
-                    self.pos = end
-                    continue
-                if kind == "str":
-                    tok = self._string(m.group(), start, fail, diagnostics)
+                if kind == "name":
+                    # a lark Token built without its constructor's argument handling (the hot path)
+                    word = text[start:end]
+                    tok = new(Token, word)
+                    tok.type = keyword(word, "NAME")
+                    tok.value = word
+                    tok.start_pos = start
+                    tok.end_pos = end
+                    tok.line = tok.end_line = line
+                    tok.column = start - line_start
+                    tok.end_column = end - line_start
                     tokens.append(tok)
+                    pos = end
                     continue
-
-                ln = self.line  # tokens other than strings lie on one line
-                c0 = start - self.line_start
-                c1 = end - self.line_start
-                if kind == "number":
-                    tok = Token("NUMBER", m.group(), start, ln, c0, ln, c1, end)
-                    if end < n and _IDENT_CHAR.match(text, end):
-                        bad_end = end + 1
-                        while bad_end < n and _IDENT_CHAR.match(text, bad_end):
-                            bad_end += 1
-                        word = text[start:bad_end]
-                        msg = (
-                            f"invalid number '{word}': a number needs digits after the '.'"
-                            if text[end] == "."
-                            else f"invalid number '{word}'"
-                        )
-                        fail(Diagnostic("S005", msg, Span(self._p(start), self._p(bad_end)), Severity.ERROR))
-                    elif end - start > MAX_INT_DIGITS and m.group().isdigit():
-                        fail(Diagnostic("S005", f"integer literal too long: {end - start} digits "
-                                        f"(at most {MAX_INT_DIGITS})", Span(self._p(start), self._p(end)), Severity.ERROR,
-                                        help="write it with an exponent, e.g. 1e4300"))
-                elif kind == "name":
-                    word = m.group()
-                    tok = Token(KEYWORDS.get(word, "NAME"), word, start, ln, c0, ln, c1, end)
-                elif kind == "tick":
-                    tok = Token("TICKNAME", m.group()[1:-1], start, ln, c0, ln, c1, end)
-                    if len(m.group()) == 2:
-                        fail(Diagnostic("S006", "empty backtick name", Span(self._p(start), self._p(end)), Severity.ERROR))
-                elif kind == "arrow":
-                    tok = Token("ARROW", "->", start, ln, c0, ln, c1, end)
-                elif kind == "punct":
-                    ch = m.group()
-                    tok = Token(PUNCT[ch], ch, start, ln, c0, ln, c1, end)
+                if kind == "punct":
+                    ch = text[start]
+                    tok = new(Token, ch)
+                    tok.type = punct_type(ch)
+                    tok.value = ch
+                    tok.start_pos = start
+                    tok.end_pos = end
+                    tok.line = tok.end_line = line
+                    tok.column = start - line_start
+                    tok.end_column = end - line_start
+                    tokens.append(tok)
+                    pos = end
                     if ch in OPENERS:
                         brackets.append(tok)
                         if len(brackets) > MAX_BRACKET_DEPTH:
@@ -289,25 +281,99 @@ class Lexer:
                             brackets.pop()
                         if not brackets:
                             snapshot = None
-                else:  # bad character
-                    ch = m.group()
-                    fail(
-                        Diagnostic(
-                            "S008",
-                            f"unexpected {_describe(ch)}",
-                            Span(self._p(start), self._p(end)),
-                            Severity.ERROR,
-                            help=_bad_char_help(ch),
-                        )
-                    )
-                    self.pos = end
                     continue
-                tokens.append(tok)
-                self.pos = end
+                if kind == "nl":
+                    pos = line_start = end
+                    line += 1
+                    if brackets:
+                        self.pos, self.line, self.line_start = pos, line, line_start
+                        kind = self._next_line_kind(indent)
+                        if kind == _STRONG or (kind == _PARAM_LIKE and not _in_params(tokens, brackets)):
+                            fail(_never_closed(brackets[-1]))
+                            finish()
+                            snapshot = None
+                            at_line_start = True
+                        elif kind == _PARAM_LIKE and snapshot is None:
+                            # `b: Real` continues a parameter list, unless the list is never closed:
+                            # remember where to resume if the end of the file proves it was not
+                            snapshot = (pos, line, line_start, len(tokens), len(comments),
+                                        len(diagnostics), list(brackets), line_error)
+                        continue
+                    finish()
+                    at_line_start = True
+                    continue
+                if kind == "number":
+                    word = text[start:end]
+                    tok = new(Token, word)
+                    tok.type = "NUMBER"
+                    tok.value = word
+                    tok.start_pos = start
+                    tok.end_pos = end
+                    tok.line = tok.end_line = line
+                    tok.column = start - line_start
+                    tok.end_column = end - line_start
+                    if end < n and _IDENT_CHAR.match(text, end):
+                        bad_end = end + 1
+                        while bad_end < n and _IDENT_CHAR.match(text, bad_end):
+                            bad_end += 1
+                        word = text[start:bad_end]
+                        msg = (
+                            f"invalid number '{word}': a number needs digits after the '.'"
+                            if text[end] == "."
+                            else f"invalid number '{word}'"
+                        )
+                        span = Span(Pos(start, line, start - line_start), Pos(bad_end, line, bad_end - line_start))
+                        fail(Diagnostic("S005", msg, span, Severity.ERROR))
+                    elif end - start > MAX_INT_DIGITS and word.isdigit():
+                        span = Span(Pos(start, line, start - line_start), Pos(end, line, end - line_start))
+                        fail(Diagnostic("S005", f"integer literal too long: {end - start} digits "
+                                        f"(at most {MAX_INT_DIGITS})", span, Severity.ERROR,
+                                        help="write it with an exponent, e.g. 1e4300"))
+                    tokens.append(tok)
+                    pos = end
+                    continue
+                if kind == "comment":
+                    own = not (tokens and tokens[-1].end_line == line)
+                    comments.append((start, line, start - line_start, end, text[start:end], own))
+                    pos = end
+                    continue
+                if kind == "str":
+                    self.pos, self.line, self.line_start = pos, line, line_start
+                    tokens.append(self._string(text[start:end], start, fail, diagnostics))
+                    pos, line, line_start = self.pos, self.line, self.line_start
+                    continue
+                if kind == "tick":
+                    word = text[start:end]
+                    tok = Token("TICKNAME", word[1:-1], start, line, start - line_start, line, end - line_start, end)
+                    if len(word) == 2:
+                        span = Span(Pos(start, line, start - line_start), Pos(end, line, end - line_start))
+                        fail(Diagnostic("S006", "empty backtick name", span, Severity.ERROR))
+                    tokens.append(tok)
+                    pos = end
+                    continue
+                if kind == "arrow":
+                    tokens.append(Token("ARROW", "->", start, line, start - line_start, line, end - line_start, end))
+                    pos = end
+                    continue
+                if kind == "eof":  # blanks at the end of the text
+                    pos = end
+                    continue
+                # a bad character
+                ch = text[start:end]
+                fail(
+                    Diagnostic(
+                        "S008",
+                        f"unexpected {_describe(ch)}",
+                        Span(Pos(start, line, start - line_start), Pos(end, line, end - line_start)),
+                        Severity.ERROR,
+                        help=_bad_char_help(ch),
+                    )
+                )
+                pos = end
 
             if brackets and snapshot is not None:
                 # never closed: resume at the first line that could have been a statement
-                (self.pos, self.line, self.line_start, ntok, ncom, ndiag, brackets, line_error) = snapshot
+                (pos, line, line_start, ntok, ncom, ndiag, brackets, line_error) = snapshot
                 snapshot = None
                 del tokens[ntok:], comments[ncom:], diagnostics[ndiag:]
                 fail(_never_closed(brackets[-1]))
@@ -318,6 +384,7 @@ class Lexer:
         if brackets:
             fail(_never_closed(brackets[-1]))
         finish()
+        self.pos, self.line, self.line_start = pos, line, line_start
         return LexResult(lines, comments, diagnostics)
 
     def _next_line_kind(self, indent: int) -> int:

@@ -18,15 +18,26 @@ from plxtools.syntax.source import LineIndex, decode, decode_text, line_start
 # ------------------------------------------------------------------ building nodes
 
 
+_new = tuple.__new__  # Pos and Span built without their (Python-level) NamedTuple constructors
+
+
 def _sp(x) -> Span:
-    if isinstance(x, Token):
-        return Span(Pos(x.start_pos, x.line, x.column), Pos(x.end_pos, x.end_line, x.end_column))
+    if type(x) is Token:
+        return _new(Span, (_new(Pos, (x.start_pos, x.line, x.column)), _new(Pos, (x.end_pos, x.end_line, x.end_column))))
     return x.span
 
 
 def _cover(children) -> Span:
-    items = [c for c in children if c is not None]
-    return Span(_sp(items[0]).start, _sp(items[-1]).end)
+    """The span from the first child that is there to the last (tokens or nodes)."""
+    for first in children:
+        if first is not None:
+            break
+    for last in reversed(children):
+        if last is not None:
+            break
+    start = _new(Pos, (first.start_pos, first.line, first.column)) if type(first) is Token else first.span.start
+    end = _new(Pos, (last.end_pos, last.end_line, last.end_column)) if type(last) is Token else last.span.end
+    return _new(Span, (start, end))
 
 
 class _Seq(list):
@@ -65,8 +76,8 @@ class _Build(Transformer):
     # expressions
     def number(self, c):
         t = c[0]
-        text = str(t)
-        is_int = not any(ch in text for ch in ".eE")
+        text = t.value
+        is_int = "." not in text and "e" not in text and "E" not in text
         try:
             value = int(text) if is_int else float(text)
         except ValueError:  # over Python's int-string limit: the lexer has reported it (S005)
@@ -360,60 +371,223 @@ class _Frame:
 
 _B = _Build()
 _NAMEISH = ("NAME", "TICKNAME")
-_LITERALS = {"NUMBER": _B.number, "STRING": _B.string, "TRUE": _B.true, "FALSE": _B.false}
 FAST_PATH = True  # tests turn it off to compare with the grammar
 
 
+class _NotFast(Exception):
+    """The line is not one the fast path builds: the grammar parses it (and reports its errors)."""
+
+
+_Ident, _QName, _Name, _Member, _Call, _Binary = ast.Ident, ast.QName, ast.Name, ast.Member, ast.Call, ast.Binary
+_MAX_FAST_DEPTH = 40  # deeper brackets or `- - -` chains go to the grammar (no recursion limits here)
+_PRIMARY_LITERALS = {"NUMBER": _B.number, "STRING": _B.string, "TRUE": _B.true, "FALSE": _B.false,
+                     "THIS": _B.this}
+_PREC = {"PLUS": 1, "MINUS": 1, "STAR": 2, "SLASH": 2}
+
+
+def _ident(t: Token) -> ast.Ident:
+    """What the grammar's `name` builds for a NAME or TICKNAME token."""
+    return _Ident(_new(Span, (_new(Pos, (t.start_pos, t.line, t.column)), _new(Pos, (t.end_pos, t.end_line, t.end_column)))),
+                  t.value, t.type == "TICKNAME")
+
+
 def _qname(tokens: list[Token], i: int) -> tuple[ast.QName | None, int]:
+    """What the grammar's `qname` builds from i (None if no name is there), and the next index."""
     n = len(tokens)
     if i >= n or tokens[i].type not in _NAMEISH:
         return None, i
-    items = [_B.name([tokens[i]])]
+    parts = [_ident(tokens[i])]
     i += 1
     while i + 1 < n and tokens[i].type == "DOT" and tokens[i + 1].type in _NAMEISH:
-        items.append(tokens[i])
-        items.append(_B.name([tokens[i + 1]]))
+        parts.append(_ident(tokens[i + 1]))
         i += 2
-    return _B.qname(items), i
+    return _QName(_new(Span, (parts[0].span.start, parts[-1].span.end)), parts), i
+
+
+class _ExprParser:
+    """The grammar's `expr` over one logical line's tokens (precedence climbing for the binary
+    operators, a loop for unary minus and the postfix forms), building the nodes the grammar's
+    builders build, with the same spans; raises _NotFast on anything else (the grammar then parses
+    the line and words the error)."""
+
+    __slots__ = ("tokens", "n", "depth")
+
+    def __init__(self, tokens: list[Token]):
+        self.tokens = tokens
+        self.n = len(tokens)
+        self.depth = 0
+
+    def expr(self, i: int, min_prec: int = 1):
+        """`sum` (min_prec 1) or `product` (2) from i: left-associative, `*` `/` above `+` `-`."""
+        tokens, n = self.tokens, self.n
+        left, i = self.operand(i)
+        while i < n:
+            op = tokens[i]
+            prec = _PREC.get(op.type)
+            if prec is None or prec < min_prec:
+                break
+            right, i = self.expr(i + 1, prec + 1)
+            left = _Binary(_new(Span, (left.span.start, right.span.end)), op.value, left, right)
+        return left, i
+
+    def operand(self, i: int):  # noqa: C901 - `unary`, `postfix` and `primary` in one loop
+        tokens, n = self.tokens, self.n
+        j = i
+        while j < n and tokens[j].type == "MINUS":
+            j += 1
+        if j - i > _MAX_FAST_DEPTH:
+            raise _NotFast
+        if j >= n:
+            raise _NotFast
+        t = tokens[j]
+        kind = t.type
+        build = _PRIMARY_LITERALS.get(kind)
+        if build is not None:
+            node = build([t])
+            k = j + 1
+        elif kind in _NAMEISH:
+            name = _ident(t)
+            node = _Name(name.span, name)
+            k = j + 1
+        elif kind == "LPAR":
+            self.enter()
+            inner, k = self.expr(j + 1)
+            self.depth -= 1
+            if k >= n or tokens[k].type != "RPAR":
+                raise _NotFast
+            node = _B.paren([t, inner, tokens[k]])
+            k += 1
+        elif kind == "LSQB":
+            args, k = self.args(j + 1, "RSQB")
+            node = _B.array([t, args, tokens[k]])
+            k += 1
+        elif kind == "LBRACE":
+            args, k = self.args(j + 1, "RBRACE")
+            node = _B.brace([t, args, tokens[k]])
+            k += 1
+        else:
+            raise _NotFast
+        while k < n:  # postfix: `.name`, `(args)`, `[index]`
+            t = tokens[k]
+            kind = t.type
+            if kind == "DOT":
+                if k + 1 < n and tokens[k + 1].type in _NAMEISH:
+                    name = _ident(tokens[k + 1])
+                    node = _Member(_new(Span, (node.span.start, name.span.end)), node, name)
+                    k += 2
+                    continue
+                raise _NotFast
+            if kind == "LPAR":
+                args, k = self.args(k + 1, "RPAR")
+                r = tokens[k]
+                node = _Call(_new(Span, (node.span.start, _new(Pos, (r.end_pos, r.end_line, r.end_column)))), node,
+                             args or [])
+                k += 1
+                continue
+            if kind == "LSQB":
+                self.enter()
+                index, m = self.expr(k + 1)
+                self.depth -= 1
+                if m >= n or tokens[m].type != "RSQB":
+                    raise _NotFast
+                node = _B.index([node, t, index, tokens[m]])
+                k = m + 1
+                continue
+            break
+        while j > i:  # unary minus, innermost first
+            j -= 1
+            node = _B.neg([tokens[j], node])
+        return node, k
+
+    def args(self, i: int, closer: str):
+        """`[args] closer` from i: (the expressions or None, the index of the closer)."""
+        tokens, n = self.tokens, self.n
+        if i < n and tokens[i].type == closer:
+            return None, i
+        self.enter()
+        items: list = []  # what the grammar's `args` builds: the expressions
+        while True:
+            item, i = self.expr(i)
+            items.append(item)
+            if i >= n:
+                raise _NotFast
+            kind = tokens[i].type
+            if kind == closer:
+                break
+            if kind != "COMMA":
+                raise _NotFast
+            i += 1
+            if i < n and tokens[i].type == closer:
+                break
+        self.depth -= 1
+        return items, i
+
+    def enter(self) -> None:
+        self.depth += 1
+        if self.depth > _MAX_FAST_DEPTH:
+            raise _NotFast
 
 
 def _value(tokens: list[Token], i: int):
-    """A value ending the line that is a literal, `-` number, or a dotted name, else None."""
+    """The expression from i to the end of the line; raises _NotFast if it is not one."""
+    expr, j = _ExprParser(tokens).expr(i)
+    if j != len(tokens):
+        raise _NotFast
+    return expr
+
+
+def _type_expr(tokens: list[Token], i: int):
+    """`type_ref (OR type_ref)* [WITH qname (COMMA qname)*]` from i: (node, next index)."""
     n = len(tokens)
-    t = tokens[i]
-    build = _LITERALS.get(t.type)
-    if build is not None:
-        return build([t]) if i + 1 == n else None
-    if t.type == "MINUS":
-        if i + 2 == n and tokens[i + 1].type == "NUMBER":
-            return _B.neg([t, _B.number([tokens[i + 1]])])
-        return None
-    if t.type == "THIS":
-        expr = _B.this([t])
-    elif t.type in _NAMEISH:
-        expr = _B.ref([_B.name([t])])
-    else:
-        return None
-    i += 1
-    while i + 1 < n and tokens[i].type == "DOT" and tokens[i + 1].type in _NAMEISH:
-        expr = _B.member([expr, tokens[i], _B.name([tokens[i + 1]])])
-        i += 2
-    return expr if i == n else None
+    items: list = []
+    while True:
+        name, i = _qname(tokens, i)
+        if name is None:
+            raise _NotFast
+        if i + 1 < n and tokens[i].type == "LSQB" and tokens[i + 1].type == "RSQB":
+            items.append(_B.type_ref([name, tokens[i], tokens[i + 1]]))
+            i += 2
+        else:
+            items.append(_B.type_ref([name, None, None]))
+        if i < n and tokens[i].type == "OR":
+            items.append(tokens[i])
+            i += 1
+            continue
+        break
+    if i < n and tokens[i].type == "WITH":
+        items.append(tokens[i])
+        i += 1
+        while True:
+            name, i = _qname(tokens, i)
+            if name is None:
+                raise _NotFast
+            items.append(name)
+            if i < n and tokens[i].type == "COMMA":
+                items.append(tokens[i])
+                i += 1
+                continue
+            break
+    return _B.type_expr(items), i
 
 
 def _fast(tokens: list[Token]) -> ast.Stmt | None:
-    """The commonest line shapes built without the LALR parser, by the grammar's own node builders.
+    """The statement lines that models are made of, built without the LALR parser by the grammar's
+    own node builders: `a.b:` and `a.b: expr`, `[const] [optional] a is T [or U] [with X]
+    [reference] [: [expr]]`, `a becomes T ...`, `.name: expr`, `with A, B` and a bare `A`. Any
+    other line (imports, traits, methods, operators, errors) returns None and goes to the
+    grammar; tests check that both build the same tree."""
+    try:
+        return _fast_stmt(tokens)
+    except _NotFast:
+        return None
 
-    `a.b:`, `a.b: v`, `a is T`, `a is T:`, `a is T: v` (v a literal or a plain name). Anything else
-    returns None and goes to the grammar; tests check both give the same tree.
-    """
+
+def _fast_stmt(tokens: list[Token]) -> ast.Stmt | None:  # noqa: C901 - one line's shapes, in order
     n = len(tokens)
     first = tokens[0].type
     if first == "DOT":  # `.doc: "..."`
         if n >= 4 and tokens[1].type in _NAMEISH and tokens[2].type == "COLON":
-            value = _value(tokens, 3)
-            if value is not None:
-                return _B.annotation([tokens[0], _B.name([tokens[1]]), tokens[2], value])
+            return _B.annotation([tokens[0], _ident(tokens[1]), tokens[2], _value(tokens, 3)])
         return None
     if first == "WITH":  # `with A.B, C`
         items: list = [tokens[0]]
@@ -429,34 +603,161 @@ def _fast(tokens: list[Token]) -> ast.Stmt | None:
                 return None
             items.append(tokens[i])
             i += 1
-    path, i = _qname(tokens, 0)
-    if path is None or i >= len(tokens):
+    if first in _HEADER_KEYWORDS:
+        return _fast_header(tokens, first)
+    const = optional = None
+    i = 0
+    if first == "CONST":
+        const = tokens[0]
+        i = 1
+    if i < n and tokens[i].type == "OPTIONAL":
+        optional = tokens[i]
+        i += 1
+    path, i = _qname(tokens, i)
+    if path is None:
         return None
-    kind = tokens[i].type
-    if kind == "COLON":
-        if i + 1 == n:
-            return _B.assignment([path, tokens[i], None])
-        value = _value(tokens, i + 1)
-        return None if value is None else _B.assignment([path, tokens[i], value])
-    if kind != "IS" and kind != "BECOMES":
-        return None
+    if i == n:  # `A` (or `const A`): a bare name
+        if optional is not None:
+            return None
+        return _B.const_bare([const, path, None]) if const is not None else _B.bare([path])
     kw = tokens[i]
-    type_name, j = _qname(tokens, i + 1)
-    if type_name is None:
+    kind = kw.type
+    if kind == "COLON":
+        if optional is not None:
+            return None
+        if const is not None:
+            return _B.const_bare([const, path, kw]) if i + 1 == n else None
+        return _B.assignment([path, kw, None if i + 1 == n else _value(tokens, i + 1)])
+    if kind == "BECOMES":
+        if const is not None or optional is not None:
+            return None
+    elif kind != "IS":
         return None
-    texpr = _B.type_expr([_B.type_ref([type_name, None, None])])
-    colon = value = None
+    texpr, j = _type_expr(tokens, i + 1)
+    reference = colon = value = None
+    if j < n and tokens[j].type == "REFERENCE":
+        reference = tokens[j]
+        j += 1
     if j < n:
         if tokens[j].type != "COLON":
             return None
         colon = tokens[j]
         if j + 1 < n:
             value = _value(tokens, j + 1)
-            if value is None:
-                return None
     if kind == "IS":
-        return _B.declaration([None, None, path, kw, texpr, None, colon, value])
-    return _B.becomes_stmt([path, kw, texpr, None, colon, value])
+        return _B.declaration([const, optional, path, kw, texpr, reference, colon, value])
+    return _B.becomes_stmt([path, kw, texpr, reference, colon, value])
+
+
+_HEADER_KEYWORDS = frozenset(("TRAIT", "FN", "STATIC", "OPERATOR", "IMPORT"))
+_OPS = frozenset(("PLUS", "MINUS", "STAR", "SLASH"))
+
+
+def _type_ref(tokens: list[Token], i: int):
+    name, i = _qname(tokens, i)
+    if name is None:
+        raise _NotFast
+    n = len(tokens)
+    if i + 1 < n and tokens[i].type == "LSQB" and tokens[i + 1].type == "RSQB":
+        return _B.type_ref([name, tokens[i], tokens[i + 1]]), i + 2
+    return _B.type_ref([name, None, None]), i
+
+
+def _params(tokens: list[Token], i: int):
+    """`( [param (, param)* [,]] )` from i: (the params node, the index after ')')."""
+    n = len(tokens)
+    if i >= n or tokens[i].type != "LPAR":
+        raise _NotFast
+    items: list = [tokens[i]]
+    i += 1
+    while i < n and tokens[i].type != "RPAR":
+        t = tokens[i]
+        if t.type in _NAMEISH:
+            name = _ident(t)
+        elif t.type == "REFERENCE":
+            name = _B.param_kw([t])
+        else:
+            raise _NotFast
+        if i + 1 >= n or tokens[i + 1].type != "COLON":
+            raise _NotFast
+        colon = tokens[i + 1]
+        ref, i = _type_ref(tokens, i + 2)
+        items.append(_B.param([name, colon, ref]))
+        if i < n and tokens[i].type == "COMMA":
+            items.append(tokens[i])
+            i += 1
+        elif i >= n or tokens[i].type != "RPAR":
+            raise _NotFast
+    if i >= n:
+        raise _NotFast
+    items.append(tokens[i])
+    return _B.params(items), i + 1
+
+
+def _returns(tokens: list[Token], i: int):
+    """`[-> type_ref]` ending the line: (ARROW or None, type_ref or None)."""
+    n = len(tokens)
+    if i == n:
+        return None, None
+    if tokens[i].type != "ARROW":
+        raise _NotFast
+    ref, j = _type_ref(tokens, i + 1)
+    if j != n:
+        raise _NotFast
+    return tokens[i], ref
+
+
+def _fast_header(tokens: list[Token], first: str) -> ast.Stmt | None:
+    """`trait`, `fn`, `static fn`, `operator` and `import` lines."""
+    n = len(tokens)
+    if first == "TRAIT":  # trait Name [is Q] [:]
+        if n < 2 or tokens[1].type not in _NAMEISH:
+            return None
+        name = _ident(tokens[1])
+        kw = base = colon = None
+        i = 2
+        if i < n and tokens[i].type == "IS":
+            kw = tokens[i]
+            base, i = _qname(tokens, i + 1)
+            if base is None:
+                return None
+        if i < n and tokens[i].type == "COLON":
+            colon = tokens[i]
+            i += 1
+        if i != n:
+            return None
+        return _B.trait_def([tokens[0], name, kw, base, colon])
+    if first == "IMPORT":  # import "x" [as Q]
+        if n < 2 or tokens[1].type != "STRING":
+            return None
+        if n == 2:
+            return _B.import_stmt([tokens[0], tokens[1], None, None])
+        if tokens[2].type != "AS":
+            return None
+        alias, i = _qname(tokens, 3)
+        if alias is None or i != n:
+            return None
+        return _B.import_stmt([tokens[0], tokens[1], tokens[2], alias])
+    if first == "OPERATOR":  # operator + (params) [-> T]
+        if n < 2 or tokens[1].type not in _OPS:
+            return None
+        params, i = _params(tokens, 2)
+        arrow, ref = _returns(tokens, i)
+        return _B.operator_decl([tokens[0], _B.op([tokens[1]]), params, arrow, ref])
+    static = None
+    i = 0
+    if first == "STATIC":
+        static = tokens[0]
+        i = 1
+    if i >= n or tokens[i].type != "FN":
+        return None
+    fn = tokens[i]
+    if i + 1 >= n or tokens[i + 1].type not in _NAMEISH:
+        return None
+    name = _ident(tokens[i + 1])
+    params, j = _params(tokens, i + 2)
+    arrow, ref = _returns(tokens, j)
+    return _B.method([static, fn, name, params, arrow, ref])
 
 
 def _parse_line(parser: Lark, line: LogicalLine, text: str, diags: list[Diagnostic]) -> ast.Stmt:

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from dataclasses import fields
+from pathlib import Path
+
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -11,14 +14,25 @@ from tests.conftest import bundle_files
 
 
 def _dump(tree: ast.File) -> list:
-    """Structure plus every statement's spans and the diagnostics: what a difference would show."""
-    out = [ast.structure(tree.statements)]
-    for s in ast.walk_statements(tree.statements):
-        out.append((type(s).__name__, s.span, s.header, getattr(s, "colon", None)))
-        for name in ("path", "type", "value"):
-            node = getattr(s, name, None)
-            if node is not None:
-                out.append((name, node.span, type(node).__name__))
+    """Every node of every statement with its type, span and fields, plus the diagnostics."""
+    out: list = []
+    stack: list = [tree.statements]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, list):
+            out.append(("[", len(n)))
+            stack.extend(reversed(n))
+        elif isinstance(n, ast.Node):
+            out.append((type(n).__name__, n.span, getattr(n, "header", None)))
+            for f in fields(n):
+                if f.name not in ("span", "header"):
+                    v = getattr(n, f.name)
+                    if isinstance(v, (list, ast.Node)):
+                        stack.append(v)
+                    else:
+                        out.append((f.name, v))
+        else:
+            out.append(repr(n))
     out.append([(d.code, d.message, d.span) for d in tree.diagnostics])
     return out
 
@@ -44,6 +58,33 @@ LINE = st.lists(st.sampled_from(["a", "b.c", "`d.e`", "is", "becomes", ":", ".",
                 max_size=6).map(" ".join)
 
 
+EXPR_LINE = st.lists(st.sampled_from(["a", "b.c", "`d`", ":", ".", "1", "-", "2.5", '"s"', "true", "this", "(",
+                                      ")", "[", "]", "{", "}", ",", "+", "*", "/", "f(", "x.y(", "is", "T",
+                                      "or", "with", "reference", "optional", "const", "becomes", "fn", "static",
+                                      "operator", "trait", "import", "as", "->", "a: T", "x: R[]"]),
+                     min_size=1, max_size=10).map(" ".join)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(EXPR_LINE, max_size=4))
+def test_generated_expression_lines_same_tree(lines):
+    text = "M is N:\n" + "".join(f"    a: {ln}\n    b is T: {ln}\n    {ln}\n" for ln in lines) \
+        + "".join(f"{ln}\n" for ln in lines)
+    fast, slow = _both(text)
+    assert fast == slow
+
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+@pytest.mark.parametrize("path", sorted((REPO / "examples").rglob("*.openplx")) + sorted(
+    p for p in (REPO / "tests" / "cases").rglob("*.openplx") if "fmt" not in p.parts or "input" in p.name),
+    ids=lambda p: str(p.relative_to(REPO)))
+def test_example_and_case_files_same_tree(path):
+    fast, slow = _both(path.read_bytes().decode("utf-8", "replace"))
+    assert fast == slow
+
+
 @settings(max_examples=200, deadline=None)
 @given(st.lists(LINE, max_size=4))
 def test_generated_lines_same_tree(lines):
@@ -67,6 +108,29 @@ SHAPES = """M is N:
         j: 1
     k is L.M:
         n: false
+    p: Math.Vec3.from_xyz(0.5, 1.0, 2.0 * 3)
+    q: [1, 2,
+        3,]
+    r: -a.b(c)[1] + -(2 - 3) * 4 / f() - {}
+    s: {1, [], {2,}}
+    optional t is A or B[] with C, D.E reference: this.u
+    v becomes W reference
+    x: `y`.z
+Top
+const Top2
+const Top3:
+    a: 1
+const Top4 is A or B reference: 1
+trait Tr
+trait Tr2 is A.B:
+    a is Real
+import "x/y.openplx"
+import "z" as Q.R
+operator + (a: A, b: B) -> C
+operator * (a: A, reference: B,)
+M2:
+    fn f()
+    static fn g(x: Real[], y: A.B) -> Real[]
 """
 
 
@@ -74,3 +138,7 @@ def test_each_fast_shape_same_tree():
     fast, slow = _both(SHAPES)
     assert fast == slow
     assert parse_text(SHAPES).diagnostics == []
+    from plxtools.syntax.lexer import lex
+
+    slow_lines = [ln for ln in lex(SHAPES).lines if parser._fast(ln.tokens) is None]
+    assert slow_lines == []  # every shape above is built by the fast path
