@@ -23,7 +23,7 @@ WINDOW = 32
 
 
 class OpenDocument:
-    __slots__ = ("uri", "text", "version", "base", "base_version", "recent", "arrivals")
+    __slots__ = ("uri", "text", "version", "base", "base_version", "recent", "arrivals", "reordered")
 
     def __init__(self, uri: str, text: str, version):
         self.uri = uri
@@ -32,6 +32,7 @@ class OpenDocument:
         self.base, self.base_version = text, version  # the text before the edits in `recent`
         self.recent: list[tuple[int, int, list]] = []  # (version, arrival, changes), sorted
         self.arrivals = 0
+        self.reordered = False
 
     def edit(self, version, changes, encoding) -> None:
         if not isinstance(version, int) or not isinstance(self.version, int):
@@ -52,8 +53,11 @@ class OpenDocument:
             self.version = version
         elif version > self.base_version:
             # arrived late: put it in its place and rebuild the text from the base
-            log.info("edit of version %s arrived after version %s: re-applied in order (%s)",
-                     version, self.version, self.uri)
+            # the first time per document at WARNING (the client breaks LSP's ordering), then INFO
+            log.log(logging.INFO if self.reordered else logging.WARNING,
+                    "document version of %s went from %s to %s: edits out of order, re-applied in version order",
+                    self.uri, self.version, version)
+            self.reordered = True
             bisect.insort(self.recent, entry, key=lambda e: (e[0], e[1]))
             text = self.base
             for _, _, earlier in self.recent:

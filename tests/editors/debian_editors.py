@@ -1,8 +1,8 @@
-"""Real Neovim and Helix builds for the editor tests, taken from Debian's archive.
+"""Real Neovim, Helix and Emacs builds for the editor tests, taken from Debian's archive.
 
-The CI machine runs Debian 12, whose Neovim (0.7) is older than the 0.10 our set-ups need and which
-has no Helix. Debian 13 (trixie) ships Neovim 0.10 and Helix 25.01, unstable (sid) Neovim 0.12 and
-Helix 25.07: the versions users run. Their packages need a newer C library than the machine's, so
+The CI machine runs Debian 12, whose Neovim (0.7) is older than the 0.10 our set-ups need, which
+has no Helix and whose Emacs is 28. Debian 13 (trixie) ships Neovim 0.10, Helix 25.01 and Emacs 30,
+unstable (sid) Neovim 0.12 and Helix 25.07: the versions users run. Their packages need a newer C library than the machine's, so
 each suite's package and everything it depends on is unpacked into a folder of its own, and the
 editor is started through that folder's dynamic loader (`ld.so --library-path`), never installed
 into the system. The editor's children (`plx lsp`) start with the machine's own loader as usual.
@@ -110,6 +110,15 @@ def launcher(suite: str, package: str) -> Path:
     elif package == "hx":
         env = f"HELIX_RUNTIME={root}/usr/lib/hx/runtime"
         exe, extra = root / "usr/bin/hx", ""
+    elif package == "emacs-nox":
+        # Emacs finds its Lisp, data, helpers, natively compiled Lisp and dump file by compiled-in
+        # paths under /usr; each has a variable or option that points it elsewhere
+        share = next((root / "usr/share/emacs").glob("[0-9]*"))
+        env = (f"EMACSLOADPATH={share}/lisp EMACSDATA={share}/etc "
+               f"EMACSPATH={next((root / 'usr/libexec/emacs').glob('*/x86_64-linux-gnu'))} "
+               f"EMACSNATIVELOADPATH={root}/usr/lib/emacs/{share.name}/native-lisp")
+        dump = next((root / "usr/libexec/emacs").glob("*/x86_64-linux-gnu/emacs-*.pdmp"))
+        exe, extra = root / "usr/bin/emacs-nox", f'--dump-file="{dump}"'
     else:
         raise ValueError(package)
     script = root.parent / f"{package}.sh"

@@ -1,5 +1,6 @@
-"""The Emacs set-up of docs/editors.md, run for real: the elisp block is taken from the page, loaded
-into `emacs --batch` with eglot, and used as a person would (open a model, read the diagnostics,
+"""The Emacs set-up of docs/editors.md, run for real in the machine's Emacs (Debian 12: 28.2 with
+eglot 1.9 from elpa-eglot) and in Emacs 30.1 from Debian 13 (eglot built in; unpacked by
+`debian_editors.py`): the elisp block is taken from the page, loaded into `emacs --batch` with eglot, and used as a person would (open a model, read the diagnostics,
 hover, jump to a bundle, complete, format). So the documented snippet is the tested one.
 
 Needs `emacs` with eglot (Debian: emacs-nox, elpa-eglot); `.ci/run` installs them and sets
@@ -16,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.editors.common import REQUIRED, doc_blocks, make_project
+from tests.editors.common import REQUIRED, debian_editor, doc_blocks, make_project
 
 # what a person does, in elisp; every answer is printed as `RESULT key: value`
 DRIVE = r"""
@@ -63,12 +64,19 @@ def _emacs_with_eglot() -> str | None:
     return emacs if probe.returncode == 0 else None
 
 
-def test_the_documented_emacs_setup_gives_diagnostics_hover_definition_completion_and_formatting(tmp_path):
-    emacs = _emacs_with_eglot()
-    if emacs is None:
-        if REQUIRED:
-            pytest.fail("PLX_EDITOR_TESTS=1 but emacs with eglot is not installed")
-        pytest.skip("emacs with eglot not installed (Debian: emacs-nox elpa-eglot)")
+@pytest.mark.parametrize("setup", ["emacs-28-system", "emacs-30-trixie"])
+def test_the_documented_emacs_setup_gives_diagnostics_hover_definition_completion_and_formatting(tmp_path, setup):
+    if setup == "emacs-30-trixie":
+        emacs = str(debian_editor("trixie", "emacs-nox"))  # Emacs 30, eglot built in
+    else:
+        emacs = _emacs_with_eglot()
+        if emacs is None:
+            if REQUIRED:
+                pytest.fail("PLX_EDITOR_TESTS=1 but emacs with eglot is not installed")
+            pytest.skip("emacs with eglot not installed (Debian: emacs-nox elpa-eglot)")
+    version = subprocess.run([emacs, "--batch", "-q", "--eval", "(princ emacs-version)"], capture_output=True,
+                             text=True, timeout=60).stdout
+    assert version.startswith("30." if setup == "emacs-30-trixie" else ("28.", "29.", "30.", "31.")), version
     project = make_project(tmp_path)
     model = project / "model.openplx"
     (tmp_path / "snippet.el").write_text(doc_blocks("Emacs (eglot)", "elisp")[0], encoding="utf-8")

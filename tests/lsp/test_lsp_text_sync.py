@@ -149,3 +149,6 @@ def test_a_shuffled_burst_over_stdio_is_checked_as_typed():
     finally:
         if s.proc.poll() is None:
             s.proc.kill()
+    # the client broke LSP's ordering: said once as a warning, not once per edit
+    log = b"".join(s.stderr).decode()
+    assert len([ln for ln in log.splitlines() if "WARNING" in ln and "edits out of order" in ln]) == 1, log
