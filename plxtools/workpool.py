@@ -17,6 +17,7 @@ only the results come back (they must pickle).
 
 from __future__ import annotations
 
+import gc
 import os
 import signal
 import sys
@@ -45,11 +46,13 @@ def can_fork() -> bool:
 
 
 def map_ordered(fn: Callable[[T], R], items: Sequence[T], *, workers: int,
-                on_death: Callable[[T, str], R] | None = None, chunks_per_worker: int = 4) -> list[R]:
+                on_death: Callable[[T, str], R] | None = None, chunks_per_worker: int = 4,
+                meanwhile: Callable[[], object] | None = None) -> list[R]:
     """``[fn(x) for x in items]`` computed by ``workers`` forked processes.
 
     ``fn`` and ``items`` are inherited by the fork (neither needs to pickle); each result is pickled
-    back.  An exception raised by ``fn`` is raised here, as in the serial loop."""
+    back.  An exception raised by ``fn`` is raised here, as in the serial loop.  ``meanwhile`` is
+    called in this process once the workers are started (work of its own that overlaps theirs)."""
     global _TASK
     if not items:
         return []
@@ -59,7 +62,7 @@ def map_ordered(fn: Callable[[T], R], items: Sequence[T], *, workers: int,
         per = max(1, -(-n // (workers * max(1, chunks_per_worker))))  # a few chunks per worker: an even finish
         chunks = [range(i, min(i + per, n)) for i in range(0, n, per)]
         results: list = [None] * n
-        failed = _run(chunks, min(workers, len(chunks)), results)
+        failed = _run(chunks, min(workers, len(chunks)), results, meanwhile)
         for i in failed:  # their worker died: once more, one at a time, alone in a fresh worker
             if _run([range(i, i + 1)], 1, results):
                 why = "the worker process died (killed, or a crash in a native library)"
@@ -71,7 +74,7 @@ def map_ordered(fn: Callable[[T], R], items: Sequence[T], *, workers: int,
         _TASK = None
 
 
-def _run(chunks: list[range], workers: int, results: list) -> list[int]:
+def _run(chunks: list[range], workers: int, results: list, meanwhile=None) -> list[int]:
     """Run the chunks into ``results``; the indices of the items whose worker died."""
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
@@ -84,18 +87,24 @@ def _run(chunks: list[range], workers: int, results: list) -> list[int]:
     # SIGINT is blocked while the workers are forked (they inherit the mask and ignore the signal
     # before unblocking it); one that arrives meanwhile is delivered here when the mask is restored
     old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    # what exists now is inherited: frozen, the workers' collector never scans it (nor touches its
+    # pages, which would copy them)
+    gc.freeze()
     try:
         futures = [pool.submit(_chunk, c.start, c.stop) for c in chunks]
     finally:
+        gc.unfreeze()
         signal.pthread_sigmask(signal.SIG_SETMASK, old)
     died: list[int] = []
     try:
+        if meanwhile is not None:
+            meanwhile()
         for c, fut in zip(chunks, futures):
             try:
                 results[c.start:c.stop] = fut.result()
             except BrokenProcessPool:
                 died.extend(c)
-    except BaseException:  # Ctrl-C, or an exception of fn: no worker outlives the command
+    except BaseException:  # Ctrl-C, or an exception of fn or meanwhile: no worker outlives the command
         _terminate(pool)
         raise
     pool.shutdown(wait=True)

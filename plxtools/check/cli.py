@@ -120,14 +120,15 @@ class _Run:
     timeout: float
 
 
-def _check_one(item: tuple, run: _Run) -> tuple:
+def _check_one(item: tuple, run: _Run, analysed=None) -> tuple:
     """(FileCheck, messages for stderr, status) of one file: what the serial loop and a worker of
-    the pool do alike. An exception is a bug in plxtools: it is reported and the other files go on."""
+    the pool do alike (``analysed``: its analysis, done already). An exception is a bug in plxtools:
+    it is reported and the other files go on."""
     from plxtools.check.pipeline import Skip, analyse, blocking_reason, run_backend
 
     f, cfg = item
     try:
-        fc = analyse(f, run.workspace, cfg, model=run.model)
+        fc = analysed if analysed is not None else analyse(f, run.workspace, cfg, model=run.model)
         if run.want_backend and fc.scene is not None:
             reason = blocking_reason(fc)
             if reason is None:
@@ -160,7 +161,8 @@ _RUN: _Run | None = None
 
 
 def _workers(args, files: list[Path], run: _Run) -> int:
-    """How many worker processes check files[1:] (0: the serial loop does it all)."""
+    """How many worker processes check files[1:] while this one does files[0] (0: the serial loop
+    does it all)."""
     from plxtools import workpool
 
     jobs = getattr(args, "jobs", 0) or 0
@@ -188,18 +190,30 @@ def _in_parallel(files: list[Path], args, run: _Run) -> list | None:
     except ConfigError:
         return None
     from plxtools import workpool
+    from plxtools.check.pipeline import analyse
 
     global _RUN
     _RUN = run
+    first: list = []
     try:
-        # the first file is checked here, before the fork: the workers inherit what it loaded and
-        # computed (numpy and MuJoCo, the bundle program's member tables and evaluated values)
-        first = _check_one(items[0], run)
+        # the first file is analysed here, before the fork, and numpy and MuJoCo imported: the workers
+        # inherit them and what the analysis computed on the bundle program (member tables, evaluated
+        # values); this process then runs the first file's backend while the workers check the rest
+        try:
+            fc = analyse(items[0][0], run.workspace, items[0][1], model=run.model)
+        except Exception:  # a bug: _check_one meets it again and reports it as the serial loop does
+            fc = None
+        if run.want_backend:
+            try:
+                import plxtools.check.mujoco_backend  # noqa: F401
+            except ImportError:  # reported per file, as in the serial loop
+                pass
         rest = workpool.map_ordered(_pool_item, items[1:], workers=workers,
-                                    on_death=lambda item, why: _internal_error(item[0], why, why))
+                                    on_death=lambda item, why: _internal_error(item[0], why, why),
+                                    meanwhile=lambda: first.append(_check_one(items[0], run, fc)))
     finally:
         _RUN = None
-    return [first, *rest]
+    return [*first, *rest]
 
 
 def _pool_item(item: tuple) -> tuple:
