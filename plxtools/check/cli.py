@@ -204,7 +204,9 @@ def _in_parallel(files: list[Path], args, run: _Run) -> list | None:
         except Exception:  # a bug: _check_one meets it again and reports it as the serial loop does
             fc = None
         if run.want_backend:
-            try:
+            try:  # mujoco_backend imports mujoco only when it first compiles
+                import mujoco  # noqa: F401
+
                 import plxtools.check.mujoco_backend  # noqa: F401
             except ImportError:  # reported per file, as in the serial loop
                 pass
