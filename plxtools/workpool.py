@@ -87,16 +87,16 @@ def _run(chunks: list[range], workers: int, results: list, meanwhile=None) -> li
     # SIGINT is blocked while the workers are forked (they inherit the mask and ignore the signal
     # before unblocking it); one that arrives meanwhile is delivered here when the mask is restored
     old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-    # what exists now is inherited: frozen, the workers' collector never scans it (nor touches its
-    # pages, which would copy them)
-    gc.freeze()
-    try:
-        futures = [pool.submit(_chunk, c.start, c.stop) for c in chunks]
-    finally:
-        gc.unfreeze()
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
     died: list[int] = []
     try:
+        # what exists now is inherited: frozen, the workers' collector never scans it (nor touches
+        # its pages, which would copy them)
+        gc.freeze()
+        try:
+            futures = [pool.submit(_chunk, c.start, c.stop) for c in chunks]
+        finally:
+            gc.unfreeze()
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
         if meanwhile is not None:
             meanwhile()
         for c, fut in zip(chunks, futures):
