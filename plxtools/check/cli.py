@@ -150,13 +150,15 @@ def _internal_error(f: Path, said: str, detail: str, trace: str = "") -> tuple:
 
 
 # `plx check` runs many files on all cores (a pool of forked worker processes, plxtools/workpool.py)
-# when the work after the first file is estimated at PARALLEL_MIN_WORK_S CPU seconds or more: each
-# file costs about CHECK_S to check, and with --simulate about SIMULATE_S per simulated second (a
-# BoxTruck; bigger scenes cost more, so they only reach the pool sooner). Below that, forking the
-# workers and sending the reports back costs more than the second core gives (docs/check.md).
-CHECK_S = 0.015
-SIMULATE_S = 0.03
-PARALLEL_MIN_WORK_S = 0.25
+# when the work after the first file is estimated at PARALLEL_MIN_WORK_S CPU seconds or more.
+# Measured on a BoxTruck (bench/check_bench.py --many): checking a file costs about CHECK_S once the
+# bundle program is warm, simulating it about SIMULATE_S per simulated second (bigger scenes cost
+# more: they only reach the pool sooner); the pool itself costs 0.05 to 0.3 s of CPU (fork,
+# copy-on-write of the inherited heap, each worker's first MuJoCo compile, pickling the reports).
+# So: from 9 files without --simulate, from 4 files with the default 3 s, from 3 files of 5 s.
+CHECK_S = 0.04
+SIMULATE_S = 0.025
+PARALLEL_MIN_WORK_S = 0.3
 _RUN: _Run | None = None
 
 
