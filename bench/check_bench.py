@@ -166,13 +166,15 @@ def many(args, runs: int, env: dict) -> int:
           f"load average {load0[0]:.1f} before, {load1[0]:.1f} after, Python {sys.version.split()[0]}; "
           f"median of {runs} interleaved runs; pool: --jobs {args.jobs}")
     print()
-    print("| scenes | simulated each | serial (--jobs 1) wall s | CPU s | pool wall s | CPU s | speed-up (wall) "
-          "| reports identical |")
-    print("|---:|---|---:|---:|---:|---:|---:|---|")
+    # cores used = CPU / wall: what the run got of the machine (near 1 serial on an idle machine,
+    # near 2 for the pool on 2 idle cores; less when other processes hold the cores)
+    print("| scenes | simulated each | serial (--jobs 1) wall s | CPU s | cores used | pool wall s | CPU s "
+          "| cores used | speed-up (wall) | reports identical |")
+    print("|---:|---|---:|---:|---:|---:|---:|---:|---:|---|")
     for n, seconds, s_w, s_c, p_w, p_c, same in rows:
         what = f"{seconds:g} s" if seconds > 0 else "not simulated"
-        print(f"| {n} | {what} | {s_w:.3f} | {s_c:.3f} | {p_w:.3f} | {p_c:.3f} | {s_w / p_w:.2f}x | "
-              f"{'yes' if same else 'NO'} |")
+        print(f"| {n} | {what} | {s_w:.3f} | {s_c:.3f} | {s_c / s_w:.2f} | {p_w:.3f} | {p_c:.3f} | {p_c / p_w:.2f} "
+              f"| {s_w / p_w:.2f}x | {'yes' if same else 'NO'} |")
     return 0 if all(r[-1] for r in rows) else 1
 
 
