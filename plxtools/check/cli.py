@@ -172,7 +172,7 @@ def _workers(args, files: list[Path], run: _Run) -> int:
         return 0  # the artefacts are written from the compiled models, which stay in this process
     if jobs > 1:
         return min(jobs, len(files) - 1)
-    per_file = CHECK_S + (SIMULATE_S * run.duration if run.simulate else 0.0)
+    per_file = CHECK_S + (SIMULATE_S * (run.duration or 0.0) if run.simulate else 0.0)
     if workpool.cores() < 2 or per_file * (len(files) - 1) < PARALLEL_MIN_WORK_S:
         return 0
     return min(workpool.cores(), len(files) - 1)
