@@ -3,6 +3,7 @@ goal 5).
 
     python bench/check_bench.py [--runs 5] [--cases 1x5,1x60,100x10] [--keep DIR] [--compare DIR]
                                 [--baseline DIR]
+    python bench/check_bench.py --many 8x5,4x5,8x0 [--runs 5] [--jobs 2]
 
 For each case ``TRUCKSxSECONDS`` (1 is examples/boxtruck; N > 1 is that truck N times on a larger
 plate, the scene bench/perf_table.py uses, written here as ``trucksN.openplx``), measured as
@@ -21,6 +22,14 @@ JSON reports of the plx runs are kept in --keep DIR (``<case>.json``) for compar
 ``--compare DIR`` checks them against the reports an earlier run kept there (everything but the
 timings and file paths must be equal).  ``--baseline DIR`` adds the plx of another checkout (e.g.
 ``git archive`` of the commit before) as a third interleaved column, with its own cache folder.
+
+``--many SCENESxSECONDS,...`` measures instead the worker pool on many scenes (issue 17, goal 5:
+"compiling/stepping many scenes uses both cores"): SCENES BoxTruck variants (each drives its motors
+at another speed), one folder, ``plx check --simulate --duration SECONDS`` (SECONDS 0: no
+``--simulate``, the check alone) with ``--jobs 1`` (the serial loop, the peer) and with
+``--jobs auto`` (or ``--jobs N``), interleaved; wall and CPU (the workers' included) of each, the
+speed-up in wall time, and whether the JSON reports are identical but for timings.  The load
+average is printed before and after: on a shared machine the second core may be busy.
 """
 
 from __future__ import annotations
@@ -105,6 +114,70 @@ def scene_file(trucks: int, tmp: Path) -> Path:
     return path
 
 
+def variants(n: int, tmp: Path) -> Path:
+    """A folder of n BoxTruck variants: the same scene, the motors' target speeds scaled."""
+    folder = tmp / f"scenes{n}"
+    if folder.is_dir():
+        return folder
+    folder.mkdir()
+    text = MODEL.read_text(encoding="utf-8")
+    for i in range(n):
+        scale = 1.0 + 0.25 * i
+        v = text.replace("target_speed: 1\n", f"target_speed: {scale:g}\n")
+        v = v.replace("target_speed: -1\n", f"target_speed: {-scale:g}\n")
+        (folder / f"truck{i + 1:02}.openplx").write_text(v, encoding="utf-8")
+    return folder
+
+
+def many(args, runs: int, env: dict) -> int:
+    try:
+        cases = [(int(a), float(b)) for a, b in (c.lower().split("x") for c in args.many.split(","))]
+    except ValueError:
+        raise SystemExit(f"--many: expected SCENESxSECONDS,...; got {args.many!r}")
+    plx = plx_command()
+    load0 = os.getloadavg()
+    rows = []
+    med = statistics.median
+    with tempfile.TemporaryDirectory() as tmp_s:
+        tmp = Path(tmp_s)
+        for n, seconds in cases:
+            folder = variants(n, tmp)
+            base = [*plx, "check", "--output-format", "json", str(folder)]
+            if seconds > 0:
+                base[2:2] = ["--simulate", "--duration", f"{seconds:g}"]
+            serial, pool = base + ["--jobs", "1"], base + ["--jobs", args.jobs]
+            a, b = tmp / "serial.json", tmp / "pool.json"
+            child(serial, env, a)  # warm the caches
+            child(pool, env, b)
+            same = same_report(a, b)
+            sw, sc, pw, pc = [], [], [], []
+            for _ in range(runs):
+                w, c = child(serial, env)
+                sw.append(w)
+                sc.append(c)
+                w, c = child(pool, env)
+                pw.append(w)
+                pc.append(c)
+            rows.append((n, seconds, med(sw), med(sc), med(pw), med(pc), same))
+            print(f"  {n} x {seconds:g} s: serial {med(sw):.3f} s wall / {med(sc):.3f} s CPU, "
+                  f"pool {med(pw):.3f} s wall / {med(pc):.3f} s CPU", file=sys.stderr, flush=True)
+    load1 = os.getloadavg()
+    print(f"{time.strftime('%Y-%m-%d')}, {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, "
+          f"load average {load0[0]:.1f} before, {load1[0]:.1f} after, Python {sys.version.split()[0]}; "
+          f"median of {runs} interleaved runs; pool: --jobs {args.jobs}")
+    print()
+    # cores used = CPU / wall: what the run got of the machine (near 1 serial on an idle machine,
+    # near 2 for the pool on 2 idle cores; less when other processes hold the cores)
+    print("| scenes | simulated each | serial (--jobs 1) wall s | CPU s | cores used | pool wall s | CPU s "
+          "| cores used | speed-up (wall) | reports identical |")
+    print("|---:|---|---:|---:|---:|---:|---:|---:|---:|---|")
+    for n, seconds, s_w, s_c, p_w, p_c, same in rows:
+        what = f"{seconds:g} s" if seconds > 0 else "not simulated"
+        print(f"| {n} | {what} | {s_w:.3f} | {s_c:.3f} | {s_c / s_w:.2f} | {p_w:.3f} | {p_c:.3f} | {p_c / p_w:.2f} "
+              f"| {s_w / p_w:.2f}x | {'yes' if same else 'NO'} |")
+    return 0 if all(r[-1] for r in rows) else 1
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--runs", type=int, default=5, help="runs per measurement (median reported; >= 3)")
@@ -113,6 +186,9 @@ def main() -> int:
     ap.add_argument("--keep", metavar="DIR", help="keep the JSON report of each case here")
     ap.add_argument("--baseline", metavar="DIR", help="a plxtools checkout to run as a 'before' column")
     ap.add_argument("--compare", metavar="DIR", help="compare the reports with those an earlier --keep wrote here")
+    ap.add_argument("--many", metavar="SCENESxSECONDS,...",
+                    help="measure the worker pool on many scenes instead (see above), e.g. 8x5,4x5,8x0")
+    ap.add_argument("--jobs", default="auto", help="with --many: the pool's --jobs (default auto)")
     args = ap.parse_args()
     runs = max(3, args.runs)
     try:
@@ -125,6 +201,8 @@ def main() -> int:
     subprocess.run([sys.executable, "-m", "compileall", "-q", str(REPO / "plxtools")]
                    + ([str(Path(args.baseline) / "plxtools")] if args.baseline else []), env=env,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    if args.many:
+        return many(args, runs, env)
     plx = plx_command()
     base_env = None
     if args.baseline:

@@ -96,8 +96,23 @@ def _add_check(sub) -> None:
     p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
                    help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
     p.add_argument("--exit-zero", action="store_true", help="exit 0 even when errors are found")
+    p.add_argument("-j", "--jobs", type=_jobs, default=0, metavar="N",
+                   help="processes that check files at once: 'auto' (default: every core when the files' "
+                   "estimated work pays for the workers' start), or a number (1: one file after the other)")
     _add_bundle_options(p)
     p.set_defaults(func=_run_check)
+
+
+def _jobs(text: str) -> int:
+    try:
+        if text.strip().lower() == "auto":
+            return 0
+        n = int(text)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"expected 'auto' or a whole number >= 1, got {text!r}")
+    return n
 
 
 def _add_test(sub) -> None:

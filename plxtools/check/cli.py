@@ -11,7 +11,9 @@ import math
 import os
 import sys
 import traceback
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from plxtools.diagnostics import Severity
 
@@ -28,7 +30,6 @@ def _artefact_path(template: str, index: int, count: int) -> Path:
 
 
 def run_check(args) -> int:
-    from plxtools.check.pipeline import Skip, analyse, blocking_reason, run_backend
     from plxtools.config import ConfigError, config_for
     from plxtools.discovery import UsageError, discover
 
@@ -61,31 +62,27 @@ def run_check(args) -> int:
     note = workspace.bundle_set.announcement()
     if note and args.output_format == "text":
         print(f"plx check: {note}", file=sys.stderr)
+    run = _Run(workspace, args.model, want_backend, bool(args.simulate), args.duration, bool(trace), timeout)
     results = []
     status = 0
+    parallel = _in_parallel(files, args, run)
+    if parallel is not None:
+        files = []  # all checked
+        for fc, messages, st in parallel:
+            for m in messages:
+                sys.stderr.write(m)
+            status = max(status, st)
+            results.append(fc)
     for f in files:
         try:
             cfg = config_for(f)
         except ConfigError as exc:
             print(f"plx check: {exc}", file=sys.stderr)
             return 2
-        try:
-            fc = analyse(f, workspace, cfg, model=args.model)
-            if want_backend and fc.scene is not None:
-                reason = blocking_reason(fc)
-                if reason is None:
-                    run_backend(fc, simulate=bool(args.simulate), duration=args.duration, record=bool(trace),
-                                timeout=timeout)
-                else:
-                    fc.skip, fc.skip_detail = Skip.BLOCKED, reason
-        except Exception as exc:  # a bug in plxtools: say so, go on with the other files
-            print(f"plx check: internal error while checking {f}: {type(exc).__name__}: {exc}", file=sys.stderr)
-            if os.environ.get("PLX_DEBUG"):
-                traceback.print_exc()
-            from plxtools.check.pipeline import FileCheck
-
-            fc = FileCheck(str(f), skip=Skip.INTERNAL, internal_error=str(exc))
-            status = 2
+        fc, messages, st = _check_one((f, cfg), run)
+        for m in messages:
+            sys.stderr.write(m)
+        status = max(status, st)
         results.append(fc)
     status = max(status, _artefacts(args, results))
     diags = [d for fc in results for d in fc.diagnostics]
@@ -108,6 +105,125 @@ def run_check(args) -> int:
         return status
     has_error = any(d.severity == Severity.ERROR for d in diags)
     return 0 if (args.exit_zero or not has_error) else 1
+
+
+@dataclass
+class _Run:
+    """What every file's check needs (inherited by the pool's workers)."""
+
+    workspace: Any
+    model: str | None
+    want_backend: bool
+    simulate: bool
+    duration: float
+    record: bool
+    timeout: float
+
+
+def _check_one(item: tuple, run: _Run, analysed=None) -> tuple:
+    """(FileCheck, messages for stderr, status) of one file: what the serial loop and a worker of
+    the pool do alike (``analysed``: its analysis, done already). An exception is a bug in plxtools:
+    it is reported and the other files go on."""
+    from plxtools.check.pipeline import Skip, analyse, blocking_reason, run_backend
+
+    f, cfg = item
+    try:
+        fc = analysed if analysed is not None else analyse(f, run.workspace, cfg, model=run.model)
+        if run.want_backend and fc.scene is not None:
+            reason = blocking_reason(fc)
+            if reason is None:
+                run_backend(fc, simulate=run.simulate, duration=run.duration, record=run.record,
+                            timeout=run.timeout)
+            else:
+                fc.skip, fc.skip_detail = Skip.BLOCKED, reason
+        return fc, [], 0
+    except Exception as exc:  # a bug in plxtools: say so, go on with the other files
+        return _internal_error(f, f"{type(exc).__name__}: {exc}", str(exc),
+                               traceback.format_exc() if os.environ.get("PLX_DEBUG") else "")
+
+
+def _internal_error(f: Path, said: str, detail: str, trace: str = "") -> tuple:
+    from plxtools.check.pipeline import FileCheck, Skip
+
+    messages = [f"plx check: internal error while checking {f}: {said}\n"] + ([trace] if trace else [])
+    return FileCheck(str(f), skip=Skip.INTERNAL, internal_error=detail), messages, 2
+
+
+# `plx check` runs many files on all cores (a pool of forked worker processes, plxtools/workpool.py)
+# when the work after the first file is estimated at PARALLEL_MIN_WORK_S CPU seconds or more.
+# Measured on a BoxTruck (bench/check_bench.py --many): checking a file costs about CHECK_S once the
+# bundle program is warm, simulating it about SIMULATE_S per simulated second (bigger scenes cost
+# more: they only reach the pool sooner); the pool itself costs 0.05 to 0.3 s of CPU (fork,
+# copy-on-write of the inherited heap, each worker's first MuJoCo compile, pickling the reports).
+# So: from 9 files without --simulate, from 4 files with the default 3 s, from 3 files of 5 s.
+CHECK_S = 0.04
+SIMULATE_S = 0.025
+PARALLEL_MIN_WORK_S = 0.3
+_RUN: _Run | None = None
+
+
+def _workers(args, files: list[Path], run: _Run) -> int:
+    """How many worker processes check files[1:] while this one does files[0] (0: the serial loop
+    does it all)."""
+    from plxtools import workpool
+
+    jobs = getattr(args, "jobs", 0) or 0
+    if len(files) < 2 or jobs == 1 or args.render or args.export_mjcf or run.record or not workpool.can_fork():
+        return 0  # the artefacts are written from the compiled models, which stay in this process
+    if jobs > 1:
+        return min(jobs, len(files) - 1)
+    per_file = CHECK_S + (SIMULATE_S * (run.duration or 0.0) if run.simulate else 0.0)
+    if workpool.cores() < 2 or per_file * (len(files) - 1) < PARALLEL_MIN_WORK_S:
+        return 0
+    return min(workpool.cores(), len(files) - 1)
+
+
+def _in_parallel(files: list[Path], args, run: _Run) -> list | None:
+    """Every file's (FileCheck, messages, status) in file order, computed by a pool of workers, or
+    None when the serial loop is to do it (too little work, an artefact to write, a broken config:
+    the loop then reports it where a serial run does)."""
+    from plxtools.config import ConfigError, config_for
+
+    workers = _workers(args, files, run)
+    if not workers:
+        return None
+    try:
+        items = [(f, config_for(f)) for f in files]
+    except ConfigError:
+        return None
+    from plxtools import workpool
+    from plxtools.check.pipeline import analyse
+
+    global _RUN
+    _RUN = run
+    first: list = []
+    try:
+        # the first file is analysed here, before the fork, and numpy and MuJoCo imported: the workers
+        # inherit them and what the analysis computed on the bundle program (member tables, evaluated
+        # values); this process then runs the first file's backend while the workers check the rest
+        try:
+            fc = analyse(items[0][0], run.workspace, items[0][1], model=run.model)
+        except Exception:  # a bug: _check_one meets it again and reports it as the serial loop does
+            fc = None
+        if run.want_backend:
+            try:  # mujoco_backend imports mujoco only when it first compiles
+                import mujoco  # noqa: F401
+
+                import plxtools.check.mujoco_backend  # noqa: F401
+            except ImportError:  # reported per file, as in the serial loop
+                pass
+        rest = workpool.map_ordered(_pool_item, items[1:], workers=workers,
+                                    on_death=lambda item, why: _internal_error(item[0], why, why),
+                                    meanwhile=lambda: first.append(_check_one(items[0], run, fc)))
+    finally:
+        _RUN = None
+    return [*first, *rest]
+
+
+def _pool_item(item: tuple) -> tuple:
+    """In a worker: one file, reduced to what the reports need (the rest does not pickle)."""
+    fc, messages, status = _check_one(item, _RUN)
+    return fc.for_report(), messages, status
 
 
 def _json_default(o):

@@ -6,7 +6,6 @@ import math
 import os
 from typing import Any, TextIO
 
-from plxtools.check.assemble import Placement
 from plxtools.check.pipeline import FileCheck, Skip
 from plxtools.diagnostics import Diagnostic, Severity
 
@@ -65,7 +64,7 @@ def simulation_json(fc: FileCheck) -> dict[str, Any]:
 def document(results: list[FileCheck], diags: list[Diagnostic], simulate: bool) -> dict[str, Any]:
     doc: dict[str, Any] = {"diagnostics": [d.to_json() for d in diags]}
     doc["assembly"] = {
-        fc.path: ({"model": fc.model, "bodies": fc.assembled_bodies()} if fc.assembly is not None
+        fc.path: ({"model": fc.model, "bodies": fc.assembled_bodies()} if fc.assembled
                   else {"model": fc.model, "skipped": fc.skipped})
         for fc in results
     }
@@ -116,15 +115,12 @@ def _vec(v, nd: int = 2) -> str:
 
 
 def assembly_line(fc: FileCheck) -> str:
-    asm = fc.assembly
-    bodies = asm.bodies
-    snap = sum(1 for n in bodies if n.placement is Placement.SNAP)
-    declared = sum(1 for n in bodies if n.explicit and n is not asm.root_node)
-    other = len(bodies) - snap - declared
-    parts = [f"{len(bodies)} bod{'ies' if len(bodies) != 1 else 'y'} ({declared} declared, {snap} placed by SNAP, "
+    a = fc.assembly_summary()
+    other = a.bodies - a.snap - a.declared
+    parts = [f"{a.bodies} bod{'ies' if a.bodies != 1 else 'y'} ({a.declared} declared, {a.snap} placed by SNAP, "
              f"{other} at their system's origin)",
-             f"{len(asm.mates)} mate{'s' if len(asm.mates) != 1 else ''}",
-             f"{len(asm.controllers)} controller{'s' if len(asm.controllers) != 1 else ''}"]
+             f"{a.mates} mate{'s' if a.mates != 1 else ''}",
+             f"{a.controllers} controller{'s' if a.controllers != 1 else ''}"]
     return f"{fc.path}: {fc.model}: " + ", ".join(parts)
 
 
@@ -204,7 +200,7 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
 
         console = Console(file=stream, highlight=False, soft_wrap=True)
     for fc in results:
-        if fc.assembly is None:
+        if not fc.assembled:
             if fc.skip is not None and fc.skip is not Skip.NO_MODEL:
                 _line(stream, console, f"{fc.path}: not assembled: {fc.skipped}", "yellow")
             continue

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from plxtools.check.assemble import Assembler, Assembly, Kinds
+from plxtools.check.assemble import Assembler, Assembly, Kinds, Placement
 from plxtools.check.checks import StaticChecks, scan_strings
 from plxtools.check.convert import Collector, to_scene
 from plxtools.check.evaluate import Evaluator
@@ -43,6 +43,16 @@ SCENE_AS_WRITTEN = frozenset({"A016"})
 
 
 @dataclass
+class AssemblySummary:
+    bodies: int
+    snap: int  # placed by SNAP
+    declared: int  # with a declared transform (the root not counted)
+    mates: int
+    controllers: int
+    poses: dict[str, dict[str, Any]]  # FileCheck.assembled_bodies()
+
+
+@dataclass
 class FileCheck:
     path: str
     tree: ast.File | None = None
@@ -62,6 +72,7 @@ class FileCheck:
     cfg: Any = field(default=None, repr=False)
     evaluator: Any = field(default=None, repr=False)  # the Evaluator the assembly used (its values memoised)
     kinds: Any = field(default=None, repr=False)  # the Kinds the assembly used
+    summary: AssemblySummary | None = field(default=None, repr=False)  # of the assembly, for the reports
 
     @property
     def skipped(self) -> str | None:
@@ -74,9 +85,33 @@ class FileCheck:
     def has_errors(self) -> bool:
         return any(d.severity == Severity.ERROR for d in self.diagnostics)
 
+    @property
+    def assembled(self) -> bool:
+        return self.assembly is not None or self.summary is not None
+
+    def assembly_summary(self) -> AssemblySummary | None:
+        """What the reports show of the assembly (counts and body poses)."""
+        if self.summary is None and self.assembly is not None:
+            asm = self.assembly
+            self.summary = AssemblySummary(
+                bodies=len(asm.bodies),
+                snap=sum(1 for n in asm.bodies if n.placement is Placement.SNAP),
+                declared=sum(1 for n in asm.bodies if n.explicit and n is not asm.root_node),
+                mates=len(asm.mates), controllers=len(asm.controllers), poses=self._poses())
+        return self.summary
+
+    def for_report(self) -> FileCheck:
+        """The part of the check the reports use, without the syntax tree, the assembly's objects or
+        the MuJoCo model: what a worker process sends back (it pickles)."""
+        return FileCheck(self.path, diagnostics=self.diagnostics, model=self.model, simulation=self.simulation,
+                         skip=self.skip, skip_detail=self.skip_detail, internal_error=self.internal_error,
+                         timings=self.timings, objects=self.objects, summary=self.assembly_summary())
+
     def assembled_bodies(self) -> dict[str, dict[str, Any]]:
-        if self.assembly is None:
-            return {}
+        summary = self.assembly_summary()
+        return summary.poses if summary is not None else {}
+
+    def _poses(self) -> dict[str, dict[str, Any]]:
         out = {}
         for n in self.assembly.nodes:
             if n.kind != "body":

@@ -99,7 +99,7 @@ def _run_lint(args) -> int:
     fixes_applied = 0
     seen_configs: set = set()
     parallel: dict = {}
-    if not stdin and not args.fix and not args.diff and len(files) >= PARALLEL_MIN_FILES and (os.cpu_count() or 1) > 1:
+    if not stdin and not args.fix and not args.diff and len(files) >= PARALLEL_MIN_FILES and _two_cores():
         parallel = _lint_in_parallel(files, args, results, workspace, bundle_set)
     for f in files:
         try:
@@ -193,6 +193,12 @@ PARALLEL_MIN_BYTES = 256 * 1024
 _WORKER_WORKSPACE = None
 
 
+def _two_cores() -> bool:
+    from plxtools import workpool
+
+    return workpool.cores() > 1 and workpool.can_fork()
+
+
 def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -> dict:
     """{file: diagnostics} for the files that are not cached, computed by worker processes, or {}
     when the run is too small, a file is in a bundle (files of a bundle see each other), or a
@@ -216,20 +222,14 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
         return {}
     if len(todo) < PARALLEL_MIN_FILES or size < PARALLEL_MIN_BYTES:
         return {}
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
+    from plxtools import workpool
 
     global _WORKER_WORKSPACE
     _WORKER_WORKSPACE = workspace()  # loaded once, here: the forked workers inherit it
     # the first file is linted here, before the fork: what it computes on the bundle program (bases,
     # member tables, types of bundle attributes) is then inherited, not computed again per worker
-    done = _lint_chunk([(todo[0][0], todo[0][1])])
-    workers = min(os.cpu_count() or 1, 8)
-    rest = todo[1:]
-    per = max(1, -(-len(rest) // (workers * 4)))  # a few chunks per worker: an even finish
-    chunks = [[(f, cfg) for f, cfg, _ in rest[i:i + per]] for i in range(0, len(rest), per)]
-    with ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork")) as pool:
-        done += [d for chunk in pool.map(_lint_chunk, chunks) for d in chunk]
+    done = [_lint_one((todo[0][0], todo[0][1]))]
+    done += workpool.map_ordered(_lint_one, [(f, cfg) for f, cfg, _ in todo[1:]], workers=workpool.cores())
     out = {}
     for (f, _cfg, key), diags in zip(todo, done):
         out[f] = diags
@@ -238,21 +238,20 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
     return out
 
 
-def _lint_chunk(chunk: list) -> list:
-    """In a worker: each file's diagnostics, as the ordinary loop computes them."""
+def _lint_one(item: tuple) -> list:
+    """A file's diagnostics, as the ordinary loop computes them (in a worker, or before the fork)."""
     from plxtools.gcpolicy import file_done
     from plxtools.lint.runner import lint_file
 
+    f, cfg = item
     ws = _WORKER_WORKSPACE
-    out = []
-    for f, cfg in chunk:
-        result = lint_file(f, cfg, ws)
-        out.append(result.diagnostics)
-        if result.tree is not None and result.tree.path:
-            ws.forget_loose(result.tree.path)
-        del result
-        file_done()
-    return out
+    result = lint_file(f, cfg, ws)
+    diags = result.diagnostics
+    if result.tree is not None and result.tree.path:
+        ws.forget_loose(result.tree.path)
+    del result
+    file_done()
+    return diags
 
 
 def _lint_stdin(name: Path, cfg: Config, workspace):
