@@ -42,7 +42,7 @@ def _cache_dir() -> Path:
     return cache_dir()
 
 
-_CACHE_FORMAT = 6  # bump when the pickled classes change shape
+_CACHE_FORMAT = 7  # bump when the pickled classes change shape
 
 
 def _cache_key(paths: list[Path]) -> str:
