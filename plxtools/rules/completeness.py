@@ -13,6 +13,7 @@ from plxtools.syntax import ast
 
 REQUIRED_PRIMITIVES = {"Real", "Int", "Bool", "String"}
 MAX_DEPTH = 40
+MAX_SHARED_WALKS = 64  # walks kept per bundle model (per set of values given from outside)
 
 
 def root_model(program: Program, unit) -> ModelSym | None:
@@ -150,8 +151,8 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
         got = (finds, frozenset(models), height)
         if not cut:
             if shared:
-                if model._walks is None:
-                    model._walks = {}
+                if model._walks is None or len(model._walks) >= MAX_SHARED_WALKS:
+                    model._walks = {}  # (bounded: a long editing session meets many value sets)
                 model._walks[key] = got
             else:
                 walked[key] = got
