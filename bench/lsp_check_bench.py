@@ -77,7 +77,7 @@ def main() -> None:
                 gc.enable()
         times.sort()
         print(f"{len(lines)} lines, {len(times)} checks: CPU median {1e3 * statistics.median(times):.1f} ms, "
-              f"p95 {1e3 * times[int(0.95 * (len(times) - 1))]:.1f} ms, min {1e3 * times[0]:.1f} ms; diagnostics {first_diags} then {sorted(set(outs))}")
+              f"p95 {1e3 * times[int(0.95 * (len(times) - 1))]:.1f} ms, min {1e3 * times[0]:.1f} ms, max {1e3 * times[-1]:.1f} ms; diagnostics {first_diags} then {sorted(set(outs))}")
         for name, ts in phases.items():
             ts = ts[-len(times):]
             print(f"  {name:<28} median {1e3 * statistics.median(ts):6.1f} ms, min {1e3 * min(ts):6.1f} ms")
