@@ -112,7 +112,10 @@ class Bench:
     def plx_cmds(self, *args: str) -> list[tuple[list[str], dict | None]]:
         cmds = [(self.plx + list(args), self.env)]
         if self.base_env is not None:
-            cmds.append(([sys.executable, "-c", BASELINE_RUNNER, self.args.baseline] + list(args), self.base_env))
+            # both checkouts through the same runner: the editable install's finder (about 20 ms per
+            # start) would otherwise count against this checkout only
+            cmds = [([sys.executable, "-c", BASELINE_RUNNER, str(REPO)] + list(args), self.env),
+                    ([sys.executable, "-c", BASELINE_RUNNER, self.args.baseline] + list(args), self.base_env)]
         return cmds
 
     def row(self, what: str, plx_args: list[str], peers: list[tuple[str, list[str] | None]], measure: str,

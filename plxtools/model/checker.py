@@ -689,8 +689,8 @@ class Checker:
         if not body:
             return
         _default_edges(body, "", edges, spans)
-        if not edges:
-            return
+        if not edges or not any(edges.values()):
+            return  # no default reads another value: no ring
         keys = list(edges)
         order = {k: i for i, k in enumerate(keys)}
 
@@ -752,8 +752,13 @@ def _declared_name(text: str) -> str | None:
     return None
 
 
+_LEAVES = (ast.Number, ast.String, ast.Bool, ast.This)
+
+
 def _value_refs(expr) -> list[tuple[str, Span]]:
     """The dotted names an expression reads, with their spans (for M006)."""
+    if expr.__class__ in _LEAVES:
+        return []
     out = []
     stack = [expr]
     while stack:

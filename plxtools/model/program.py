@@ -93,7 +93,7 @@ class Program:
             stack = [sym]
             while stack:
                 m = stack.pop()
-                m._lin = m._inherited = m._all = m._methods = m._open = None
+                m._lin = m._inherited = m._all = m._methods = m._open = m._walks = None
                 m.base = None
                 m.traits = None
                 for mem in m.members.values():
@@ -457,6 +457,6 @@ def _dismantle(symbols: list) -> None:
         m.members = {}
         m.path_members = {}
         m.methods = {}
-        m._lin = m._inherited = m._all = m._methods = m._open = None
+        m._lin = m._inherited = m._all = m._methods = m._open = m._walks = None
         m.base = None
         m.traits = None

@@ -42,7 +42,7 @@ def _cache_dir() -> Path:
     return cache_dir()
 
 
-_CACHE_FORMAT = 6  # bump when the pickled classes change shape
+_CACHE_FORMAT = 7  # bump when the pickled classes change shape
 
 
 def _cache_key(paths: list[Path]) -> str:
@@ -374,7 +374,7 @@ class Workspace:
         renamed it, and the user confirms that this is one of them."""
         if not unknown:
             return
-        renamed = _renamed_attributes_before(using)
+        renamed = _renamed_attributes_before(using, self.use_cache)
         for d in unknown:
             written = tree.text[d.span.start.offset:d.span.end.offset]
             targets = renamed.get(written)
@@ -502,17 +502,32 @@ def _version_before(version: str) -> str | None:
     return known[i - 1] if i > 0 else None
 
 
-def _renamed_attributes_before(using: str) -> dict[str, list[tuple[str, str, str]]]:
+@functools.lru_cache(maxsize=8)
+def _renamed_attributes_before(using: str, use_cache: bool = True) -> dict[str, list[tuple[str, str, str]]]:
     """old attribute name -> [(new name, model, first version)] for renames from the oldest indexed
-    version up to `using`, one to one (from the index or the reviewed table)."""
+    version up to `using`, one to one (from the index or the reviewed table).
+
+    Composing the changes diffs every pair of consecutive indexed versions (about 1.5 s of CPU), so
+    the answer is kept per process and in plx's cache folder, keyed by the index's files and the
+    code that diffs them (shared: callers only read it)."""
+    from plxtools.model import apichanges
     from plxtools.model.apichanges import AUTO, TABLE, changes
-    from plxtools.model.apiindex import versions
+    from plxtools.model.apiindex import DATA, versions
 
     out: dict[str, list[tuple[str, str, str]]] = {}
     first = versions()[0]
     if first == using:
         return out
+    name = None
+    if use_cache:
+        stamp = [DATA / f"{v}.json.gz" for v in versions()] + [apichanges.RENAMES, Path(apichanges.__file__)]
+        name = f"renames-{using}-{_cache_key(stamp)}.pickle"
+        got = _load_cached(name)
+        if isinstance(got, dict):
+            return got
     for c in changes(first, using):
         if c.kind == "attr-renamed" and c.handling in (AUTO, TABLE) and c.old and c.new:
             out.setdefault(c.old, []).append((c.new, c.model, c.since))
+    if name is not None:
+        _store_cached(name, out, f"renames-{using}-")
     return out

@@ -13,6 +13,7 @@ from plxtools.syntax import ast
 
 REQUIRED_PRIMITIVES = {"Real", "Int", "Bool", "String"}
 MAX_DEPTH = 40
+MAX_SHARED_WALKS = 64  # walks kept per bundle model (per set of values given from outside)
 
 
 def root_model(program: Program, unit) -> ModelSym | None:
@@ -38,14 +39,36 @@ def _walk_assigned(body, prefix: tuple[str, ...], out: set[tuple[str, ...]]) -> 
                 _walk_assigned(s.body, path, out)
 
 
+def _own_assigned(m: ModelSym) -> frozenset:
+    """Paths a model's own body gives a value (kept on the model: its statement never changes)."""
+    got = m._assigned
+    if got is None:
+        out: set[tuple[str, ...]] = set()
+        body = getattr(m.stmt, "body", None)
+        if body:
+            _walk_assigned(body, (), out)
+        got = m._assigned = frozenset(out)
+    return got
+
+
 def _assigned(program: Program, model: ModelSym) -> set[tuple[str, ...]]:
     """Paths given a value anywhere in a model's chain of bases, traits and its own body."""
     out: set[tuple[str, ...]] = set()
     for m in program.ancestors(model):
-        body = getattr(m.stmt, "body", None)
-        if body:
-            _walk_assigned(body, (), out)
+        out |= _own_assigned(m)
     return out
+
+
+def _shared(model: ModelSym, traits: tuple) -> bool:
+    """A walk below a bundle model (with bundle traits) is the same for every file that meets it:
+    it is kept on the model until the bundles change (Program.invalidate clears it)."""
+    unit = model.unit
+    if unit is None or unit.bundle is None:
+        return False
+    for t in traits:
+        if t.unit is None or t.unit.bundle is None:
+            return False
+    return True
 
 
 def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = (),
@@ -87,7 +110,11 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
         if depth > MAX_DEPTH or id(model) in chain:
             return [], frozenset(), 0, True
         key = (id(model), tuple(id(t) for t in ty.traits), frozenset(outer))
-        hit = walked.get(key)
+        shared = _shared(model, ty.traits)
+        if shared:
+            hit = model._walks.get(key) if model._walks is not None else None
+        else:
+            hit = walked.get(key)
         if hit is not None and depth + hit[2] <= MAX_DEPTH and hit[1].isdisjoint(chain):
             return hit[0], hit[1], hit[2], False
         assigned = assigned_in(model) | outer
@@ -123,7 +150,12 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
             cut = cut or c
         got = (finds, frozenset(models), height)
         if not cut:
-            walked[key] = got
+            if shared:
+                if model._walks is None or len(model._walks) >= MAX_SHARED_WALKS:
+                    model._walks = {}  # (bounded: a long editing session meets many value sets)
+                model._walks[key] = got
+            else:
+                walked[key] = got
         return got[0], got[1], got[2], cut
 
     anchor = root.stmt.path.span if isinstance(root.stmt, ast.Declaration) else root.stmt.header

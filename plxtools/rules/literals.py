@@ -56,12 +56,20 @@ def literal(expr) -> float | list | None:
     return None
 
 
+# the attribute names LIMITS judges: an occurrence's target is named by the identifier it sits on,
+# so a statement whose last two path parts are none of these cannot be judged (most statements)
+_NAMES = frozenset(q.rsplit(".", 1)[1] for q in LIMITS)
+
+
 def literal_diagnostics(tree: ast.File, occurrences, path: str) -> list[Diagnostic]:
-    target = {(o.span.start.offset, o.span.end.offset): o.target for o in occurrences
-              if o.kind in ("attribute", "definition")}
+    target: dict | None = None  # built on the first statement that needs it
     out: list[Diagnostic] = []
 
     def member(ident) -> str | None:
+        nonlocal target
+        if target is None:
+            target = {(o.span.start.offset, o.span.end.offset): o.target for o in occurrences
+                      if o.kind in ("attribute", "definition")}
         t = target.get((ident.span.start.offset, ident.span.end.offset))
         return getattr(t, "qname", None)
 
@@ -84,7 +92,8 @@ def literal_diagnostics(tree: ast.File, occurrences, path: str) -> list[Diagnost
         for s in stack.pop() or ():
             value = getattr(s, "value", None)
             parts = s.path.parts if isinstance(s, (ast.Assignment, ast.Declaration)) else []
-            if value is not None and parts:
+            if value is not None and parts and (parts[-1].name in _NAMES or (
+                    len(parts) >= 2 and parts[-2].name in _NAMES)):
                 v = literal(value)
                 if v is not None:
                     q = member(parts[-1])

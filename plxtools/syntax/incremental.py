@@ -190,24 +190,36 @@ def _fields_of(cls: type) -> tuple[tuple[str, ...], tuple[str, ...]]:
 
 
 _COPIERS: dict[type, object] = {}
+# fields that never hold a node: copied as they are, without testing the value
+_PLAIN = {"str", "bool", "int", "float", "int | float", "str | None", "bool | None", "int | None"}
 
 
 def _copier(cls: type):
     """A function that copies one node of ``cls`` (generated once per class: a loop over field
-    names with getattr/setattr costs three times as much, and copying is what a keystroke pays)."""
+    names with getattr/setattr costs three times as much, and copying is what a keystroke pays).
+    Spans are shifted in line; child nodes are copied through the table of copiers directly."""
     fn = _COPIERS.get(cls)
     if fn is None:
         spans, others = _fields_of(cls)
-        lines = ["def copy(n, m, Node=Node, new=new, cls=cls):", "    c = new(cls)"]
+        plain = {f.name for f in fields(cls) if isinstance(f.type, str) and f.type in _PLAIN}
+        lines = ["def copy(n, m, Node=Node, new=new, tnew=tnew, Span=Span, Pos=Pos, cls=cls, get=get, make=make):",
+                 "    c = new(cls)", "    d, dl = m.d_off, m.d_line"]
         for name in spans:
-            lines.append(f"    c.{name} = m.span(n.{name})")
+            lines.append(f"    a, b = n.{name}")
+            lines.append(f"    c.{name} = tnew(Span, (tnew(Pos, (a[0] + d, a[1] + dl, a[2])), "
+                         "tnew(Pos, (b[0] + d, b[1] + dl, b[2]))))")
         for name in others:
+            if name in plain:
+                lines.append(f"    c.{name} = n.{name}")
+                continue
             lines.append(f"    v = n.{name}")
-            lines.append("    if isinstance(v, Node): v = m.copy(v)")
-            lines.append("    elif v.__class__ is list: v = [m.copy(x) if isinstance(x, Node) else x for x in v]")
+            lines.append("    if isinstance(v, Node): v = (get(v.__class__) or make(v.__class__))(v, m)")
+            lines.append("    elif v.__class__ is list: v = [(get(x.__class__) or make(x.__class__))(x, m) "
+                         "if isinstance(x, Node) else x for x in v]")
             lines.append(f"    c.{name} = v")
         lines.append("    return c")
-        env = {"Node": ast.Node, "new": object.__new__, "cls": cls}
+        env = {"Node": ast.Node, "new": object.__new__, "tnew": _tuple_new, "Span": Span, "Pos": Pos, "cls": cls,
+               "get": _COPIERS.get, "make": _copier}
         exec("\n".join(lines), env)  # noqa: S102 - generated from the dataclass's own field names
         fn = _COPIERS[cls] = env["copy"]
     return fn
