@@ -4,6 +4,7 @@
     python bench/startup_bench.py --runs 11
     python bench/startup_bench.py --baseline DIR   # also another checkout (`git archive` of a commit)
     python bench/startup_bench.py --identical      # only: compare lint JSON cold / warm / cached
+    python bench/startup_bench.py --identical --baseline DIR   # ... and with DIR's plx --no-cache
 
 Rows (each a whole process, wall and CPU = the child's user + system time):
 
@@ -11,7 +12,8 @@ Rows (each a whole process, wall and CPU = the child's user + system time):
   cache, no result); the bundle program's cache may still be written after the run's output, by a
   child process, whose CPU time is reported separately (it is not part of the command's wait);
 - warm, no result cache: the bundle program is cached, the file's result is not;
-- cached: `plx lint` / `plx fmt --check` of the same unchanged file (per-file result cache);
+- cached: `plx lint` / `plx fmt --check` of the same unchanged file, once with only the per-file
+  result cache (the replay entries of plxtools/runmemo.py removed before the run), once replayed;
 - `python -c pass`: the interpreter's own start-up, same venv (its `site`, editable finder included).
 
 The load average is printed beside the figures: on a shared machine the wall times follow it.
@@ -96,19 +98,28 @@ class Runner:
         wait_for_writers()
         return got
 
+    def forget(self, *names: str) -> None:
+        for name in names:
+            shutil.rmtree(Path(self.env["PLX_CACHE_DIR"]) / "plxtools" / name, ignore_errors=True)
+
     def warm_no_result(self) -> tuple[float, float]:
-        shutil.rmtree(Path(self.env["PLX_CACHE_DIR"]) / "plxtools" / "lint-results", ignore_errors=True)
+        self.forget("lint-results", "runs")
         return run(self.cmd("lint", "--exit-zero", "-q", str(ONE)), self.env)
 
-    def cached_lint(self) -> tuple[float, float]:
+    def cached_lint(self, replay: bool = True) -> tuple[float, float]:
+        if not replay:
+            self.forget("runs")  # the per-file result is there, the whole run is not
         return run(self.cmd("lint", "--exit-zero", "-q", str(ONE)), self.env)
 
-    def cached_fmt(self) -> tuple[float, float]:
+    def cached_fmt(self, replay: bool = True) -> tuple[float, float]:
+        if not replay:
+            self.forget("runs")
         return run(self.cmd("fmt", "--check", "-q", str(ONE)), self.env)
 
 
-def identical(prefix: list[str], tmp: Path) -> int:
-    """lint JSON of examples/ and tests/cases (folders and each file), cold, warm and cached: equal."""
+def identical(prefix: list[str], tmp: Path, baseline: list[str] | None = None) -> int:
+    """lint JSON of examples/ and tests/cases (folders and each file), cold, warm and cached (replayed
+    where it can be), with --no-cache, and with the baseline's --no-cache if given: all equal."""
     targets = [REPO / "examples", REPO / "tests" / "cases"]
     targets += sorted(p for t in list(targets) for p in t.rglob("*.openplx"))
     bad = 0
@@ -122,6 +133,9 @@ def identical(prefix: list[str], tmp: Path) -> int:
             wait_for_writers()
         nocache = subprocess.run(prefix + ["lint", "--exit-zero", "--no-cache", "--output-format", "json", str(t)],
                                  env=env, capture_output=True, cwd=REPO).stdout
+        if baseline is not None:
+            outs.append(subprocess.run(baseline + ["lint", "--exit-zero", "--no-cache", "--output-format", "json",
+                                                   str(t)], env=env, capture_output=True, cwd=REPO).stdout)
         if len(set(outs + [nocache])) != 1:
             bad += 1
             print(f"DIFFERENT: {t}", file=sys.stderr)
@@ -145,7 +159,8 @@ def main() -> None:
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
         if args.identical:
-            raise SystemExit(identical(prefix, tmp))
+            base = [sys.executable, "-c", BASELINE_RUNNER, args.baseline] if args.baseline else None
+            raise SystemExit(identical(prefix, tmp, base))
         runners = [Runner("plx", prefix, tmp)]
         if args.baseline:
             runners.append(Runner("base", [sys.executable, "-c", BASELINE_RUNNER, args.baseline], tmp))
@@ -167,9 +182,12 @@ def main() -> None:
                 writer_cpu.setdefault(r.name, []).append(max(0.0, children_cpu() - before - got[1]))
                 rows.setdefault(("lint cold (empty cache), one file", r.name), []).append(got)
                 rows.setdefault(("lint warm, no result cache", r.name), []).append(r.warm_no_result())
-                r.cached_lint()  # the result is stored again
-                rows.setdefault(("lint, unchanged file (result cache)", r.name), []).append(r.cached_lint())
-                rows.setdefault(("fmt --check, unchanged file (result cache)", r.name), []).append(r.cached_fmt())
+                rows.setdefault(("lint, unchanged file, result cache only", r.name), []).append(
+                    r.cached_lint(replay=False))
+                rows.setdefault(("lint, unchanged file, replayed run", r.name), []).append(r.cached_lint())
+                rows.setdefault(("fmt --check, unchanged file, cache only", r.name), []).append(
+                    r.cached_fmt(replay=False))
+                rows.setdefault(("fmt --check, unchanged file, replayed run", r.name), []).append(r.cached_fmt())
         print(f"{ONE.relative_to(REPO)}, medians of {args.runs}, load average {min(loads):.2f} to "
               f"{max(loads):.2f} on {os.cpu_count()} cores, {time.strftime('%Y-%m-%d %H:%M')}")
         print(f"{'row':45} {'who':5} {'wall ms':>8} {'CPU ms':>8}")
