@@ -22,7 +22,7 @@ from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
 from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, cache_dir, explicit_bundle_set
-from plxtools.syntax import ast, parse_file
+from plxtools.syntax import ast, parse_bytes, parse_file
 
 
 
@@ -45,12 +45,12 @@ def _cache_dir() -> Path:
 _CACHE_FORMAT = 6  # bump when the pickled classes change shape
 
 
-def _cache_key(paths: list[Path]) -> str:
+def _cache_key(paths: list) -> str:
     h = zlib.crc32(f"{__version__}/{_CACHE_FORMAT}".encode())
     n = 0
     for p in paths:
         try:
-            st = p.stat()
+            st = os.stat(p)
         except OSError:
             continue
         h = zlib.crc32(f"{p}\0{st.st_size}\0{st.st_mtime_ns}\n".encode(), h)
@@ -132,6 +132,12 @@ def _write_cached(folder: Path, name: str, value, prefix: str) -> None:
         pass
 
 
+def _parse_path(path: str) -> ast.File:
+    """parse_file(path) for a path string."""
+    with open(path, "rb") as fh:
+        return parse_bytes(fh.read(), path)
+
+
 class Workspace:
     """One bundle set loaded into one Program. Several can live side by side (one per version)."""
 
@@ -199,11 +205,11 @@ class Workspace:
         each one's cache warm, and by every file's size and mtime, so an edited bundle invalidates it.
         """
         bundles = [Bundle(root.name, root, official=True, origin=why) for root, why, _v in plan]
-        files: list[Path] = []
-        per_bundle: list[list[Path]] = []
+        files: list[str] = []  # strings, not Paths: a cold run lists, reads and registers 465 of them
+        per_bundle: list[list[str]] = []
         for b in bundles:
-            files.append(b.root / "config.openplx")
-            per_bundle.append(b.files())
+            files.append(os.path.join(str(b.root), "config.openplx"))
+            per_bundle.append(b.file_names())
             files.extend(per_bundle[-1])
         set_id = f"{zlib.crc32(chr(0).join(str(b.root) for b in bundles).encode()):08x}"
         name = f"official-{set_id}-{_cache_key(files)}.pickle"
@@ -217,13 +223,15 @@ class Workspace:
                 for b in self.bundles.values():  # the reason is this run's, not the cached run's
                     b.origin = why.get(b.root, b.origin)
                 return
-        trees = {str(p): parse_file(p) for p in files}
+        trees = {p: _parse_path(p) for p in files}
         for b, listed in zip(bundles, per_bundle):
-            read_config(b, trees[str(b.root / "config.openplx")])
+            read_config(b, trees[os.path.join(str(b.root), "config.openplx")])
             self.bundles[b.name] = b
             self.program.official_bundles.add(b.name)
             for f in listed:
-                self._add_bundle_file(b, f, trees[str(f)])
+                unit = FileUnit(f, trees[f], self.program.namespace(b.namespace_of_name(f), b.name), b.name,
+                                official=True)
+                self.program.add_unit(unit)
         for tree in trees.values():
             for s in ast.walk_statements(tree.statements):
                 if isinstance(s, ast.Annotation):
