@@ -12,12 +12,14 @@ environment variables plx reads (PLX_*, OPENPLX_*, colour and cache settings) an
 and stderr are terminals. It holds the run's output and exit code and the list of what else the
 run depended on, each checked again before the output is replayed:
 
-- each linted file's bytes (a BLAKE2b digest, not its mtime);
-- every folder from each linted file (and from the working folder) up to the root, by its mtime:
-  a config file (`plx.toml`, `pyproject.toml`) or a bundle's `config.openplx` created or removed
-  anywhere above changes it; and the size and mtime of those files where they exist;
+- each linted file's bytes (a BLAKE2b digest, not its mtime) and where its path leads (symbolic
+  links resolved);
+- in every folder from each linted file (and from the working folder) up to the root, the files
+  plx looks for there: `plx.toml`, `pyproject.toml` (the configuration) and `config.openplx` (a
+  bundle the file belongs to, or a version pin), by their size, mtime and inode, or their absence;
 - the bundle set: the official bundles' folder and their config files (a released version) or
-  every file (otherwise), the folder holding them, and every file of the user's bundle folders;
+  every file (otherwise), the folder holding them (another version installed beside), an
+  `openplxbundles` earlier on `sys.path`, and every file of the user's bundle folders;
 - the files a linted file imports (`import @"..."`).
 
 Anything else on the command line (folders, stdin, `--fix`, `--diff`, `--no-cache`, unknown or
@@ -131,6 +133,8 @@ def _holds(dep: tuple) -> bool:
         return _digest(path) == value
     if kind == "tree":
         return _tree(path) == value
+    if kind == "real":
+        return os.path.realpath(path) == value
     return False
 
 
@@ -214,19 +218,18 @@ def allow(files, bundle_set=None, imports: list[str] = ()) -> None:
     for f in files:
         p = os.fspath(f)
         deps.append(("bytes", p, _digest(p)))
+        deps.append(("real", p, os.path.realpath(p)))  # a symbolic link on the way that now points elsewhere
         folders.add(os.path.dirname(os.path.realpath(p)))
         folders.add(os.path.dirname(os.path.abspath(p)))
     folders.add(os.path.realpath(os.getcwd()))
     seen: set[str] = set()
     for start_at in sorted(folders):
         d = start_at
-        while d not in seen:
+        while d not in seen:  # the config and bundle files plx looks for above a file, there or not
             seen.add(d)
-            deps.append(("stat", d, _sig(d)))
             for name in _CONFIG_NAMES:
                 c = os.path.join(d, name)
-                if os.path.exists(c):
-                    deps.append(("stat", c, _sig(c)))
+                deps.append(("stat", c, _sig(c)))
             parent = os.path.dirname(d)
             if parent == d:
                 break
@@ -234,8 +237,14 @@ def allow(files, bundle_set=None, imports: list[str] = ()) -> None:
     official = bundle_set.official_root if bundle_set is not None else None
     if official is not None:
         root = os.fspath(official)
+        site = os.path.dirname(root)
         deps.append(("stat", root, _sig(root)))
-        deps.append(("stat", os.path.dirname(root), _sig(os.path.dirname(root))))
+        deps.append(("stat", site, _sig(site)))  # another version installed there
+        for entry in sys.path:  # a package of that name earlier on the path would be found first
+            entry = os.path.abspath(entry or os.curdir)
+            if entry == site:
+                break
+            deps.append(("stat", os.path.join(entry, "openplxbundles"), _sig(os.path.join(entry, "openplxbundles"))))
         if bundle_set.official_version:  # a release is not edited in place (as lint/resultcache.py)
             for name in sorted(os.listdir(root)):
                 c = os.path.join(root, name, "config.openplx")

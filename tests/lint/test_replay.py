@@ -132,3 +132,23 @@ def test_a_cold_run_leaves_the_bundle_program_cache_behind(tmp_path):
     assert list(folder.glob("official-*.pickle"))
     second = run_plx("lint", "--output-format", "json", str(f), env={"PLX_CACHE_DIR": str(cache)})
     assert _same(second, _fresh(tmp_path, "lint", "--output-format", "json", str(f)))
+
+
+def test_unrelated_files_beside_it_keep_the_run_replayable(tmp_path):
+    """An editor's swap file or a new file beside it changes nothing plx reads: the run is replayed
+    (seen here by the per-file result, removed in between, not being stored again)."""
+    import shutil
+
+    cache = tmp_path / "cache"
+    env = {"PLX_CACHE_DIR": str(cache)}
+    f = tmp_path / "w.openplx"
+    f.write_text(BROKEN)
+    first = run_plx("lint", str(f), env=env)
+    shutil.rmtree(cache / "plxtools" / "lint-results")
+    (tmp_path / ".w.openplx.swp").write_text("x")
+    again = run_plx("lint", str(f), env=env)
+    assert _same(first, again)
+    assert not (cache / "plxtools" / "lint-results").exists()  # replayed, not checked
+    (tmp_path / "plx.toml").write_text("")  # a config, even an empty one: run again
+    assert _same(first, run_plx("lint", str(f), env=env))
+    assert (cache / "plxtools" / "lint-results").exists()
