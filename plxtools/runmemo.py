@@ -147,9 +147,9 @@ def replay(argv: list[str]) -> int | None:
     try:
         with open(_entry_path(_key(argv)), "rb") as fh:
             fmt, deps, out, err, code = marshal.load(fh)
-    except (OSError, EOFError, ValueError, TypeError):
-        return None
-    if fmt != _FORMAT or not all(_holds(tuple(d)) for d in deps):
+        if fmt != _FORMAT or not all(_holds(tuple(d)) for d in deps) or not isinstance(code, int):
+            return None
+    except Exception:  # noqa: BLE001 - an unreadable or foreign entry is a miss, never an error
         return None
     if err:
         sys.stderr.write(err)

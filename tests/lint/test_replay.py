@@ -152,3 +152,16 @@ def test_unrelated_files_beside_it_keep_the_run_replayable(tmp_path):
     (tmp_path / "plx.toml").write_text("")  # a config, even an empty one: run again
     assert _same(first, run_plx("lint", str(f), env=env))
     assert (cache / "plxtools" / "lint-results").exists()
+
+
+def test_a_damaged_entry_is_a_miss(tmp_path):
+    cache = tmp_path / "cache"
+    env = {"PLX_CACHE_DIR": str(cache)}
+    f = tmp_path / "w.openplx"
+    f.write_text(BROKEN)
+    first = run_plx("lint", str(f), env=env)
+    (entry,) = _runs(cache)
+    for junk in (b"", b"\x00garbage", __import__("marshal").dumps((1, [("x",)], "", "", 0))):
+        entry.write_bytes(junk)
+        again = run_plx("lint", str(f), env=env)
+        assert _same(first, again) and "Traceback" not in again.stderr
