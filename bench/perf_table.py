@@ -61,10 +61,10 @@ def run(cmd: list[str], env: dict | None = None, stdin: bytes | None = None) -> 
 
 
 def forget_results(env: dict | None) -> None:
-    """Empty plx's per-file result caches (not the bundle program's): a throughput run must check
-    every file, not find it unchanged."""
+    """Empty plx's per-file result caches and its replayed runs (not the bundle program's): a
+    throughput run must check every file, not find it unchanged."""
     if env and env.get("PLX_CACHE_DIR"):
-        for name in ("lint-results", "fmt-formatted"):
+        for name in ("lint-results", "fmt-formatted", "runs"):
             shutil.rmtree(Path(env["PLX_CACHE_DIR"]) / "plxtools" / name, ignore_errors=True)
 
 

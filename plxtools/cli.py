@@ -6,7 +6,6 @@ internal error.
 
 from __future__ import annotations
 
-import argparse
 import sys
 
 from plxtools import __version__
@@ -218,24 +217,37 @@ def _terminal_columns() -> int:
     return columns
 
 
-class _Formatter(argparse.HelpFormatter):
-    def __init__(self, prog, indent_increment=2, max_help_position=24, width=None):
-        if width is None:
-            width = _terminal_columns() - 2
-        super().__init__(prog, indent_increment, max_help_position, width)
+_CLASSES: list = []
 
 
-class _Parser(argparse.ArgumentParser):
-    def __init__(self, *args, **kwargs):
-        kwargs.setdefault("formatter_class", _Formatter)
-        super().__init__(*args, **kwargs)
+def _parser_class():
+    """plx's ArgumentParser (help as wide as the terminal), made on first use: a replayed run
+    (plxtools.runmemo) does not import argparse at all."""
+    if not _CLASSES:
+        import argparse
+
+        class _Formatter(argparse.HelpFormatter):
+            def __init__(self, prog, indent_increment=2, max_help_position=24, width=None):
+                if width is None:
+                    width = _terminal_columns() - 2
+                super().__init__(prog, indent_increment, max_help_position, width)
+
+        class _Parser(argparse.ArgumentParser):
+            def __init__(self, *args, **kwargs):
+                kwargs.setdefault("formatter_class", _Formatter)
+                super().__init__(*args, **kwargs)
+
+        _CLASSES.append(_Parser)
+    return _CLASSES[0]
 
 
 _COMMANDS = ("lint", "fmt", "check", "test", "lsp", "rule", "bundles", "migrate")
 
 
-def build_parser(only: str | None = None) -> argparse.ArgumentParser:
-    """The whole command line, or with `only`, that subcommand's options and the others' names."""
+def build_parser(only: str | None = None):
+    """The whole command line (an argparse.ArgumentParser), or with `only`, that subcommand's
+    options and the others' names."""
+    _Parser = _parser_class()
     parser = _Parser(
         prog="plx",
         description="plxtools: lint, format, check and simulate OpenPLX models, and an editor language server.",
@@ -358,7 +370,15 @@ def entry() -> None:
     Every file plxtools writes is written atomically and fsynced before this point, so leaving
     without freeing objects loses nothing; it saves ~0.2 s per run.
     """
-    code = main()
+    import plxtools
+    from plxtools import runmemo
+
+    plxtools.ONE_SHOT = sys.argv[1:2] != ["lsp"]
+    code = runmemo.replay(sys.argv[1:])  # an unchanged one-file run: its output, nothing imported
+    if code is None:
+        token = runmemo.start(sys.argv[1:])
+        code = main()
+        runmemo.finish(token, code)
     try:
         sys.stdout.flush()
         sys.stderr.flush()

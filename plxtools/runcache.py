@@ -8,8 +8,6 @@ with `code_stamp()` (plxtools itself). Entries are one small pickle each under p
 from __future__ import annotations
 
 import os
-import pickle
-from pathlib import Path
 
 from plxtools import __version__
 
@@ -29,7 +27,15 @@ def new_hash(data: bytes = b""):
 _STAMP: bytes | None = None
 
 
-def tree_stamp(root: Path, suffixes: tuple[str, ...], h) -> None:
+def cache_root() -> str:
+    """plx's cache folder: the same as `model.versions.cache_dir()`, computed without importing
+    the model (a replayed run, `plxtools.runmemo`, imports nothing else)."""
+    base = os.environ.get("PLX_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME") or os.path.join(
+        os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "plxtools")
+
+
+def tree_stamp(root, suffixes: tuple[str, ...], h) -> None:
     """Feed the path, size and mtime of every file under `root` ending in `suffixes` to `h`."""
     for folder, dirs, files in os.walk(root):
         dirs[:] = sorted(d for d in dirs if d != "__pycache__" and not d.startswith("."))
@@ -48,23 +54,25 @@ def code_stamp() -> bytes:
     global _STAMP
     if _STAMP is None:
         h = new_hash(f"{_FORMAT}\0{__version__}\n".encode())
-        tree_stamp(Path(__file__).resolve().parent, (".py", ".lark", ".json", ".gz"), h)
+        tree_stamp(os.path.dirname(os.path.realpath(__file__)), (".py", ".lark", ".json", ".gz"), h)
         _STAMP = h.digest()
     return _STAMP
 
 
 class Store:
     def __init__(self, name: str) -> None:
-        from plxtools.model.versions import cache_dir
+        from pathlib import Path
 
-        self.folder = cache_dir() / name
+        self.folder = Path(cache_root()) / name
 
-    def _file(self, key: str) -> Path:
+    def _file(self, key: str):
         return self.folder / key[:2] / f"{key[2:]}.pickle"
 
     def get(self, key: str | None):
         if key is None:
             return None
+        import pickle
+
         try:
             with open(self._file(key), "rb") as fh:
                 return pickle.load(fh)
@@ -75,6 +83,8 @@ class Store:
     def put(self, key: str | None, value) -> None:
         if key is None:
             return
+        import pickle
+
         path = self._file(key)
         try:
             path.parent.mkdir(parents=True, exist_ok=True)

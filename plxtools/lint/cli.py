@@ -95,6 +95,8 @@ def _run_lint(args) -> int:
 
         results = ResultCache(bundle_set)
     all_diags = []
+    # the run may be replayed (plxtools.runmemo) when every file's result is in the result cache
+    replayable = results is not None
     fixed_files = 0
     fixes_applied = 0
     seen_configs: set = set()
@@ -110,9 +112,11 @@ def _run_lint(args) -> int:
             return 2
         if f in parallel:
             all_diags.extend(parallel[f])
+            replayable = False
             continue
         key = results.key(f, cfg) if results is not None else None
         cached = results.get(key) if key is not None else None
+        replayable = replayable and key is not None
         if cached is not None:
             all_diags.extend(cached)
             continue
@@ -127,6 +131,7 @@ def _run_lint(args) -> int:
         diags = result.diagnostics
         if key is not None:
             results.put(key, diags)
+            replayable = replayable and results.stores(diags)
         fixable = (args.fix or args.diff) and result.tree is not None and not result.tree.has_errors_of_syntax()
         new_text, n = fixed_text(result.tree, diags, args.unsafe_fixes) if fixable else (None, 0)
         if stdin and args.fix:
@@ -173,7 +178,27 @@ def _run_lint(args) -> int:
     if args.fix and fixes_applied and args.output_format == "text":
         print(f"Fixed {_plural(fixes_applied, 'problem')} in {_plural(fixed_files, 'file')}.", file=out)
     has_error = any(d.severity == Severity.ERROR for d in all_diags)
+    if replayable:
+        _allow_replay(files, bundle_set)
     return 0 if (args.exit_zero or not has_error) else 1
+
+
+def _allow_replay(files: list[Path], bundle_set) -> None:
+    """Tell plxtools.runmemo what this run depended on besides its command line (it records it
+    only when the command line is one it replays)."""
+    from plxtools import runmemo
+    from plxtools.lint.resultcache import imported_files
+
+    imports: list[str] = []
+    for f in files:
+        try:
+            found = imported_files(f, f.read_bytes())
+        except OSError:
+            return
+        if found is None:
+            return
+        imports.extend(found)
+    runmemo.allow(files, bundle_set, imports)
 
 
 def _config(f: Path, stdin: bool, args) -> Config:
@@ -235,6 +260,7 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
         out[f] = diags
         if key is not None:
             results.put(key, diags)
+            replayable = replayable and results.stores(diags)
     return out
 
 

@@ -48,6 +48,20 @@ def _import_stamp(path: Path, data: bytes, h) -> None:
             h.update(f"\0{text}\0missing".encode())
 
 
+def imported_files(path: Path, data: bytes) -> list[str] | None:
+    """The files a file imports with `import @"..."` (as `_import_stamp` finds them), or None when
+    one is a `$"..."` path (it depends on the environment)."""
+    if b"import" not in data:
+        return []
+    folder = path.resolve().parent
+    out = []
+    for m in _IMPORT.finditer(data):
+        if m.group(1) == b"$":
+            return None
+        out.append(str(folder / m.group(2).decode("utf-8", "replace")))
+    return out
+
+
 def _in_bundle(path: Path, stop_at: set) -> bool:
     """model.bundles.find_user_bundle_root(...) is not None, without importing the model (and lark)."""
     folder = path.resolve().parent
@@ -108,7 +122,12 @@ class ResultCache:
         value = self.store.get(key)
         return value if isinstance(value, list) else None
 
+    @staticmethod
+    def stores(diagnostics: list) -> bool:
+        """Whether a result with these diagnostics is kept (see the module's notes)."""
+        return not any(d.code in _NOT_STORED for d in diagnostics)
+
     def put(self, key: str | None, diagnostics: list) -> None:
-        if key is None or any(d.code in _NOT_STORED for d in diagnostics):
+        if key is None or not self.stores(diagnostics):
             return
         self.store.put(key, diagnostics)

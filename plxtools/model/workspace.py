@@ -22,7 +22,7 @@ from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
 from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, cache_dir, explicit_bundle_set
-from plxtools.syntax import ast, parse_file
+from plxtools.syntax import ast, parse_bytes, parse_file
 
 
 
@@ -45,12 +45,12 @@ def _cache_dir() -> Path:
 _CACHE_FORMAT = 7  # bump when the pickled classes change shape
 
 
-def _cache_key(paths: list[Path]) -> str:
+def _cache_key(paths: list) -> str:
     h = zlib.crc32(f"{__version__}/{_CACHE_FORMAT}".encode())
     n = 0
     for p in paths:
         try:
-            st = p.stat()
+            st = os.stat(p)
         except OSError:
             continue
         h = zlib.crc32(f"{p}\0{st.st_size}\0{st.st_mtime_ns}\n".encode(), h)
@@ -79,9 +79,48 @@ def _load_cached(name: str):
 
 
 def _store_cached(name: str, value, prefix: str) -> None:
+    """Write a cache file. In a one-shot CLI process (`plxtools.ONE_SHOT`, set by `cli.entry`) a
+    forked child writes it: pickling the bundle program is about a third of a cold run, and the
+    child does it on a snapshot of the program as it is now (copy-on-write, so the file is what the
+    parent would have written) while the parent checks and reports. The child holds none of the
+    parent's standard streams (a caller waiting for their end is not kept waiting), runs in its
+    own session (a Ctrl-C of the command does not cut it off) and at a lower priority, and leaves
+    with os._exit. The file is replaced atomically, so a run that starts before it is there parses
+    the bundles again and a reader never sees half a file."""
+    import plxtools
+
     try:
         folder = _cache_dir()
         folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return
+    pid = -1
+    if getattr(plxtools, "ONE_SHOT", False) and hasattr(os, "fork"):
+        try:
+            pid = os.fork()
+        except OSError:
+            pid = -1
+    if pid > 0:
+        return  # the parent goes on
+    if pid < 0:
+        _write_cached(folder, name, value, prefix)
+        return
+    try:  # the child
+        try:
+            null = os.open(os.devnull, os.O_RDWR)
+            for fd in (0, 1, 2):
+                os.dup2(null, fd)
+            os.setsid()
+            os.nice(5)
+        except OSError:
+            pass
+        _write_cached(folder, name, value, prefix)
+    finally:
+        os._exit(0)
+
+
+def _write_cached(folder: Path, name: str, value, prefix: str) -> None:
+    try:
         tmp = folder / f".{name}.{os.getpid()}.tmp"
         with open(tmp, "wb") as fh:
             pickle.dump(value, fh, protocol=pickle.HIGHEST_PROTOCOL)
@@ -91,6 +130,12 @@ def _store_cached(name: str, value, prefix: str) -> None:
                 old.unlink(missing_ok=True)
     except (OSError, pickle.PicklingError, RecursionError):
         pass
+
+
+def _parse_path(path: str) -> ast.File:
+    """parse_file(path) for a path string."""
+    with open(path, "rb") as fh:
+        return parse_bytes(fh.read(), path)
 
 
 class Workspace:
@@ -160,10 +205,12 @@ class Workspace:
         each one's cache warm, and by every file's size and mtime, so an edited bundle invalidates it.
         """
         bundles = [Bundle(root.name, root, official=True, origin=why) for root, why, _v in plan]
-        files: list[Path] = []
+        files: list[str] = []  # strings, not Paths: a cold run lists, reads and registers 465 of them
+        per_bundle: list[list[str]] = []
         for b in bundles:
-            files.append(b.root / "config.openplx")
-            files.extend(b.files())
+            files.append(os.path.join(str(b.root), "config.openplx"))
+            per_bundle.append(b.file_names())
+            files.extend(per_bundle[-1])
         set_id = f"{zlib.crc32(chr(0).join(str(b.root) for b in bundles).encode()):08x}"
         name = f"official-{set_id}-{_cache_key(files)}.pickle"
         if self.use_cache:
@@ -176,13 +223,15 @@ class Workspace:
                 for b in self.bundles.values():  # the reason is this run's, not the cached run's
                     b.origin = why.get(b.root, b.origin)
                 return
-        trees = {str(p): parse_file(p) for p in files}
-        for b in bundles:
-            read_config(b, trees[str(b.root / "config.openplx")])
+        trees = {p: _parse_path(p) for p in files}
+        for b, listed in zip(bundles, per_bundle):
+            read_config(b, trees[os.path.join(str(b.root), "config.openplx")])
             self.bundles[b.name] = b
             self.program.official_bundles.add(b.name)
-            for f in b.files():
-                self._add_bundle_file(b, f, trees[str(f)])
+            for f in listed:
+                unit = FileUnit(f, trees[f], self.program.namespace(b.namespace_of_name(f), b.name), b.name,
+                                official=True)
+                self.program.add_unit(unit)
         for tree in trees.values():
             for s in ast.walk_statements(tree.statements):
                 if isinstance(s, ast.Annotation):

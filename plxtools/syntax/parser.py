@@ -760,7 +760,7 @@ def _fast_header(tokens: list[Token], first: str) -> ast.Stmt | None:
     return _B.method([static, fn, name, params, arrow, ref])
 
 
-def _parse_line(parser: Lark, line: LogicalLine, text: str, diags: list[Diagnostic]) -> ast.Stmt:
+def _parse_line(parser: Lark | None, line: LogicalLine, text: str, diags: list[Diagnostic]) -> ast.Stmt:
     if line.error is not None:
         diags.append(line.error)
         return _error_stmt(line, text)
@@ -768,8 +768,8 @@ def _parse_line(parser: Lark, line: LogicalLine, text: str, diags: list[Diagnost
         stmt = _fast(line.tokens)
         if stmt is not None:
             return stmt
-    try:
-        return parser.parse(line.tokens)
+    try:  # the LALR parser is built on the first line the fast path leaves to it (not at all for most files)
+        return (parser if parser is not None else _get_parser()).parse(line.tokens)
     except UnexpectedInput as exc:
         diags.append(_syntax_error(exc, line))
     except RecursionError:
@@ -858,7 +858,7 @@ def _close_spans(stmts: list[ast.Stmt]) -> None:
 
 
 def parse_lines(text: str, lines: list[LogicalLine], diags: list[Diagnostic]) -> list[ast.Stmt]:
-    parser = _get_parser()
+    parser = _PARSER  # None until a line needs it: see _parse_line
     root = _Frame(-1, None, [], None)
     stack = [root]
     pending: tuple[ast.Stmt, int, LogicalLine] | None = None
