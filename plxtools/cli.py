@@ -110,6 +110,8 @@ def _jobs(text: str) -> int:
     except ValueError:
         n = 0
     if n < 1:
+        import argparse
+
         raise argparse.ArgumentTypeError(f"expected 'auto' or a whole number >= 1, got {text!r}")
     return n
 

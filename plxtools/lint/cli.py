@@ -259,8 +259,7 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
     for (f, _cfg, key), diags in zip(todo, done):
         out[f] = diags
         if key is not None:
-            results.put(key, diags)
-            replayable = replayable and results.stores(diags)
+            results.put(key, diags)  # (a run with files linted in parallel is not replayed)
     return out
 
 

@@ -106,3 +106,7 @@ def test_many_files_in_parallel_report_what_one_by_one_runs_do(tmp_path):
         alone += json.loads(r.stdout)
     assert json.loads(together.stdout) == alone
     assert together.returncode == 1 and any(d["code"] == "N002" for d in alone)
+    # with the result cache: filled by the workers, then read back (it once crashed the first time)
+    for _ in range(2):
+        cached = run_plx("lint", "--output-format", "json", *map(str, files), env=env)
+        assert (cached.returncode, json.loads(cached.stdout)) == (1, alone), cached.stderr
