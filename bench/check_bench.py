@@ -74,6 +74,17 @@ def plx_command() -> list[str]:
     return [str(exe)] if exe.exists() else [sys.executable, "-m", "plxtools"]
 
 
+def interleaved(runs: int, *commands) -> list[tuple[list[float], list[float]]]:
+    """(walls, CPUs) of each (command, env), run in turn `runs` times so machine load affects all alike."""
+    got = [([], []) for _ in commands]
+    for _ in range(runs):
+        for (cmd, env), (walls, cpus) in zip(commands, got):
+            w, c = child(cmd, env)
+            walls.append(w)
+            cpus.append(c)
+    return got
+
+
 def child(cmd: list[str], env: dict, out: Path | None = None) -> tuple[float, float]:
     """(wall s, CPU s) of one process; its stdout goes to ``out`` (or nowhere)."""
     t = time.perf_counter()
@@ -150,14 +161,7 @@ def many(args, runs: int, env: dict) -> int:
             child(serial, env, a)  # warm the caches
             child(pool, env, b)
             same = same_report(a, b)
-            sw, sc, pw, pc = [], [], [], []
-            for _ in range(runs):
-                w, c = child(serial, env)
-                sw.append(w)
-                sc.append(c)
-                w, c = child(pool, env)
-                pw.append(w)
-                pc.append(c)
+            (sw, sc), (pw, pc) = interleaved(runs, (serial, env), (pool, env))
             rows.append((n, seconds, med(sw), med(sc), med(pw), med(pc), same))
             print(f"  {n} x {seconds:g} s: serial {med(sw):.3f} s wall / {med(sc):.3f} s CPU, "
                   f"pool {med(pw):.3f} s wall / {med(pc):.3f} s CPU", file=sys.stderr, flush=True)
@@ -238,16 +242,9 @@ def main() -> int:
             if base_env is not None:
                 base = [sys.executable, "-c", BASELINE_RUNNER, args.baseline, *check[len(plx):]]
                 child(base, base_env)
-            c_wall, c_cpu, f_wall, f_cpu, b_cpu = [], [], [], [], []
-            for _ in range(runs):  # interleaved, so that machine load affects all alike
-                w, c = child(check, env)
-                c_wall.append(w)
-                c_cpu.append(c)
-                w, c = child(floor, env)
-                f_wall.append(w)
-                f_cpu.append(c)
-                if base:
-                    b_cpu.append(child(base, base_env)[1])
+            timed = interleaved(runs, (check, env), (floor, env), *([(base, base_env)] if base else []))
+            (c_wall, c_cpu), (f_wall, f_cpu) = timed[:2]
+            b_cpu = timed[2][1] if base else []
             med = statistics.median
             rows.append((trucks, seconds, steps, med(c_cpu), med(f_cpu), med(c_wall), med(f_wall),
                          sim["wall_time_s"], med(b_cpu) if b_cpu else None))
