@@ -145,6 +145,7 @@ class AnalysisHost:
         self._states: dict[str, FileState] = {}
         self._parsers: dict[str, IncrementalParser] = {}
         self._trees: dict[str, ast.File] = {}  # the last parse of each open buffer
+        self._analyses: dict = {}  # the last analysis of each open buffer, re-used by the next (model/reuse.py)
         self._ws = None
         self._ws_before: tuple | None = None  # (bundle-set key, workspace) while choosing the set again
         self._set_key: tuple | None = None
@@ -251,6 +252,7 @@ class AnalysisHost:
         self._states.pop(path, None)
         self._parsers.pop(path, None)
         self._trees.pop(path, None)
+        self._analyses.pop(path, None)
         ws = self._ws
         if doc is None or ws is None:
             return
@@ -426,7 +428,11 @@ class AnalysisHost:
             pass  # an edited official bundle file: syntax only, the model keeps the installed text
         elif ws is not None:
             before = disk
-            analysis = analyse_file(ws, tree)
+            last = self._analyses.get(path)
+            analysis = analyse_file(ws, tree, previous=last if last is not None and last.snapshot is not None else None,
+                                    keep=doc is not None)
+            if doc is not None:
+                self._analyses[path] = analysis
             if before is not None and analysis.unit is not before and analysis.unit.bundle is not None:
                 self.generation += 1  # a bundle file's symbols changed: everything may see them
         diags = self._lint(tree, analysis)

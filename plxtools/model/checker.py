@@ -51,6 +51,7 @@ class Checker:
         self.outer: ModelSym | None = None
         self.in_trait = False
         self._broken_cache: dict[int, dict[str, int]] = {}
+        self._positional = False
 
     # ------------------------------------------------------------------ reporting
 
@@ -104,19 +105,29 @@ class Checker:
         """An unknown name or attribute, with a suggestion unless it is a broken declaration's name."""
         line = self._broken().get(name)
         if line is not None:
+            self._positional = True
             self.report(code, msg, span, help=f"its declaration at line {line + 1} has a syntax error; fix that first")
             return
         self.report(code, msg, span, suggest=self._closest(name, options))
 
     # ------------------------------------------------------------------ entry
 
-    def run(self) -> None:
+    def run(self, only: set[int] | None = None) -> None:
+        """Check the file (`only`: just these top-level statements). What each statement added is
+        recorded in `slices` (index -> diagnostics and occurrences ranges, whether a finding names
+        a line elsewhere), so model/reuse.py can keep it for the next version of the file."""
         self._duplicates()
-        for stmt in self.unit.tree.statements:
+        self.slices: dict[int, tuple[int, int, int, int, bool]] = {}
+        for i, stmt in enumerate(self.unit.tree.statements):
+            if only is not None and i not in only:
+                continue
+            d0, o0 = len(self.diags), len(self.occurrences)
+            self._positional = False
             try:
                 self._top(stmt)
             except RecursionError:
                 self.report("M005", "this definition nests or refers to itself too deeply to check", stmt.header)
+            self.slices[i] = (d0, len(self.diags), o0, len(self.occurrences), self._positional)
 
     def _duplicates(self) -> None:
         for unit, stmt, first in self.p.duplicates:

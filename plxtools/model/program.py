@@ -39,6 +39,10 @@ class Program:
         self.duplicates: list[tuple[FileUnit, ast.Stmt, object]] = []  # (unit, stmt, first symbol)
         self.cycles: dict[int, tuple] = {}  # id(model) -> (model, inheritance cycle or None): resolve.py
         self._comments: tuple = (None, {})  # (tree, own-line comments by line) of the file being added
+        # changes any file may see (bundle files added or removed, member tables reset), and how many
+        # of them each file caused: model/reuse.py re-uses a file's check while no other file changed
+        self.epoch = 0
+        self.caused: dict[str, int] = {}
 
     # ------------------------------------------------------------------ building
 
@@ -50,6 +54,8 @@ class Program:
 
     def add_unit(self, unit: FileUnit) -> None:
         self.units[unit.path] = unit
+        if unit.bundle is not None:
+            self._changed(unit.path)
         for stmt in unit.tree.statements:
             self._add_top(unit, stmt)
         self._comments = (None, {})
@@ -63,6 +69,8 @@ class Program:
         unit = self.units.pop(path, None)
         if unit is None:
             return
+        if unit.bundle is not None:
+            self._changed(path)
         targets = [unit.namespace.symbols, unit.locals]
         removed = []
         for table in targets:
@@ -73,13 +81,23 @@ class Program:
         self.duplicates = [d for d in self.duplicates if d[0] is not unit]
         self.cycles.clear()
         if unit.bundle is not None:
-            self.invalidate()
+            self.invalidate(path)
         else:
             _dismantle(removed)
 
+    def _changed(self, path: str | None) -> None:
+        self.epoch += 1
+        if path is not None:
+            self.caused[path] = self.caused.get(path, 0) + 1
 
-    def invalidate(self) -> None:
-        """Drop cached member tables and resolved types (after files changed)."""
+    def epoch_without(self, path: str) -> int:
+        """The changes to the program that other files made (a loose file's changes are nobody's)."""
+        return self.epoch - self.caused.get(path, 0)
+
+
+    def invalidate(self, cause: str | None = None) -> None:
+        """Drop cached member tables and resolved types (after files changed; `cause`: the file)."""
+        self._changed(cause)
         self.cycles.clear()
         for ns in self._all_namespaces():
             for sym in ns.symbols.values():

@@ -17,6 +17,7 @@ from pathlib import Path
 from plxtools import __version__
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix, Severity
 from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
+from plxtools.model import reuse
 from plxtools.model.checker import Checker, Occurrence
 from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
@@ -36,13 +37,39 @@ class FileAnalysis:
     unit: FileUnit
     diagnostics: list[Diagnostic]
     occurrences: list[Occurrence]
+    snapshot: "reuse.Snapshot | None" = None  # for re-using this analysis in the next version's
+    plan: "reuse.Plan | None" = None  # how this analysis re-used the previous one (None: it did not)
+
+
+def _assemble(checker: Checker, plan: "reuse.Plan", unit: FileUnit, program):
+    """The file's findings in the order a full check makes them (file-wide ones, then statement
+    by statement), and the snapshot the next version re-uses: checked parts as reported, re-used
+    parts as moved. What is handed on are copies, which later steps may change."""
+    first = min((sl[0] for sl in checker.slices.values()), default=len(checker.diags))
+    diags = checker.diags[:first]
+    occs: list = []
+    parts: list = []
+    for i, (start, end, line) in enumerate(plan.regions):
+        part = plan.reused.get(i)
+        if part is None:
+            d0, d1, o0, o1, positional = checker.slices[i]
+            part = reuse.Part(start, end, line, [reuse.fresh(d) for d in checker.diags[d0:d1]],
+                              checker.occurrences[o0:o1], positional)
+        parts.append(part)
+        diags.extend(reuse.fresh(d) for d in part.diags)
+        occs.extend(part.occs)
+    snap = None
+    if plan.usable:
+        snap = reuse.Snapshot(program, unit.path, program.epoch_without(unit.path), plan.file_key, plan.keys,
+                              parts, unit)
+    return diags, occs, snap
 
 
 def _cache_dir() -> Path:
     return cache_dir()
 
 
-_CACHE_FORMAT = 7  # bump when the pickled classes change shape
+_CACHE_FORMAT = 8  # bump when the pickled classes change shape
 
 
 def _cache_key(paths: list) -> str:
@@ -334,7 +361,7 @@ class Workspace:
             unit = FileUnit(path, tree, ns, None)
         self.program.add_unit(unit)
         if existing is not None and bundle is not None:
-            self.program.invalidate()  # a bundle file changed: any model may see its symbols
+            self.program.invalidate(unit.path)  # a bundle file changed: any model may see its symbols
         return unit
 
     def forget_loose(self, path: str) -> None:
@@ -345,18 +372,34 @@ class Workspace:
             self.program.remove_unit(path)
             self._loose_ns.pop(path, None)
 
-    def analyse(self, tree: ast.File) -> FileAnalysis:
+    def analyse(self, tree: ast.File, previous: "reuse.Snapshot | None" = None, keep: bool = False) -> FileAnalysis:
         """What the model itself says about a file: names, types, bundle config. The rules that
-        judge a resolved file (completeness, conventions) run on top of this in plxtools.rules."""
+        judge a resolved file (completeness, conventions) run on top of this in plxtools.rules.
+
+        `keep`: make a snapshot for the next version (the language server); `previous`: the
+        snapshot of this file's last analysis, whose findings are re-used for the statements whose
+        key did not change (model/reuse.py)."""
+        path = tree.path or "<stdin>"
+        others = self.program.epoch_without(path)
         unit = self.unit_for(tree)
-        checker = Checker(self.program, unit, self.known_annotations)
-        checker.run()
-        diags = checker.diags + self._bundle_config_diagnostics(tree)
+        plan = None
+        if previous is None and not keep:
+            checker = Checker(self.program, unit, self.known_annotations)
+            checker.run()
+            diags = checker.diags + self._bundle_config_diagnostics(tree)
+            occurrences = checker.occurrences
+            snap = None
+        else:
+            plan = reuse.plan(previous, self.program, unit, others, self.known_annotations)
+            checker = Checker(self.program, unit, self.known_annotations)
+            checker.run(plan.dirty)
+            diags, occurrences, snap = _assemble(checker, plan, unit, self.program)
+            diags += self._bundle_config_diagnostics(tree)
         for d in diags:
             d.file = tree.path
         self._help_for_unloaded_bundles(tree, diags)
         self._help_for_other_versions(tree, diags)
-        return FileAnalysis(unit, diags, checker.occurrences)
+        return FileAnalysis(unit, diags, occurrences, snap, plan)
 
     def _help_for_unloaded_bundles(self, tree: ast.File, diags: list[Diagnostic]) -> None:
         """`Name.X` unknown and a bundle called Name sits nearby but is not loaded: say how to load it."""

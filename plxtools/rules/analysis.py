@@ -11,24 +11,77 @@ from plxtools.diagnostics import Diagnostic
 from plxtools.syntax import ast
 
 
-def analyse_file(workspace, tree: ast.File, root_name: str | None = None):
+def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previous=None, keep: bool = False):
     """The model's analysis of `tree` with the rules' diagnostics added (a model FileAnalysis).
 
     `root_name` is the model a run instantiates (`plx check --model`); by default the file's last
-    model. Completeness and the root rules judge that one."""
+    model. Completeness and the root rules judge that one. `keep` and `previous` (the last
+    analysis of this file) let the language server re-use what did not change (model/reuse.py)."""
     from plxtools.model.workspace import FileAnalysis
     from plxtools.rules.completeness import completeness_diagnostics
     from plxtools.rules.literals import literal_diagnostics
     from plxtools.rules.style import style_diagnostics
 
-    fa = workspace.analyse(tree)
+    snap = previous.snapshot if previous is not None else None
+    fa = workspace.analyse(tree, snap, keep or previous is not None)
     root = _named_model(workspace.program, fa.unit, root_name) if root_name else None
-    extra = completeness_diagnostics(workspace.program, fa.unit, list(tree.diagnostics) + fa.diagnostics, root)
-    extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences, root)
-    extra += literal_diagnostics(tree, fa.occurrences, tree.path)
+    plan = fa.plan if fa.snapshot is not None and root_name is None else None
+    if plan is None:
+        extra = completeness_diagnostics(workspace.program, fa.unit, list(tree.diagnostics) + fa.diagnostics, root)
+        extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences, root)
+        extra += literal_diagnostics(tree, fa.occurrences, tree.path)
+    else:
+        extra = _completeness_again(workspace.program, fa, tree, snap, plan)
+        extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences, root)
+        extra += _literals_again(fa, tree, plan)
     for d in extra:
         d.file = tree.path
-    return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.occurrences)
+    return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.occurrences, fa.snapshot, fa.plan)
+
+
+def _completeness_again(program, fa, tree: ast.File, previous, plan) -> list[Diagnostic]:
+    """M007/M008 of the last version, moved, while the root's statements and the bundles are the
+    same and neither version has a syntax error (a block that did not parse explains missing
+    values by its position); otherwise the rule runs."""
+    from plxtools.diagnostics import Severity
+    from plxtools.model.reuse import fresh
+    from plxtools.rules.completeness import completeness_diagnostics, root_model
+
+    root = root_model(program, fa.unit)
+    key = None
+    if root is not None:
+        for i, s in enumerate(tree.statements):
+            if s is root.stmt:
+                key = plan.keys[i] if plan.keys else None
+                break
+    clean = not any(d.severity is Severity.ERROR for d in tree.diagnostics)
+    found = None
+    last = previous.extra.get("completeness") if previous is not None and plan.based else None
+    if last is not None and key is not None and clean and last[0] == key:
+        found = [plan.move_diag(d, tree.path) for d in last[1]]
+        if any(d is None for d in found):
+            found = None
+    if found is None:
+        found = completeness_diagnostics(program, fa.unit, list(tree.diagnostics) + fa.diagnostics)
+        found = [fresh(d) for d in found]
+    if key is not None and clean:
+        fa.snapshot.extra["completeness"] = (key, found)
+    return [fresh(d) for d in found]
+
+
+def _literals_again(fa, tree: ast.File, plan) -> list[Diagnostic]:
+    """Value limits of the statements checked again; the re-used statements' moved with them."""
+    from plxtools.model.reuse import fresh
+    from plxtools.rules.literals import literal_diagnostics
+
+    new = literal_diagnostics(tree, fa.occurrences, tree.path, plan.dirty)
+    out = []
+    for i, part in enumerate(fa.snapshot.parts):
+        if i not in plan.reused:
+            part.extra["literals"] = [fresh(d) for d in new if part.start <= d.span.start.offset < part.end]
+        out.extend(fresh(d) for d in part.extra.get("literals", ()))
+    out.sort(key=lambda d: d.span.start.offset)
+    return out
 
 
 def _named_model(program, unit, name: str):

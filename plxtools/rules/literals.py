@@ -61,7 +61,8 @@ def literal(expr) -> float | list | None:
 _NAMES = frozenset(q.rsplit(".", 1)[1] for q in LIMITS)
 
 
-def literal_diagnostics(tree: ast.File, occurrences, path: str) -> list[Diagnostic]:
+def literal_diagnostics(tree: ast.File, occurrences, path: str, only: set[int] | None = None) -> list[Diagnostic]:
+    """Values outside their attribute's limits (`only`: in these top-level statements alone)."""
     target: dict | None = None  # built on the first statement that needs it
     out: list[Diagnostic] = []
 
@@ -87,7 +88,7 @@ def literal_diagnostics(tree: ast.File, occurrences, path: str) -> list[Diagnost
     # an explicit stack, not a self-calling closure: such a closure is a reference cycle that would
     # keep `target` (and through it the file's symbols and tree) alive until a collector pass, and
     # the language server freezes what a check leaves (plxtools/lsp/server.py: no_gc)
-    stack = [tree.statements]
+    stack = [tree.statements if only is None else [s for i, s in enumerate(tree.statements) if i in only]]
     while stack:
         for s in stack.pop() or ():
             value = getattr(s, "value", None)

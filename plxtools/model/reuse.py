@@ -1,0 +1,328 @@
+"""Re-using a file's check from its previous version (the language server checks on every edit).
+
+What the checker finds in a top-level statement depends on the statement's own text and on the
+statements it names: directly, or through those (a truck names its wheel, the wheel its material).
+So each statement gets a key: the texts, in file order, of every statement in that closure (by the
+plain words each text contains, an over-approximation), plus a key for the whole file (imports,
+operators, lines that did not parse, the bundles and other files through the program's epoch).
+A statement whose key is unchanged gets its findings back, moved to where the statement now is,
+with their targets exchanged for the new version's symbols; the rest are checked again.
+
+Anything this cannot map (a finding outside its statement, a target it cannot find again, a name
+that is not a plain word, an import) means "check it again": re-use is an optimisation, never a
+second answer. Tests compare it with a fresh check on random edits."""
+
+from __future__ import annotations
+
+import bisect
+import re
+from dataclasses import dataclass, field, replace
+
+from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Span
+from plxtools.model.symbols import FileUnit, GlobalSym, MemberSym, MethodSym, ModelSym
+from plxtools.syntax import ast
+
+_WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_PLAIN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+
+
+@dataclass(slots=True)
+class Part:
+    """One top-level statement's findings, as the checker (and rules on top of it) made them."""
+
+    start: int  # the statement's region in the text it was checked in: offsets and first line
+    end: int
+    line: int
+    diags: list  # as reported, before any later step added help to them (kept unchanged)
+    occs: list
+    positional: bool  # a finding names a line elsewhere in the file: valid only where it was
+    extra: dict = field(default_factory=dict)  # findings of rules that run on top, by rule
+
+
+@dataclass(slots=True)
+class Snapshot:
+    """What the next version of the file needs to re-use this version's findings."""
+
+    program: object
+    path: str
+    epoch: int  # the program's epoch right after this file was registered
+    file_key: tuple
+    keys: list  # per top-level statement
+    parts: list  # Part per top-level statement (None: not recorded)
+    unit: FileUnit  # the version these findings belong to (their targets are its symbols)
+    extra: dict = field(default_factory=dict)  # whole-file findings of rules on top, keyed as they need
+
+
+@dataclass(slots=True)
+class Plan:
+    """Which statements of the new version to check, and how to move the others' findings."""
+
+    keys: list
+    regions: list  # (start, end, line) per top-level statement
+    file_key: tuple
+    reused: dict  # index -> Part, already moved to the new text (diags, occurrences, extra)
+    dirty: set
+    moves: list  # sorted (old start, old end, offset delta, line delta) of the re-used regions
+    usable: bool  # False: nothing of this version may be kept for the next one
+    based: bool = False  # the previous version was compared with this one (its findings may be used)
+
+    def move_span(self, span: Span) -> Span | None:
+        """An old span in a re-used region, moved to the new text (None: not in one)."""
+        return _move_span(self.moves, span)
+
+    def move_diag(self, d: Diagnostic, path: str) -> Diagnostic | None:
+        return _move_diag(self.moves, d, path)
+
+
+def file_key(program, unit: FileUnit, known_annotations) -> tuple | None:
+    """What every statement's check depends on besides the statements it names; None when the
+    file has something this module does not follow (imports, names that are not plain words)."""
+    tree = unit.tree
+    imports, operators, broken = [], [], []
+    text = tree.text
+    for s in tree.statements:
+        if isinstance(s, ast.Import):
+            return None  # an import binds symbols made per registration: not followed here
+        if isinstance(s, ast.OperatorDecl):
+            operators.append(text[s.span.start.offset:s.span.end.offset])
+        elif isinstance(s, ast.ErrorStmt):
+            broken.append((s.span.start.line, s.text))
+        name = _defined(s)
+        if name is not None and not _PLAIN.match(name):
+            return None
+    return (unit.path, unit.bundle, id(program), tuple(operators), tuple(broken), tuple(imports),
+            frozenset(known_annotations or ()))
+
+
+def regions(tree: ast.File) -> list[tuple[int, int, int]]:
+    """Each top-level statement's stretch of text: from its start to the next one's."""
+    stmts = tree.statements
+    out = []
+    n = len(stmts)
+    for i, s in enumerate(stmts):
+        end = stmts[i + 1].span.start.offset if i + 1 < n else len(tree.text)
+        out.append((s.span.start.offset, end, s.span.start.line))
+    return out
+
+
+def statement_keys(tree: ast.File, regs: list[tuple[int, int, int]]) -> list[tuple]:
+    text = tree.text
+    texts = [text[a:b] for a, b, _ in regs]
+    defs: dict[str, list[int]] = {}
+    for i, s in enumerate(tree.statements):
+        name = _defined(s)
+        if name is not None:
+            defs.setdefault(name, []).append(i)
+    deps: list[set[int]] = []
+    for t in texts:
+        mine: set[int] = set()
+        for w in set(_WORD.findall(t)):
+            got = defs.get(w)
+            if got:
+                mine.update(got)
+        deps.append(mine)
+    keys = []
+    for i in range(len(texts)):
+        seen = {i}
+        stack = [i]
+        while stack:
+            for k in deps[stack.pop()]:
+                if k not in seen:
+                    seen.add(k)
+                    stack.append(k)
+        keys.append(tuple(texts[k] for k in sorted(seen)))
+    return keys
+
+
+def _defined(s: ast.Stmt) -> str | None:
+    if isinstance(s, ast.TraitDef):
+        return s.name.name
+    path = getattr(s, "path", None)
+    if path is not None and path.parts:
+        return path.parts[0].name
+    return None
+
+
+def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_annotations) -> Plan:
+    """`others`: the program's epoch without this file's own changes, before it was registered."""
+    tree = unit.tree
+    regs = regions(tree)
+    fkey = file_key(program, unit, known_annotations)
+    n = len(regs)
+    if fkey is None:
+        return Plan([], regs, (), {}, set(range(n)), [], False)
+    keys = statement_keys(tree, regs)
+    if (previous is None or previous.program is not program or previous.path != unit.path
+            or previous.epoch != others or previous.file_key != fkey):
+        return Plan(keys, regs, fkey, {}, set(range(n)), [], True)
+    by_key: dict[tuple, list[int]] = {}
+    for j, k in enumerate(previous.keys):
+        if previous.parts[j] is not None:
+            by_key.setdefault(k, []).append(j)
+    matched: dict[int, Part] = {}
+    for i, k in enumerate(keys):
+        olds = by_key.get(k)
+        if olds:
+            matched[i] = previous.parts[olds.pop(0)]
+    moves = sorted((p.start, p.end, regs[i][0] - p.start, regs[i][2] - p.line) for i, p in matched.items())
+    index = None
+    old_unit = previous.unit
+    reused: dict[int, Part] = {}
+    new_occ = None
+    for i, p in matched.items():
+        start, end, line = regs[i]
+        do, dl = start - p.start, line - p.line
+        if p.positional and dl:
+            continue
+        diags = [_move_diag(moves, d, unit.path) for d in p.diags]
+        if any(d is None for d in diags):
+            continue
+        lo, hi = p.start, p.end
+        occs = []
+        for o in p.occs:
+            span = o.span
+            s, e = span
+            if s.offset < lo or e.offset > hi:
+                occs = None
+                break
+            target = o.target
+            tt = type(target)
+            if tt is ModelSym or tt is GlobalSym:
+                home = target.unit
+            elif tt is MemberSym or tt is MethodSym:
+                home = target.owner.unit
+            else:
+                home = None
+            if home is old_unit:
+                if index is None:
+                    index = _symbol_index(unit)
+                target = _find(index, moves, target)
+                if target is None:
+                    occs = None
+                    break
+            elif do == 0 and dl == 0:
+                occs.append(o)
+                continue
+            if do or dl:
+                span = _span(s.offset + do, s.line + dl, s.column, e.offset + do, e.line + dl, e.column)
+            if new_occ is None:
+                new_occ = type(o)
+            occs.append(new_occ(span, target, o.kind))
+        if occs is None:
+            continue
+        extra = {}
+        for rule, found in p.extra.items():
+            moved = [_move_diag(moves, d, unit.path) for d in found]
+            if any(d is None for d in moved):
+                extra = None
+                break
+            extra[rule] = moved
+        if extra is None:
+            continue
+        reused[i] = Part(start, end, line, diags, occs, p.positional, extra)
+    return Plan(keys, regs, fkey, reused, set(range(n)) - set(reused), moves, True, True)
+
+
+def _span(so: int, sl: int, sc: int, eo: int, el: int, ec: int) -> Span:
+    return _tuple_new(Span, (_tuple_new(Pos, (so, sl, sc)), _tuple_new(Pos, (eo, el, ec))))
+
+
+_tuple_new = tuple.__new__
+
+
+def _home(target) -> FileUnit | None:
+    if isinstance(target, (ModelSym, GlobalSym)):
+        return target.unit
+    if isinstance(target, (MemberSym, MethodSym)):
+        return target.owner.unit
+    return None
+
+
+def _symbol_index(unit: FileUnit) -> dict:
+    """The new version's symbols by (class, name, where their statement starts)."""
+    out: dict = {}
+    table = unit.locals if unit.bundle is None else unit.namespace.symbols
+    stack = []
+    for sym in table.values():
+        if getattr(sym, "unit", None) is unit:
+            if isinstance(sym, GlobalSym):
+                out[(GlobalSym, sym.name, sym.stmt.span.start.offset)] = sym
+            elif isinstance(sym, ModelSym):
+                stack.append(sym)
+    while stack:
+        m = stack.pop()
+        if m.stmt is not None:
+            out[(ModelSym, m.name, m.stmt.span.start.offset)] = m
+        tables = [m.members, *m.path_members.values()]
+        for tbl in tables:
+            for mem in tbl.values():
+                out[(MemberSym, mem.name, mem.stmt.span.start.offset)] = mem
+                if mem.anon is not None:
+                    stack.append(mem.anon)
+        for meth in m.methods.values():
+            out[(MethodSym, meth.name, meth.stmt.span.start.offset)] = meth
+    return out
+
+
+def _find(index: dict, moves: list, old) -> object | None:
+    stmt = getattr(old, "stmt", None)
+    if stmt is None:
+        return None
+    at = _move_offset(moves, stmt.span.start.offset)
+    if at is None:
+        return None
+    return index.get((type(old), old.name, at))
+
+
+def _region(moves: list, offset: int):
+    i = bisect.bisect_right(moves, (offset, float("inf"))) - 1
+    if i >= 0:
+        m = moves[i]
+        if m[0] <= offset < m[1]:
+            return m
+    return None
+
+
+def _move_offset(moves: list, offset: int) -> int | None:
+    m = _region(moves, offset)
+    return offset + m[2] if m is not None else None
+
+
+def _move_span(moves: list, span: Span) -> Span | None:
+    m = _region(moves, span.start.offset)
+    if m is None or span.end.offset > m[1]:
+        return None
+    if m[2] == 0 and m[3] == 0:
+        return span
+    s, e = span
+    do, dl = m[2], m[3]
+    return Span(Pos(s.offset + do, s.line + dl, s.column), Pos(e.offset + do, e.line + dl, e.column))
+
+
+def _move_diag(moves: list, d: Diagnostic, path: str) -> Diagnostic | None:
+    span = _move_span(moves, d.span)
+    if span is None:
+        return None
+    fix = d.fix
+    if fix is not None:
+        m = _region(moves, d.span.start.offset)
+        edits = []
+        for e in fix.edits:
+            if not m[0] <= e.start <= e.end <= m[1]:
+                return None
+            edits.append(Edit(e.start + m[2], e.end + m[2], e.text))
+        fix = Fix(fix.message, tuple(edits), fix.safe)
+    related = []
+    for item in d.related:
+        where, rspan, msg = item
+        if where in (path, "", None):
+            rspan = _move_span(moves, rspan)
+            if rspan is None:
+                return None
+        related.append((where, rspan, msg))
+    return replace(d, span=span, fix=fix, related=related)
+
+
+def fresh(d: Diagnostic) -> Diagnostic:
+    """A copy later steps may change without changing what is kept for the next version."""
+    return replace(d, related=list(d.related))

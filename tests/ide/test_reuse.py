@@ -1,0 +1,142 @@
+"""The language server's check re-uses the last version's findings for unchanged statements
+(model/reuse.py). After every edit of a random editing session, what it reports must be exactly
+what a fresh check of the same text reports: the diagnostics (with help, fixes, related), and
+every occurrence (span, kind and the symbol it names), each naming a symbol of the current
+version, never one of an older version."""
+
+from __future__ import annotations
+
+import random
+import re
+import sys
+from pathlib import Path
+
+import pytest
+
+from plxtools.ide import AnalysisHost
+from plxtools.model.symbols import GlobalSym, MemberSym, MethodSym, ModelSym
+
+REPO = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "bench"))
+from lsp_bench import openplx_text  # noqa: E402
+
+SNIPPETS = ["x", "1", ".", ":", " ", "\n", "\n    ", "is ", " is Wheel0", "densty", "radius: 0.3\n", "Mat0",
+            "Physics3D.Bodies.RigidBody", "#", "\"", "becomes ", "{1, 2, 3}", "\t", "fn f() -> Real\n"]
+
+
+def _edit(rng: random.Random, text: str) -> str:
+    lines = text.split("\n")
+    op = rng.randrange(9)
+    n = rng.randrange(len(lines))
+    if op == 0 and len(text) > 2:  # delete a few characters
+        i = rng.randrange(len(text) - 1)
+        return text[:i] + text[i + rng.randint(1, 3):]
+    if op == 1:  # type a snippet
+        i = rng.randrange(len(text) + 1)
+        return text[:i] + rng.choice(SNIPPETS) + text[i:]
+    if op == 2 and len(lines) > 1:  # delete a line
+        return "\n".join(lines[:n] + lines[n + 1:])
+    if op == 3:  # duplicate a line
+        return "\n".join(lines[:n + 1] + [lines[n]] + lines[n + 1:])
+    if op == 4:  # rename a name defined at the top, at one place or everywhere
+        tops = [ln.split(" ", 1)[0] for ln in lines if ln[:1].isalpha() and " is " in ln]
+        if tops:
+            old = rng.choice(tops)
+            new = old + rng.choice(["X", "", "0"])
+            return text.replace(old, new) if rng.random() < 0.5 else text.replace(old, new, 1)
+    if op == 5:  # move a line elsewhere
+        ln = lines.pop(n)
+        lines.insert(rng.randrange(len(lines) + 1), ln)
+        return "\n".join(lines)
+    if op == 6:  # change a number
+        for k in range(n, n + len(lines)):
+            ln = lines[k % len(lines)]
+            digits = [i for i, c in enumerate(ln) if c.isdigit()]
+            if digits:
+                i = rng.choice(digits)
+                lines[k % len(lines)] = ln[:i] + str(rng.randrange(10)) + ln[i + 1:]
+                return "\n".join(lines)
+    if op == 7:  # misspell one use of a word (an attribute, a model, a value's name)
+        words = [(m.start(), m.end()) for m in re.finditer(r"[A-Za-z_][A-Za-z0-9_]*", text)]
+        if words:
+            a, b = rng.choice(words)
+            return text[:a] + text[a:b] + rng.choice(["X", "_", "s"]) + text[b:]
+    # a blank line somewhere
+    return "\n".join(lines[:n] + [""] + lines[n:])
+
+
+def _describe(target) -> tuple:
+    stmt = getattr(target, "stmt", None)
+    span = tuple(stmt.span) if stmt is not None else None
+    return (type(target).__name__, getattr(target, "qname", None) or getattr(target, "name", None), span)
+
+
+def _home(target):
+    if isinstance(target, (ModelSym, GlobalSym)):
+        return target.unit
+    if isinstance(target, (MemberSym, MethodSym)):
+        return target.owner.unit
+    return None
+
+
+def _findings(st) -> tuple[list, list]:
+    diags = [(d.to_json(), d.help, [(f, tuple(s), m) for f, s, m in d.related]) for d in st.diagnostics]
+    occs = sorted((tuple(o.span), o.kind, _describe(o.target)) for o in st.occurrences)
+    return diags, occs
+
+
+def _session(tmp_path, text: str, seed: int, steps: int) -> int:
+    path = str(tmp_path / "session.openplx")
+    host = AnalysisHost(root=str(tmp_path))
+    ref = AnalysisHost(root=str(tmp_path))
+    rng = random.Random(seed)
+    host.open_document(path, text, 1)
+    re_used = 0
+    for version in range(2, steps + 2):
+        text = _edit(rng, text)
+        host.update_document(path, text, version)
+        st = host.state(path)
+        ref.close_document(path)
+        ref.open_document(path, text, version)
+        want = ref.state(path)
+        got = _findings(st)
+        assert got[0] == _findings(want)[0], f"seed {seed}, version {version}: diagnostics differ"
+        assert got[1] == _findings(want)[1], f"seed {seed}, version {version}: occurrences differ"
+        for o in st.occurrences:
+            home = _home(o.target)
+            if home is not None and home.path == path:
+                assert home is st.unit, f"seed {seed}, version {version}: an occurrence names an old symbol"
+        plan = st.analysis.plan
+        re_used += len(plan.reused) if plan is not None else 0
+    return re_used
+
+
+def _sources() -> list[tuple[str, str]]:
+    files = [REPO / "examples" / "boxtruck" / "boxtruck.openplx", *sorted((REPO / "examples" / "broken").glob("*.openplx")),
+             *sorted((REPO / "examples" / "lint_errors").glob("*.openplx"))]
+    out = [("generated", openplx_text(160))]
+    out += [(f.name, f.read_text(encoding="utf-8")) for f in files]
+    return out
+
+
+@pytest.mark.parametrize("name,text", _sources(), ids=[n for n, _ in _sources()])
+def test_an_editing_session_reports_what_a_fresh_check_reports(tmp_path, name, text):
+    re_used = sum(_session(tmp_path, text, seed, 12) for seed in range(3))
+    assert re_used > 0  # the sessions did exercise re-use, not only fresh checks
+
+
+def test_statements_far_from_an_edit_are_not_checked_again(tmp_path):
+    text = openplx_text(400)
+    path = str(tmp_path / "far.openplx")
+    host = AnalysisHost(root=str(tmp_path))
+    host.open_document(path, text, 1)
+    host.state(path)
+    new = text.replace("density: 1003", "densty: 1003", 1)
+    host.update_document(path, new, 2)
+    st = host.state(path)
+    plan = st.analysis.plan
+    n = len(st.tree.statements)
+    # the material, the wheel using it, its truck and the scene that names every truck
+    assert len(plan.dirty) == 4, sorted(plan.dirty)
+    assert len(plan.reused) == n - 4
+    assert [d.code for d in st.diagnostics] == ["N002"]
