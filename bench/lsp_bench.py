@@ -105,11 +105,17 @@ class Client:
         self._send({"jsonrpc": "2.0", "method": method, "params": params})
         return t0
 
-    def wait_diagnostics(self, uri: str, since: float, timeout: float = 60) -> tuple[float, dict]:
+    def wait_diagnostics(self, uri: str, since: float, timeout: float = 60, version: int | None = None
+                         ) -> tuple[float, dict]:
+        """The first diagnostics for `uri` after `since`; of `version` or newer when the server says
+        which version they are for (a late publication for an older version does not count)."""
         deadline = time.perf_counter() + timeout
         while True:
             t, msg = self.notes.get(timeout=max(0.01, deadline - time.perf_counter()))
             if msg.get("method") == "textDocument/publishDiagnostics" and msg["params"]["uri"] == uri and t >= since:
+                got = msg["params"].get("version")
+                if version is not None and isinstance(got, int) and got < version:
+                    continue
                 return t, msg["params"]
 
     def drain(self) -> None:
@@ -331,7 +337,7 @@ def run(name: str, cmd: list[str], folder: Path, filename: str, text: str, langu
             since = client.notify("textDocument/didChange", {
                 "textDocument": {"uri": uri, "version": version},
                 "contentChanges": [{"range": rng_, "text": repl}]})
-            t, params = client.wait_diagnostics(uri, since)
+            t, params = client.wait_diagnostics(uri, since, version=version)
             if k % 2 == 0 or word == typo[1]:
                 diag_times.append(t - since)
             time.sleep(settle)
@@ -358,7 +364,7 @@ def run(name: str, cmd: list[str], folder: Path, filename: str, text: str, langu
                                                              "start": {"line": n, "character": end},
                                                              "end": {"line": n + 1, "character": len(typing[1])}},
                                                              "text": ""}]})
-        client.wait_diagnostics(uri, since)
+        client.wait_diagnostics(uri, since, version=version)
         time.sleep(settle)
     client.drain()
 

@@ -228,6 +228,7 @@ class AnalysisHost:
             self.workspace_error = None
             self._parsers.clear()
             self._trees.clear()
+            self._analyses.clear()
         self._states.clear()
         self.generation += 1
         return rebuild and self._loaded_once
@@ -441,6 +442,22 @@ class AnalysisHost:
                        frozenset(ws.known_annotations) if ws is not None else frozenset())
         self._states[path] = st
         return st
+
+    def parse_ahead(self, path: str) -> bool:
+        """The first half of a check of an open buffer: parse its current text now, so the server
+        can answer the requests that arrived meanwhile before the second half (the analysis,
+        `state`) runs. True when there was something to parse."""
+        doc = self.docs.get(path)
+        if doc is None:
+            return False
+        last = self._trees.get(path)
+        if last is not None and last.text == doc.text:
+            return False
+        st = self._states.get(path)
+        if st is not None and st.text == doc.text:
+            return False
+        self._parse(path, doc.text)
+        return True
 
     def quick_state(self, path: str) -> FileState | None:
         """The current text's symbols without checking it (for completion while typing).

@@ -621,10 +621,26 @@ class PlxServer(LanguageServer):
             self.loop.call_soon(self._run_checks)
             return
         uri, cascade = next(iter(self._dirty.items()))
+        if self._parse_ahead(uri):
+            self._wake()  # the analysis next turn, after the messages that arrived while parsing
+            return
         del self._dirty[uri]
         self._check_one(uri, cascade)
         if self._dirty:
             self._wake()
+
+    def _parse_ahead(self, uri: str) -> bool:
+        """A check in two halves, parse then analysis, with waiting messages handled in between:
+        a completion typed right after an edit waits for one half, not for the whole check."""
+        doc = self.documents.get(uri)
+        if doc is None or self.too_big(doc) or self.in_background(uri, doc):
+            return False
+        try:
+            with no_gc():
+                return self.host.parse_ahead(self.sync(uri) or self.path_of(uri))
+        except Exception:  # noqa: BLE001 - the check itself reports what went wrong
+            log.exception("parsing %s failed", uri)
+            return False
 
     def _check_one(self, uri: str, cascade: bool, background: bool = True) -> None:
         try:

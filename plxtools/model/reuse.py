@@ -50,6 +50,7 @@ class Snapshot:
     keys: list  # per top-level statement
     parts: list  # Part per top-level statement (None: not recorded)
     unit: FileUnit  # the version these findings belong to (their targets are its symbols)
+    serials: dict = field(default_factory=dict)  # statement key -> a small number, kept between versions
     extra: dict = field(default_factory=dict)  # whole-file findings of rules on top, keyed as they need
 
 
@@ -65,6 +66,22 @@ class Plan:
     moves: list  # sorted (old start, old end, offset delta, line delta) of the re-used regions
     usable: bool  # False: nothing of this version may be kept for the next one
     based: bool = False  # the previous version was compared with this one (its findings may be used)
+    serials: list = field(default_factory=list)  # per statement: the same number as the last version's
+    # statement of the same key (so rules can key what they keep by it), else a new one
+    table: dict = field(default_factory=dict)  # key -> serial, for the next version
+
+    def number(self, previous: "Snapshot | None") -> None:
+        old = previous.serials if previous is not None and self.based else {}
+        top = max(old.values(), default=0)
+        table = {}
+        for k in self.keys:
+            got = table.get(k) or old.get(k)
+            if got is None:
+                top += 1
+                got = top
+            table[k] = got
+        self.table = table
+        self.serials = [table[k] for k in self.keys]
 
     def move_span(self, span: Span) -> Span | None:
         """An old span in a re-used region, moved to the new text (None: not in one)."""
@@ -154,7 +171,9 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
     keys = statement_keys(tree, regs)
     if (previous is None or previous.program is not program or previous.path != unit.path
             or previous.epoch != others or previous.file_key != fkey):
-        return Plan(keys, regs, fkey, {}, set(range(n)), [], True)
+        out = Plan(keys, regs, fkey, {}, set(range(n)), [], True)
+        out.number(None)
+        return out
     by_key: dict[tuple, list[int]] = {}
     for j, k in enumerate(previous.keys):
         if previous.parts[j] is not None:
@@ -220,7 +239,9 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
         if extra is None:
             continue
         reused[i] = Part(start, end, line, diags, occs, p.positional, extra)
-    return Plan(keys, regs, fkey, reused, set(range(n)) - set(reused), moves, True, True)
+    out = Plan(keys, regs, fkey, reused, set(range(n)) - set(reused), moves, True, True)
+    out.number(previous)
+    return out
 
 
 def _span(so: int, sl: int, sc: int, eo: int, el: int, ec: int) -> Span:

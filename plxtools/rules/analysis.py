@@ -45,7 +45,7 @@ def _completeness_again(program, fa, tree: ast.File, previous, plan) -> list[Dia
     values by its position); otherwise the rule runs."""
     from plxtools.diagnostics import Severity
     from plxtools.model.reuse import fresh
-    from plxtools.rules.completeness import completeness_diagnostics, root_model
+    from plxtools.rules.completeness import Versions, completeness_diagnostics, root_model
 
     root = root_model(program, fa.unit)
     key = None
@@ -62,11 +62,33 @@ def _completeness_again(program, fa, tree: ast.File, previous, plan) -> list[Dia
         if any(d is None for d in found):
             found = None
     if found is None:
-        found = completeness_diagnostics(program, fa.unit, list(tree.diagnostics) + fa.diagnostics)
+        walks = previous.extra.get("walks") if previous is not None and plan.based else None
+        versions = Versions(fa.unit, plan.regions, plan.serials, walks, plan.move_span)
+        found = completeness_diagnostics(program, fa.unit, list(tree.diagnostics) + fa.diagnostics,
+                                         versions=versions)
         found = [fresh(d) for d in found]
+        fa.snapshot.extra["walks"] = versions.walked
+    elif previous is not None and "walks" in previous.extra:
+        fa.snapshot.extra["walks"] = _moved_walks(previous.extra["walks"], plan)
     if key is not None and clean:
         fa.snapshot.extra["completeness"] = (key, found)
     return [fresh(d) for d in found]
+
+
+def _moved_walks(walks: dict, plan) -> dict:
+    """The kept completeness walks, their anchors moved (a walk that cannot be moved is dropped)."""
+    out = {}
+    for key, (finds, models, height) in walks.items():
+        moved = []
+        for kind, rel, shown, name, owner, a in finds:
+            if a is not None:
+                a = plan.move_span(a)
+                if a is None:
+                    break
+            moved.append((kind, rel, shown, name, owner, a))
+        else:
+            out[key] = (moved, models, height)
+    return out
 
 
 def _literals_again(fa, tree: ast.File, plan) -> list[Diagnostic]:

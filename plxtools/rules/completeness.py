@@ -6,6 +6,8 @@ outside any bundle) actually creates must have every non-optional value.
 
 from __future__ import annotations
 
+import bisect
+
 from plxtools.diagnostics import Diagnostic, Severity, Span
 from plxtools.model.program import Program
 from plxtools.model.symbols import ModelSym, Ty
@@ -71,8 +73,47 @@ def _shared(model: ModelSym, traits: tuple) -> bool:
     return True
 
 
+class Versions:
+    """The walks below this file's own models, carried from one version of the file to the next
+    (the language server, rules/analysis.py). A model of this file is known by its statement's
+    serial (model/reuse.py: the same serial means the same closure of statements, so the same
+    walk) and its place in that statement; models of other files by identity, which stays while
+    the program's epoch does. Anchors of kept walks are moved to where their statements now are."""
+
+    def __init__(self, unit, regions: list, serials: list, previous: dict | None, move_span):
+        self.unit = unit
+        self.starts = [r[0] for r in regions]
+        self.serials = serials
+        self.previous = previous or {}
+        self.move_span = move_span
+        self.walked: dict = {}
+
+    def key(self, model: ModelSym):
+        stmt = model.stmt
+        if model.unit is not self.unit or stmt is None or not self.serials:
+            return id(model)
+        off = stmt.span.start.offset
+        i = bisect.bisect_right(self.starts, off) - 1
+        return (self.serials[i], model.qname, off - self.starts[i]) if i >= 0 else id(model)
+
+    def kept(self, key):
+        got = self.previous.get(key)
+        if got is None:
+            return None
+        finds = []
+        for kind, rel, shown, name, owner, a in got[0]:
+            if a is not None:
+                a = self.move_span(a)
+                if a is None:
+                    return None
+            finds.append((kind, rel, shown, name, owner, a))
+        moved = (finds, got[1], got[2])
+        self.walked[key] = moved
+        return moved
+
+
 def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = (),
-                             root: ModelSym | None = None) -> list[Diagnostic]:
+                             root: ModelSym | None = None, versions: Versions | None = None) -> list[Diagnostic]:
     """M007/M008 for what the root model creates, one per source location and attribute.
 
     `causes` are the file's other diagnostics: a declaration whose block failed to parse, or that
@@ -94,7 +135,9 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
             got = memo[id(m)] = _assigned(program, m)
         return got
 
-    walked: dict[tuple, tuple[list, frozenset, int]] = {}
+    walked: dict[tuple, tuple[list, frozenset, int]] = versions.walked if versions is not None else {}
+    mkey = versions.key if versions is not None else id
+    kept = versions.kept if versions is not None else None
 
     def walk(ty: Ty, outer: set[tuple[str, ...]], depth: int, chain: tuple) -> tuple[list, frozenset, int, bool]:
         """What is missing below `ty`, relative to it: (findings, models met, height, cut short).
@@ -107,24 +150,27 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
         model = ty.model
         if model is None:
             return [], frozenset(), 0, False
-        if depth > MAX_DEPTH or id(model) in chain:
+        me = mkey(model)
+        if depth > MAX_DEPTH or me in chain:
             return [], frozenset(), 0, True
-        key = (id(model), tuple(id(t) for t in ty.traits), frozenset(outer))
+        key = (me, tuple(mkey(t) for t in ty.traits), frozenset(outer))
         shared = _shared(model, ty.traits)
         if shared:
             hit = model._walks.get(key) if model._walks is not None else None
         else:
             hit = walked.get(key)
+            if hit is None and kept is not None:
+                hit = kept(key)
         if hit is not None and depth + hit[2] <= MAX_DEPTH and hit[1].isdisjoint(chain):
             return hit[0], hit[1], hit[2], False
         assigned = assigned_in(model) | outer
         for t in ty.traits:
             assigned |= assigned_in(t)
         finds: list = []
-        models = {id(model)}
+        models = {me}
         height = 0
         cut = False
-        inner = chain + (id(model),)
+        inner = chain + (me,)
         for name, mem in program.members_of(ty).items():
             mty = program.member_type(mem)
             here = (name,) in assigned or mem.value is not None

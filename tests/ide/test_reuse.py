@@ -140,3 +140,41 @@ def test_statements_far_from_an_edit_are_not_checked_again(tmp_path):
     assert len(plan.dirty) == 4, sorted(plan.dirty)
     assert len(plan.reused) == n - 4
     assert [d.code for d in st.diagnostics] == ["N002"]
+
+
+def test_a_missing_value_moves_with_its_statement(tmp_path):
+    text = openplx_text(200).replace("        radius: 0.26\n", "", 1)
+    path = str(tmp_path / "moved.openplx")
+    host = AnalysisHost(root=str(tmp_path))
+    host.open_document(path, text, 1)
+    before = [d for d in host.state(path).diagnostics if d.code == "M007"]
+    assert before, "the generated scene misses one radius"
+    for version, new in enumerate(["# a note\n# and another\n\n" + text, "# a note\n" + text], start=2):
+        host.update_document(path, new, version)
+        st = host.state(path)
+        ref = AnalysisHost(root=str(tmp_path))
+        ref.open_document(path, new, version)
+        assert _findings(st) == _findings(ref.state(path))
+        after = [d for d in st.diagnostics if d.code == "M007"]
+        shift = new.count("\n") - text.count("\n")
+        assert [(d.message, d.span.start.line - shift) for d in after] == [(d.message, d.span.start.line) for d in before]
+        assert st.analysis.plan.reused  # re-used, not checked again
+
+
+def test_the_server_parses_ahead_without_losing_the_typed_line_view(tmp_path):
+    text = openplx_text(120)
+    path = str(tmp_path / "ahead.openplx")
+    host = AnalysisHost(root=str(tmp_path))
+    host.open_document(path, text, 1)
+    host.state(path)
+    lines = text.split("\n")
+    n = next(k for k, ln in enumerate(lines) if "inertia.mass" in ln)
+    new = "\n".join(lines[:n + 1] + ["    inertia."] + lines[n + 1:])
+    host.update_document(path, new, 2)
+    assert host.parse_ahead(path) is True
+    assert host.parse_ahead(path) is False  # parsed already: the analysis is what is left
+    view = host.line_view(path, n + 1)
+    assert view is not None and view.text == "    inertia."
+    ref = AnalysisHost(root=str(tmp_path))
+    ref.open_document(path, new, 2)
+    assert _findings(host.state(path)) == _findings(ref.state(path))
