@@ -449,7 +449,9 @@ def main() -> None:
                 continue  # "counters": background checks started / finished
             wall = statistics.median(v[0] for v in vals)
             cpu = statistics.median(v[1] for v in vals)
-            print(f"{r['name']} server-side {kind}: median {wall:.0f} ms wall, {cpu:.0f} ms CPU ({len(vals)} runs)")
+            p95 = sorted(v[0] for v in vals)[max(0, int(len(vals) * 0.95) - 1)]
+            print(f"{r['name']} server-side {kind}: median {wall:.0f} ms wall (p95 {p95:.0f}), {cpu:.0f} ms CPU "
+                  f"({len(vals)} runs)")
     print(f"debounce: plx {PLX_DEBOUNCE_MS} ms (diagnosticsDelayMs), yaml-language-server {YAML_DEBOUNCE_MS} ms "
           "(validationDelayMs, fixed)")
     for r in results:

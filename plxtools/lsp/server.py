@@ -635,9 +635,13 @@ class PlxServer(LanguageServer):
         doc = self.documents.get(uri)
         if doc is None or self.too_big(doc) or self.in_background(uri, doc):
             return False
+        t0, c0 = time.perf_counter(), time.process_time()
         try:
             with no_gc():
-                return self.host.parse_ahead(self.sync(uri) or self.path_of(uri))
+                done = self.host.parse_ahead(self.sync(uri) or self.path_of(uri))
+            if done:
+                self._record("parse", t0, c0)
+            return done
         except Exception:  # noqa: BLE001 - the check itself reports what went wrong
             log.exception("parsing %s failed", uri)
             return False

@@ -51,6 +51,7 @@ class Snapshot:
     parts: list  # Part per top-level statement (None: not recorded)
     unit: FileUnit  # the version these findings belong to (their targets are its symbols)
     serials: dict = field(default_factory=dict)  # statement key -> a small number, kept between versions
+    words: dict = field(default_factory=dict)  # statement text -> its words (statement_keys)
     extra: dict = field(default_factory=dict)  # whole-file findings of rules on top, keyed as they need
 
 
@@ -69,6 +70,7 @@ class Plan:
     serials: list = field(default_factory=list)  # per statement: the same number as the last version's
     # statement of the same key (so rules can key what they keep by it), else a new one
     table: dict = field(default_factory=dict)  # key -> serial, for the next version
+    words: dict = field(default_factory=dict)  # statement text -> its words, for the next version
 
     def number(self, previous: "Snapshot | None") -> None:
         old = previous.serials if previous is not None and self.based else {}
@@ -112,17 +114,21 @@ def file_key(program, unit: FileUnit, known_annotations) -> tuple | None:
 
 
 def regions(tree: ast.File) -> list[tuple[int, int, int]]:
-    """Each top-level statement's stretch of text: from its start to the next one's."""
+    """Each top-level statement's stretch of text: from the start of its line to the next one's
+    (its indentation is part of it: findings keep their columns when it moves)."""
     stmts = tree.statements
     out = []
     n = len(stmts)
+    starts = [s.span.start.offset - s.span.start.column for s in stmts]  # from the line's start
     for i, s in enumerate(stmts):
-        end = stmts[i + 1].span.start.offset if i + 1 < n else len(tree.text)
-        out.append((s.span.start.offset, end, s.span.start.line))
+        end = starts[i + 1] if i + 1 < n else len(tree.text)
+        out.append((starts[i], end, s.span.start.line))
     return out
 
 
-def statement_keys(tree: ast.File, regs: list[tuple[int, int, int]]) -> list[tuple]:
+def statement_keys(tree: ast.File, regs: list[tuple[int, int, int]], words: dict | None = None) -> list[tuple]:
+    """`words`: the words of each statement text seen before (text -> frozenset), kept between
+    versions so only changed statements are scanned; it is updated to this version's texts."""
     text = tree.text
     texts = [text[a:b] for a, b, _ in regs]
     defs: dict[str, list[int]] = {}
@@ -130,14 +136,23 @@ def statement_keys(tree: ast.File, regs: list[tuple[int, int, int]]) -> list[tup
         name = _defined(s)
         if name is not None:
             defs.setdefault(name, []).append(i)
+    seen_words = words if words is not None else {}
+    now: dict[str, frozenset] = {}
     deps: list[set[int]] = []
     for t in texts:
+        ws = seen_words.get(t)
+        if ws is None:
+            ws = frozenset(_WORD.findall(t))
+        now[t] = ws
         mine: set[int] = set()
-        for w in set(_WORD.findall(t)):
+        for w in ws:
             got = defs.get(w)
             if got:
                 mine.update(got)
         deps.append(mine)
+    if words is not None:
+        words.clear()
+        words.update(now)
     keys = []
     for i in range(len(texts)):
         seen = {i}
@@ -168,10 +183,12 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
     n = len(regs)
     if fkey is None:
         return Plan([], regs, (), {}, set(range(n)), [], False)
-    keys = statement_keys(tree, regs)
+    words = previous.words if previous is not None and previous.path == unit.path else {}
+    keys = statement_keys(tree, regs, words)
     if (previous is None or previous.program is not program or previous.path != unit.path
             or previous.epoch != others or previous.file_key != fkey):
         out = Plan(keys, regs, fkey, {}, set(range(n)), [], True)
+        out.words = words
         out.number(None)
         return out
     by_key: dict[tuple, list[int]] = {}
@@ -215,7 +232,10 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
             if home is old_unit:
                 if index is None:
                     index = _symbol_index(unit)
-                target = _find(index, moves, target)
+                tstmt = target.stmt
+                at = tstmt.span.start.offset if tstmt is not None else -1
+                at = at + do if lo <= at < hi else _move_offset(moves, at)
+                target = index.get((tt, target.name, at)) if at is not None else None
                 if target is None:
                     occs = None
                     break
@@ -240,6 +260,7 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
             continue
         reused[i] = Part(start, end, line, diags, occs, p.positional, extra)
     out = Plan(keys, regs, fkey, reused, set(range(n)) - set(reused), moves, True, True)
+    out.words = words
     out.number(previous)
     return out
 
@@ -283,16 +304,6 @@ def _symbol_index(unit: FileUnit) -> dict:
         for meth in m.methods.values():
             out[(MethodSym, meth.name, meth.stmt.span.start.offset)] = meth
     return out
-
-
-def _find(index: dict, moves: list, old) -> object | None:
-    stmt = getattr(old, "stmt", None)
-    if stmt is None:
-        return None
-    at = _move_offset(moves, stmt.span.start.offset)
-    if at is None:
-        return None
-    return index.get((type(old), old.name, at))
 
 
 def _region(moves: list, offset: int):

@@ -61,7 +61,7 @@ def _assemble(checker: Checker, plan: "reuse.Plan", unit: FileUnit, program):
     snap = None
     if plan.usable:
         snap = reuse.Snapshot(program, unit.path, program.epoch_without(unit.path), plan.file_key, plan.keys,
-                              parts, unit, plan.table)
+                              parts, unit, plan.table, plan.words)
     return diags, occs, snap
 
 

@@ -6,6 +6,8 @@ diagnostics everywhere."""
 
 from __future__ import annotations
 
+import bisect
+
 from plxtools.config import Config
 from plxtools.diagnostics import Diagnostic
 from plxtools.syntax import ast
@@ -20,7 +22,7 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
     from plxtools.model.workspace import FileAnalysis
     from plxtools.rules.completeness import completeness_diagnostics
     from plxtools.rules.literals import literal_diagnostics
-    from plxtools.rules.style import style_diagnostics
+    from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements
 
     snap = previous.snapshot if previous is not None else None
     fa = workspace.analyse(tree, snap, keep or previous is not None)
@@ -32,8 +34,9 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
         extra += literal_diagnostics(tree, fa.occurrences, tree.path)
     else:
         extra = _completeness_again(workspace.program, fa, tree, snap, plan)
-        extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences, root)
-        extra += _literals_again(fa, tree, plan)
+        extra += _per_statement(fa, plan, "style", style_of_statements(fa.unit, plan.dirty))
+        extra += style_of_file(workspace.program, fa.unit, fa.occurrences, root)
+        extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, fa.occurrences, tree.path, plan.dirty))
     for d in extra:
         d.file = tree.path
     return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.occurrences, fa.snapshot, fa.plan)
@@ -91,18 +94,22 @@ def _moved_walks(walks: dict, plan) -> dict:
     return out
 
 
-def _literals_again(fa, tree: ast.File, plan) -> list[Diagnostic]:
-    """Value limits of the statements checked again; the re-used statements' moved with them."""
+def _per_statement(fa, plan, rule: str, new: list[Diagnostic]) -> list[Diagnostic]:
+    """A rule's findings that each statement's own text decides: `new` for the statements checked
+    again (kept on their parts for the next version), the re-used statements' moved with them."""
     from plxtools.model.reuse import fresh
-    from plxtools.rules.literals import literal_diagnostics
 
-    new = literal_diagnostics(tree, fa.occurrences, tree.path, plan.dirty)
     out = []
-    for i, part in enumerate(fa.snapshot.parts):
+    parts = fa.snapshot.parts
+    if new:
+        starts = [p.start for p in parts]
+        mine: dict[int, list] = {}
+        for d in new:
+            mine.setdefault(bisect.bisect_right(starts, d.span.start.offset) - 1, []).append(d)
+    for i, part in enumerate(parts):
         if i not in plan.reused:
-            part.extra["literals"] = [fresh(d) for d in new if part.start <= d.span.start.offset < part.end]
-        out.extend(fresh(d) for d in part.extra.get("literals", ()))
-    out.sort(key=lambda d: d.span.start.offset)
+            part.extra[rule] = [fresh(d) for d in mine.get(i, ())] if new else []
+        out.extend(fresh(d) for d in part.extra.get(rule, ()))
     return out
 
 

@@ -33,33 +33,35 @@ def _block_column(body: list, parent_col: int) -> int:
 
 
 def style_diagnostics(program: Program, unit, occurrences, root: ModelSym | None = None) -> list[Diagnostic]:
+    return style_of_statements(unit) + style_of_file(program, unit, occurrences, root)
+
+
+def style_of_statements(unit, only: set[int] | None = None) -> list[Diagnostic]:
+    """C006 inside each top-level statement and C001 of what it defines (`only`: these statements):
+    what one statement's text alone decides, so the language server keeps it per statement."""
     out: list[Diagnostic] = []
     tree = unit.tree
 
     def add(code, msg, span, sev, help_=None):
         out.append(Diagnostic(code, msg, span, sev, file=unit.path, help=help_))
 
-    # C006: siblings whose indentation differs (official files do it; fmt aligns them).
-    # Lines where the parser already reported the cause (S015, an ambiguous tab) are skipped.
-    caused = {d.span.start.line for d in tree.diagnostics if d.code in ("S003", "S015") and d.severity is Severity.ERROR}
-    stack: list[tuple[list, int]] = [(tree.statements, 0)]
-    while stack:
-        body, parent_col = stack.pop()
-        if body:
-            col = _block_column(body, parent_col)
-            for s in body:
-                if s.header.start.column != col and s.header.start.line not in caused:
-                    add("C006", f"this line is indented {s.header.start.column} spaces but the other lines of its "
-                        f"block are indented {col}", s.header, Severity.INFO,
-                        f"indent it {col} spaces; a missing ':' on the line above would also cause this "
-                        "(`plx fmt` aligns siblings)")
+    caused = _caused(tree)
+    tops = [s for i, s in enumerate(tree.statements) if only is None or i in only]
+    for top in tops:
+        # C006: siblings whose indentation differs (official files do it; fmt aligns them).
+        stack: list[tuple[list, int]] = []
+        b = ast.body_of(top)
+        if b:
+            stack.append((b, top.header.start.column))
+        while stack:
+            body, parent_col = stack.pop()
+            _misaligned(body, parent_col, caused, add)
             for s in body:
                 b = ast.body_of(s)
                 if b:
                     stack.append((b, s.header.start.column))
-
-    # C001: naming conventions of definitions made in this file
-    for s in tree.statements:
+        # C001: naming conventions of definitions made in this file
+        s = top
         if isinstance(s, ast.TraitDef) and not PASCAL.match(s.name.name):
             add("C001", f"trait name '{s.name.name}' should be PascalCase", s.name.span, Severity.INFO)
         elif isinstance(s, ast.Declaration) and len(s.path.parts) == 1:
@@ -77,7 +79,35 @@ def style_diagnostics(program: Program, unit, occurrences, root: ModelSym | None
                     n = m.path.parts[0].name
                     if not m.path.parts[0].backtick and not SNAKE.match(n):
                         add("C001", f"attribute name '{n}' should be snake_case", m.path.span, Severity.INFO)
+    return out
 
+
+def _caused(tree) -> set[int]:
+    """Lines where the parser already reported the cause of an odd indentation (S015, a tab)."""
+    return {d.span.start.line for d in tree.diagnostics if d.code in ("S003", "S015") and d.severity is Severity.ERROR}
+
+
+def _misaligned(body: list, parent_col: int, caused: set[int], add) -> None:
+    if not body:
+        return
+    col = _block_column(body, parent_col)
+    for s in body:
+        if s.header.start.column != col and s.header.start.line not in caused:
+            add("C006", f"this line is indented {s.header.start.column} spaces but the other lines of its "
+                f"block are indented {col}", s.header, Severity.INFO,
+                f"indent it {col} spaces; a missing ':' on the line above would also cause this "
+                "(`plx fmt` aligns siblings)")
+
+
+def style_of_file(program: Program, unit, occurrences, root: ModelSym | None = None) -> list[Diagnostic]:
+    """C006 among the top-level statements, C003 and C007: what depends on the whole file."""
+    out: list[Diagnostic] = []
+    tree = unit.tree
+
+    def add(code, msg, span, sev, help_=None):
+        out.append(Diagnostic(code, msg, span, sev, file=unit.path, help=help_))
+
+    _misaligned(tree.statements, 0, _caused(tree), add)
     if unit.bundle is not None:
         return out
 
