@@ -34,9 +34,13 @@ class Part:
     end: int
     line: int
     diags: list  # as reported, before any later step added help to them (kept unchanged)
-    occs: list
+    occs: list | None  # in this version (None until asked for: built from `records`)
     positional: bool  # a finding names a line elsewhere in the file: valid only where it was
     extra: dict = field(default_factory=dict)  # findings of rules that run on top, by rule
+    # the occurrences relative to the statement, their targets of this file named by (class, name,
+    # serial of the statement holding the target, offset in it): the same in every version
+    records: list | None = None
+    uses: frozenset = frozenset()  # this file's top-level models it names (C003)
 
 
 @dataclass(slots=True)
@@ -76,14 +80,18 @@ class Plan:
         old = previous.serials if previous is not None and self.based else {}
         top = max(old.values(), default=0)
         table = {}
+        serials = []
+        taken = set()
         for k in self.keys:
-            got = table.get(k) or old.get(k)
-            if got is None:
+            got = old.get(k)
+            if got is None or got in taken:  # a new statement, or a second one of the same key
                 top += 1
                 got = top
-            table[k] = got
+            taken.add(got)
+            table.setdefault(k, got)
+            serials.append(got)
         self.table = table
-        self.serials = [table[k] for k in self.keys]
+        self.serials = serials
 
     def move_span(self, span: Span) -> Span | None:
         """An old span in a re-used region, moved to the new text (None: not in one)."""
@@ -201,53 +209,13 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
         if olds:
             matched[i] = previous.parts[olds.pop(0)]
     moves = sorted((p.start, p.end, regs[i][0] - p.start, regs[i][2] - p.line) for i, p in matched.items())
-    index = None
-    old_unit = previous.unit
     reused: dict[int, Part] = {}
-    new_occ = None
     for i, p in matched.items():
         start, end, line = regs[i]
-        do, dl = start - p.start, line - p.line
-        if p.positional and dl:
+        if p.positional and line != p.line:
             continue
         diags = [_move_diag(moves, d, unit.path) for d in p.diags]
-        if any(d is None for d in diags):
-            continue
-        lo, hi = p.start, p.end
-        occs = []
-        for o in p.occs:
-            span = o.span
-            s, e = span
-            if s.offset < lo or e.offset > hi:
-                occs = None
-                break
-            target = o.target
-            tt = type(target)
-            if tt is ModelSym or tt is GlobalSym:
-                home = target.unit
-            elif tt is MemberSym or tt is MethodSym:
-                home = target.owner.unit
-            else:
-                home = None
-            if home is old_unit:
-                if index is None:
-                    index = _symbol_index(unit)
-                tstmt = target.stmt
-                at = tstmt.span.start.offset if tstmt is not None else -1
-                at = at + do if lo <= at < hi else _move_offset(moves, at)
-                target = index.get((tt, target.name, at)) if at is not None else None
-                if target is None:
-                    occs = None
-                    break
-            elif do == 0 and dl == 0:
-                occs.append(o)
-                continue
-            if do or dl:
-                span = _span(s.offset + do, s.line + dl, s.column, e.offset + do, e.line + dl, e.column)
-            if new_occ is None:
-                new_occ = type(o)
-            occs.append(new_occ(span, target, o.kind))
-        if occs is None:
+        if any(d is None for d in diags) or p.records is None:
             continue
         extra = {}
         for rule, found in p.extra.items():
@@ -258,11 +226,100 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
             extra[rule] = moved
         if extra is None:
             continue
-        reused[i] = Part(start, end, line, diags, occs, p.positional, extra)
+        reused[i] = Part(start, end, line, diags, None, p.positional, extra, p.records, p.uses)
     out = Plan(keys, regs, fkey, reused, set(range(n)) - set(reused), moves, True, True)
     out.words = words
     out.number(previous)
     return out
+
+
+def record(part: Part, occs: list, unit: FileUnit, regs: list, serials: list) -> None:
+    """Keep a checked statement's occurrences in the form any later version can use (Part.records)."""
+    starts = [r[0] for r in regs]
+    start, line = part.start, part.line
+    out = []
+    uses = set()
+    table = unit.locals if unit.bundle is None else None
+    for o in occs:
+        s, e = o.span
+        target = o.target
+        tt = type(target)
+        if tt is ModelSym or tt is GlobalSym:
+            home = target.unit
+        elif tt is MemberSym or tt is MethodSym:
+            home = target.owner.unit
+        else:
+            home = None
+        if home is unit:
+            if table is not None and o.kind != "definition" and tt is ModelSym and table.get(target.name) is target:
+                uses.add(target.name)
+            tstmt = target.stmt
+            if tstmt is None:
+                part.records = None
+                return
+            at = tstmt.span.start.offset
+            k = bisect.bisect_right(starts, at) - 1
+            if k < 0:
+                part.records = None
+                return
+            target = (tt, target.name, serials[k], at - starts[k])
+        out.append((s.offset - start, s.line - line, s.column, e.offset - start, e.line - line, e.column, o.kind,
+                    target, home is unit))
+    part.records = out
+    part.uses = frozenset(uses)
+
+
+class Occurrences:
+    """A version's occurrences, built when first asked for (hover, references, tokens): the
+    re-used statements' from their records, with the targets looked up among this version's
+    symbols. A check does not pay for it, so diagnostics go out sooner."""
+
+    __slots__ = ("parts", "unit", "program", "regs", "serials", "known", "occurrence", "_all")
+
+    def __init__(self, parts: list, unit: FileUnit, program, regs: list, serials: list, known, occurrence):
+        self.parts, self.unit, self.program, self.regs, self.serials = parts, unit, program, regs, serials
+        self.known, self.occurrence = known, occurrence
+        self._all = None
+
+    def all(self) -> list:
+        if self._all is None:
+            index = None
+            out = []
+            for i, part in enumerate(self.parts):
+                if part.occs is None:
+                    if index is None:
+                        index = _symbol_index(self.unit, self.regs, self.serials)
+                    part.occs = self._build(part, index)
+                    if part.occs is None:
+                        part.occs = self._check_again(i)
+                out.extend(part.occs)
+            self._all = out
+            self.parts = self.program = None  # what the list needed is done with
+        return self._all
+
+    def _build(self, part: Part, index: dict) -> list | None:
+        start, line = part.start, part.line
+        make = self.occurrence
+        out = []
+        for rs, rl, sc, re_, el, ec, kind, target, local in part.records:
+            if local:
+                target = index.get(target)
+                if target is None:
+                    return None
+            out.append(make(_span(start + rs, line + rl, sc, start + re_, line + el, ec), target, kind))
+        return out
+
+    def _check_again(self, i: int) -> list:
+        """A target not found again (not expected: the statement's closure is unchanged): the
+        occurrences of that statement from the checker itself."""
+        from plxtools.model.checker import Checker
+
+        if self.program is None or self.program.units.get(self.unit.path) is not self.unit:
+            return []  # a newer version replaced this one: nobody reads these any more
+        checker = Checker(self.program, self.unit, self.known)
+        checker.run({i})
+        o0, o1 = checker.slices[i][2:4]
+        return checker.occurrences[o0:o1]
 
 
 def _span(so: int, sl: int, sc: int, eo: int, el: int, ec: int) -> Span:
@@ -272,37 +329,36 @@ def _span(so: int, sl: int, sc: int, eo: int, el: int, ec: int) -> Span:
 _tuple_new = tuple.__new__
 
 
-def _home(target) -> FileUnit | None:
-    if isinstance(target, (ModelSym, GlobalSym)):
-        return target.unit
-    if isinstance(target, (MemberSym, MethodSym)):
-        return target.owner.unit
-    return None
-
-
-def _symbol_index(unit: FileUnit) -> dict:
-    """The new version's symbols by (class, name, where their statement starts)."""
+def _symbol_index(unit: FileUnit, regs: list, serials: list) -> dict:
+    """This version's symbols by (class, name, serial of their statement, offset in it)."""
+    starts = [r[0] for r in regs]
     out: dict = {}
+
+    def put(sym, cls) -> None:
+        at = sym.stmt.span.start.offset
+        k = bisect.bisect_right(starts, at) - 1
+        if k >= 0:
+            out[(cls, sym.name, serials[k], at - starts[k])] = sym
+
     table = unit.locals if unit.bundle is None else unit.namespace.symbols
     stack = []
     for sym in table.values():
         if getattr(sym, "unit", None) is unit:
             if isinstance(sym, GlobalSym):
-                out[(GlobalSym, sym.name, sym.stmt.span.start.offset)] = sym
+                put(sym, GlobalSym)
             elif isinstance(sym, ModelSym):
                 stack.append(sym)
     while stack:
         m = stack.pop()
         if m.stmt is not None:
-            out[(ModelSym, m.name, m.stmt.span.start.offset)] = m
-        tables = [m.members, *m.path_members.values()]
-        for tbl in tables:
+            put(m, ModelSym)
+        for tbl in (m.members, *m.path_members.values()):
             for mem in tbl.values():
-                out[(MemberSym, mem.name, mem.stmt.span.start.offset)] = mem
+                put(mem, MemberSym)
                 if mem.anon is not None:
                     stack.append(mem.anon)
         for meth in m.methods.values():
-            out[(MethodSym, meth.name, meth.stmt.span.start.offset)] = meth
+            put(meth, MethodSym)
     return out
 
 
@@ -313,11 +369,6 @@ def _region(moves: list, offset: int):
         if m[0] <= offset < m[1]:
             return m
     return None
-
-
-def _move_offset(moves: list, offset: int) -> int | None:
-    m = _region(moves, offset)
-    return offset + m[2] if m is not None else None
 
 
 def _move_span(moves: list, span: Span) -> Span | None:
@@ -358,3 +409,27 @@ def _move_diag(moves: list, d: Diagnostic, path: str) -> Diagnostic | None:
 def fresh(d: Diagnostic) -> Diagnostic:
     """A copy later steps may change without changing what is kept for the next version."""
     return replace(d, related=list(d.related))
+
+
+def assemble(checker, plan: Plan, unit: FileUnit, program, known, occurrence):
+    """The file's findings in the order a full check makes them (file-wide ones, then statement
+    by statement), its occurrences (built when asked for), and the snapshot the next version
+    re-uses. Diagnostics handed on are copies, which later steps may change."""
+    first = min((sl[0] for sl in checker.slices.values()), default=len(checker.diags))
+    diags = checker.diags[:first]
+    parts: list = []
+    for i, (start, end, line) in enumerate(plan.regions):
+        part = plan.reused.get(i)
+        if part is None:
+            d0, d1, o0, o1, positional = checker.slices[i]
+            part = Part(start, end, line, [fresh(d) for d in checker.diags[d0:d1]], checker.occurrences[o0:o1],
+                        positional)
+            if plan.usable:
+                record(part, part.occs, unit, plan.regions, plan.serials)
+        parts.append(part)
+        diags.extend(fresh(d) for d in part.diags)
+    snap = None
+    if plan.usable:
+        snap = Snapshot(program, unit.path, program.epoch_without(unit.path), plan.file_key, plan.keys,
+                        parts, unit, plan.table, plan.words)
+    return diags, Occurrences(parts, unit, program, plan.regions, plan.serials, known, occurrence), snap

@@ -11,7 +11,6 @@ import functools
 import zlib
 import os
 import pickle
-from dataclasses import dataclass
 from pathlib import Path
 
 from plxtools import __version__
@@ -32,37 +31,31 @@ class WorkspaceError(BundleSetError):
     """A bundle setup that cannot be used (missing bundle folder, folder without config)."""
 
 
-@dataclass(slots=True)
 class FileAnalysis:
-    unit: FileUnit
-    diagnostics: list[Diagnostic]
-    occurrences: list[Occurrence]
-    snapshot: "reuse.Snapshot | None" = None  # for re-using this analysis in the next version's
-    plan: "reuse.Plan | None" = None  # how this analysis re-used the previous one (None: it did not)
+    """What the model says about one file: its unit, diagnostics and occurrences (names and what
+    they refer to). `occurrences` may be given as a reuse.Occurrences, built when first read."""
 
+    __slots__ = ("unit", "diagnostics", "_occurrences", "snapshot", "plan")
 
-def _assemble(checker: Checker, plan: "reuse.Plan", unit: FileUnit, program):
-    """The file's findings in the order a full check makes them (file-wide ones, then statement
-    by statement), and the snapshot the next version re-uses: checked parts as reported, re-used
-    parts as moved. What is handed on are copies, which later steps may change."""
-    first = min((sl[0] for sl in checker.slices.values()), default=len(checker.diags))
-    diags = checker.diags[:first]
-    occs: list = []
-    parts: list = []
-    for i, (start, end, line) in enumerate(plan.regions):
-        part = plan.reused.get(i)
-        if part is None:
-            d0, d1, o0, o1, positional = checker.slices[i]
-            part = reuse.Part(start, end, line, [reuse.fresh(d) for d in checker.diags[d0:d1]],
-                              checker.occurrences[o0:o1], positional)
-        parts.append(part)
-        diags.extend(reuse.fresh(d) for d in part.diags)
-        occs.extend(part.occs)
-    snap = None
-    if plan.usable:
-        snap = reuse.Snapshot(program, unit.path, program.epoch_without(unit.path), plan.file_key, plan.keys,
-                              parts, unit, plan.table, plan.words)
-    return diags, occs, snap
+    def __init__(self, unit: FileUnit, diagnostics: list[Diagnostic], occurrences,
+                 snapshot: "reuse.Snapshot | None" = None, plan: "reuse.Plan | None" = None):
+        self.unit = unit
+        self.diagnostics = diagnostics
+        self._occurrences = occurrences
+        self.snapshot = snapshot  # for re-using this analysis in the next version's
+        self.plan = plan  # how this analysis re-used the previous one (None: it did not)
+
+    @property
+    def lazy_occurrences(self):
+        """The occurrences as they are: a list, or a reuse.Occurrences not built yet."""
+        return self._occurrences
+
+    @property
+    def occurrences(self) -> list[Occurrence]:
+        got = self._occurrences
+        if isinstance(got, reuse.Occurrences):
+            got = self._occurrences = got.all()
+        return got
 
 
 def _cache_dir() -> Path:
@@ -393,7 +386,8 @@ class Workspace:
             plan = reuse.plan(previous, self.program, unit, others, self.known_annotations)
             checker = Checker(self.program, unit, self.known_annotations)
             checker.run(plan.dirty)
-            diags, occurrences, snap = _assemble(checker, plan, unit, self.program)
+            diags, occurrences, snap = reuse.assemble(checker, plan, unit, self.program, self.known_annotations,
+                                                      Occurrence)
             diags += self._bundle_config_diagnostics(tree)
         for d in diags:
             d.file = tree.path

@@ -35,11 +35,14 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
     else:
         extra = _completeness_again(workspace.program, fa, tree, snap, plan)
         extra += _per_statement(fa, plan, "style", style_of_statements(fa.unit, plan.dirty))
-        extra += style_of_file(workspace.program, fa.unit, fa.occurrences, root)
-        extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, fa.occurrences, tree.path, plan.dirty))
+        parts = fa.snapshot.parts
+        used = set().union(*(p.uses for p in parts)) if fa.unit.bundle is None else set()
+        extra += style_of_file(workspace.program, fa.unit, None, root, used_names=used)
+        checked = [o for i in sorted(plan.dirty) for o in parts[i].occs]
+        extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, checked, tree.path, plan.dirty))
     for d in extra:
         d.file = tree.path
-    return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.occurrences, fa.snapshot, fa.plan)
+    return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.lazy_occurrences, fa.snapshot, fa.plan)
 
 
 def _completeness_again(program, fa, tree: ast.File, previous, plan) -> list[Diagnostic]:

@@ -99,8 +99,10 @@ def _misaligned(body: list, parent_col: int, caused: set[int], add) -> None:
                 "(`plx fmt` aligns siblings)")
 
 
-def style_of_file(program: Program, unit, occurrences, root: ModelSym | None = None) -> list[Diagnostic]:
-    """C006 among the top-level statements, C003 and C007: what depends on the whole file."""
+def style_of_file(program: Program, unit, occurrences, root: ModelSym | None = None,
+                  used_names: set[str] | None = None) -> list[Diagnostic]:
+    """C006 among the top-level statements, C003 and C007: what depends on the whole file.
+    `used_names` (instead of the occurrences): the file's top-level names that something names."""
     out: list[Diagnostic] = []
     tree = unit.tree
 
@@ -114,7 +116,10 @@ def style_of_file(program: Program, unit, occurrences, root: ModelSym | None = N
     # C003: models defined in a loose file that nothing uses; C007: root that is not a System
     chosen = root is not None  # --model NAME: that model is the root, wherever it is in the file
     root = root or root_model(program, unit)
-    used = {id(o.target) for o in occurrences if o.kind != "definition"}
+    if used_names is not None:
+        used = {id(sym) for name, sym in unit.locals.items() if name in used_names}
+    else:
+        used = {id(o.target) for o in occurrences if o.kind != "definition"}
     for name, sym in unit.locals.items():
         if isinstance(sym, ModelSym) and sym is not root and id(sym) not in used:
             span = sym.stmt.name.span if isinstance(sym.stmt, ast.TraitDef) else sym.stmt.path.span
