@@ -8,6 +8,8 @@ a small document open beside it. Measured:
   is analysed, or before);
 - the big document's first diagnostics (or, above the server's size limit, its message);
 - a one-character edit of the big document to its diagnostics;
+- completion while typing on the big document (`--typing` probes: a half-typed line inserted,
+  completion asked at once, the line removed);
 - a big document opened and at once replaced by a one-line text: time to the one-line version's
   diagnostics (the big version's analysis is cancelled, not finished);
 - the server's resident memory (VmRSS) and peak (VmHWM) after each step: baseline, with the big
@@ -73,6 +75,7 @@ def main() -> None:
                     "process (as before background checks), to measure its memory")
     ap.add_argument("--tracemalloc", action="store_true", help="run the server under tracemalloc (slower) to "
                     "report Python-level memory beside RSS")
+    ap.add_argument("--typing", type=int, default=10, help="completion-while-typing probes on the big document")
     args = ap.parse_args()
 
     big_text = openplx_text(args.lines)
@@ -129,6 +132,37 @@ def main() -> None:
         {"range": {"start": {"line": line, "character": 0}, "end": {"line": line, "character": 0}}, "text": "#"}]})
     t, params = wait_first(client, big_uri, since, args.timeout, version=2)
     rows.append(("big document: one-character edit to diagnostics: s", f"{t - since:.2f} ({params})"))
+
+    # completion while typing on the big document: a half-typed line inserted, completion asked at
+    # once, the line removed again (each probe starts from the text the server analysed last)
+    lines = big_text.split("\n")
+    lines[line] = "#" + lines[line]
+    spots = [n for n, ln in enumerate(lines) if "inertia.mass" in ln]
+    times = []
+    version = 2
+    for k in range(args.typing):
+        n = spots[(k * 37) % len(spots)]
+        end = len(lines[n])
+        version += 1
+        client.notify("textDocument/didChange", {"textDocument": {"uri": big_uri, "version": version},
+                                                 "contentChanges": [{"range": {
+                                                     "start": {"line": n, "character": end},
+                                                     "end": {"line": n, "character": end}}, "text": "\n    inertia."}]})
+        dt, msg = client.request("textDocument/completion", {
+            "textDocument": {"uri": big_uri}, "position": {"line": n + 1, "character": len("    inertia.")}})
+        times.append(dt * 1000)
+        version += 1
+        client.notify("textDocument/didChange", {"textDocument": {"uri": big_uri, "version": version},
+                                                 "contentChanges": [{"range": {
+                                                     "start": {"line": n, "character": end},
+                                                     "end": {"line": n + 1, "character": len("    inertia.")}},
+                                                     "text": ""}]})
+        time.sleep(0.2)
+    if times:
+        times.sort()
+        rows.append((f"big document: completion while typing, {len(times)} probes: median / p95 ms",
+                     f"{times[len(times) // 2]:.0f} / {times[max(0, int(len(times) * 0.95) - 1)]:.0f}"))
+    client.drain()
 
     since = client.notify("textDocument/didChange", {"textDocument": {"uri": big_uri, "version": 3},
                                                      "contentChanges": [{"text": "X is Real: 1\n"}]})
