@@ -52,6 +52,7 @@ class Checker:
         self.in_trait = False
         self._broken_cache: dict[int, dict[str, int]] = {}
         self._positional = False
+        self._suggests = False
 
     # ------------------------------------------------------------------ reporting
 
@@ -67,8 +68,8 @@ class Checker:
     def occ(self, span: Span, target, kind: str) -> None:
         self.occurrences.append(Occurrence(span, target, kind))
 
-    @staticmethod
-    def _closest(name: str, options) -> str | None:
+    def _closest(self, name: str, options) -> str | None:
+        self._suggests = True  # the answer depends on every name in scope (model/reuse.py)
         close = difflib.get_close_matches(name, list(options), n=1, cutoff=0.7)
         return close[0] if close else None
 
@@ -115,19 +116,19 @@ class Checker:
     def run(self, only: set[int] | None = None) -> None:
         """Check the file (`only`: just these top-level statements). What each statement added is
         recorded in `slices` (index -> diagnostics and occurrences ranges, whether a finding names
-        a line elsewhere), so model/reuse.py can keep it for the next version of the file."""
+        a line elsewhere, whether a suggestion was looked for among the names in scope), so model/reuse.py can keep it for the next version of the file."""
         self._duplicates()
         self.slices: dict[int, tuple[int, int, int, int, bool]] = {}
         for i, stmt in enumerate(self.unit.tree.statements):
             if only is not None and i not in only:
                 continue
             d0, o0 = len(self.diags), len(self.occurrences)
-            self._positional = False
+            self._positional = self._suggests = False
             try:
                 self._top(stmt)
             except RecursionError:
                 self.report("M005", "this definition nests or refers to itself too deeply to check", stmt.header)
-            self.slices[i] = (d0, len(self.diags), o0, len(self.occurrences), self._positional)
+            self.slices[i] = (d0, len(self.diags), o0, len(self.occurrences), self._positional, self._suggests)
 
     def _duplicates(self) -> None:
         for unit, stmt, first in self.p.duplicates:
@@ -237,6 +238,7 @@ class Checker:
 
     def _type_suggestion(self, parts: list[str]) -> tuple[str | None, str | None]:
         """(help, replacement): the closest name in the namespace the prefix names, else what it has."""
+        self._suggests = True
         if len(parts) >= 2:
             ns = self.p.lookup(parts[:-1], self.unit)
             if isinstance(ns, Namespace):

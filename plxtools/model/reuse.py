@@ -41,6 +41,7 @@ class Part:
     # serial of the statement holding the target, offset in it): the same in every version
     records: list | None = None
     uses: frozenset = frozenset()  # this file's top-level models it names (C003)
+    names: frozenset | None = None  # a suggestion was looked for: the file's top-level names then
 
 
 @dataclass(slots=True)
@@ -75,6 +76,7 @@ class Plan:
     # statement of the same key (so rules can key what they keep by it), else a new one
     table: dict = field(default_factory=dict)  # key -> serial, for the next version
     words: dict = field(default_factory=dict)  # statement text -> its words, for the next version
+    names: frozenset = frozenset()  # the names the file's top-level statements define
 
     def number(self, previous: "Snapshot | None") -> None:
         old = previous.serials if previous is not None and self.based else {}
@@ -197,6 +199,7 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
             or previous.epoch != others or previous.file_key != fkey):
         out = Plan(keys, regs, fkey, {}, set(range(n)), [], True)
         out.words = words
+        out.names = frozenset(n for n in (_defined(s_) for s_ in tree.statements) if n is not None)
         out.number(None)
         return out
     by_key: dict[tuple, list[int]] = {}
@@ -209,10 +212,11 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
         if olds:
             matched[i] = previous.parts[olds.pop(0)]
     moves = sorted((p.start, p.end, regs[i][0] - p.start, regs[i][2] - p.line) for i, p in matched.items())
+    names = frozenset(n for n in (_defined(s_) for s_ in tree.statements) if n is not None)
     reused: dict[int, Part] = {}
     for i, p in matched.items():
         start, end, line = regs[i]
-        if p.positional and line != p.line:
+        if p.positional and line != p.line or p.names is not None and p.names != names:
             continue
         diags = [_move_diag(moves, d, unit.path) for d in p.diags]
         if any(d is None for d in diags) or p.records is None:
@@ -226,9 +230,10 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
             extra[rule] = moved
         if extra is None:
             continue
-        reused[i] = Part(start, end, line, diags, None, p.positional, extra, p.records, p.uses)
+        reused[i] = Part(start, end, line, diags, None, p.positional, extra, p.records, p.uses, p.names)
     out = Plan(keys, regs, fkey, reused, set(range(n)) - set(reused), moves, True, True)
     out.words = words
+    out.names = names
     out.number(previous)
     return out
 
@@ -421,9 +426,9 @@ def assemble(checker, plan: Plan, unit: FileUnit, program, known, occurrence):
     for i, (start, end, line) in enumerate(plan.regions):
         part = plan.reused.get(i)
         if part is None:
-            d0, d1, o0, o1, positional = checker.slices[i]
+            d0, d1, o0, o1, positional, suggests = checker.slices[i]
             part = Part(start, end, line, [fresh(d) for d in checker.diags[d0:d1]], checker.occurrences[o0:o1],
-                        positional)
+                        positional, names=plan.names if suggests else None)
             if plan.usable:
                 record(part, part.occs, unit, plan.regions, plan.serials)
         parts.append(part)

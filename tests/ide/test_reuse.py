@@ -178,3 +178,19 @@ def test_the_server_parses_ahead_without_losing_the_typed_line_view(tmp_path):
     ref = AnalysisHost(root=str(tmp_path))
     ref.open_document(path, new, 2)
     assert _findings(host.state(path)) == _findings(ref.state(path))
+
+
+def test_a_suggestion_follows_the_names_defined_elsewhere(tmp_path):
+    text = ("Chassis is Physics3D.Bodies.RigidBody:\n    inertia.mass: 1\n\n"
+            "Scene is Physics3D.System:\n    body is Physics3D.Bodies.RigidBody:\n        inertia.mass: chassis\n")
+    path = str(tmp_path / "suggest.openplx")
+    host = AnalysisHost(root=str(tmp_path))
+    host.open_document(path, text, 1)
+    assert any("'Chassis'" in (d.help or "") for d in host.state(path).diagnostics)
+    new = text.replace("Chassis is", "ChassisX is", 1)  # the statement naming 'chassis' is unchanged
+    host.update_document(path, new, 2)
+    st = host.state(path)
+    ref = AnalysisHost(root=str(tmp_path))
+    ref.open_document(path, new, 2)
+    assert _findings(st) == _findings(ref.state(path))
+    assert any("'ChassisX'" in (d.help or "") for d in st.diagnostics)
