@@ -69,7 +69,7 @@ def _cache_dir() -> Path:
     return cache_dir()
 
 
-_CACHE_FORMAT = 8  # bump when the pickled classes change shape
+_CACHE_FORMAT = 9  # bump when the pickled classes change shape
 
 
 def _cache_key(paths: list) -> str:
@@ -149,8 +149,14 @@ def _store_cached(name: str, value, prefix: str) -> None:
 def _write_cached(folder: Path, name: str, value, prefix: str) -> None:
     try:
         tmp = folder / f".{name}.{os.getpid()}.tmp"
+        from plxtools.diagnostics import Pos, Span
+        from plxtools.pickling import tuple_reducers
+
         with open(tmp, "wb") as fh:
-            pickle.dump(value, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            pickler = pickle.Pickler(fh, protocol=pickle.HIGHEST_PROTOCOL)
+            # about 45k positions and spans: rebuilt by tuple.__new__, not their Python __new__
+            pickler.dispatch_table = tuple_reducers(Pos, Span)
+            pickler.dump(value)
         os.replace(tmp, folder / name)
         for old in folder.glob(f"{prefix}*.pickle"):
             if old.name != name:
