@@ -52,6 +52,9 @@ class Checker:
         self.in_trait = False
         self._broken_cache: dict[int, dict[str, int]] = {}
         self._positional = False
+        # a method's parameter and return types, per method called in this file (a file calls the
+        # same few functions many times: Vec3.from_xyz); the program does not change during a check
+        self._signatures: dict[int, tuple[MethodSym, list[Ty], Ty | None]] = {}
 
     # ------------------------------------------------------------------ reporting
 
@@ -624,9 +627,13 @@ class Checker:
         return UNKNOWN
 
     def _method_types(self, meth: MethodSym) -> tuple[list[Ty], Ty | None]:
+        got = self._signatures.get(id(meth))
+        if got is not None and got[0] is meth:
+            return got[1], got[2]
         unit = meth.owner.unit
         params = [self.p.resolve_type_ref(prm.type, unit) for prm in meth.stmt.params]
         ret = self.p.resolve_type_ref(meth.stmt.returns, unit) if meth.stmt.returns is not None else None
+        self._signatures[id(meth)] = (meth, params, ret)
         return params, ret
 
     def _call(self, e: ast.Call):
@@ -702,6 +709,11 @@ class Checker:
         _default_edges(body, "", edges, spans)
         if not edges or not any(edges.values()):
             return  # no default reads another value: no ring
+        # a value depends on a key that is its reference or a dotted prefix of it, so on nothing when
+        # no reference starts with the first name of a key (`size: Math.Vec3.from_xyz(...)`)
+        firsts = {k.split(".", 1)[0] for k in edges}
+        if not any(r.split(".", 1)[0] in firsts for refs in edges.values() for r, _ in refs):
+            return
         keys = list(edges)
         order = {k: i for i, k in enumerate(keys)}
 

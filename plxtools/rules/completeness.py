@@ -18,6 +18,15 @@ MAX_DEPTH = 40
 MAX_SHARED_WALKS = 64  # walks kept per bundle model (per set of values given from outside)
 
 
+_NONE: frozenset = frozenset()
+
+
+def _anchor(mem, unit):
+    """Where a finding about `mem` is shown: its declaration when it is in this file (else None,
+    the nearest anchor above)."""
+    return mem.stmt.path.span if mem.owner.unit is unit and mem.stmt.path is not None else None
+
+
 def root_model(program: Program, unit) -> ModelSym | None:
     last = None
     for s in unit.tree.statements:
@@ -147,14 +156,15 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
         a subtree is walked once per (model, traits, values given from outside) and re-used; only
         when re-using it cannot differ from walking it again (no cycle or depth cut inside, none of
         its models on the current chain, still within the depth limit)."""
-        model = ty.model
-        if model is None:
+        model = ty.sym
+        if not isinstance(model, ModelSym):
             return [], frozenset(), 0, False
         me = mkey(model)
         if depth > MAX_DEPTH or me in chain:
             return [], frozenset(), 0, True
-        key = (me, tuple(mkey(t) for t in ty.traits), frozenset(outer))
-        shared = _shared(model, ty.traits)
+        traits = ty.traits
+        key = (me, tuple(map(mkey, traits)) if traits else (), frozenset(outer))
+        shared = _shared(model, traits)
         if shared:
             hit = model._walks.get(key) if model._walks is not None else None
         else:
@@ -164,35 +174,43 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
         if hit is not None and depth + hit[2] <= MAX_DEPTH and hit[1].isdisjoint(chain):
             return hit[0], hit[1], hit[2], False
         assigned = assigned_in(model) | outer
-        for t in ty.traits:
+        for t in traits:
             assigned |= assigned_in(t)
+        below_of = None  # member name -> the paths below it given a value (built on first need)
         finds: list = []
         models = {me}
         height = 0
         cut = False
         inner = chain + (me,)
+        member_type = program.member_type
         for name, mem in program.members_of(ty).items():
-            mty = program.member_type(mem)
-            here = (name,) in assigned or mem.value is not None
-            local = mem.stmt.path.span if mem.owner.unit is unit and mem.stmt.path is not None else None
+            mty = mem.ty if mem.ty is not None else member_type(mem)
             if mem.reference:
-                if not here and not mem.optional:
-                    finds.append(("ref", (name,), mty.display(), name, mem.owner.qname, local))
+                if not mem.optional and mem.value is None and (name,) not in assigned:
+                    finds.append(("ref", (name,), mty.display(), name, mem.owner.qname, _anchor(mem, unit)))
                 continue
-            if mty.unknown or mty.alts or mty.array:
+            sym = mty.sym
+            if sym is None or mty.alts or mty.array:
                 continue
-            if mty.primitive is not None:
-                if mty.primitive in REQUIRED_PRIMITIVES and not here and not mem.optional:
-                    finds.append(("val", (name,), mty.primitive, name, mem.owner.qname, local))
+            if isinstance(sym, str):
+                if sym in REQUIRED_PRIMITIVES and not mem.optional and mem.value is None and (name,) not in assigned:
+                    finds.append(("val", (name,), sym, name, mem.owner.qname, _anchor(mem, unit)))
                 continue
             if mem.value is not None or (name,) in assigned:
                 continue  # given an existing object or a computed value (checked where it is made)
-            sub = {p[1:] for p in assigned if len(p) > 1 and p[0] == name}
-            below, met, h, c = walk(mty, sub, depth + 1, inner)
-            for kind, rel, shown, n, owner, a in below:
-                finds.append((kind, (name,) + rel, shown, n, owner, a if a is not None else local))
+            if below_of is None:
+                below_of = {}
+                for p in assigned:
+                    if len(p) > 1:
+                        below_of.setdefault(p[0], set()).add(p[1:])
+            below, met, h, c = walk(mty, below_of.get(name, _NONE), depth + 1, inner)
+            if below:
+                local = _anchor(mem, unit)
+                for kind, rel, shown, n, owner, a in below:
+                    finds.append((kind, (name,) + rel, shown, n, owner, a if a is not None else local))
             models.update(met)
-            height = max(height, h + 1)
+            if h + 1 > height:
+                height = h + 1
             cut = cut or c
         got = (finds, frozenset(models), height)
         if not cut:
