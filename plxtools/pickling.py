@@ -12,23 +12,25 @@ from __future__ import annotations
 from dataclasses import fields
 
 
-def fast_pickling(cls) -> None:
-    names = tuple(f.name for f in fields(cls))
-    frozen = cls.__dataclass_params__.frozen
-    if not names:
-        src = "def getstate(self):\n    return ()\ndef setstate(self, state):\n    pass\n"
-    elif frozen:  # a frozen class refuses attribute assignment: set its slots as the object does
-        sets = "".join(f"    _set(self, {n!r}, state[{i}])\n" for i, n in enumerate(names))
-        src = (f"def getstate(self):\n    return ({''.join(f'self.{n}, ' for n in names)})\n"
-               f"def setstate(self, state):\n{sets}")
-    else:
-        targets = "".join(f"self.{n}, " for n in names)
-        src = (f"def getstate(self):\n    return ({targets})\n"
-               f"def setstate(self, state):\n    {targets}= state\n")
+def fast_pickling(*classes) -> None:
+    """Give each class its own `__getstate__` / `__setstate__` (one compile for all of them)."""
+    src = []
+    for k, cls in enumerate(classes):
+        names = tuple(f.name for f in fields(cls))
+        if not names:
+            src.append(f"def get{k}(self):\n    return ()\ndef set{k}(self, state):\n    pass\n")
+        elif cls.__dataclass_params__.frozen:  # it refuses attribute assignment: set the slots directly
+            sets = "".join(f"    _set(self, {n!r}, state[{i}])\n" for i, n in enumerate(names))
+            src.append(f"def get{k}(self):\n    return ({''.join(f'self.{n}, ' for n in names)})\n"
+                       f"def set{k}(self, state):\n{sets}")
+        else:
+            targets = "".join(f"self.{n}, " for n in names)
+            src.append(f"def get{k}(self):\n    return ({targets})\ndef set{k}(self, state):\n    {targets}= state\n")
     scope: dict = {"_set": object.__setattr__}
-    exec(compile(src, f"<pickling of {cls.__qualname__}>", "exec"), scope)
-    cls.__getstate__ = scope["getstate"]
-    cls.__setstate__ = scope["setstate"]
+    exec(compile("".join(src), "<plxtools.pickling>", "exec"), scope)
+    for k, cls in enumerate(classes):
+        cls.__getstate__ = scope[f"get{k}"]
+        cls.__setstate__ = scope[f"set{k}"]
 
 
 def tuple_reducers(*classes) -> dict:

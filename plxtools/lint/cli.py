@@ -228,14 +228,21 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
     """{file: diagnostics} for the files that are not cached, computed by worker processes, or {}
     when the run is too small, a file is in a bundle (files of a bundle see each other), or a
     config is broken (the ordinary loop then reports it where it did)."""
-    from plxtools.lint.resultcache import _in_bundle
+    from plxtools.lint.resultcache import _folder_in_bundle
 
     stop = {bundle_set.official_root.resolve()} if bundle_set.official_root is not None else set()
     todo = []
     size = 0
+    folders: dict[Path, bool] = {}  # folder -> inside a bundle (each folder walked up once)
     try:
         for f in files:
-            if f.name == "config.openplx" or _in_bundle(f, stop):
+            if f.name == "config.openplx":
+                return {}
+            folder = f.resolve().parent
+            inside = folders.get(folder)
+            if inside is None:
+                inside = folders[folder] = _folder_in_bundle(folder, stop)
+            if inside:
                 return {}
             cfg = _config(f, False, args)
             key = results.key(f, cfg) if results is not None else None

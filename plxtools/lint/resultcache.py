@@ -67,7 +67,10 @@ def imported_files(path: Path, data: bytes) -> list[str] | None:
 
 def _in_bundle(path: Path, stop_at: set) -> bool:
     """model.bundles.find_user_bundle_root(...) is not None, without importing the model (and lark)."""
-    folder = path.resolve().parent
+    return _folder_in_bundle(path.resolve().parent, stop_at)
+
+
+def _folder_in_bundle(folder: Path, stop_at: set) -> bool:
     for d in (folder, *folder.parents):
         if d in stop_at:
             return False
@@ -89,6 +92,7 @@ class ResultCache:
         self.bundle_set = bundle_set
         self.official_root = bundle_set.official_root.resolve() if bundle_set.official_root else None
         self._stamp: bytes | None = None
+        self._bundle_folders: dict[Path, bool] = {}  # folder -> inside a bundle (asked once per run)
 
     def _run_stamp(self) -> bytes:
         """The part of every key that is the same for the whole run (computed once, lazily)."""
@@ -114,15 +118,20 @@ class ResultCache:
         unreadable file)."""
         if path.name == "config.openplx":
             return None
-        stop = {self.official_root} if self.official_root is not None else set()
         try:
-            if _in_bundle(path, stop):
+            resolved = path.resolve()
+            folder = resolved.parent
+            inside = self._bundle_folders.get(folder)
+            if inside is None:
+                stop = {self.official_root} if self.official_root is not None else set()
+                inside = self._bundle_folders[folder] = _folder_in_bundle(folder, stop)
+            if inside:
                 return None
             data = path.read_bytes()
         except OSError:
             return None
         h = new_hash(self._run_stamp())
-        h.update(f"\0{path}\0{path.resolve()}\0{cfg!r}\0".encode())
+        h.update(f"\0{path}\0{resolved}\0{cfg!r}\0".encode())
         h.update(data)
         if b"import" in data:
             _import_stamp(path, data, h)

@@ -55,6 +55,7 @@ class Checker:
         # a method's parameter and return types, per method called in this file (a file calls the
         # same few functions many times: Vec3.from_xyz); the program does not change during a check
         self._signatures: dict[int, tuple[MethodSym, list[Ty], Ty | None]] = {}
+        self._found: dict[tuple[str, ...], object] = {}  # dotted name -> what it names from this file
 
     # ------------------------------------------------------------------ reporting
 
@@ -206,9 +207,19 @@ class Checker:
 
     # ------------------------------------------------------------------ types
 
+    def _lookup(self, parts: list[str]):
+        """program.lookup(parts) from this file, once per name and check (the program does not
+        change while a file is checked; a file names the same few types and namespaces often)."""
+        key = tuple(parts)
+        try:
+            return self._found[key]
+        except KeyError:
+            found = self._found[key] = self.p.lookup(parts, self.unit)
+            return found
+
     def _type_ref(self, ref: ast.TypeRef, want: str | None = None) -> Ty:
         parts = [p.name for p in ref.name.parts]
-        found = self.p.lookup(parts, self.unit)
+        found = self._lookup(parts)
         if found is None:
             outside = self.p.lookup_outside_visibility(parts) if self.unit.bundle else None
             if isinstance(outside, ModelSym) and outside.namespace is not None:
@@ -261,7 +272,10 @@ class Checker:
             if t.model is not None and t.model.is_trait:
                 traits.append(t.model)
         if len(alts) == 1:
-            return Ty(alts[0].sym, alts[0].array, tuple(traits)) if not alts[0].unknown else UNKNOWN
+            a = alts[0]
+            if a.unknown:
+                return UNKNOWN
+            return a if not traits and not a.traits else Ty(a.sym, a.array, tuple(traits))
         if any(a.unknown for a in alts):
             return UNKNOWN
         return Ty(alts=tuple(alts))
@@ -570,7 +584,7 @@ class Checker:
 
     def _name(self, ident: ast.Ident):
         name = ident.name
-        found = resolve.name_target(self.p, self.unit, self.outer, name)
+        found = resolve.name_target(self.p, self.unit, self.outer, name, self._lookup)
         if isinstance(found, MemberSym):
             self.occ(ident.span, found, "attribute")
             return self.p.member_type(found)

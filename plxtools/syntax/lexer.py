@@ -132,6 +132,9 @@ _SCAN_RE = re.compile(
     """,
     re.VERBOSE | re.DOTALL,
 )
+# _SCAN_RE's groups by number (m.lastindex: the one token group that matched; group 1 is the blanks)
+_NAME, _ARROW, _PUNCT, _NUMBER, _NL, _COMMENT, _STR, _TICK, _BAD, _EOF = (
+    _SCAN_RE.groupindex[g] for g in ("name", "arrow", "punct", "number", "nl", "comment", "str", "tick", "bad", "eof"))
 _SPACES_RE = re.compile(r" *")
 _IDENT_CHAR = re.compile(r"[A-Za-z0-9_.]")
 _BREAK_RE = re.compile(r"\r\n?|\n")  # the line breaks of OpenPLX (and of LSP): \r\n, \r, \n
@@ -270,10 +273,9 @@ class Lexer:
                     continue
 
                 m = scan(text, pos)
-                kind = m.lastgroup
-                start = m.end(1)
-                end = m.end()
-                if kind == "name":
+                kind = m.lastindex  # the token's group (numbers: _NAME ...)
+                start, end = m.span(kind)
+                if kind == _NAME:
                     # a Token built without its constructor's argument handling (the hot path)
                     word = text[start:end]
                     tok = new(Token, word)
@@ -287,7 +289,7 @@ class Lexer:
                     tokens.append(tok)
                     pos = end
                     continue
-                if kind == "punct":
+                if kind == _PUNCT:
                     ch = text[start]
                     tok = new(Token, ch)
                     tok.type = punct_type(ch)
@@ -328,7 +330,7 @@ class Lexer:
                         if not brackets:
                             snapshot = None
                     continue
-                if kind == "nl":
+                if kind == _NL:
                     pos = line_start = end
                     line += 1
                     if brackets:
@@ -348,7 +350,7 @@ class Lexer:
                     finish()
                     at_line_start = True
                     continue
-                if kind == "number":
+                if kind == _NUMBER:
                     word = text[start:end]
                     tok = new(Token, word)
                     tok.type = "NUMBER"
@@ -378,17 +380,17 @@ class Lexer:
                     tokens.append(tok)
                     pos = end
                     continue
-                if kind == "comment":
+                if kind == _COMMENT:
                     own = not (tokens and tokens[-1].end_line == line)
                     comments.append((start, line, start - line_start, end, text[start:end], own))
                     pos = end
                     continue
-                if kind == "str":
+                if kind == _STR:
                     self.pos, self.line, self.line_start = pos, line, line_start
                     tokens.append(self._string(text[start:end], start, fail, diagnostics))
                     pos, line, line_start = self.pos, self.line, self.line_start
                     continue
-                if kind == "tick":
+                if kind == _TICK:
                     word = text[start:end]
                     tok = Token("TICKNAME", word[1:-1], start, line, start - line_start, line, end - line_start, end)
                     if len(word) == 2:
@@ -397,11 +399,11 @@ class Lexer:
                     tokens.append(tok)
                     pos = end
                     continue
-                if kind == "arrow":
+                if kind == _ARROW:
                     tokens.append(Token("ARROW", "->", start, line, start - line_start, line, end - line_start, end))
                     pos = end
                     continue
-                if kind == "eof":  # blanks at the end of the text
+                if kind == _EOF:  # blanks at the end of the text
                     pos = end
                     continue
                 # a bad character
