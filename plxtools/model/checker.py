@@ -798,33 +798,41 @@ def _value_refs(expr) -> list[tuple[str, Span]]:
         return []
     out = []
     stack = [expr]
+    push, extend = stack.append, stack.extend
     while stack:
         x = stack.pop()
-        if isinstance(x, ast.Member) or isinstance(x, ast.Name):
+        cls = x.__class__  # (the expression classes have no subclasses)
+        if cls is _Member or cls is _Name:
             chain = []
             cur = x
-            while isinstance(cur, ast.Member):
+            while cur.__class__ is _Member:
                 chain.append(cur.name.name)
                 cur = cur.obj
-            if isinstance(cur, ast.Name):
+            if cur.__class__ is _Name:
                 chain.append(cur.ident.name)
                 out.append((".".join(reversed(chain)), x.span))
                 continue
-            stack.append(cur)
-        elif isinstance(x, ast.Call):
-            stack.append(x.func)
-            stack.extend(x.args)
-        elif isinstance(x, (ast.Binary,)):
-            stack.extend([x.left, x.right])
-        elif isinstance(x, ast.Unary):
-            stack.append(x.operand)
-        elif isinstance(x, ast.Paren):
-            stack.append(x.inner)
-        elif isinstance(x, (ast.Brace, ast.Array)):
-            stack.extend(x.items)
-        elif isinstance(x, ast.Index):
-            stack.extend([x.obj, x.index])
+            push(cur)
+        elif cls is _Call:
+            push(x.func)
+            extend(x.args)
+        elif cls is _Binary:
+            push(x.left)
+            push(x.right)
+        elif cls is _Unary:
+            push(x.operand)
+        elif cls is _Paren:
+            push(x.inner)
+        elif cls is _Brace or cls is _Array:
+            extend(x.items)
+        elif cls is _Index:
+            push(x.obj)
+            push(x.index)
     return out
+
+
+_Member, _Name, _Call, _Binary, _Unary, _Paren, _Brace, _Array, _Index = (
+    ast.Member, ast.Name, ast.Call, ast.Binary, ast.Unary, ast.Paren, ast.Brace, ast.Array, ast.Index)
 
 
 def _default_edges(body, prefix: str, edges: dict, spans: dict) -> None:

@@ -183,6 +183,7 @@ class Workspace:
         self.known_annotations: set[str] = set()
         self._loose_ns: dict[str, Namespace] = {}
         self._nearby: dict[Path, dict[str, Path]] = {}
+        self._plain_folders: set[str] = set()  # folders in no user bundle (one-shot commands: bundle_of)
         if bundle_set is None:
             try:
                 bundle_set = explicit_bundle_set([Path(p) for p in bundle_paths or []])
@@ -330,9 +331,19 @@ class Workspace:
             root = str(b.root)  # below the root: the root's path and a separator start the file's
             if rp.startswith(root) and len(rp) > len(root) and (rp[len(root)] == os.sep or root.endswith(os.sep)):
                 return b
+        import plxtools
+
+        # a one-shot command's files do not move into a bundle while it runs: a folder found to be in
+        # none is not walked up again for each of its files (the language server always asks)
+        one_shot = getattr(plxtools, "ONE_SHOT", False)
+        folder = os.path.dirname(rp)
+        if one_shot and folder in self._plain_folders:
+            return None
         user_root = find_user_bundle_root(path, {self.official_root})
         if user_root is not None:
             return self._load_user_bundle(user_root)
+        if one_shot:
+            self._plain_folders.add(folder)
         return None
 
     def unit_for(self, tree: ast.File) -> FileUnit:

@@ -147,6 +147,7 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
     walked: dict[tuple, tuple[list, frozenset, int]] = versions.walked if versions is not None else {}
     mkey = versions.key if versions is not None else id
     kept = versions.kept if versions is not None else None
+    fast = versions is None  # models are keyed by identity: a kept walk can be looked up inline
 
     def walk(ty: Ty, outer: set[tuple[str, ...]], depth: int, chain: tuple) -> tuple[list, frozenset, int, bool]:
         """What is missing below `ty`, relative to it: (findings, models met, height, cut short).
@@ -203,7 +204,19 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
                 for p in assigned:
                     if len(p) > 1:
                         below_of.setdefault(p[0], set()).add(p[1:])
-            below, met, h, c = walk(mty, below_of.get(name, _NONE), depth + 1, inner)
+            sub = below_of.get(name, _NONE)
+            hit = None
+            if fast and not mty.traits and isinstance(sym, ModelSym) and sym._walks is not None and id(sym) not in inner:
+                # a bundle model's kept walk, looked up here rather than by a call (most members)
+                u = sym.unit
+                if u is not None and u.bundle is not None and depth + 1 <= MAX_DEPTH:
+                    hit = sym._walks.get((id(sym), (), frozenset(sub)))
+                    if hit is not None and (depth + 1 + hit[2] > MAX_DEPTH or not hit[1].isdisjoint(inner)):
+                        hit = None
+            if hit is not None:
+                below, met, h, c = hit[0], hit[1], hit[2], False
+            else:
+                below, met, h, c = walk(mty, sub, depth + 1, inner)
             if below:
                 local = _anchor(mem, unit)
                 for kind, rel, shown, n, owner, a in below:
