@@ -6,7 +6,6 @@ go-to-definition, references and rename use in the language server.
 
 from __future__ import annotations
 
-import difflib
 import os
 from dataclasses import dataclass
 
@@ -73,6 +72,8 @@ class Checker:
 
     @staticmethod
     def _closest(name: str, options) -> str | None:
+        import difflib  # (only a file with an unknown name needs it)
+
         close = difflib.get_close_matches(name, list(options), n=1, cutoff=0.7)
         return close[0] if close else None
 

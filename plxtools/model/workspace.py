@@ -17,7 +17,6 @@ from pathlib import Path
 from plxtools import __version__
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix, Severity
 from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
-from plxtools.model import reuse
 from plxtools.model.checker import Checker, Occurrence
 from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
@@ -26,6 +25,19 @@ from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, 
 from plxtools.syntax import ast, parse_bytes, parse_file
 
 
+
+
+class _Reuse:
+    """model/reuse.py, imported on first use: only the language server re-uses analyses, so a
+    `plx lint` run does not import it."""
+
+    def __getattr__(self, name: str):
+        from plxtools.model import reuse as module
+
+        return getattr(module, name)
+
+
+reuse = _Reuse()
 
 
 class WorkspaceError(BundleSetError):

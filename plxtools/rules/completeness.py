@@ -138,10 +138,23 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
     seen: set[tuple[str, str]] = set()
     memo: dict[int, set[tuple[str, ...]]] = {}
 
+    below_layers: dict[tuple, set[tuple[str, ...]]] = {}  # the union over a run of layers (ids)
+
     def assigned_in(m: ModelSym) -> set[tuple[str, ...]]:
         got = memo.get(id(m))
         if got is None:
-            got = memo[id(m)] = _assigned(program, m)
+            lin = program.linearize(m)  # ends with m; the models of a file share their bases' layers
+            if len(lin) > 2:
+                key = tuple(map(id, lin[:-1]))
+                below = below_layers.get(key)
+                if below is None:
+                    below = below_layers[key] = set()
+                    for layer in lin[:-1]:
+                        below |= _own_assigned(layer)
+                got = below | _own_assigned(m)
+            else:
+                got = _assigned(program, m)
+            memo[id(m)] = got
         return got
 
     walked: dict[tuple, tuple[list, frozenset, int]] = versions.walked if versions is not None else {}
