@@ -228,14 +228,21 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
     """{file: diagnostics} for the files that are not cached, computed by worker processes, or {}
     when the run is too small, a file is in a bundle (files of a bundle see each other), or a
     config is broken (the ordinary loop then reports it where it did)."""
-    from plxtools.lint.resultcache import _in_bundle
+    from plxtools.lint.resultcache import _folder_in_bundle
 
     stop = {bundle_set.official_root.resolve()} if bundle_set.official_root is not None else set()
     todo = []
     size = 0
+    folders: dict[Path, bool] = {}  # folder -> inside a bundle (each folder walked up once)
     try:
         for f in files:
-            if f.name == "config.openplx" or _in_bundle(f, stop):
+            if f.name == "config.openplx":
+                return {}
+            folder = f.resolve().parent
+            inside = folders.get(folder)
+            if inside is None:
+                inside = folders[folder] = _folder_in_bundle(folder, stop)
+            if inside:
                 return {}
             cfg = _config(f, False, args)
             key = results.key(f, cfg) if results is not None else None
@@ -254,7 +261,15 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
     # the first file is linted here, before the fork: what it computes on the bundle program (bases,
     # member tables, types of bundle attributes) is then inherited, not computed again per worker
     done = [_lint_one((todo[0][0], todo[0][1]))]
-    done += workpool.map_ordered(_lint_one, [(f, cfg) for f, cfg, _ in todo[1:]], workers=workpool.cores())
+    rest = [(f, cfg) for f, cfg, _ in todo[1:]]
+    # this process is one of the workers: it lints its share of the files while the forked ones lint
+    # theirs, instead of waiting for them (one fork fewer: its start and the pages it would copy)
+    cores = workpool.cores()
+    mine = rest[:len(rest) // cores]
+    own: list = []
+    done += workpool.map_ordered(_lint_one, rest[len(mine):], workers=cores - 1,
+                                 meanwhile=lambda: own.extend(_lint_one(item) for item in mine))
+    done[1:1] = own
     out = {}
     for (f, _cfg, key), diags in zip(todo, done):
         out[f] = diags

@@ -6,7 +6,6 @@ go-to-definition, references and rename use in the language server.
 
 from __future__ import annotations
 
-import difflib
 import os
 from dataclasses import dataclass
 
@@ -53,6 +52,10 @@ class Checker:
         self._broken_cache: dict[int, dict[str, int]] = {}
         self._positional = False
         self._suggests = False
+        # a method's parameter and return types, per method called in this file (a file calls the
+        # same few functions many times: Vec3.from_xyz); the program does not change during a check
+        self._signatures: dict[int, tuple[MethodSym, list[Ty], Ty | None]] = {}
+        self._found: dict[tuple[str, ...], object] = {}  # dotted name -> what it names from this file
 
     # ------------------------------------------------------------------ reporting
 
@@ -69,6 +72,8 @@ class Checker:
         self.occurrences.append(Occurrence(span, target, kind))
 
     def _closest(self, name: str, options) -> str | None:
+        import difflib  # (only a file with an unknown name needs it)
+
         self._suggests = True  # the answer depends on every name in scope (model/reuse.py)
         close = difflib.get_close_matches(name, list(options), n=1, cutoff=0.7)
         return close[0] if close else None
@@ -204,9 +209,19 @@ class Checker:
 
     # ------------------------------------------------------------------ types
 
+    def _lookup(self, parts: list[str]):
+        """program.lookup(parts) from this file, once per name and check (the program does not
+        change while a file is checked; a file names the same few types and namespaces often)."""
+        key = tuple(parts)
+        try:
+            return self._found[key]
+        except KeyError:
+            found = self._found[key] = self.p.lookup(parts, self.unit)
+            return found
+
     def _type_ref(self, ref: ast.TypeRef, want: str | None = None) -> Ty:
         parts = [p.name for p in ref.name.parts]
-        found = self.p.lookup(parts, self.unit)
+        found = self._lookup(parts)
         if found is None:
             outside = self.p.lookup_outside_visibility(parts) if self.unit.bundle else None
             if isinstance(outside, ModelSym) and outside.namespace is not None:
@@ -260,7 +275,10 @@ class Checker:
             if t.model is not None and t.model.is_trait:
                 traits.append(t.model)
         if len(alts) == 1:
-            return Ty(alts[0].sym, alts[0].array, tuple(traits)) if not alts[0].unknown else UNKNOWN
+            a = alts[0]
+            if a.unknown:
+                return UNKNOWN
+            return a if not traits and not a.traits else Ty(a.sym, a.array, tuple(traits))
         if any(a.unknown for a in alts):
             return UNKNOWN
         return Ty(alts=tuple(alts))
@@ -569,7 +587,7 @@ class Checker:
 
     def _name(self, ident: ast.Ident):
         name = ident.name
-        found = resolve.name_target(self.p, self.unit, self.outer, name)
+        found = resolve.name_target(self.p, self.unit, self.outer, name, self._lookup)
         if isinstance(found, MemberSym):
             self.occ(ident.span, found, "attribute")
             return self.p.member_type(found)
@@ -626,9 +644,13 @@ class Checker:
         return UNKNOWN
 
     def _method_types(self, meth: MethodSym) -> tuple[list[Ty], Ty | None]:
+        got = self._signatures.get(id(meth))
+        if got is not None and got[0] is meth:
+            return got[1], got[2]
         unit = meth.owner.unit
         params = [self.p.resolve_type_ref(prm.type, unit) for prm in meth.stmt.params]
         ret = self.p.resolve_type_ref(meth.stmt.returns, unit) if meth.stmt.returns is not None else None
+        self._signatures[id(meth)] = (meth, params, ret)
         return params, ret
 
     def _call(self, e: ast.Call):
@@ -704,6 +726,11 @@ class Checker:
         _default_edges(body, "", edges, spans)
         if not edges or not any(edges.values()):
             return  # no default reads another value: no ring
+        # a value depends on a key that is its reference or a dotted prefix of it, so on nothing when
+        # no reference starts with the first name of a key (`size: Math.Vec3.from_xyz(...)`)
+        firsts = {k.split(".", 1)[0] for k in edges}
+        if not any(r.split(".", 1)[0] in firsts for refs in edges.values() for r, _ in refs):
+            return
         keys = list(edges)
         order = {k: i for i, k in enumerate(keys)}
 
@@ -774,33 +801,41 @@ def _value_refs(expr) -> list[tuple[str, Span]]:
         return []
     out = []
     stack = [expr]
+    push, extend = stack.append, stack.extend
     while stack:
         x = stack.pop()
-        if isinstance(x, ast.Member) or isinstance(x, ast.Name):
+        cls = x.__class__  # (the expression classes have no subclasses)
+        if cls is _Member or cls is _Name:
             chain = []
             cur = x
-            while isinstance(cur, ast.Member):
+            while cur.__class__ is _Member:
                 chain.append(cur.name.name)
                 cur = cur.obj
-            if isinstance(cur, ast.Name):
+            if cur.__class__ is _Name:
                 chain.append(cur.ident.name)
                 out.append((".".join(reversed(chain)), x.span))
                 continue
-            stack.append(cur)
-        elif isinstance(x, ast.Call):
-            stack.append(x.func)
-            stack.extend(x.args)
-        elif isinstance(x, (ast.Binary,)):
-            stack.extend([x.left, x.right])
-        elif isinstance(x, ast.Unary):
-            stack.append(x.operand)
-        elif isinstance(x, ast.Paren):
-            stack.append(x.inner)
-        elif isinstance(x, (ast.Brace, ast.Array)):
-            stack.extend(x.items)
-        elif isinstance(x, ast.Index):
-            stack.extend([x.obj, x.index])
+            push(cur)
+        elif cls is _Call:
+            push(x.func)
+            extend(x.args)
+        elif cls is _Binary:
+            push(x.left)
+            push(x.right)
+        elif cls is _Unary:
+            push(x.operand)
+        elif cls is _Paren:
+            push(x.inner)
+        elif cls is _Brace or cls is _Array:
+            extend(x.items)
+        elif cls is _Index:
+            push(x.obj)
+            push(x.index)
     return out
+
+
+_Member, _Name, _Call, _Binary, _Unary, _Paren, _Brace, _Array, _Index = (
+    ast.Member, ast.Name, ast.Call, ast.Binary, ast.Unary, ast.Paren, ast.Brace, ast.Array, ast.Index)
 
 
 def _default_edges(body, prefix: str, edges: dict, spans: dict) -> None:

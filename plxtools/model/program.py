@@ -311,7 +311,9 @@ class Program:
                 traits.append(t)
         if len(alts) == 1:
             a = alts[0]
-            return Ty(a.sym, a.array, tuple(traits)) if not a.unknown else UNKNOWN
+            if a.unknown:
+                return UNKNOWN
+            return a if not traits and not a.traits else Ty(a.sym, a.array, tuple(traits))
         if any(a.unknown for a in alts):
             return UNKNOWN
         return Ty(alts=tuple(alts))

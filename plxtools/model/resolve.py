@@ -354,14 +354,15 @@ def global_meaning(p: "Program", found):
     return None
 
 
-def name_target(p: "Program", unit: FileUnit, outer: ModelSym | None, name: str):
+def name_target(p: "Program", unit: FileUnit, outer: ModelSym | None, name: str, lookup=None):
     """The symbol a bare name in an expression refers to: an attribute of the enclosing model,
-    else a global name (namespace, global value, model, primitive); None if nothing."""
+    else a global name (namespace, global value, model, primitive); None if nothing. `lookup`:
+    the caller's `p.lookup(parts, unit)` (the checker remembers its answers per file)."""
     if outer is not None:
         mem = all_members(p, outer).get(name)
         if mem is not None:
             return mem
-    return p.lookup([name], unit)
+    return p.lookup([name], unit) if lookup is None else lookup([name])
 
 
 def member_target(p: "Program", base, name: str):

@@ -193,5 +193,4 @@ def doc_of(body: list[ast.Stmt] | None) -> str | None:
     return None
 
 
-for _cls in (FileUnit, Namespace, ModelSym, MemberSym, GlobalSym, MethodSym, OperatorSym, Ty):
-    fast_pickling(_cls)
+fast_pickling(FileUnit, Namespace, ModelSym, MemberSym, GlobalSym, MethodSym, OperatorSym, Ty)

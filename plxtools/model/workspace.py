@@ -16,7 +16,6 @@ from pathlib import Path
 from plxtools import __version__
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix, Severity
 from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
-from plxtools.model import reuse
 from plxtools.model.checker import Checker, Occurrence
 from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
@@ -25,6 +24,19 @@ from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, 
 from plxtools.syntax import ast, parse_bytes, parse_file
 
 
+
+
+class _Reuse:
+    """model/reuse.py, imported on first use: only the language server re-uses analyses, so a
+    `plx lint` run does not import it."""
+
+    def __getattr__(self, name: str):
+        from plxtools.model import reuse as module
+
+        return getattr(module, name)
+
+
+reuse = _Reuse()
 
 
 class WorkspaceError(BundleSetError):
@@ -62,7 +74,7 @@ def _cache_dir() -> Path:
     return cache_dir()
 
 
-_CACHE_FORMAT = 8  # bump when the pickled classes change shape
+_CACHE_FORMAT = 9  # bump when the pickled classes change shape
 
 
 def _cache_key(paths: list) -> str:
@@ -142,8 +154,14 @@ def _store_cached(name: str, value, prefix: str) -> None:
 def _write_cached(folder: Path, name: str, value, prefix: str) -> None:
     try:
         tmp = folder / f".{name}.{os.getpid()}.tmp"
+        from plxtools.diagnostics import Pos, Span
+        from plxtools.pickling import tuple_reducers
+
         with open(tmp, "wb") as fh:
-            pickle.dump(value, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            pickler = pickle.Pickler(fh, protocol=pickle.HIGHEST_PROTOCOL)
+            # about 45k positions and spans: rebuilt by tuple.__new__, not their Python __new__
+            pickler.dispatch_table = tuple_reducers(Pos, Span)
+            pickler.dump(value)
         os.replace(tmp, folder / name)
         for old in folder.glob(f"{prefix}*.pickle"):
             if old.name != name:
@@ -170,6 +188,7 @@ class Workspace:
         self.known_annotations: set[str] = set()
         self._loose_ns: dict[str, Namespace] = {}
         self._nearby: dict[Path, dict[str, Path]] = {}
+        self._plain_folders: set[str] = set()  # folders in no user bundle (one-shot commands: bundle_of)
         if bundle_set is None:
             try:
                 bundle_set = explicit_bundle_set([Path(p) for p in bundle_paths or []])
@@ -317,9 +336,19 @@ class Workspace:
             root = str(b.root)  # below the root: the root's path and a separator start the file's
             if rp.startswith(root) and len(rp) > len(root) and (rp[len(root)] == os.sep or root.endswith(os.sep)):
                 return b
+        import plxtools
+
+        # a one-shot command's files do not move into a bundle while it runs: a folder found to be in
+        # none is not walked up again for each of its files (the language server always asks)
+        one_shot = getattr(plxtools, "ONE_SHOT", False)
+        folder = os.path.dirname(rp)
+        if one_shot and folder in self._plain_folders:
+            return None
         user_root = find_user_bundle_root(path, {self.official_root})
         if user_root is not None:
             return self._load_user_bundle(user_root)
+        if one_shot:
+            self._plain_folders.add(folder)
         return None
 
     def unit_for(self, tree: ast.File) -> FileUnit:

@@ -18,6 +18,15 @@ MAX_DEPTH = 40
 MAX_SHARED_WALKS = 64  # walks kept per bundle model (per set of values given from outside)
 
 
+_NONE: frozenset = frozenset()
+
+
+def _anchor(mem, unit):
+    """Where a finding about `mem` is shown: its declaration when it is in this file (else None,
+    the nearest anchor above)."""
+    return mem.stmt.path.span if mem.owner.unit is unit and mem.stmt.path is not None else None
+
+
 def root_model(program: Program, unit) -> ModelSym | None:
     last = None
     for s in unit.tree.statements:
@@ -129,15 +138,29 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
     seen: set[tuple[str, str]] = set()
     memo: dict[int, set[tuple[str, ...]]] = {}
 
+    below_layers: dict[tuple, set[tuple[str, ...]]] = {}  # the union over a run of layers (ids)
+
     def assigned_in(m: ModelSym) -> set[tuple[str, ...]]:
         got = memo.get(id(m))
         if got is None:
-            got = memo[id(m)] = _assigned(program, m)
+            lin = program.linearize(m)  # ends with m; the models of a file share their bases' layers
+            if len(lin) > 2:
+                key = tuple(map(id, lin[:-1]))
+                below = below_layers.get(key)
+                if below is None:
+                    below = below_layers[key] = set()
+                    for layer in lin[:-1]:
+                        below |= _own_assigned(layer)
+                got = below | _own_assigned(m)
+            else:
+                got = _assigned(program, m)
+            memo[id(m)] = got
         return got
 
     walked: dict[tuple, tuple[list, frozenset, int]] = versions.walked if versions is not None else {}
     mkey = versions.key if versions is not None else id
     kept = versions.kept if versions is not None else None
+    fast = versions is None  # models are keyed by identity: a kept walk can be looked up inline
 
     def walk(ty: Ty, outer: set[tuple[str, ...]], depth: int, chain: tuple) -> tuple[list, frozenset, int, bool]:
         """What is missing below `ty`, relative to it: (findings, models met, height, cut short).
@@ -147,14 +170,15 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
         a subtree is walked once per (model, traits, values given from outside) and re-used; only
         when re-using it cannot differ from walking it again (no cycle or depth cut inside, none of
         its models on the current chain, still within the depth limit)."""
-        model = ty.model
-        if model is None:
+        model = ty.sym
+        if not isinstance(model, ModelSym):
             return [], frozenset(), 0, False
         me = mkey(model)
         if depth > MAX_DEPTH or me in chain:
             return [], frozenset(), 0, True
-        key = (me, tuple(mkey(t) for t in ty.traits), frozenset(outer))
-        shared = _shared(model, ty.traits)
+        traits = ty.traits
+        key = (me, tuple(map(mkey, traits)) if traits else (), frozenset(outer))
+        shared = _shared(model, traits)
         if shared:
             hit = model._walks.get(key) if model._walks is not None else None
         else:
@@ -164,35 +188,55 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
         if hit is not None and depth + hit[2] <= MAX_DEPTH and hit[1].isdisjoint(chain):
             return hit[0], hit[1], hit[2], False
         assigned = assigned_in(model) | outer
-        for t in ty.traits:
+        for t in traits:
             assigned |= assigned_in(t)
+        below_of = None  # member name -> the paths below it given a value (built on first need)
         finds: list = []
         models = {me}
         height = 0
         cut = False
         inner = chain + (me,)
+        member_type = program.member_type
         for name, mem in program.members_of(ty).items():
-            mty = program.member_type(mem)
-            here = (name,) in assigned or mem.value is not None
-            local = mem.stmt.path.span if mem.owner.unit is unit and mem.stmt.path is not None else None
+            mty = mem.ty if mem.ty is not None else member_type(mem)
             if mem.reference:
-                if not here and not mem.optional:
-                    finds.append(("ref", (name,), mty.display(), name, mem.owner.qname, local))
+                if not mem.optional and mem.value is None and (name,) not in assigned:
+                    finds.append(("ref", (name,), mty.display(), name, mem.owner.qname, _anchor(mem, unit)))
                 continue
-            if mty.unknown or mty.alts or mty.array:
+            sym = mty.sym
+            if sym is None or mty.alts or mty.array:
                 continue
-            if mty.primitive is not None:
-                if mty.primitive in REQUIRED_PRIMITIVES and not here and not mem.optional:
-                    finds.append(("val", (name,), mty.primitive, name, mem.owner.qname, local))
+            if isinstance(sym, str):
+                if sym in REQUIRED_PRIMITIVES and not mem.optional and mem.value is None and (name,) not in assigned:
+                    finds.append(("val", (name,), sym, name, mem.owner.qname, _anchor(mem, unit)))
                 continue
             if mem.value is not None or (name,) in assigned:
                 continue  # given an existing object or a computed value (checked where it is made)
-            sub = {p[1:] for p in assigned if len(p) > 1 and p[0] == name}
-            below, met, h, c = walk(mty, sub, depth + 1, inner)
-            for kind, rel, shown, n, owner, a in below:
-                finds.append((kind, (name,) + rel, shown, n, owner, a if a is not None else local))
+            if below_of is None:
+                below_of = {}
+                for p in assigned:
+                    if len(p) > 1:
+                        below_of.setdefault(p[0], set()).add(p[1:])
+            sub = below_of.get(name, _NONE)
+            hit = None
+            if fast and not mty.traits and isinstance(sym, ModelSym) and sym._walks is not None and id(sym) not in inner:
+                # a bundle model's kept walk, looked up here rather than by a call (most members)
+                u = sym.unit
+                if u is not None and u.bundle is not None and depth + 1 <= MAX_DEPTH:
+                    hit = sym._walks.get((id(sym), (), frozenset(sub)))
+                    if hit is not None and (depth + 1 + hit[2] > MAX_DEPTH or not hit[1].isdisjoint(inner)):
+                        hit = None
+            if hit is not None:
+                below, met, h, c = hit[0], hit[1], hit[2], False
+            else:
+                below, met, h, c = walk(mty, sub, depth + 1, inner)
+            if below:
+                local = _anchor(mem, unit)
+                for kind, rel, shown, n, owner, a in below:
+                    finds.append((kind, (name,) + rel, shown, n, owner, a if a is not None else local))
             models.update(met)
-            height = max(height, h + 1)
+            if h + 1 > height:
+                height = h + 1
             cut = cut or c
         got = (finds, frozenset(models), height)
         if not cut:

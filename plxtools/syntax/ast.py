@@ -296,5 +296,4 @@ def _all_subclasses(cls):
         yield from _all_subclasses(sub)
 
 
-for _cls in (Node, *_all_subclasses(Node)):
-    fast_pickling(_cls)
+fast_pickling(Node, *_all_subclasses(Node))

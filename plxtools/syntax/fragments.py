@@ -7,9 +7,7 @@ names and brackets mean the same thing everywhere.
 
 from __future__ import annotations
 
-from lark import Token
-
-from plxtools.syntax.lexer import Lexer
+from plxtools.syntax.lexer import Lexer, Token
 
 
 def fragment_tokens(text: str) -> list[Token]:

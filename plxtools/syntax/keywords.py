@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import difflib
-
 from plxtools.syntax.lexer import KEYWORDS
 
 
@@ -14,5 +12,7 @@ def closest_keyword(word: str, expected_types: set[str] | None = None) -> str | 
         return None
     options = [kw for kw, ty in KEYWORDS.items() if expected_types is None or ty in expected_types]
     options = [kw for kw in options if len(kw) > 2]  # 'is', 'or', 'fn', 'as' match too many names
+    import difflib  # (only a line that did not parse needs it)
+
     close = difflib.get_close_matches(word, options, n=1, cutoff=0.75)
     return close[0] if close else None

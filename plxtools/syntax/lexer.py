@@ -10,9 +10,55 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from lark import Token
-
 from plxtools.diagnostics import Diagnostic, Pos, Severity, Span
+
+
+class Token(str):
+    """A token: its text, kind (`type`) and place. The fields and behaviour of lark's `Token`
+    (equality also compares the kind, the same constructor), so the LALR fallback parses these
+    tokens as they are; being plxtools' own class, lexing (and a whole run whose lines the fast
+    path builds) does not import lark (about 35 ms of every start-up)."""
+
+    __slots__ = ("type", "start_pos", "value", "line", "column", "end_line", "end_column", "end_pos")
+    __match_args__ = ("type", "value")
+
+    def __new__(cls, type, value, start_pos=None, line=None, column=None, end_line=None, end_column=None,
+                end_pos=None):
+        inst = str.__new__(cls, value)
+        inst.type = type
+        inst.start_pos = start_pos
+        inst.value = value
+        inst.line = line
+        inst.column = column
+        inst.end_line = end_line
+        inst.end_column = end_column
+        inst.end_pos = end_pos
+        return inst
+
+    @classmethod
+    def new_borrow_pos(cls, type_: str, value, borrow_t: "Token") -> "Token":
+        return cls(type_, value, borrow_t.start_pos, borrow_t.line, borrow_t.column, borrow_t.end_line,
+                   borrow_t.end_column, borrow_t.end_pos)
+
+    def update(self, type: str | None = None, value=None) -> "Token":
+        return Token.new_borrow_pos(type if type is not None else self.type,
+                                    value if value is not None else self.value, self)
+
+    def __reduce__(self):
+        return (self.__class__, (self.type, self.value, self.start_pos, self.line, self.column))
+
+    def __repr__(self) -> str:
+        return "Token(%r, %r)" % (self.type, self.value)
+
+    def __deepcopy__(self, memo):
+        return Token(self.type, self.value, self.start_pos, self.line, self.column)
+
+    def __eq__(self, other):
+        if isinstance(other, Token) and self.type != other.type:
+            return False
+        return str.__eq__(self, other)
+
+    __hash__ = str.__hash__
 
 KEYWORDS = {
     "is": "IS",
@@ -86,6 +132,9 @@ _SCAN_RE = re.compile(
     """,
     re.VERBOSE | re.DOTALL,
 )
+# _SCAN_RE's groups by number (m.lastindex: the one token group that matched; group 1 is the blanks)
+_NAME, _ARROW, _PUNCT, _NUMBER, _NL, _COMMENT, _STR, _TICK, _BAD, _EOF = (
+    _SCAN_RE.groupindex[g] for g in ("name", "arrow", "punct", "number", "nl", "comment", "str", "tick", "bad", "eof"))
 _SPACES_RE = re.compile(r" *")
 _IDENT_CHAR = re.compile(r"[A-Za-z0-9_.]")
 _BREAK_RE = re.compile(r"\r\n?|\n")  # the line breaks of OpenPLX (and of LSP): \r\n, \r, \n
@@ -224,11 +273,10 @@ class Lexer:
                     continue
 
                 m = scan(text, pos)
-                kind = m.lastgroup
-                start = m.end(1)
-                end = m.end()
-                if kind == "name":
-                    # a lark Token built without its constructor's argument handling (the hot path)
+                kind = m.lastindex  # the token's group (numbers: _NAME ...)
+                start, end = m.span(kind)
+                if kind == _NAME:
+                    # a Token built without its constructor's argument handling (the hot path)
                     word = text[start:end]
                     tok = new(Token, word)
                     tok.type = keyword(word, "NAME")
@@ -241,7 +289,7 @@ class Lexer:
                     tokens.append(tok)
                     pos = end
                     continue
-                if kind == "punct":
+                if kind == _PUNCT:
                     ch = text[start]
                     tok = new(Token, ch)
                     tok.type = punct_type(ch)
@@ -282,7 +330,7 @@ class Lexer:
                         if not brackets:
                             snapshot = None
                     continue
-                if kind == "nl":
+                if kind == _NL:
                     pos = line_start = end
                     line += 1
                     if brackets:
@@ -302,7 +350,7 @@ class Lexer:
                     finish()
                     at_line_start = True
                     continue
-                if kind == "number":
+                if kind == _NUMBER:
                     word = text[start:end]
                     tok = new(Token, word)
                     tok.type = "NUMBER"
@@ -332,17 +380,17 @@ class Lexer:
                     tokens.append(tok)
                     pos = end
                     continue
-                if kind == "comment":
+                if kind == _COMMENT:
                     own = not (tokens and tokens[-1].end_line == line)
                     comments.append((start, line, start - line_start, end, text[start:end], own))
                     pos = end
                     continue
-                if kind == "str":
+                if kind == _STR:
                     self.pos, self.line, self.line_start = pos, line, line_start
                     tokens.append(self._string(text[start:end], start, fail, diagnostics))
                     pos, line, line_start = self.pos, self.line, self.line_start
                     continue
-                if kind == "tick":
+                if kind == _TICK:
                     word = text[start:end]
                     tok = Token("TICKNAME", word[1:-1], start, line, start - line_start, line, end - line_start, end)
                     if len(word) == 2:
@@ -351,11 +399,11 @@ class Lexer:
                     tokens.append(tok)
                     pos = end
                     continue
-                if kind == "arrow":
+                if kind == _ARROW:
                     tokens.append(Token("ARROW", "->", start, line, start - line_start, line, end - line_start, end))
                     pos = end
                     continue
-                if kind == "eof":  # blanks at the end of the text
+                if kind == _EOF:  # blanks at the end of the text
                     pos = end
                     continue
                 # a bad character

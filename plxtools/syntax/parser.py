@@ -5,14 +5,16 @@ from __future__ import annotations
 import threading
 from pathlib import Path
 
-from lark import Lark, Token, Transformer
-from lark.exceptions import UnexpectedEOF, UnexpectedInput, UnexpectedToken
-from lark.lexer import Lexer as LarkLexer
+from typing import TYPE_CHECKING
 
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Severity, Span
 from plxtools.syntax import ast
 from plxtools.syntax.keywords import closest_keyword
-from plxtools.syntax.lexer import LogicalLine, lex
+from plxtools.syntax.lexer import LogicalLine, Token, lex
+
+if TYPE_CHECKING:  # lark is imported when the LALR fallback is first needed (_get_parser)
+    from lark import Lark
+    from lark.exceptions import UnexpectedInput
 from plxtools.syntax.source import LineIndex, decode, decode_text, line_start
 
 # ------------------------------------------------------------------ building nodes
@@ -53,8 +55,9 @@ def _is_tok(x, kind: str) -> bool:
 _STRING_KINDS = {"@": "path", "$": "interp"}
 
 
-class _Build(Transformer):
-    """Turns each grammar rule straight into an AST node (no intermediate lark tree)."""
+class _Build:
+    """Turns each grammar rule straight into an AST node (no intermediate lark tree). The fast
+    path calls some of these itself; the LALR parser gets them as a lark Transformer (_get_parser)."""
 
     # names and types
     def name(self, c):
@@ -211,16 +214,6 @@ class _Build(Transformer):
         return ast.Declaration(span, span, c[1], None, None, const=True, colon=c[2] is not None)
 
 
-class _PassThrough(LarkLexer):
-    """The logical line is already tokenised; hand its tokens to the LALR parser as they are."""
-
-    def __init__(self, lexer_conf):  # noqa: D401 - lark's lexer protocol
-        pass
-
-    def lex(self, data, parser_state=None):
-        return iter(data)
-
-
 def _lark_cache_file() -> str | bool:
     import os
 
@@ -234,7 +227,7 @@ def _lark_cache_file() -> str | bool:
 
 
 _parser_lock = threading.Lock()
-_PARSER: Lark | None = None
+_PARSER: "Lark | None" = None
 
 
 def _get_parser() -> Lark:
@@ -242,8 +235,12 @@ def _get_parser() -> Lark:
     if _PARSER is None:
         with _parser_lock:
             if _PARSER is None:
+                from lark import Lark
+
                 grammar = Path(__file__).with_name("openplx.lark").read_text(encoding="utf-8")
-                options = dict(parser="lalr", lexer=_PassThrough, transformer=_Build(), maybe_placeholders=True)
+                from plxtools.syntax.lalr import LarkBuild, PassThrough
+
+                options = dict(parser="lalr", lexer=PassThrough, transformer=LarkBuild(), maybe_placeholders=True)
                 try:  # lark caches its grammar analysis, keyed by the grammar and options
                     _PARSER = Lark(grammar, cache=_lark_cache_file(), **options)
                 except Exception:  # an unwritable or stale cache must never stop parsing
@@ -307,7 +304,9 @@ def _expected_text(expected: set[str]) -> str:
 _CLOSER_OF = {"LPAR": "RPAR", "LSQB": "RSQB", "LBRACE": "RBRACE"}
 
 
-def _syntax_error(exc: UnexpectedInput, line: LogicalLine) -> Diagnostic:
+def _syntax_error(exc: "UnexpectedInput", line: LogicalLine) -> Diagnostic:
+    from lark.exceptions import UnexpectedEOF, UnexpectedToken
+
     tok = getattr(exc, "token", None)
     expected = getattr(exc, "expected", None) or set()
     if isinstance(exc, UnexpectedEOF) or tok is None or tok.type == "$END":
@@ -770,13 +769,19 @@ def _parse_line(parser: Lark | None, line: LogicalLine, text: str, diags: list[D
             return stmt
     try:  # the LALR parser is built on the first line the fast path leaves to it (not at all for most files)
         return (parser if parser is not None else _get_parser()).parse(line.tokens)
-    except UnexpectedInput as exc:
+    except _unexpected_input() as exc:  # (evaluated only when the parse raised: lark is loaded then)
         diags.append(_syntax_error(exc, line))
     except RecursionError:
         diags.append(
             Diagnostic("S007", "expression nested too deeply", _line_span(line), Severity.ERROR)
         )
     return _error_stmt(line, text)
+
+
+def _unexpected_input():
+    from lark.exceptions import UnexpectedInput
+
+    return UnexpectedInput
 
 
 def _line_span(line: LogicalLine) -> Span:
