@@ -65,7 +65,7 @@ class FileAnalysis:
     @property
     def occurrences(self) -> list[Occurrence]:
         got = self._occurrences
-        if isinstance(got, reuse.Occurrences):
+        if not isinstance(got, list):  # a reuse.Occurrences (checking `list` keeps reuse unimported)
             got = self._occurrences = got.all()
         return got
 
