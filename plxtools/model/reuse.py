@@ -53,7 +53,7 @@ class Snapshot:
     epoch: int  # the program's epoch right after this file was registered
     file_key: tuple
     keys: list  # per top-level statement
-    parts: list  # Part per top-level statement (None: not recorded)
+    parts: list  # Part per top-level statement
     unit: FileUnit  # the version these findings belong to (their targets are its symbols)
     serials: dict = field(default_factory=dict)  # statement key -> a small number, kept between versions
     words: dict = field(default_factory=dict)  # statement text -> its words (statement_keys)
@@ -107,7 +107,7 @@ def file_key(program, unit: FileUnit, known_annotations) -> tuple | None:
     """What every statement's check depends on besides the statements it names; None when the
     file has something this module does not follow (imports, names that are not plain words)."""
     tree = unit.tree
-    imports, operators, broken = [], [], []
+    operators, broken = [], []
     text = tree.text
     for s in tree.statements:
         if isinstance(s, ast.Import):
@@ -119,8 +119,7 @@ def file_key(program, unit: FileUnit, known_annotations) -> tuple | None:
         name = _defined(s)
         if name is not None and not _PLAIN.match(name):
             return None
-    return (unit.path, unit.bundle, id(program), tuple(operators), tuple(broken), tuple(imports),
-            frozenset(known_annotations or ()))
+    return (unit.path, unit.bundle, tuple(operators), tuple(broken), frozenset(known_annotations or ()))
 
 
 def regions(tree: ast.File) -> list[tuple[int, int, int]]:
@@ -136,14 +135,15 @@ def regions(tree: ast.File) -> list[tuple[int, int, int]]:
     return out
 
 
-def statement_keys(tree: ast.File, regs: list[tuple[int, int, int]], words: dict | None = None) -> list[tuple]:
-    """`words`: the words of each statement text seen before (text -> frozenset), kept between
-    versions so only changed statements are scanned; it is updated to this version's texts."""
+def statement_keys(tree: ast.File, regs: list[tuple[int, int, int]], defined: list, words: dict | None = None
+                   ) -> list[tuple]:
+    """`defined`: the name each statement defines (or None); `words`: the words of each statement
+    text seen before (text -> frozenset), kept between versions so only changed statements are
+    scanned; it is updated to this version's texts."""
     text = tree.text
     texts = [text[a:b] for a, b, _ in regs]
     defs: dict[str, list[int]] = {}
-    for i, s in enumerate(tree.statements):
-        name = _defined(s)
+    for i, name in enumerate(defined):
         if name is not None:
             defs.setdefault(name, []).append(i)
     seen_words = words if words is not None else {}
@@ -193,26 +193,23 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
     n = len(regs)
     if fkey is None:
         return Plan([], regs, (), {}, set(range(n)), [], False)
+    defined = [_defined(s) for s in tree.statements]
+    names = frozenset(name for name in defined if name is not None)
     words = previous.words if previous is not None and previous.path == unit.path else {}
-    keys = statement_keys(tree, regs, words)
-    if (previous is None or previous.program is not program or previous.path != unit.path
-            or previous.epoch != others or previous.file_key != fkey):
-        out = Plan(keys, regs, fkey, {}, set(range(n)), [], True)
-        out.words = words
-        out.names = frozenset(n for n in (_defined(s_) for s_ in tree.statements) if n is not None)
+    keys = statement_keys(tree, regs, defined, words)
+    if previous is None or previous.program is not program or previous.epoch != others or previous.file_key != fkey:
+        out = Plan(keys, regs, fkey, {}, set(range(n)), [], True, words=words, names=names)
         out.number(None)
         return out
     by_key: dict[tuple, list[int]] = {}
     for j, k in enumerate(previous.keys):
-        if previous.parts[j] is not None:
-            by_key.setdefault(k, []).append(j)
+        by_key.setdefault(k, []).append(j)
     matched: dict[int, Part] = {}
     for i, k in enumerate(keys):
         olds = by_key.get(k)
         if olds:
             matched[i] = previous.parts[olds.pop(0)]
     moves = sorted((p.start, p.end, regs[i][0] - p.start, regs[i][2] - p.line) for i, p in matched.items())
-    names = frozenset(n for n in (_defined(s_) for s_ in tree.statements) if n is not None)
     reused: dict[int, Part] = {}
     for i, p in matched.items():
         start, end, line = regs[i]
@@ -231,9 +228,7 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
         if extra is None:
             continue
         reused[i] = Part(start, end, line, diags, None, p.positional, extra, p.records, p.uses, p.names)
-    out = Plan(keys, regs, fkey, reused, set(range(n)) - set(reused), moves, True, True)
-    out.words = words
-    out.names = names
+    out = Plan(keys, regs, fkey, reused, set(range(n)) - set(reused), moves, True, True, words=words, names=names)
     out.number(previous)
     return out
 
@@ -258,16 +253,11 @@ def record(part: Part, occs: list, unit: FileUnit, regs: list, serials: list) ->
         if home is unit:
             if table is not None and o.kind != "definition" and tt is ModelSym and table.get(target.name) is target:
                 uses.add(target.name)
-            tstmt = target.stmt
-            if tstmt is None:
+            where = place(starts, serials, target.stmt) if target.stmt is not None else None
+            if where is None:
                 part.records = None
                 return
-            at = tstmt.span.start.offset
-            k = bisect.bisect_right(starts, at) - 1
-            if k < 0:
-                part.records = None
-                return
-            target = (tt, target.name, serials[k], at - starts[k])
+            target = (tt, target.name, *where)
         out.append((s.offset - start, s.line - line, s.column, e.offset - start, e.line - line, e.column, o.kind,
                     target, home is unit))
     part.records = out
@@ -340,10 +330,9 @@ def _symbol_index(unit: FileUnit, regs: list, serials: list) -> dict:
     out: dict = {}
 
     def put(sym, cls) -> None:
-        at = sym.stmt.span.start.offset
-        k = bisect.bisect_right(starts, at) - 1
-        if k >= 0:
-            out[(cls, sym.name, serials[k], at - starts[k])] = sym
+        where = place(starts, serials, sym.stmt)
+        if where is not None:
+            out[(cls, sym.name, *where)] = sym
 
     table = unit.locals if unit.bundle is None else unit.namespace.symbols
     stack = []
@@ -367,6 +356,14 @@ def _symbol_index(unit: FileUnit, regs: list, serials: list) -> dict:
     return out
 
 
+def place(starts: list, serials: list, stmt) -> tuple[int, int] | None:
+    """Where a symbol's statement is, in terms that survive moves: (serial of the top-level
+    statement holding it, offset from that statement's start)."""
+    at = stmt.span.start.offset
+    k = bisect.bisect_right(starts, at) - 1
+    return (serials[k], at - starts[k]) if k >= 0 else None
+
+
 def _region(moves: list, offset: int):
     i = bisect.bisect_right(moves, (offset, float("inf"))) - 1
     if i >= 0:
@@ -384,7 +381,7 @@ def _move_span(moves: list, span: Span) -> Span | None:
         return span
     s, e = span
     do, dl = m[2], m[3]
-    return Span(Pos(s.offset + do, s.line + dl, s.column), Pos(e.offset + do, e.line + dl, e.column))
+    return _span(s.offset + do, s.line + dl, s.column, e.offset + do, e.line + dl, e.column)
 
 
 def _move_diag(moves: list, d: Diagnostic, path: str) -> Diagnostic | None:

@@ -404,20 +404,15 @@ class Workspace:
         path = tree.path or "<stdin>"
         others = self.program.epoch_without(path)
         unit = self.unit_for(tree)
-        plan = None
-        if previous is None and not keep:
-            checker = Checker(self.program, unit, self.known_annotations)
-            checker.run()
-            diags = checker.diags + self._bundle_config_diagnostics(tree)
-            occurrences = checker.occurrences
-            snap = None
+        plan = reuse.plan(previous, self.program, unit, others, self.known_annotations) if keep or previous else None
+        checker = Checker(self.program, unit, self.known_annotations)
+        checker.run(plan.dirty if plan is not None else None)
+        if plan is None:
+            diags, occurrences, snap = checker.diags, checker.occurrences, None
         else:
-            plan = reuse.plan(previous, self.program, unit, others, self.known_annotations)
-            checker = Checker(self.program, unit, self.known_annotations)
-            checker.run(plan.dirty)
             diags, occurrences, snap = reuse.assemble(checker, plan, unit, self.program, self.known_annotations,
                                                       Occurrence)
-            diags += self._bundle_config_diagnostics(tree)
+        diags += self._bundle_config_diagnostics(tree)
         for d in diags:
             d.file = tree.path
         self._help_for_unloaded_bundles(tree, diags)

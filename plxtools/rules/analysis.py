@@ -67,34 +67,18 @@ def _completeness_again(program, fa, tree: ast.File, previous, plan) -> list[Dia
         found = [plan.move_diag(d, tree.path) for d in last[1]]
         if any(d is None for d in found):
             found = None
+    walks = previous.extra.get("walks") if previous is not None and plan.based else None
+    versions = Versions(fa.unit, plan.regions, plan.serials, walks, plan.move_span)
     if found is None:
-        walks = previous.extra.get("walks") if previous is not None and plan.based else None
-        versions = Versions(fa.unit, plan.regions, plan.serials, walks, plan.move_span)
         found = completeness_diagnostics(program, fa.unit, list(tree.diagnostics) + fa.diagnostics,
                                          versions=versions)
         found = [fresh(d) for d in found]
         fa.snapshot.extra["walks"] = versions.walked
-    elif previous is not None and "walks" in previous.extra:
-        fa.snapshot.extra["walks"] = _moved_walks(previous.extra["walks"], plan)
+    else:
+        fa.snapshot.extra["walks"] = versions.carry_all()
     if key is not None and clean:
         fa.snapshot.extra["completeness"] = (key, found)
     return [fresh(d) for d in found]
-
-
-def _moved_walks(walks: dict, plan) -> dict:
-    """The kept completeness walks, their anchors moved (a walk that cannot be moved is dropped)."""
-    out = {}
-    for key, (finds, models, height) in walks.items():
-        moved = []
-        for kind, rel, shown, name, owner, a in finds:
-            if a is not None:
-                a = plan.move_span(a)
-                if a is None:
-                    break
-            moved.append((kind, rel, shown, name, owner, a))
-        else:
-            out[key] = (moved, models, height)
-    return out
 
 
 def _per_statement(fa, plan, rule: str, new: list[Diagnostic]) -> list[Diagnostic]:

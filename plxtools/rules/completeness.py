@@ -6,8 +6,6 @@ outside any bundle) actually creates must have every non-optional value.
 
 from __future__ import annotations
 
-import bisect
-
 from plxtools.diagnostics import Diagnostic, Severity, Span
 from plxtools.model.program import Program
 from plxtools.model.symbols import ModelSym, Ty
@@ -90,35 +88,47 @@ class Versions:
     the program's epoch does. Anchors of kept walks are moved to where their statements now are."""
 
     def __init__(self, unit, regions: list, serials: list, previous: dict | None, move_span):
+        from plxtools.model.reuse import place
+
         self.unit = unit
         self.starts = [r[0] for r in regions]
         self.serials = serials
         self.previous = previous or {}
         self.move_span = move_span
+        self.place = place
         self.walked: dict = {}
 
     def key(self, model: ModelSym):
         stmt = model.stmt
         if model.unit is not self.unit or stmt is None or not self.serials:
             return id(model)
-        off = stmt.span.start.offset
-        i = bisect.bisect_right(self.starts, off) - 1
-        return (self.serials[i], model.qname, off - self.starts[i]) if i >= 0 else id(model)
+        got = self.place(self.starts, self.serials, stmt)
+        return (got[0], model.qname, got[1]) if got is not None else id(model)
 
     def kept(self, key):
+        """The last version's walk of `key`, moved (None: there is none, or it cannot be moved)."""
         got = self.previous.get(key)
-        if got is None:
-            return None
-        finds = []
-        for kind, rel, shown, name, owner, a in got[0]:
-            if a is not None:
-                a = self.move_span(a)
-                if a is None:
-                    return None
-            finds.append((kind, rel, shown, name, owner, a))
-        moved = (finds, got[1], got[2])
-        self.walked[key] = moved
+        moved = _moved(got, self.move_span) if got is not None else None
+        if moved is not None:
+            self.walked[key] = moved
         return moved
+
+    def carry_all(self) -> dict:
+        """Every walk of the last version that can be moved (when the rule did not run)."""
+        for key in self.previous:
+            self.kept(key)
+        return self.walked
+
+
+def _moved(got: tuple, move_span) -> tuple | None:
+    finds = []
+    for kind, rel, shown, name, owner, a in got[0]:
+        if a is not None:
+            a = move_span(a)
+            if a is None:
+                return None
+        finds.append((kind, rel, shown, name, owner, a))
+    return finds, got[1], got[2]
 
 
 def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = (),

@@ -85,6 +85,13 @@ def _findings(st) -> tuple[list, list]:
     return diags, occs
 
 
+def _fresh_findings(tmp_path, path: str, text: str, version: int) -> tuple[list, list]:
+    """What a check of `text` from scratch, in a host of its own, finds."""
+    ref = AnalysisHost(root=str(tmp_path))
+    ref.open_document(path, text, version)
+    return _findings(ref.state(path))
+
+
 def _session(tmp_path, text: str, seed: int, steps: int) -> int:
     path = str(tmp_path / "session.openplx")
     host = AnalysisHost(root=str(tmp_path))
@@ -152,9 +159,7 @@ def test_a_missing_value_moves_with_its_statement(tmp_path):
     for version, new in enumerate(["# a note\n# and another\n\n" + text, "# a note\n" + text], start=2):
         host.update_document(path, new, version)
         st = host.state(path)
-        ref = AnalysisHost(root=str(tmp_path))
-        ref.open_document(path, new, version)
-        assert _findings(st) == _findings(ref.state(path))
+        assert _findings(st) == _fresh_findings(tmp_path, path, new, version)
         after = [d for d in st.diagnostics if d.code == "M007"]
         shift = new.count("\n") - text.count("\n")
         assert [(d.message, d.span.start.line - shift) for d in after] == [(d.message, d.span.start.line) for d in before]
@@ -175,9 +180,7 @@ def test_the_server_parses_ahead_without_losing_the_typed_line_view(tmp_path):
     assert host.parse_ahead(path) is False  # parsed already: the analysis is what is left
     view = host.line_view(path, n + 1)
     assert view is not None and view.text == "    inertia."
-    ref = AnalysisHost(root=str(tmp_path))
-    ref.open_document(path, new, 2)
-    assert _findings(host.state(path)) == _findings(ref.state(path))
+    assert _findings(host.state(path)) == _fresh_findings(tmp_path, path, new, 2)
 
 
 def test_a_suggestion_follows_the_names_defined_elsewhere(tmp_path):
@@ -190,7 +193,5 @@ def test_a_suggestion_follows_the_names_defined_elsewhere(tmp_path):
     new = text.replace("Chassis is", "ChassisX is", 1)  # the statement naming 'chassis' is unchanged
     host.update_document(path, new, 2)
     st = host.state(path)
-    ref = AnalysisHost(root=str(tmp_path))
-    ref.open_document(path, new, 2)
-    assert _findings(st) == _findings(ref.state(path))
+    assert _findings(st) == _fresh_findings(tmp_path, path, new, 2)
     assert any("'ChassisX'" in (d.help or "") for d in st.diagnostics)
