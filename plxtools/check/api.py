@@ -280,6 +280,8 @@ class Simulation:
     def __init__(self, prepared: Prepared):
         import mujoco
 
+        from plxtools.check.mj_kinematic import Stepper
+
         self.prepared = prepared
         self.path = prepared.path
         self.model_name = prepared.model
@@ -290,6 +292,7 @@ class Simulation:
         mujoco.mj_resetDataKeyframe(self.model, self.data, self.model.key("initial").id)
         mujoco.mj_forward(self.model, self.data)
         self.runtime = SignalRuntime.bind(mujoco, c, prepared.signals)
+        self._stepper = Stepper(mujoco, c, self.model, self.data)  # the step plx check and plx test take
         self.timestep = float(self.model.opt.timestep)
         self.steps = 0
         self._pending: list[tuple[str, Any]] = []
@@ -373,16 +376,16 @@ class Simulation:
                     or duration < 0:
                 raise ValueError(f"step() takes a duration in seconds >= 0, not {duration!r}")
             n = int(round(duration / self.timestep))
-        mj, m, d = self._mj, self.model, self.data
         for _ in range(n):
-            mj.mj_step1(m, d)
-            self._apply_pending()
-            mj.mj_step2(m, d)
+            self._stepper.step(self.steps, self._hook)
             self.steps += 1
             self._stale = True
         if n == 0:
             self._apply_pending()
         return self.time
+
+    def _hook(self, t: float, m: Any, d: Any) -> None:
+        self._apply_pending()
 
     def _apply_pending(self) -> None:
         for path, value in self._pending:
@@ -404,8 +407,7 @@ class Simulation:
 
     def body(self, path: str) -> BodyState:
         """The world state of a rigid body."""
-        import numpy as np
-
+        from plxtools.check.mj_kinematic import body_velocity
         from plxtools.check.signals import rpy_of_mat
 
         if path not in self.prepared.bodies:
@@ -416,8 +418,7 @@ class Simulation:
         self._fresh()
         mj, m, d = self._mj, self.model, self.data
         bid = m.body(name).id
-        v = np.zeros(6)
-        mj.mj_objectVelocity(m, d, mj.mjtObj.mjOBJ_BODY, bid, v, 0)
+        v = body_velocity(mj, m, d, self.prepared.compiled, bid)
         t3 = lambda a: tuple(float(x) for x in a)  # noqa: E731
         return BodyState(path, t3(d.xpos[bid]), t3(d.xquat[bid]), rpy_of_mat(d.xmat[bid]), t3(v[3:]), t3(v[:3]))
 

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mj_compile import VISUAL_GROUP, CompiledScene, MateMonitor
+from plxtools.check.mj_kinematic import KinematicMover, Stepper, body_velocity
 from plxtools.check.mj_math import angle_between
 from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
 
@@ -241,50 +242,6 @@ class SimRun:
             self.res.notes.append(note)
 
 
-@dataclass(slots=True)
-class KinematicMover:
-    """A kinematic body moved at its constant prescribed velocity (world frame, about its origin)."""
-
-    path: str
-    mocap: int
-    p0: np.ndarray
-    q0: np.ndarray
-    v: np.ndarray
-    w: np.ndarray
-
-    def place(self, data: Any, t: float) -> None:
-        data.mocap_pos[self.mocap] = self.p0 + self.v * t
-        angle = float(np.linalg.norm(self.w)) * t
-        if angle == 0.0:
-            data.mocap_quat[self.mocap] = self.q0
-            return
-        ax = self.w / np.linalg.norm(self.w)
-        dq = np.array([math.cos(angle / 2), *(math.sin(angle / 2) * ax)])
-        data.mocap_quat[self.mocap] = _quat_mul(dq, self.q0)
-
-
-def _quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return np.array([aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw])
-
-
-def kinematic_movers(compiled: CompiledScene, model: Any, data: Any) -> list[KinematicMover]:
-    out = []
-    for path in compiled.kinematic:
-        b = compiled.scene.body(path)
-        name = compiled.names.name("body", path)
-        if b is None or name is None:
-            continue
-        mid = int(model.body_mocapid[model.body(name).id])
-        if mid < 0:
-            continue
-        out.append(KinematicMover(path, mid, data.mocap_pos[mid].copy(), data.mocap_quat[mid].copy(),
-                                  np.asarray(b.lin_vel, dtype=float), np.asarray(b.ang_vel, dtype=float)))
-    return out
-
-
 class Monitor:
     """One thing watched during the run: set up at t=0, then every ``sample_dt`` either
     ``sample`` (the state is in ``run.data``) or, for a ``batched`` monitor, ``samples`` with many
@@ -504,7 +461,7 @@ class Trace(Monitor):
             b = tr["bodies"][p]
             b["position"].append(_vec(data.xpos[i]))
             b["quaternion"].append(_vec(data.xquat[i]))
-            run.mujoco.mj_objectVelocity(run.model, data, run.mujoco.mjtObj.mjOBJ_BODY, i, self.vel6, 0)
+            body_velocity(run.mujoco, run.model, data, run.compiled, i, self.vel6)
             b["velocity"].append(_vec(self.vel6[3:]))
             b["angular_velocity"].append(_vec(self.vel6[:3]))
 
@@ -540,6 +497,10 @@ class BodyMotion(Monitor):
         self.max_speed = np.zeros(n)
         self.ke_max = np.zeros(n)
         self.vel6 = np.zeros(6)
+        kin = {m.path: m for m in run.movers}
+        self.kin_cols = np.array([k for k, p in enumerate(self.paths) if p in kin], dtype=int)
+        self.kin_v = np.array([kin[self.paths[k]].v for k in self.kin_cols], dtype=float).reshape(-1, 3)
+        self.kin_w = np.array([kin[self.paths[k]].w for k in self.kin_cols], dtype=float).reshape(-1, 3)
         self._motion(run, Samples.now(data), first=True)
         run.batch_speed = None
 
@@ -551,7 +512,7 @@ class BodyMotion(Monitor):
     def kinetic(self, run: SimRun, i: int) -> float:
         """Kinetic energy of body ``i`` now (used once per body at the end)."""
         model, data = run.model, run.data
-        run.mujoco.mj_objectVelocity(model, data, run.mujoco.mjtObj.mjOBJ_BODY, i, self.vel6, 0)
+        body_velocity(run.mujoco, model, data, run.compiled, i, self.vel6)
         v, w = self.vel6[3:], self.vel6[:3]
         w_local = data.ximat[i].reshape(3, 3).T @ w
         return 0.5 * float(model.body_mass[i]) * float(v @ v) + 0.5 * float(model.body_inertia[i] @ (w_local ** 2))
@@ -577,6 +538,13 @@ class BodyMotion(Monitor):
         cvel = b.cvel[:s, self.ids].reshape(-1, 6)
         w = cvel[:, :3]
         lin = cvel[:, 3:] - _cross((b.xipos[:s, self.ids] - b.subtree_com[:s, self.roots]).reshape(-1, 3), w)
+        if self.kin_cols.size:  # MuJoCo gives a mocap body no velocity: the prescribed one
+            w = w.reshape(s, n, 3).copy()
+            lin = lin.reshape(s, n, 3)
+            arm = b.xipos[:s, self.ids[self.kin_cols]] - b.xpos[:s, self.ids[self.kin_cols]]
+            w[:, self.kin_cols] = self.kin_w
+            lin[:, self.kin_cols] = self.kin_v + np.cross(self.kin_w, arm)
+            w, lin = w.reshape(-1, 3), lin.reshape(-1, 3)
         v2 = (lin * lin).sum(axis=1)
         sp = np.sqrt(v2).reshape(s, n)
         rot = b.ximat[:s, self.ids].reshape(-1, 3, 3)
@@ -1107,7 +1075,8 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
         if n is not None and n not in [x[0] for x in bodies]:
             bodies.append((b.path, model.body(n).id, b.is_dynamic))
     run = SimRun(mujoco, compiled, model, data, res, opt, float(duration), bodies)
-    run.movers = kinematic_movers(compiled, model, data)
+    stepper = Stepper(mujoco, compiled, model, data)
+    run.movers = stepper.movers
     run.controlled = controller is not None
 
     initial_penetrations(run)
@@ -1157,16 +1126,9 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
             done += k
         elif run.movers or per_step or controller is not None:
             for _ in range(k):
-                for mv in run.movers:
-                    mv.place(data, (done + 1) * h)
                 for m in per_step:
                     m.before_step(run)
-                if controller is None:
-                    mujoco.mj_step(model, data)
-                else:
-                    mujoco.mj_step1(model, data)
-                    controller(done * h, model, data)
-                    mujoco.mj_step2(model, data)
+                stepper.step(done, controller)
                 done += 1
                 for m in per_step:
                     m.after_step(run)

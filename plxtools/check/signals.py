@@ -368,16 +368,22 @@ class SignalRuntime:
         elif q in ("body_linear_velocity", "body_angular_velocity"):
             lin = q == "body_linear_velocity"
 
-            def read_vel(m, d):
-                import numpy as np
+            compiled = self.compiled
 
-                res = np.zeros(6)
-                mj.mj_objectVelocity(m, d, mj.mjtObj.mjOBJ_BODY, bid, res, 0)
+            def read_vel(m, d):
+                from plxtools.check.mj_kinematic import body_velocity  # a kinematic body's is prescribed
+
+                res = body_velocity(mj, m, d, compiled, bid)
                 return tuple(float(x) for x in (res[3:] if lin else res[:3]))
 
             b.read = read_vel
             if info.direction == "input":
                 jname = self.compiled.names.name("joint", src, ":free")
+                sb = self.compiled.scene.body(src)
+                if sb is not None and not sb.is_dynamic:
+                    raise _Unbindable(f"{src} is not dynamic (is_dynamic: false or kinematically controlled): it "
+                                      f"moves at its prescribed velocity, which the MuJoCo backend does not let an "
+                                      f"input change")
                 if src not in self.compiled.free_roots or jname is None:
                     raise _Unbindable(f"{src} is attached to other bodies by mates (only a free body's velocity "
                                       f"can be set)")
