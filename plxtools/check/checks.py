@@ -126,10 +126,10 @@ class StaticChecks:
                 self.rep.add("A040", msg, obj=m.obj)
                 self.col.unsupported.append((qn, m.obj, msg))
         for c in self.col.contacts:
-            if c.enabled and c.restitution is not None and c.restitution > 0:
-                self.add_at("A040", f"{c.obj.display}: normal_restitution {c.restitution:g} is not supported by "
-                            f"MuJoCo (contacts are inelastic); it is ignored", c.obj, "normal_restitution",
-                            path=c.obj.display)
+            if c.enabled and c.tangential_restitution is not None and 0 < c.tangential_restitution <= 1:
+                self.add_at("A040", f"{c.obj.display}: tangential_restitution {c.tangential_restitution:g} is not "
+                            f"simulated by the MuJoCo backend (its contacts resist sliding by friction only); it is "
+                            f"ignored", c.obj, "tangential_restitution", path=c.obj.display)
             if c.enabled and c.friction_model not in DRY_MODELS:
                 self.add_at("A040", f"{c.obj.display}: friction model {c.friction_model} is not dry friction; "
                             f"MuJoCo uses its default friction for this pair", c.obj, "friction", path=c.obj.display)

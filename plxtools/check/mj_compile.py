@@ -32,7 +32,7 @@ import numpy as np
 from plxtools.check.mj_drivetrain import add_couplings, add_shaft_motors, add_shafts
 from plxtools.check.mj_context import BuildContext, CompileFailed
 from plxtools.check.mj_controllers import add_controllers, add_keyframe
-from plxtools.check.mj_geoms import add_contact_pairs, add_excludes, add_geoms, set_inertials
+from plxtools.check.mj_geoms import add_contact_pairs, add_excludes, add_geoms, set_inertials, set_restitution
 from plxtools.check.frames import mat_to_quat_wxyz
 from plxtools.check.mj_math import angle_between, quat_normalize, quat_to_mat, relative_pose, unit
 from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
@@ -158,6 +158,7 @@ def build(ctx: BuildContext) -> None:
     add_controllers(ctx, model)
     add_shaft_motors(ctx, model)
     add_keyframe(ctx, model)
+    set_restitution(ctx)
     # pass 3: final
     ctx.out.model = ctx.compile("final")
 

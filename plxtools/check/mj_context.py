@@ -31,6 +31,7 @@ class BuildContext:
     spring_count: dict[str, int] = field(default_factory=dict)  # joint name -> springs on it
     violated: set[str] = field(default_factory=set)  # mates that start apart (pulled together by equalities)
     shaft_init: dict[str, tuple[float, float]] = field(default_factory=dict)  # shaft joint -> (angle, speed)
+    bouncy_pairs: list[tuple[Any, float]] = field(default_factory=list)  # (MjsPair, normal restitution)
 
     @classmethod
     def for_scene(cls, scene: Scene) -> "BuildContext":

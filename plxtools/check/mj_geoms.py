@@ -10,6 +10,7 @@ import numpy as np
 from plxtools.check.mj_context import BuildContext
 from plxtools.check.mj_math import Z_TO_Y_QUAT, quat_mul, quat_normalize
 from plxtools.check.mj_notes import ERROR, INFO, WARNING
+from plxtools.check.mj_restitution import restitution_solref
 from plxtools.check.mj_types import VISUAL_GROUP
 from plxtools.check.scene import Body, Geom
 
@@ -213,7 +214,7 @@ def add_contact_pairs(ctx: BuildContext) -> None:
                     cm,
                 )
             # other models: Coulomb mu is used; the static checks own that finding (A040)
-        # restitution is not simulated; the static checks own that finding (A040)
+        bouncy = cm.restitution is not None and 0.0 < cm.restitution <= 1.0
         g1 = ctx.geoms_by_material.get(cm.material1, [])
         g2 = ctx.geoms_by_material.get(cm.material2, [])
         if not g1 or not g2:
@@ -233,13 +234,26 @@ def add_contact_pairs(ctx: BuildContext) -> None:
                 if not ctx.bodies[b1].is_dynamic and not ctx.bodies[b2].is_dynamic:
                     continue
                 made.add(k)
-                ctx.spec.add_pair(
+                pair = ctx.spec.add_pair(
                     name=ctx.names.add("pair", cm.path, cm.source, f":{len(made)}"),
                     geomname1=n1,
                     geomname2=n2,
                     condim=3,
                     friction=[mu, mu, 0.005, 0.0001, 0.0001],
                 )
+                if bouncy:
+                    ctx.bouncy_pairs.append((pair, float(cm.restitution)))
+        if bouncy and made:
+            ctx.note(INFO, "A137", f"{cm.path}: normal_restitution {cm.restitution:g} simulated by a contact "
+                     f"spring-damper with that restitution (MuJoCo solref in direct form; see docs/physics.md)", cm)
+
+
+def set_restitution(ctx: BuildContext) -> None:
+    """The contact springs of pairs with a normal restitution, for the final time step (a stiff
+    spring may have shortened it after the pairs were made)."""
+    h = float(ctx.spec.option.timestep)
+    for pair, e in ctx.bouncy_pairs:
+        pair.solref, pair.solimp = restitution_solref(e, h)
 
 
 # -- mass properties -------------------------------------------------------------------------

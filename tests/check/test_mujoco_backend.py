@@ -529,7 +529,7 @@ def test_unsupported_and_invalid_features_become_notes(tmp_path) -> None:
     codes = {n.code for n in compiled.notes}
     assert "A116" in codes  # the distance mate approximation is the backend's own finding
     assert not any(n.path == "bad.gear" for n in compiled.notes)  # the static checks own A040
-    assert {n.code for n in compiled.notes if n.path == "bad.contact"} <= {"A128"}  # restitution: A040 too
+    assert {n.code for n in compiled.notes if n.path == "bad.contact"} <= {"A128"}  # no geometry: no pair, no A137
     res = simulate(compiled, 0.5)
     assert res.blowup is None
     assert json.loads(json.dumps(res.to_dict()))["notes"]

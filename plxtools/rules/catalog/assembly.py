@@ -345,6 +345,12 @@ rule("A135", "implausible-speed", W,
      "springs' initial energy could give, with a margin of 2 and 1 m/s.",
      "The message lists the parts of the bound. A runaway usually comes before a blow-up (A101).",
      stage=SIM)
+rule("A137", "restitution-approximated", I,
+     "A contact model's `normal_restitution` is simulated by a contact spring-damper per material pair "
+     "(MuJoCo `solref` in its direct stiffness/damping form) whose damping ratio gives that coefficient of "
+     "restitution; the contact lasts 10 time steps.",
+     "Rebound heights match e^2 within a few percent for e of 0.5 and more; with a low e gravity acting "
+     "during the 20 ms contact takes some speed from the rebound (see docs/physics.md).", stage=SIM)
 rule("A132", "mjcf-export-unloadable", E,
      "`--export-mjcf`: the MJCF that MuJoCo writes for the scene does not load back into MuJoCo (its XML "
      "writer rounds numbers, so a box of 0.25 m next to one of 1e30 m is written with size 0).",
