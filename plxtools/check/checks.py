@@ -72,7 +72,7 @@ class StaticChecks:
         something the backend cannot simulate: A040 where the value is set (coverage.TABLE)."""
         seen: set[int] = set()
         objs = [m.obj for m in self.asm.mates] + [c.obj for c in self.asm.controllers] + \
-            [c.obj for c in self.col.contacts]
+            [c.obj for c in self.col.contacts] + [n.obj for n in self.asm.bodies]
         for obj in objs:
             if id(obj) in seen:
                 continue

@@ -16,6 +16,8 @@ MAPPED = "mapped"
 CHOICE = "choice"  # an object-valued attribute: only the runtime's default choice is simulated
 VALUE = "value"  # a plain value: only the stated neutral value is simulated
 SIGNAL = "signal"
+NOTED = "noted"  # approximated or refused with a note by the static checks (A113 / A040), not here
+REFUSED = "refused"  # never simulated: A040 wherever the object has it (a trait's attributes, mostly)
 
 _MATE_COMMON = {"connectors": MAPPED, "enabled": MAPPED, "enable_snap": MAPPED, "flexibility": CHOICE,
                 "dissipation": CHOICE, "toughness": CHOICE, "clearance": CHOICE}
@@ -55,7 +57,43 @@ TABLE: dict[str, dict[str, Any]] = {
                                                   "clearance": CHOICE, "normal_restitution": MAPPED,
                                                   "tangential_restitution": MAPPED},
     "Physics.Geometries.Material": {"unique_name": MAPPED, "density": MAPPED},
+    # what `friction` of a contact model or a mate holds (convert.py reads the coefficient, limit or viscosity;
+    # a model that is not dry friction is named by the static checks, A040 / A113)
+    "Physics.Interactions.Dissipation.DefaultDryFriction": {"coefficient": MAPPED},
+    "Physics.Interactions.Dissipation.DryConstantNormalForceFriction": {"coefficient": MAPPED, "normal_force": NOTED},
+    "Physics.Interactions.Dissipation.DryDepthScaledConstantNormalForceFriction": {
+        "coefficient": MAPPED, "normal_force": NOTED, "depth_factor": NOTED},
+    "Physics.Interactions.Dissipation.ConstantLimitFriction": {"limit": MAPPED},
+    "Physics.Interactions.Dissipation.ConstantViscousSurfaceFriction": {"viscosity": MAPPED},
+    "Physics.Interactions.Dissipation.AsymmetricLimitFriction": {"positive_limit": NOTED, "negative_limit": NOTED},
+    "Physics.Interactions.Dissipation.MechanicalDamping": {"damping_constant": MAPPED},
+    "Physics.Interactions.Dissipation.ConstraintRelaxationTimeDamping": {"relaxation_time": MAPPED},
     "Physics3D.Interactions.MateConnector": {"position": MAPPED, "main_axis": MAPPED, "normal": MAPPED},
+}
+
+# Traits a mapped object can be given, by the trait that declares the attributes: what plx does with
+# them.  An attribute of a mapped object that a bundle trait (or a bundle subtype) declares and
+# neither table classifies is refused too (A040), so a new bundle trait is never ignored silently;
+# the coverage test lists the official traits and fails on one this table does not know.
+TRAITS: dict[str, dict[str, Any]] = {
+    "Physics3D.Interactions.SurfaceContact.Traits.OrientedFriction": {
+        "primary_direction": REFUSED, "secondary_coefficient": REFUSED},
+    "Physics3D.Interactions.SurfaceContact.Traits.GeometryOrientedFriction": {"reference_geometry": REFUSED},
+    "Physics3D.Interactions.SurfaceContact.Traits.BodyOrientedFriction": {"reference_body": REFUSED},
+    "Physics.Interactions.SurfaceContact.Traits.SurfaceViscosity": {"viscosity": REFUSED},
+    "Physics3D.Interactions.SurfaceContact.Traits.OrientedSurfaceViscosity": {"secondary_viscosity": REFUSED},
+    "Physics.GeometryMaterialOverrideTrait": {"material_override": REFUSED,
+                                              "material_override_geometries_excluded": REFUSED},
+}
+
+# what the backend does instead of a refused trait, for the message
+TRAIT_INSTEAD = {
+    "OrientedFriction": "friction is isotropic, with the friction model's coefficient in every direction",
+    "GeometryOrientedFriction": "friction is isotropic, with the friction model's coefficient in every direction",
+    "BodyOrientedFriction": "friction is isotropic, with the friction model's coefficient in every direction",
+    "SurfaceViscosity": "contacts have no viscous friction term",
+    "OrientedSurfaceViscosity": "contacts have no viscous friction term",
+    "GeometryMaterialOverrideTrait": "each geometry keeps its own material",
 }
 
 # what the MuJoCo backend does instead, for the message
@@ -83,7 +121,9 @@ def neutral_choice(qname: str) -> bool:
 
 
 def unclassified(program: Any) -> list[str]:
-    """``Type.attribute`` of every member of a table type that the table does not classify."""
+    """``Type.attribute`` of every member of a table type that the table does not classify, and
+    ``Trait.attribute`` of every official non-signal trait's own attribute that :data:`TRAITS` does
+    not classify (each would be refused by the catch-all, but a new trait should be looked at)."""
     out = []
     for qn, attrs in TABLE.items():
         sym = program.lookup_outside_visibility(qn.split("."))
@@ -92,17 +132,61 @@ def unclassified(program: Any) -> list[str]:
         for name in program.all_members(sym):
             if name not in attrs and not is_signal(name):
                 out.append(f"{qn}.{name}")
+    for trait in official_traits(program):
+        if trait.qname.startswith(_NOT_ON_MAPPED):
+            continue
+        known = TRAITS.get(trait.qname, {})
+        for name, mem in program.all_members(trait).items():
+            if mem.owner is trait and name not in known and not is_signal(name):
+                out.append(f"{trait.qname}.{name}")
     return out
 
 
-def settings_not_simulated(kinds: Any, ev: Any, get: Any, obj: Any) -> list[tuple[str, str, Any]]:
+# traits that only apply to objects the backend does not map at all (they are refused whole, A040)
+_NOT_ON_MAPPED = ("Vehicles.", "Robotics.", "Sensors.", "DriveTrain.", "Physics.Optics.", "Math.",
+                  "Physics.Signals.", "Physics3D.Signals.", "Physics1D.", "Terrain.")
+
+
+def official_traits(program: Any) -> list[Any]:
+    """Every trait the official bundles declare."""
+    out, stack = [], [program.root]
+    while stack:
+        ns = stack.pop()
+        stack.extend(ns.children.values())
+        for sym in ns.symbols.values():
+            unit = getattr(sym, "unit", None)
+            if getattr(sym, "is_trait", False) and unit is not None and unit.official:
+                out.append(sym)
+    return sorted(out, key=lambda t: t.qname)
+
+
+def _trait_status(program: Any, mem: Any) -> tuple[Any, str | None]:
+    """(status, trait name) of a member that a bundle trait or subtype adds to a mapped object."""
+    owner = mem.owner
+    for t in [owner, *program.ancestors(owner)]:
+        st = TRAITS.get(getattr(t, "qname", ""), {}).get(mem.name)
+        if st is not None:
+            return st, owner.qname
+    return REFUSED, owner.qname
+
+
+def _members(program: Any, obj: Any) -> dict[str, Any]:
+    out = dict(program.all_members(obj.model))
+    for t in getattr(obj, "traits", ()) or ():
+        for name, mem in program.all_members(t).items():
+            out.setdefault(name, mem)
+    return out
+
+
+def settings_not_simulated(kinds: Any, ev: Any, get: Any, obj: Any, _depth: int = 0) -> list[tuple[str, str, Any]]:
     """(attribute, message, (statement, unit) or None) for each attribute of ``obj`` that holds
     something the backend does not simulate, whether the user's file or a bundle default put it
-    there; the statement is the one that chose it, when known."""
+    there; the statement is the one that chose it, when known.  An attribute that a bundle trait
+    or bundle subtype adds and the tables do not map is refused too (it would otherwise be ignored),
+    and so are those of the objects a mapped attribute holds (a contact model's friction model)."""
     out = []
-    for qn, attrs in TABLE.items():
-        if not kinds.isa(obj, qn):
-            continue
+    program = kinds.p
+    for qn, attrs in _most_specific(kinds, obj):
         for name, status in attrs.items():
             if status == CHOICE:
                 child = ev.child(obj, name)
@@ -117,5 +201,56 @@ def settings_not_simulated(kinds: Any, ev: Any, get: Any, obj: Any) -> list[tupl
                 if v != status[1]:
                     out.append((name, f"{obj.display}.{name}: {v!r} is not simulated by the MuJoCo backend; "
                                       f"{INSTEAD.get(name, 'the default is used')}", ev.where(obj, name)))
+        refused_traits: dict[str, list[str]] = {}
+        for name, mem in _members(program, obj).items():
+            if name in attrs or is_signal(name):
+                continue
+            unit = getattr(mem.owner, "unit", None)
+            if unit is None or not unit.official:
+                continue  # the user's own attributes on their subtype: not the runtime's business
+            status, trait = _trait_status(program, mem)
+            if status == REFUSED:
+                refused_traits.setdefault(trait or qn, []).append(name)
+        if refused_traits:
+            # one finding per object: the traits (most derived first) and the attributes they add
+            owners = sorted(refused_traits, key=lambda q: -len(q.split(".")[-1]))
+            names = [n for q in owners for n in refused_traits[q]]
+            shorts = [q.rsplit(".", 1)[-1] for q in owners]
+            instead = next((TRAIT_INSTEAD[x] for x in shorts if x in TRAIT_INSTEAD), "left out")
+            out.append((names[0], f"{obj.display} has {' / '.join(shorts)} ({', '.join(names)}), which the MuJoCo "
+                                  f"backend does not simulate; {instead}", _declared_where(obj) or _set_where(ev, obj, names)))
+        if _depth < 2:
+            for name, status in attrs.items():
+                if status != MAPPED:
+                    continue
+                child = ev.child(obj, name)
+                if child is not None and hasattr(child, "model") and _most_specific(kinds, child):
+                    for attr, msg, where in settings_not_simulated(kinds, ev, get, child, _depth + 1):
+                        out.append((f"{name}.{attr}", msg, where if where is not None else _set_where(ev, obj, [name])))
         break  # the most specific table type decides (the table has no type and its subtype both)
     return out
+
+
+def _most_specific(kinds: Any, obj: Any) -> list[tuple[str, dict[str, Any]]]:
+    """The table entries ``obj`` is an instance of, most specific first (a subtype before its base)."""
+    hits = [(qn, attrs) for qn, attrs in TABLE.items() if kinds.isa(obj, qn)]
+    if len(hits) > 1:
+        syms = {qn: kinds.sym(qn) for qn, _ in hits}
+        hits.sort(key=lambda h: -len(kinds.p.ancestors(syms[h[0]])) if syms[h[0]] is not None else 0)
+    return hits
+
+
+def _declared_where(obj: Any) -> Any:
+    """The statement that declares ``obj`` (where its traits are given), if known."""
+    decl = getattr(obj, "decl", None)
+    return (decl[0].stmt, decl[0].unit) if decl else None
+
+
+def _set_where(ev: Any, obj: Any, names: list[str]) -> Any:
+    """The statement that sets the first of ``names`` on ``obj``, else the one that declares ``obj``."""
+    for n in names:
+        node, unit = ev.where(obj, n)
+        if node is not None:
+            return node, unit
+    decl = getattr(obj, "decl", None)
+    return (decl[0].stmt, decl[0].unit) if decl else None

@@ -193,8 +193,10 @@ rule("A039", "body-not-in-system", W,
      "Bodies belong directly to systems; to attach one body to another use a mate (a Lock).", stage=C)
 rule("A040", "unsupported-feature", W,
      "Something that the MuJoCo backend of `plx check --simulate` cannot represent: Physics1D, DriveTrain, "
-     "Terrain, Sensors, Vehicles and Robotics objects, signals it does not map (see docs/testing.md), KinematicLock, restitution, non-dry friction "
-     "models, PointGravitationalField, unknown mate or interaction types.",
+     "Terrain, Sensors, Vehicles and Robotics objects, signals it does not map (see docs/testing.md), KinematicLock, tangential restitution, non-dry "
+     "friction models, oriented (anisotropic) friction and surface viscosity traits, any attribute a bundle "
+     "trait adds to a mapped object that the backend does not simulate (named with the trait, on the line "
+     "that gives it), PointGravitationalField, unknown mate or interaction types.",
      "It is named, never dropped silently: the simulation runs without it, so its results may differ "
      "from AGX's.", stage=C)
 rule("A042", "imported-file-not-analysed", I,
