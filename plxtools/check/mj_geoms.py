@@ -142,12 +142,36 @@ def add_mesh(ctx: BuildContext, g: Geom) -> str | None:
     else:
         ctx.invariant("A030", f"{g.path}: mesh has neither a file nor vertices; skipped", g)
         return None
-    if not g.convex and g.enable_collisions and not g.visual_only:
+    if g.visual_only:
+        # a visual never changes the physics: no mass from it (its geom has density 0), its
+        # volume is not needed (a flat mesh is fine as a shell), and one MuJoCo cannot load is
+        # left out with a note instead of failing the whole scene
+        kw["inertia"] = ctx.mj.mjtMeshInertia.mjMESH_INERTIA_SHELL
+        problem = visual_mesh_problem(ctx.mj, kw)
+        if problem is not None:
+            ctx.note(INFO, "A138", f"{g.path}: visual mesh left out of the MuJoCo scene ({problem}); "
+                     f"it has no effect on the physics", g)
+            return None
+    elif not g.convex and g.enable_collisions:
         ctx.note(
             INFO, "A117", f"{g.path}: MuJoCo collides with the convex hull of this mesh", g
         )
     ctx.spec.add_mesh(**kw)
     return name
+
+
+def visual_mesh_problem(mj: Any, kw: dict[str, Any]) -> str | None:
+    """Why MuJoCo cannot load this visual mesh (compiled alone, on a static geom), or None."""
+    spec = mj.MjSpec()
+    mesh_kw = {k: v for k, v in kw.items() if k != "name"}
+    spec.add_mesh(name="probe", **mesh_kw)
+    spec.worldbody.add_geom(type=mj.mjtGeom.mjGEOM_MESH, meshname="probe", contype=0, conaffinity=0, density=0.0)
+    try:
+        spec.compile()
+    except Exception as exc:  # MuJoCo raises ValueError with its compiler's message
+        text = str(exc).replace("Error: ", "").splitlines()[0].strip()
+        return text.split(" Element name")[0].rstrip(". ") or type(exc).__name__
+    return None
 
 
 def add_excludes(ctx: BuildContext) -> None:

@@ -353,6 +353,11 @@ rule("A137", "restitution-approximated", I,
      "restitution; the contact lasts 10 time steps.",
      "Rebound heights match e^2 within a few percent for e of 0.5 and more; with a low e gravity acting "
      "during the 20 ms contact takes some speed from the rebound (see docs/physics.md).", stage=SIM)
+rule("A138", "visual-mesh-skipped", I,
+     "A visual-only mesh (`Visuals.Geometries...`) that MuJoCo cannot load (fewer than 4 vertices, a "
+     "degenerate file) is left out of the MuJoCo scene.",
+     "Visuals never change the physics: they are compiled without mass or collisions (a flat mesh as a "
+     "shell), and one that cannot be drawn is only missing from renders.", stage=SIM)
 rule("A132", "mjcf-export-unloadable", E,
      "`--export-mjcf`: the MJCF that MuJoCo writes for the scene does not load back into MuJoCo (its XML "
      "writer rounds numbers, so a box of 0.25 m next to one of 1e30 m is written with size 0).",
