@@ -92,6 +92,12 @@ def _add_check(sub) -> None:
                    "every 0.01 s) as CSV; implies --simulate")
     p.add_argument("--timeout", type=float, default=None, metavar="SECONDS",
                    help="wall-clock limit of each file's simulation (default 300); a run cut short is A109")
+    p.add_argument("--integrator", choices=("auto", "implicitfast", "implicit", "rk4", "euler"), default=None,
+                   help="MuJoCo integrator (default auto: rk4 for conservative, contact-free scenes, implicitfast "
+                   "otherwise; config key check.integrator)")
+    p.add_argument("--timestep", type=float, default=None, metavar="SECONDS",
+                   help="simulation time step (default 0.002; a stiff spring may shorten it, A133; config key "
+                   "check.timestep)")
     p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
                    help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
     p.add_argument("--exit-zero", action="store_true", help="exit 0 even when errors are found")

@@ -1,7 +1,8 @@
 """Project configuration: `[tool.plx]` in pyproject.toml or a `plx.toml`; the closest file wins.
 
 Keys (kebab-case): select, ignore, extend-select, per-file-ignores, exclude, extend-exclude,
-bundle-path, openplx-version, fmt.exclude. A `plx.toml` holds the keys at its top level.
+bundle-path, openplx-version, fmt.exclude, check.integrator, check.timestep. A `plx.toml` holds the
+keys at its top level.
 """
 
 from __future__ import annotations
@@ -14,7 +15,8 @@ from pathlib import Path
 
 DEFAULT_EXCLUDE = (".git", ".hg", ".venv", "venv", "node_modules", "__pycache__", ".tox", "build", "dist")
 KNOWN_KEYS = {"select", "ignore", "extend-select", "per-file-ignores", "exclude", "extend-exclude",
-              "bundle-path", "openplx-version", "fmt"}
+              "bundle-path", "openplx-version", "fmt", "check"}
+INTEGRATORS = ("auto", "implicitfast", "implicit", "rk4", "euler")  # `plx check --integrator`, check.integrator
 
 
 class ConfigError(Exception):
@@ -33,6 +35,8 @@ class Config:
     bundle_paths: list[Path] = field(default_factory=list)
     openplx_version: str | None = None  # official openplx-bundles release to lint against
     fmt_exclude: list[str] = field(default_factory=list)
+    check_integrator: str | None = None  # [check] integrator: one of INTEGRATORS; None = auto
+    check_timestep: float | None = None  # [check] timestep in seconds; None = the backend's default
 
     def rule_enabled(self, code: str, path: str | None = None) -> bool:
         if code.startswith("S"):
@@ -151,6 +155,23 @@ def parse_config(path: Path, table: dict) -> Config:
     if not isinstance(fmt, dict):
         raise ConfigError(f"{path}: 'fmt' must be a table")
     cfg.fmt_exclude = _str_list(path, "fmt.exclude", fmt.get("exclude", []))
+    check = table.get("check", {})
+    if not isinstance(check, dict):
+        raise ConfigError(f"{path}: 'check' must be a table")
+    extra = set(check) - {"integrator", "timestep"}
+    if extra:
+        raise ConfigError(f"{path}: unknown key(s) check.{', check.'.join(sorted(extra))}; "
+                          f"known: check.integrator, check.timestep")
+    integ = check.get("integrator")
+    if integ is not None:
+        if integ not in INTEGRATORS:
+            raise ConfigError(f"{path}: 'check.integrator' must be one of {', '.join(INTEGRATORS)}; got {integ!r}")
+        cfg.check_integrator = integ
+    ts = check.get("timestep")
+    if ts is not None:
+        if isinstance(ts, bool) or not isinstance(ts, (int, float)) or not 1e-5 <= ts <= 0.1:
+            raise ConfigError(f"{path}: 'check.timestep' must be a number of seconds in [1e-5, 0.1]; got {ts!r}")
+        cfg.check_timestep = float(ts)
     return cfg
 
 

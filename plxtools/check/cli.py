@@ -43,6 +43,10 @@ def run_check(args) -> int:
     elif not (math.isfinite(timeout) and timeout > 0):
         print(f"plx check: --timeout must be a positive number of seconds; got {timeout:g}", file=sys.stderr)
         return 2
+    timestep = getattr(args, "timestep", None)
+    if timestep is not None and not (math.isfinite(timestep) and 1e-5 <= timestep <= 0.1):
+        print(f"plx check: --timestep must be a number of seconds in [1e-5, 0.1]; got {timestep:g}", file=sys.stderr)
+        return 2
     trace = getattr(args, "trace", None)
     if trace:
         args.simulate = True
@@ -62,7 +66,8 @@ def run_check(args) -> int:
     note = workspace.bundle_set.announcement()
     if note and args.output_format == "text":
         print(f"plx check: {note}", file=sys.stderr)
-    run = _Run(workspace, args.model, want_backend, bool(args.simulate), args.duration, bool(trace), timeout)
+    run = _Run(workspace, args.model, want_backend, bool(args.simulate), args.duration, bool(trace), timeout,
+               getattr(args, "integrator", None), timestep)
     results = []
     status = 0
     parallel = _in_parallel(files, args, run)
@@ -118,6 +123,8 @@ class _Run:
     duration: float
     record: bool
     timeout: float
+    integrator: str | None = None  # --integrator (wins over the config's check.integrator)
+    timestep: float | None = None  # --timestep (wins over check.timestep)
 
 
 def _check_one(item: tuple, run: _Run, analysed=None) -> tuple:
@@ -132,6 +139,10 @@ def _check_one(item: tuple, run: _Run, analysed=None) -> tuple:
         if run.want_backend and fc.scene is not None:
             reason = blocking_reason(fc)
             if reason is None:
+                if run.timestep is not None:
+                    fc.scene.timestep = run.timestep
+                if run.integrator is not None:
+                    fc.scene.integrator = run.integrator
                 run_backend(fc, simulate=run.simulate, duration=run.duration, record=run.record,
                             timeout=run.timeout)
             else:

@@ -33,6 +33,7 @@ from plxtools.check.mj_drivetrain import add_couplings, add_shaft_motors, add_sh
 from plxtools.check.mj_context import BuildContext, CompileFailed
 from plxtools.check.mj_controllers import add_controllers, add_keyframe
 from plxtools.check.mj_geoms import add_contact_pairs, add_excludes, add_geoms, set_inertials, set_restitution
+from plxtools.check.mj_integrator import choose as choose_integrator
 from plxtools.check.frames import mat_to_quat_wxyz
 from plxtools.check.mj_math import angle_between, quat_normalize, quat_to_mat, relative_pose, unit
 from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
@@ -161,6 +162,8 @@ def build(ctx: BuildContext) -> None:
     set_restitution(ctx)
     # pass 3: final
     ctx.out.model = ctx.compile("final")
+    ctx.out.integrator, ctx.out.integrator_why = choose_integrator(mj, ctx.out.model, scene.integrator)
+    spec.option.integrator = ctx.out.model.opt.integrator  # what an exported MJCF runs with too
 
 
 # -- mates -> tree ---------------------------------------------------------------------------

@@ -95,12 +95,14 @@ def body_velocity(mujoco: Any, model: Any, data: Any, compiled: Any, bid: int, o
 class Stepper:
     """One MuJoCo step as every run takes it: kinematic bodies placed at the pose they have at the
     end of the step, then ``mj_step1``, the caller's hook (inputs written while positions and
-    velocities are current), ``mj_step2``."""
+    velocities are current), ``mj_step2`` (with RK4 a whole ``mj_step``: MuJoCo's split step
+    integrates with Euler)."""
 
     def __init__(self, mujoco: Any, compiled: Any, model: Any, data: Any) -> None:
         self.mujoco, self.model, self.data = mujoco, model, data
         self.movers = kinematic_movers(compiled, model, data)
         self.h = float(model.opt.timestep)
+        self.rk4 = int(model.opt.integrator) == int(mujoco.mjtIntegrator.mjINT_RK4)
 
     def step(self, done: int, hook: Callable[[float, Any, Any], None] | None = None) -> None:
         """Advance from step ``done`` (time ``done * h``) to the next."""
@@ -111,4 +113,7 @@ class Stepper:
             return
         self.mujoco.mj_step1(self.model, self.data)
         hook(done * self.h, self.model, self.data)
-        self.mujoco.mj_step2(self.model, self.data)
+        if self.rk4:  # mj_step2 integrates with Euler whatever the integrator: redo the step as RK4
+            self.mujoco.mj_step(self.model, self.data)
+        else:
+            self.mujoco.mj_step2(self.model, self.data)

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mj_compile import VISUAL_GROUP, CompiledScene, MateMonitor
+from plxtools.check.mj_integrator import not_conservative
 from plxtools.check.mj_kinematic import KinematicMover, Stepper, body_velocity
 from plxtools.check.mj_math import angle_between
 from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
@@ -75,6 +76,7 @@ class SimulationResult:
     timestep: float
     wall_time_s: float
     compile_ms: float
+    integrator: str = "implicitfast"  # MuJoCo's integrator (mj_integrator.choose says why)
     blowup: dict[str, Any] | None = None
     penetrations: list[dict[str, Any]] = field(default_factory=list)
     fall_through: list[dict[str, Any]] = field(default_factory=list)
@@ -184,6 +186,7 @@ class SimOptions:
     sample_dt: float = 0.01
     timeout: float | None = None  # s of wall-clock time; None: no limit
     energy_tol: float = 0.05  # energy gain tolerated, as a fraction of the run's energy scale
+    drift_tol: float = 0.01  # conservative, contact-free scenes: energy drift either way tolerated, same scale
     penetration_tol: float = 0.005
     max_speed: float = 1e3
     fall_margin: float = 0.01
@@ -875,6 +878,9 @@ class Energy(Monitor):
         self.work = 0.0
         self.work_abs = 0.0
         self.gain, self.gain_time = 0.0, 0.0
+        self.drift, self.drift_time = 0.0, 0.0  # largest |E - E0 - W|, either way
+        # a conservative, contact-free scene must keep its energy, not only not gain any
+        self.conservative = not_conservative(model) is None
         masses = [float(model.body_mass[i]) for _, i in run.dyn]
         self.floor = sum(masses) * float(np.linalg.norm(model.opt.gravity)) * 1e-3
         # a kinematic body pushing things, or a controller setting velocities, does work not counted here
@@ -957,6 +963,10 @@ class Energy(Monitor):
         if top > self.max_kinetic:
             self.max_kinetic = float(top)
         g = b.energy[:n, 0] + ke - self.initial - work
+        a = np.abs(g)
+        k = int(a.argmax())
+        if a[k] > self.drift:
+            self.drift, self.drift_time = float(a[k]), float(b.t[k])
         cand = np.where(g > self.gain, g, -np.inf)
         i = int(cand.argmax())
         if cand[i] > self.gain:
@@ -968,8 +978,22 @@ class Energy(Monitor):
         run.res.energy = {"initial_total": self.initial, "final_total": self._total(run),
                           "max_kinetic": self.max_kinetic, "actuator_work": self.work,
                           "max_unexplained_gain": self.gain, "max_unexplained_gain_time": self.gain_time,
-                          "checked": self.checked}
-        if not self.checked or self.gain <= run.opt.energy_tol * scale + self.floor:
+                          "max_drift": self.drift, "max_drift_time": self.drift_time,
+                          "conservative": self.conservative, "checked": self.checked}
+        if not self.checked:
+            return
+        if self.conservative and self.drift > run.opt.drift_tol * scale + self.floor:
+            m = run.model
+            name = {int(run.mujoco.mjtIntegrator.mjINT_RK4): "rk4", int(run.mujoco.mjtIntegrator.mjINT_EULER): "euler",
+                    int(run.mujoco.mjtIntegrator.mjINT_IMPLICIT): "implicit"}.get(int(m.opt.integrator), "implicitfast")
+            run.add(WARNING, "A134",
+                    f"the energy of this conservative scene (no contacts, damping, friction, limits or motors) drifted "
+                    f"by {self.drift:.4g} J ({100 * self.drift / scale:.3g} % of its energy scale {scale:.4g} J; "
+                    f"tolerance {100 * run.opt.drift_tol:g} %), largest at t={self.drift_time:.3f} s with the "
+                    f"{name} integrator at a {float(m.opt.timestep):g} s step: use --integrator rk4 or a shorter "
+                    f"--timestep", None)
+            return
+        if self.gain <= run.opt.energy_tol * scale + self.floor:
             return
         worst = None
         bodies = run.res.bodies
@@ -1066,6 +1090,7 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
     model, names = compiled.model, compiled.names
     h = float(model.opt.timestep)
     res.timestep = h
+    res.integrator = compiled.integrator
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, model.key("initial").id)
     mujoco.mj_forward(model, data)
@@ -1094,7 +1119,8 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
     # compute for them), instead of an extra mj_forward per sample; the step is then finished
     # with mj_step2.  A controller reads acceleration-stage data (actuator forces) and a kinematic
     # body is placed before each step, so those runs use mj_forward.
-    split = controller is None and not run.movers
+    # RK4: mj_step2 would integrate with Euler, so an RK4 run takes whole mj_steps
+    split = controller is None and not run.movers and int(model.opt.integrator) != int(mujoco.mjtIntegrator.mjINT_RK4)
     forces_from = MOTOR_WINDOW * duration if model.nu else math.inf  # MotorTracking reads actuator_force
     primed = False  # mj_step1 of the next step has run
     fast_after = None

@@ -57,6 +57,8 @@ class CompiledScene:
     loop_mates: list[str] = field(default_factory=list)
     free_roots: list[str] = field(default_factory=list)  # body paths given a free joint
     kinematic: list[str] = field(default_factory=list)  # body paths moved as prescribed (mocap bodies)
+    integrator: str = "implicitfast"  # the MuJoCo integrator the scene runs with (mj_integrator.choose)
+    integrator_why: str = ""
     prescribed_cache: Any = None  # mj_kinematic.prescribed: (model, body id -> prescribed velocity)
     actuators: list[ActuatorInfo] = field(default_factory=list)
     monitors: list[MateMonitor] = field(default_factory=list)

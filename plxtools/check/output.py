@@ -40,6 +40,7 @@ def simulation_json(fc: FileCheck) -> dict[str, Any]:
         "simulated_time": _r(s.simulated_time, 9),
         "steps": s.steps,
         "timestep": s.timestep,
+        "integrator": s.integrator,
         "wall_time_s": _r(s.wall_time_s, 4),
         "bodies": bodies,
         "mates": d.get("mates", {}),
@@ -214,7 +215,7 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
             continue
         s = fc.simulation
         head = (f"  simulated {s.simulated_time:.2f} s in {s.steps} steps of {s.timestep:g} s "
-                f"({s.wall_time_s:.2f} s wall)")
+                f"({s.integrator}, {s.wall_time_s:.2f} s wall)")
         _line(stream, console, head, None)
         rows = motion_rows(fc)
         cols = ("body", "start", "end", "moved", "heading", "top speed", "top kinetic energy")

@@ -206,6 +206,11 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     StaticChecks(asm, asmb, col, kinds, rep).run()
     scan_strings(tree, rep)
     fc.scene = to_scene(asm, col, rep, os.path.dirname(os.path.abspath(str(path))))
+    if cfg is not None:  # [check] integrator / timestep of the project's config (the CLI's flags win)
+        if getattr(cfg, "check_timestep", None) is not None:
+            fc.scene.timestep = cfg.check_timestep
+        if getattr(cfg, "check_integrator", None) is not None:
+            fc.scene.integrator = cfg.check_integrator
     fc.timings["assemble"] = time.perf_counter() - t1
     fc.rep, fc.raw, fc.cfg = rep, raw, cfg
     fc.evaluator, fc.kinds = ev, kinds

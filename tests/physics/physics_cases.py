@@ -273,4 +273,13 @@ CASES: list[Case] = [
     Case("restitution 0.8: rebound height", "bouncing_ball_08.openplx", 1.5, "rebound height / drop height",
          0.8 ** 2, lambda r: rebound(r.trace["ball.z"], 0.1) / 1.0, 0.05,
          "As above with e = 0.8: e^2 = 0.64."),
+    Case("double pendulum: energy kept", "double_pendulum.openplx", 10.0, "largest energy drift / 2 m g L",
+         0.0, lambda r: _energy(r)["max_drift"] / (2 * 1.0 * G * 1.0), 1e-4,
+         "Two 1 kg, 1 m rods on frictionless hinges released horizontal: conservative, so E(t) = E(0). The scene "
+         "has no contacts, damping, limits or motors, so plx runs it with RK4 (drift ~1e-7 of 2mgL in 10 s; "
+         "implicitfast drifts 5 %).", absolute=True),
 ]
+
+
+def _energy(r: Run) -> dict:
+    return next(iter(r.report["simulation"].values()))["energy"]
