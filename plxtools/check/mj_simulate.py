@@ -276,6 +276,7 @@ SAMPLE_FIELDS = ("xpos", "xmat", "xipos", "ximat", "cvel", "subtree_com", "qpos"
                  "actuator_velocity", "actuator_force")
 _SAMPLE_BYTES = 4_000_000  # buffer size that sets how many samples a batch holds (8 to 256)
 MOTOR_WINDOW = 0.8  # MotorTracking averages over t >= MOTOR_WINDOW * duration
+TRACKING_TOL, TRACKING_ABS = 0.02, 0.005  # A106: a velocity motor off its target by more than 2 % + 0.005
 
 
 class Samples:
@@ -853,9 +854,12 @@ class MotorTracking(Monitor):
             err = abs(mean_v - a.target_speed) if a.target_speed is not None else None
             run.res.motors[a.path] = MotorReport(
                 a.path, a.kind, a.target_speed if a.target_speed is not None else a.ctrl, mean_v, mean_f, a.kv, err)
-            if err is not None and self.count and err > 0.1 * abs(a.target_speed) + 0.05:
-                run.add(WARNING, "A106", f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g} over the "
-                        f"last 20 % of the run", a.path)
+            if err is not None and self.count and err > TRACKING_TOL * abs(a.target_speed) + TRACKING_ABS:
+                pct = f" ({100 * err / abs(a.target_speed):.3g} % off)" if a.target_speed else ""
+                why = (f"; its gain is kv = {a.kv:.4g} (A111), so under a load the speed sags by load / kv"
+                       if a.kv is not None else "")
+                run.add(WARNING, "A106", f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g}{pct} over "
+                        f"the last 20 % of the run, with a mean effort of {mean_f:.4g}{why}", a.path)
 
 
 _ENERGY_ROWS = 1024  # steps Energy buffers at first (it grows when a batch of samples needs more)

@@ -241,8 +241,8 @@ rule("A104", "initial-penetration", W,
 rule("A105", "joint-limit-exceeded", W, "A joint went more than 0.02 beyond its range during the run.",
      "The range is enforced by a soft limit in MuJoCo; large excursions mean large forces.", stage=SIM)
 rule("A106", "motor-not-tracking", W,
-     "A velocity motor's mean speed over the last 20 % of the run is off its target by more than 10 % "
-     "(+ 0.05).", "The motor is blocked, its effort range is too small, or it fights another motor.",
+     "A velocity motor's mean speed over the last 20 % of the run is off its target by more than 2 % "
+     "(+ 0.005); the message gives the measured error, the mean effort and the gain MuJoCo runs with.", "The motor is blocked, its effort range is too small, or it fights another motor.",
      stage=SIM)
 rule("A107", "bad-control", E, "MuJoCo rejected a NaN or huge actuator control and zeroed the controls.",
      "A target speed or effort evaluated to an unusable number.", stage=SIM)
