@@ -260,6 +260,8 @@ class StaticChecks:
                 end = self.a.real(obj, "end", math.nan)
                 if math.isfinite(start) and math.isfinite(end) and start > end:
                     self.add_at("A024", f"{c.path}: range start {start:g} is greater than end {end:g}", obj, "start")
+                elif math.isfinite(start) and math.isfinite(end) and c.mate is not None and c.mate.enabled:
+                    self._range_start(c, start, end)
                 if c.dof == "rotational" and any(math.isfinite(x) and abs(x) > TWO_PI for x in (start, end)):
                     self.add_at("A022", f"{c.path}: range [{start:g}, {end:g}] goes beyond 2 pi: is it in degrees?",
                                 obj, "start")
@@ -268,6 +270,28 @@ class StaticChecks:
             if lo > hi:
                 self.add_at("A024", f"{c.path}: min_effort {lo:g} is greater than max_effort {hi:g}", obj,
                             "min_effort")
+
+    def _range_start(self, c, start: float, end: float) -> None:
+        """A range its mate starts outside of (A043): the joint limit kicks the bodies back at the
+        first step, with the energy of a stiff spring compressed by the whole violation."""
+        m = c.mate
+        rotational = c.dof == "rotational"
+        if rotational and m.kind in ("hinge", "cylindrical"):
+            q, what, unit = m.initial_angle, "initial_angle", "rad"
+        elif not rotational and m.kind in ("prismatic", "cylindrical"):
+            q, what, unit = m.initial_position, "initial_position", "m"
+        else:
+            return
+        tol = 1e-9 * max(1.0, abs(start), abs(end))
+        if start - tol <= q <= end + tol:
+            return
+        node, unit_ = self.where(m.obj, what)
+        if node is None:
+            node, unit_ = self.where(c.obj, "start" if q < start else "end")
+        self.rep.add("A043", f"{c.path}: {m.path} starts at {what} {q:g} {unit}, outside the range [{start:g}, "
+                     f"{end:g}] {unit}; the limit pushes it back at the first step with a kick that is not in the "
+                     f"model", node=node, unit=unit_, obj=c.obj, path=c.path,
+                     help=f"start the mate inside the range, or widen the range to include {q:g}")
 
     # ------------------------------------------------------------------ hinge axis vs cylinder axis
 
@@ -284,6 +308,8 @@ class StaticChecks:
             axis_w = self.asm.conn_world(m.conns[0])[0][:, 2]
             for c in m.conns:
                 n = c.node
+                if not getattr(n, "is_dynamic", True):
+                    continue  # a static body does not turn: its cylinder (a bearing housing, a post) is no wheel
                 for g in by_node.get(id(n), []):
                     gw = compose(n.world, g.pose)
                     cyl_axis = gw[0][:, 1]

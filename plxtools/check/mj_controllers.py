@@ -286,19 +286,24 @@ def add_spring(ctx: BuildContext, ctl: Controller, joint: str, sign: int, ieff: 
     n = ctx.spring_count.get(joint, 0)
     if n:
         ctx.note(
-            WARNING,
+            INFO,
             "A125",
-            f"{ctl.path}: several springs on one DOF; stiffness and damping are summed, the last rest value wins",
+            f"{ctl.path}: several springs on one DOF act as one: stiffness and damping summed, rest at the "
+            f"stiffness-weighted mean of their rests (the same force and, up to a constant, the same energy)",
             ctl,
         )
     ctx.spring_count[joint] = n + 1
     stiffness = [float(v) for v in j.stiffness]  # [linear, polynomial terms...] in MuJoCo 4
     damping = [float(v) for v in j.damping]
-    stiffness[0] = stiffness[0] + k if n else k
+    k_before = stiffness[0] if n else 0.0
+    rest = sign * float(ctl.rest)
+    if n and k_before + k > 0:  # k1 (q - r1) + k2 (q - r2) = (k1 + k2) (q - (k1 r1 + k2 r2) / (k1 + k2))
+        rest = (k_before * float(j.springref) + k * rest) / (k_before + k)
+    stiffness[0] = k_before + k
     damping[0] = damping[0] + float(ctl.damping)  # on top of the mate's viscous friction
     j.stiffness = stiffness
     j.damping = damping
-    j.springref = sign * float(ctl.rest)
+    j.springref = rest
 
 
 # -- initial state ---------------------------------------------------------------------------
@@ -315,25 +320,30 @@ def _joint_velocities(ctx: BuildContext, model: Any, path: str, body: Any, v: np
     parent = ctx.bodies.get(parent_path) if parent_path else None
     pv = np.asarray(parent.lin_vel, dtype=float) if parent is not None and parent.is_dynamic else np.zeros(3)
     pw = np.asarray(parent.ang_vel, dtype=float) if parent is not None and parent.is_dynamic else np.zeros(3)
-    dv, dw = v - pv, w - pw
+    x = np.array(data.xpos[bid])
+    pid = int(model.body_parentid[bid])
+    dv, dw = v - pv - np.cross(pw, x - np.array(data.xpos[pid])), w - pw  # relative to the parent's motion
     left_v, left_w = dv.copy(), dw.copy()
     for j in range(int(model.body_jntadr[bid]), int(model.body_jntadr[bid] + model.body_jntnum[bid])):
         adr, axis = int(model.jnt_dofadr[j]), np.array(data.xaxis[j])
         if model.jnt_type[j] == mj.mjtJoint.mjJNT_HINGE:
             qvel[adr] = float(dw @ axis)
             left_w = left_w - float(dw @ axis) * axis
+            # turning about the hinge moves the body's origin too: that part of its velocity is taken
+            left_v = left_v - np.cross(float(dw @ axis) * axis, x - np.array(data.xanchor[j]))
         elif model.jnt_type[j] == mj.mjtJoint.mjJNT_SLIDE:
             qvel[adr] = float(dv @ axis)
             left_v = left_v - float(dv @ axis) * axis
         elif model.jnt_type[j] == mj.mjtJoint.mjJNT_BALL:
             r = np.array(data.xmat[bid]).reshape(3, 3)
             qvel[adr:adr + 3] = r.T @ dw  # a ball joint's velocity is in the body frame
+            left_v = left_v - np.cross(left_w, x - np.array(data.xanchor[j]))
             left_w = np.zeros(3)
     scale = max(float(np.linalg.norm(dv)), float(np.linalg.norm(dw)), 1e-12)
     if max(float(np.linalg.norm(left_v)), float(np.linalg.norm(left_w))) > 1e-6 * scale:
         ctx.note(INFO, "A120", f"{path}: the part of its initial velocity that its mate does not allow is ignored "
-                 f"(it starts with the joint speed that the velocity gives; left out: linear {_fmt(left_v)} m/s, "
-                 f"angular {_fmt(left_w)} rad/s)", body)
+                 f"(it starts with the joint speed that the velocity gives; left out, beyond what that joint speed "
+                 f"moves: linear {_fmt(left_v)} m/s, angular {_fmt(left_w)} rad/s)", body)
 
 
 def _fmt(v: np.ndarray) -> str:

@@ -279,6 +279,12 @@ CASES: list[Case] = [
          "kv = m / h = 2.5e4 (A111: stiffer chatters between the limits), so it sags by m g / kv = 0.0196 m/s "
          "(3.9 %); A106 warns with that measured error.",
          must_not_report=frozenset({"A101", "A134", "A135"})),
+    Case("two motors, two ranges, two springs on one hinge", "crowded_hinge.openplx", 3.0, "balance angle (rad)",
+         (5.0 + 3.0 + 20.0 * 0.0 + 10.0 * 0.2) / 30.0, lambda r: float(r.trace["axle.q"][-1]), 0.005,
+         "Both motors stall at their effort limits (5 + 3 N m) against the springs (20 N m/rad at 0, 10 N m/rad at "
+         "0.2 rad), which act as one spring of 30 N m/rad at their stiffness-weighted rest: q = (5 + 3 + 2) / 30, "
+         "inside both ranges. No A134: the energy balance holds.",
+         must_not_report=frozenset({"A101", "A134", "A135"})),
     Case("double pendulum: energy kept", "double_pendulum.openplx", 10.0, "largest energy drift / 2 m g L",
          0.0, lambda r: _energy(r)["max_drift"] / (2 * 1.0 * G * 1.0), 1e-4,
          "Two 1 kg, 1 m rods on frictionless hinges released horizontal: conservative, so E(t) = E(0). The scene "

@@ -199,6 +199,11 @@ rule("A040", "unsupported-feature", W,
      "that gives it), PointGravitationalField, unknown mate or interaction types.",
      "It is named, never dropped silently: the simulation runs without it, so its results may differ "
      "from AGX's.", stage=C)
+rule("A043", "range-starts-violated", W,
+     "A mate starts outside the range on it: its `initial_angle` (or `initial_position`) lies outside the "
+     "range's [start, end].",
+     "The joint limit then pushes the bodies back at the first step, a kick the model does not describe "
+     "(hundreds of joules and metres per second in a stiff limit); found before any simulation.", stage=C)
 rule("A042", "imported-file-not-analysed", I,
      "The scene uses a model imported from a file plx cannot read (an `.agx` archive, a URDF, any "
      "format other than `.obj`/`.stl` meshes and images): said once per import, listing the objects built "
@@ -308,8 +313,9 @@ rule("A124", "controller-on-loop-mate", W,
      "A controller drives a mate that closes a kinematic loop (an equality constraint in MuJoCo); this is "
      "not supported.", "The controller is ignored in the simulation.", stage=SIM)
 rule("A125", "stacked-controllers", I,
-     "Several ranges or springs act on one degree of freedom: ranges are intersected; springs are summed "
-     "and the last rest value wins.", "Check that this is what the model means.", stage=SIM)
+     "Several ranges or springs act on one degree of freedom: ranges are intersected; springs act as one "
+     "spring with their summed stiffness and damping, at the stiffness-weighted mean of their rests (the same "
+     "force as the separate springs).", "Check that this is what the model means.", stage=SIM)
 rule("A126", "mass-without-geometry", W,
      "A body has a mass but no geometry to shape its inertia; a 0.1 m solid sphere is assumed.",
      "Give the body a geometry or an inertia tensor.", stage=SIM)
