@@ -189,7 +189,8 @@ def _log_slope(t: np.ndarray, q: np.ndarray, t0: float, t1: float) -> float:
 CASES: list[Case] = [
     Case("free fall", "free_fall.openplx", 1.0, "height after 1 s (m)", 10.0 - G / 2,
          lambda r: at(r.trace.t, r.trace["ball.z"], 1.0), 0.005,
-         "z = z0 - g t^2 / 2. Semi-implicit Euler lags by g h t / 2 = 1 cm of the 4.9 m drop (0.2 %)."),
+         "z = z0 - g t^2 / 2. No contact, no damping: plx runs it with RK4, exact for a parabola (with "
+         "implicitfast, semi-implicit Euler lags by g h t / 2 = 1 cm of the 4.9 m drop, 0.2 %)."),
     Case("simple pendulum period", "simple_pendulum.openplx", 6.0, "period (s)",
          _pendulum_period(_BOB_I, 1.0, 1.0, 0.05), lambda r: period(r.trace.t, r.trace["hinge.q"]), 0.001,
          "T = 2 pi sqrt(I / (m g L)) (1 + a^2/16), I including the ball's own inertia."),
@@ -201,7 +202,8 @@ CASES: list[Case] = [
          "omega = sqrt(k / m) with k = 200 N/m, m = 2 kg, no damping."),
     Case("spring-mass undamped amplitude", "spring_mass.openplx", 4.0, "amplitude after 4 s (m)", 0.1,
          lambda r: float(peaks(r.trace.t, r.trace["slide.q"])[1][-1]), 0.01,
-         "An undamped spring keeps its 0.1 m amplitude; 1 %: the implicit integrator damps a little."),
+         "An undamped spring keeps its 0.1 m amplitude (RK4: conservative and contact-free; implicitfast damps "
+         "it by about 1 % in 4 s)."),
     Case("spring-mass default dissipation: decay", "spring_mass_damped.openplx", 3.0, "decay rate (1/s)", _SIGMA,
          lambda r: decay_rate(r.trace.t, r.trace["slide.q"]), 0.02,
          "The bundle's DefaultDissipation is AGX's relaxation time 2/60 s: c = k 2/60, amplitude ~ exp(-c t / 2m). "
@@ -266,6 +268,19 @@ CASES: list[Case] = [
          "height after 2 s (m)", 2.0, lambda r: float(r.trace["beam.z"][-1]), 1e-9,
          "A body listed in kinematically_controlled (deprecated, still honoured by AGX) does not fall.",
          absolute=True),
+    Case("kinematic turntable: speed of its centre of mass", "kinematic_turntable.openplx", 1.0,
+         "trace speed of the centre of mass (m/s)", 2.0 * 0.5,
+         lambda r: float(np.max(np.sqrt(r.trace["table.vx"] ** 2 + r.trace["table.vy"] ** 2))), 1e-9,
+         "is_dynamic: false turning at w = 2 rad/s, its mass 0.5 m off the axis: v = w r (MuJoCo reports 0 for "
+         "a mocap body; plx reports the prescribed motion in the trace, top speed, scenarios, outputs and the API)."),
+    Case("kinematic platform: reported top speed", "kinematic_turntable.openplx", 1.0, "top speed (m/s)", 0.5,
+         lambda r: next(iter(r.report["simulation"].values()))["bodies"]["platform"]["max_speed"], 1e-9,
+         "A platform driven at 0.5 m/s: its top speed in the report is 0.5 m/s."),
+    Case("drive-train velocity motor: driven hinge after 10 ms", "gear_train.openplx", 0.2,
+         "hinge speed at t = 0.01 s (rad/s)", 8.0 / 4.0, lambda r: at(r.trace.t, r.trace["wheel_drive.mate_3d.qdot"], 0.01),
+         0.1, "From rest, the motor's 8 rad/s through the 4:1 gear: 2 rad/s at the hinge within 5 steps (the real "
+         "runtime: 1 step). The servo gain is the inertia the motor drives through the drive train / h; the "
+         "couplings are soft constraints with a 2-step time constant, so 10 % after 5 steps, 1 % after 15."),
     Case("restitution 0.5: rebound height", "bouncing_ball.openplx", 1.5, "rebound height / drop height",
          0.5 ** 2, lambda r: rebound(r.trace["ball.z"], 0.1) / 1.0, 0.05,
          "Dropped from h = 1 m with normal_restitution e = 0.5: it leaves at e v, so it rises to e^2 h. 5 %: "
