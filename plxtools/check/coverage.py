@@ -218,7 +218,8 @@ def settings_not_simulated(kinds: Any, ev: Any, get: Any, obj: Any, _depth: int 
             shorts = [q.rsplit(".", 1)[-1] for q in owners]
             instead = next((TRAIT_INSTEAD[x] for x in shorts if x in TRAIT_INSTEAD), "left out")
             out.append((names[0], f"{obj.display} has {' / '.join(shorts)} ({', '.join(names)}), which the MuJoCo "
-                                  f"backend does not simulate; {instead}", _declared_where(obj) or _set_where(ev, obj, names)))
+                                  f"backend does not simulate; {instead}",
+                        _declared_where(obj) or _set_where(ev, obj, names)))
         if _depth < 2:
             for name, status in attrs.items():
                 if status != MAPPED:

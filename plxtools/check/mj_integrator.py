@@ -63,7 +63,8 @@ def _contacts_possible(model: Any) -> bool:
             bb = int(model.geom_bodyid[b])
             if ba == bb:
                 continue
-            if not (model.geom_contype[a] & model.geom_conaffinity[b] or model.geom_contype[b] & model.geom_conaffinity[a]):
+            ta, tb = model.geom_contype, model.geom_conaffinity
+            if not (ta[a] & tb[b] or ta[b] & tb[a]):
                 continue
             wa, wb = int(model.body_weldid[ba]), int(model.body_weldid[bb])
             if wa == wb:

@@ -77,7 +77,8 @@ def kinematic_movers(compiled: Any, model: Any, data: Any) -> list[KinematicMove
     return out
 
 
-def body_velocity(mujoco: Any, model: Any, data: Any, compiled: Any, bid: int, out: np.ndarray | None = None) -> np.ndarray:
+def body_velocity(mujoco: Any, model: Any, data: Any, compiled: Any, bid: int,
+                  out: np.ndarray | None = None) -> np.ndarray:
     """(angular, linear) velocity of body ``bid``'s centre of mass, world frame, as
     ``mj_objectVelocity`` gives it for a dynamic body, and the prescribed motion for a kinematic
     one (MuJoCo reports zero there)."""

@@ -277,7 +277,8 @@ CASES: list[Case] = [
          lambda r: next(iter(r.report["simulation"].values()))["bodies"]["platform"]["max_speed"], 1e-9,
          "A platform driven at 0.5 m/s: its top speed in the report is 0.5 m/s."),
     Case("drive-train velocity motor: driven hinge after 10 ms", "gear_train.openplx", 0.2,
-         "hinge speed at t = 0.01 s (rad/s)", 8.0 / 4.0, lambda r: at(r.trace.t, r.trace["wheel_drive.mate_3d.qdot"], 0.01),
+         "hinge speed at t = 0.01 s (rad/s)", 8.0 / 4.0,
+         lambda r: at(r.trace.t, r.trace["wheel_drive.mate_3d.qdot"], 0.01),
          0.1, "From rest, the motor's 8 rad/s through the 4:1 gear: 2 rad/s at the hinge within 5 steps (the real "
          "runtime: 1 step). The servo gain is the inertia the motor drives through the drive train / h; the "
          "couplings are soft constraints with a 2-step time constant, so 10 % after 5 steps, 1 % after 15."),
