@@ -272,7 +272,7 @@ class StaticChecks:
                             "min_effort")
 
     def _range_start(self, c, start: float, end: float) -> None:
-        """A range its mate starts outside of (A043): the joint limit kicks the bodies back at the
+        """A range its mate starts outside of (A045): the joint limit kicks the bodies back at the
         first step, with the energy of a stiff spring compressed by the whole violation."""
         m = c.mate
         rotational = c.dof == "rotational"
@@ -288,7 +288,7 @@ class StaticChecks:
         node, unit_ = self.where(m.obj, what)
         if node is None:
             node, unit_ = self.where(c.obj, "start" if q < start else "end")
-        self.rep.add("A043", f"{c.path}: {m.path} starts at {what} {q:g} {unit}, outside the range [{start:g}, "
+        self.rep.add("A045", f"{c.path}: {m.path} starts at {what} {q:g} {unit}, outside the range [{start:g}, "
                      f"{end:g}] {unit}; the limit pushes it back at the first step with a kick that is not in the "
                      f"model", node=node, unit=unit_, obj=c.obj, path=c.path,
                      help=f"start the mate inside the range, or widen the range to include {q:g}")

@@ -1,5 +1,5 @@
 """The smaller findings of round 3: a range that starts violated is found before any simulation
-(A043), A120 names only the part of an initial velocity a mate really leaves out, and A018 (hinge
+(A045), A120 names only the part of an initial velocity a mate really leaves out, and A018 (hinge
 axis off a cylinder's axis) only speaks about a body the hinge turns, a wheel, not about a disc that
 only sits on a hinged body."""
 
@@ -35,11 +35,11 @@ def test_a_range_that_starts_violated_is_found_statically(tmp_path):
     path.write_text(text.replace("        start: -0.4\n        end: 1.0", "        start: -0.4\n        end: 0.4"),
                     encoding="utf-8")
     _, doc = _check(path)  # no --simulate: static
-    a043 = [d for d in doc["diagnostics"] if d["code"] == "A043"]
-    assert len(a043) == 1 and "initial_angle 1" in a043[0]["message"] and "[-0.4, 0.4]" in a043[0]["message"]
-    assert a043[0]["range"]["start"]["line"] == _line(path, "initial_angle: 1.0")
+    a045 = [d for d in doc["diagnostics"] if d["code"] == "A045"]
+    assert len(a045) == 1 and "initial_angle 1" in a045[0]["message"] and "[-0.4, 0.4]" in a045[0]["message"]
+    assert a045[0]["range"]["start"]["line"] == _line(path, "initial_angle: 1.0")
     _, ok = _check(MODELS / "hinge_range.openplx")  # the same mate starting on the range's end: fine
-    assert not [d for d in ok["diagnostics"] if d["code"] == "A043"]
+    assert not [d for d in ok["diagnostics"] if d["code"] == "A045"]
 
 
 SWING = """Support is Physics3D.Bodies.RigidBody:

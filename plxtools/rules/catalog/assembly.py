@@ -199,7 +199,7 @@ rule("A040", "unsupported-feature", W,
      "that gives it), PointGravitationalField, unknown mate or interaction types.",
      "It is named, never dropped silently: the simulation runs without it, so its results may differ "
      "from AGX's.", stage=C)
-rule("A043", "range-starts-violated", W,
+rule("A045", "range-starts-violated", W,
      "A mate starts outside the range on it: its `initial_angle` (or `initial_position`) lies outside the "
      "range's [start, end].",
      "The joint limit then pushes the bodies back at the first step, a kick the model does not describe "
