@@ -56,3 +56,31 @@ def bundles() -> list[Path]:
     files = bundle_files()
     assert len(files) == 465, "expected the 465 files of openplx-bundles 0.19.0"
     return files
+
+
+def run_plx_here(*args: str, cwd: Path | None = None):
+    """Run `plx` in this process (no interpreter start, no imports again): for a test that needs the
+    command's output and exit code but not a process of its own. Returns (exit code, stdout, stderr)."""
+    import contextlib
+    import io
+
+    from plxtools.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    old_cwd = os.getcwd()
+    old_color = os.environ.get("NO_COLOR")
+    os.environ["NO_COLOR"] = "1"
+    try:
+        if cwd is not None:
+            os.chdir(cwd)
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main(list(args))
+    except SystemExit as exc:  # argparse's usage errors
+        code = exc.code if isinstance(exc.code, int) else 2
+    finally:
+        os.chdir(old_cwd)
+        if old_color is None:
+            os.environ.pop("NO_COLOR", None)
+        else:
+            os.environ["NO_COLOR"] = old_color
+    return code, out.getvalue(), err.getvalue()
