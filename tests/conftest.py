@@ -58,29 +58,42 @@ def bundles() -> list[Path]:
     return files
 
 
-def run_plx_here(*args: str, cwd: Path | None = None):
-    """Run `plx` in this process (no interpreter start, no imports again): for a test that needs the
-    command's output and exit code but not a process of its own. Returns (exit code, stdout, stderr)."""
+
+def plx_here(*args: str, stdin: str | None = None, cwd: Path | None = None, env: dict | None = None):
+    """`run_plx` in this process, for a test that needs the command's output and exit code but not a
+    process of its own (no interpreter start, no imports again: a fifth of the CPU time of a run).
+    Same arguments and result (a CompletedProcess); a test about the process itself (the console
+    entry point, signals, what a run imports, runmemo's replay) uses run_plx."""
     import contextlib
     import io
 
     from plxtools.cli import main
+    from plxtools.config import _config_for_dir
 
+    _config_for_dir.cache_clear()  # a run reads the config files as they are now, as a new process does
     out, err = io.StringIO(), io.StringIO()
-    old_cwd = os.getcwd()
-    old_color = os.environ.get("NO_COLOR")
-    os.environ["NO_COLOR"] = "1"
+    changed = {"NO_COLOR": "1", "FORCE_COLOR": None, **(env or {})}
+    saved = {k: os.environ.get(k) for k in changed}
+    old_cwd, old_stdin = os.getcwd(), sys.stdin
     try:
-        if cwd is not None:
-            os.chdir(cwd)
+        for k, v in changed.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
+        os.chdir(cwd or REPO)
+        sys.stdin = io.TextIOWrapper(io.BytesIO((stdin or "").encode("utf-8")), encoding="utf-8")
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            code = main(list(args))
-    except SystemExit as exc:  # argparse's usage errors
-        code = exc.code if isinstance(exc.code, int) else 2
+            try:
+                code = main(list(args))
+            except SystemExit as exc:  # argparse's usage errors
+                code = exc.code if isinstance(exc.code, int) else 2
     finally:
+        sys.stdin = old_stdin
         os.chdir(old_cwd)
-        if old_color is None:
-            os.environ.pop("NO_COLOR", None)
-        else:
-            os.environ["NO_COLOR"] = old_color
-    return code, out.getvalue(), err.getvalue()
+        for k, v in saved.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
+    return subprocess.CompletedProcess(["plx", *args], code, out.getvalue(), err.getvalue())

@@ -20,7 +20,7 @@ from pathlib import Path
 import pytest
 
 from plxtools.rules.registry import all_rules
-from tests.conftest import CASES, run_plx_here
+from tests.conftest import CASES, plx_here
 
 RULE_CASES = CASES / "rules"
 CASE_FILES = sorted(p for p in RULE_CASES.iterdir() if p.is_file() and not p.name.endswith(".expected"))
@@ -43,8 +43,8 @@ WALL = re.compile(r"\(\d+(?:\.\d+)? s wall\)")
 
 
 def snapshot(path: Path) -> str:
-    code, out, err = run_plx_here(*command_of(path), path.name, cwd=path.parent)
-    text = out + (("# stderr\n" + err) if err else "") + f"# exit code {code}\n"
+    r = plx_here(*command_of(path), path.name, cwd=path.parent)
+    text = r.stdout + (("# stderr\n" + r.stderr) if r.stderr else "") + f"# exit code {r.returncode}\n"
     return WALL.sub("(<t> s wall)", text.replace(str(path.parent), "<cases>"))
 
 
