@@ -121,10 +121,28 @@ def _table_for(old_v: str, new_v: str) -> list[TableEntry]:
 
 
 def diff(old: ApiIndex, new: ApiIndex) -> list[Change]:
-    """The changes from one version's index to another's (normally consecutive versions)."""
+    """The changes from one version's index to another's (normally consecutive versions).
+
+    Models first (renamed by the table, moved, removed, added), then per model that exists in both:
+    its attribute renames (all models first, so a subtype can follow its base's rename), then what
+    else changed in its attributes, base, functions and deprecation notes."""
+    table = _table_for(old.version, new.version)
+    out, full_map = _model_changes(old, new, table)
+    renames, pending = {}, {}
+    for q, n in sorted(full_map.items()):
+        renames[n], pending[q] = _attr_renames(old, new, q, n, table, full_map)
+    for q, n in sorted(full_map.items()):
+        rest_gone, rest_fresh = pending[q]
+        _follow_base_renames(new, n, renames, rest_gone, rest_fresh)
+        out += _attr_changes(old, new, q, n, renames, rest_gone, rest_fresh, full_map)
+        out += _model_body_changes(old, new, q, n, full_map)
+    return out
+
+
+def _model_changes(old: ApiIndex, new: ApiIndex, table: list[TableEntry]) -> tuple[list[Change], dict[str, str]]:
+    """The model-level changes, and every old model that lives on mapped to its name in `new`."""
     v = new.version
     out: list[Change] = []
-    table = _table_for(old.version, v)
     removed = sorted(set(old.models) - set(new.models))
     added = sorted(set(new.models) - set(old.models))
     mapping: dict[str, str] = {}
@@ -133,6 +151,19 @@ def diff(old: ApiIndex, new: ApiIndex) -> list[Change]:
             mapping[e.old] = e.new
             out.append(Change("model-renamed", v, e.old, TABLE, old=e.old, new=e.new, detail=e.note,
                               where=[_where(old, e.old), _where(new, e.new)]))
+    for o, n in _moved_models(old, new, removed, added, mapping):
+        mapping[o] = n
+        out.append(Change("model-moved", v, o, AUTO, old=o, new=n, where=[_where(old, o), _where(new, n)]))
+    out += [Change("model-removed", v, q, PERSON, where=[_where(old, q)]) for q in removed if q not in mapping]
+    mapped_new = set(mapping.values())
+    out += [Change("model-added", v, q, INFO, where=[_where(new, q)]) for q in added if q not in mapped_new]
+    return out, {q: mapping.get(q, q) for q in old.models if q in mapping or q in new.models}
+
+
+def _moved_models(old: ApiIndex, new: ApiIndex, removed: list[str], added: list[str],
+                  mapping: dict[str, str]) -> list[tuple[str, str]]:
+    """(old, new) for a removed and an added model of the same short name and kind: one to one, or
+    else paired within their bundle when that is one to one."""
     by_name_old: dict[tuple[str, str], list[str]] = {}
     by_name_new: dict[tuple[str, str], list[str]] = {}
     for q in removed:
@@ -142,110 +173,120 @@ def diff(old: ApiIndex, new: ApiIndex) -> list[Change]:
     for q in added:
         if q not in taken:
             by_name_new.setdefault((q.rsplit(".", 1)[-1], new.models[q]["k"]), []).append(q)
+    pairs: list[tuple[str, str]] = []
     for key, olds in by_name_old.items():
         news = by_name_new.get(key, [])
-        pairs = [(olds[0], news[0])] if len(olds) == 1 and len(news) == 1 else []
-        if not pairs:  # several of one name: pair them within their bundle when that is one to one
-            for o in olds:
-                same = [n for n in news if n.split(".")[0] == o.split(".")[0]]
-                if len(same) == 1 and sum(x.split(".")[0] == o.split(".")[0] for x in olds) == 1:
-                    pairs.append((o, same[0]))
-        for o, n in pairs:
-            mapping[o] = n
-            out.append(Change("model-moved", v, o, AUTO, old=o, new=n, where=[_where(old, o), _where(new, n)]))
-    for q in removed:
-        if q not in mapping:
-            out.append(Change("model-removed", v, q, PERSON, where=[_where(old, q)]))
-    mapped_new = set(mapping.values())
-    for q in added:
-        if q not in mapped_new:
-            out.append(Change("model-added", v, q, INFO, where=[_where(new, q)]))
-    full_map = {q: mapping.get(q, q) for q in old.models if q in mapping or q in new.models}
+        if len(olds) == 1 and len(news) == 1:
+            pairs.append((olds[0], news[0]))
+            continue
+        for o in olds:
+            bundle = o.split(".")[0]
+            same = [n for n in news if n.split(".")[0] == bundle]
+            if len(same) == 1 and sum(x.split(".")[0] == bundle for x in olds) == 1:
+                pairs.append((o, same[0]))
+    return pairs
 
-    # attributes: first the renames of every model (so subtypes can follow their base's rename)
-    renames: dict[str, dict[str, tuple[str, str, str]]] = {}  # new model -> old attr -> (new attr, handling, why)
-    pending: dict[str, tuple[list[str], list[str]]] = {}
-    for q, n in sorted(full_map.items()):
-        o_own, n_own = old.models[q].get("a", {}), new.models[n].get("a", {})
-        o_all, n_all = old.all_attrs(q), new.all_attrs(n)
-        gone = [a for a in o_own if a not in n_all]
-        fresh = [a for a in n_own if a not in o_all]
-        found: dict[str, tuple[str, str, str]] = {}
-        for e in table:
-            if e.kind == "attribute" and e.model == n and e.old in gone and e.new in n_all:
-                found[e.old] = (e.new, TABLE, e.note)
-        rest_gone = [a for a in gone if a not in found]
-        rest_fresh = [a for a in fresh if a not in {x[0] for x in found.values()}]
-        dep = old.models[q].get("dep", {})
-        for a in list(rest_gone):
-            note = dep.get(a, "")
-            named = [b for b in rest_fresh if re.search(rf"\b{re.escape(b)}\b", note)]
-            if len(named) == 1:
-                found[a] = (named[0], AUTO, f"deprecation note: {note}")
+
+def _attr_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, table: list[TableEntry],
+                  full_map: dict[str, str]) -> tuple[dict[str, tuple[str, str, str]], tuple[list[str], list[str]]]:
+    """A model's renamed attributes (old attr -> (new attr, handling, why)), by the table, a
+    deprecation note that names the new one, or a single gone/new pair that is alike in everything
+    but its name; and the attributes left gone and fresh."""
+    o_own, n_own = old.models[q].get("a", {}), new.models[n].get("a", {})
+    o_all, n_all = old.all_attrs(q), new.all_attrs(n)
+    gone = [a for a in o_own if a not in n_all]
+    fresh = [a for a in n_own if a not in o_all]
+    found: dict[str, tuple[str, str, str]] = {}
+    for e in table:
+        if e.kind == "attribute" and e.model == n and e.old in gone and e.new in n_all:
+            found[e.old] = (e.new, TABLE, e.note)
+    rest_gone = [a for a in gone if a not in found]
+    rest_fresh = [a for a in fresh if a not in {x[0] for x in found.values()}]
+    dep = old.models[q].get("dep", {})
+    for a in list(rest_gone):
+        note = dep.get(a, "")
+        named = [b for b in rest_fresh if re.search(rf"\b{re.escape(b)}\b", note)]
+        if len(named) == 1:
+            found[a] = (named[0], AUTO, f"deprecation note: {note}")
+            rest_gone.remove(a)
+            rest_fresh.remove(named[0])
+    if len(rest_gone) == 1 and len(rest_fresh) == 1:
+        a, b = rest_gone[0], rest_fresh[0]
+        ra, rb = o_own[a], n_own[b]
+        if _map_type(ra[0], full_map) == rb[0] and ra[1] == rb[1] and ra[3] and ra[3] == rb[3]:
+            found[a] = (b, AUTO, "same type, flags and documentation")
+            rest_gone, rest_fresh = [], []
+    return found, (rest_gone, rest_fresh)
+
+
+def _follow_base_renames(new: ApiIndex, n: str, renames: dict, rest_gone: list[str], rest_fresh: list[str]) -> None:
+    """A subtype redeclaring (`becomes`) an attribute its base renamed follows the base's rename."""
+    found = renames[n]
+    for a in list(rest_gone):
+        for anc in new.ancestors(n)[1:]:
+            hit = renames.get(anc, {}).get(a)
+            if hit and hit[0] in rest_fresh:
+                found[a] = (hit[0], hit[1], f"follows {anc}.{a}")
                 rest_gone.remove(a)
-                rest_fresh.remove(named[0])
-        if len(rest_gone) == 1 and len(rest_fresh) == 1:
-            a, b = rest_gone[0], rest_fresh[0]
-            ra, rb = o_own[a], n_own[b]
-            if _map_type(ra[0], full_map) == rb[0] and ra[1] == rb[1] and ra[3] and ra[3] == rb[3]:
-                found[a] = (b, AUTO, "same type, flags and documentation")
-                rest_gone, rest_fresh = [], []
-        renames[n] = found
-        pending[q] = (rest_gone, rest_fresh)
-    for q, n in sorted(full_map.items()):
-        rest_gone, rest_fresh = pending[q]
-        found = renames[n]
-        for a in list(rest_gone):  # a subtype redeclaring (`becomes`) an attribute its base renamed
-            for anc in new.ancestors(n)[1:]:
-                hit = renames.get(anc, {}).get(a)
-                if hit and hit[0] in rest_fresh:
-                    found[a] = (hit[0], hit[1], f"follows {anc}.{a}")
-                    rest_gone.remove(a)
-                    rest_fresh.remove(hit[0])
-                    break
-        o_all, n_all = old.all_attrs(q), new.all_attrs(n)
-        for a, (b, how, why) in sorted(found.items()):
-            out.append(Change("attr-renamed", v, q, how, attr=a, old=a, new=b, detail=why,
+                rest_fresh.remove(hit[0])
+                break
+
+
+def _attr_changes(old: ApiIndex, new: ApiIndex, q: str, n: str, renames: dict, rest_gone: list[str],
+                  rest_fresh: list[str], full_map: dict[str, str]) -> list[Change]:
+    """A model's attributes renamed, removed, added, retyped or newly required."""
+    v = new.version
+    out: list[Change] = []
+    found = renames[n]
+    o_all, n_all = old.all_attrs(q), new.all_attrs(n)
+    for a, (b, how, why) in sorted(found.items()):
+        out.append(Change("attr-renamed", v, q, how, attr=a, old=a, new=b, detail=why,
+                          where=[_where(old, q, a), _where(new, n, b)]))
+    for a in rest_gone:
+        inherited = any(a in old.models[anc].get("a", {}) and renames.get(full_map.get(anc, ""), {}).get(a)
+                        for anc in old.ancestors(q)[1:])
+        if not inherited:
+            out.append(Change("attr-removed", v, q, PERSON, attr=a, old=o_all[a][0], where=[_where(old, q, a)]))
+    for b in rest_fresh:
+        rec = n_all[b]
+        if "b" in rec[1]:
+            continue  # a `becomes` of an attribute that is new in a base: reported there
+        required = "d" not in rec[1] and "o" not in rec[1]
+        out.append(Change("attr-added-required" if required else "attr-added", v, n,
+                          PERSON if required else INFO, attr=b, new=rec[0], where=[_where(new, n, b)]))
+    n_own = new.models[n].get("a", {})
+    back = {b: a for a, (b, _h, _w) in found.items()}
+    for b in sorted(set(old.models[q].get("a", {})) | set(n_own)):
+        a = back.get(b, b)
+        if a not in o_all or b not in n_all or b not in n_own:
+            continue
+        t_new = n_all[b][0]
+        if _map_type(o_all[a][0], full_map) != t_new:
+            out.append(Change("attr-type-changed", v, q, PERSON, attr=a, old=o_all[a][0], new=t_new,
                               where=[_where(old, q, a), _where(new, n, b)]))
-        for a in rest_gone:
-            inherited = any(a in old.models[anc].get("a", {}) and renames.get(full_map.get(anc, ""), {}).get(a)
-                            for anc in old.ancestors(q)[1:])
-            if not inherited:
-                out.append(Change("attr-removed", v, q, PERSON, attr=a, old=o_all[a][0], where=[_where(old, q, a)]))
-        for b in rest_fresh:
-            rec = n_all[b]
-            if "b" in rec[1]:
-                continue  # a `becomes` of an attribute that is new in a base: reported there
-            required = "d" not in rec[1] and "o" not in rec[1]
-            out.append(Change("attr-added-required" if required else "attr-added", v, n,
-                              PERSON if required else INFO, attr=b, new=rec[0], where=[_where(new, n, b)]))
-        own = set(old.models[q].get("a", {})) | set(new.models[n].get("a", {}))
-        back = {b: a for a, (b, _h, _w) in found.items()}
-        for b in sorted(own):
-            a = back.get(b, b)
-            if a not in o_all or b not in n_all:
-                continue
-            t_old, t_new = _map_type(o_all[a][0], full_map), n_all[b][0]
-            if t_old != t_new and (b in new.models[n].get("a", {})):
-                out.append(Change("attr-type-changed", v, q, PERSON, attr=a, old=o_all[a][0], new=t_new,
-                                  where=[_where(old, q, a), _where(new, n, b)]))
-            if "d" in o_all[a][1] and "d" not in n_all[b][1] and "o" not in n_all[b][1] \
-                    and b in new.models[n].get("a", {}):
-                out.append(Change("attr-now-required", v, q, PERSON, attr=a, where=[_where(new, n, b)]))
-        ob, nb = old.base(q), new.base(n)
-        if (ob and _map_type(ob, full_map)) != nb and old.models[q]["k"] != "g":
-            out.append(Change("base-changed", v, q, PERSON, old=ob, new=nb))
-        o_fn, n_fn = old.models[q].get("fn", {}), new.models[n].get("fn", {})
-        for f in sorted(set(o_fn) | set(n_fn)):
-            if f not in n_fn:
-                out.append(Change("fn-removed", v, q, PERSON, attr=f, old=o_fn[f]))
-            elif f not in o_fn:
-                out.append(Change("fn-added", v, n, INFO, attr=f, new=n_fn[f]))
-            elif _map_type(o_fn[f], full_map) != n_fn[f]:
-                out.append(Change("fn-changed", v, q, PERSON, attr=f, old=o_fn[f], new=n_fn[f]))
-        o_dep, n_dep = old.models[q].get("dep", {}), new.models[n].get("dep", {})
-        for a in sorted(set(n_dep) - set(o_dep)):
-            out.append(Change("deprecated", v, n, INFO, attr=a or None, detail=n_dep[a], where=[_where(new, n)]))
+        if "d" in o_all[a][1] and "d" not in n_all[b][1] and "o" not in n_all[b][1]:
+            out.append(Change("attr-now-required", v, q, PERSON, attr=a, where=[_where(new, n, b)]))
+    return out
+
+
+def _model_body_changes(old: ApiIndex, new: ApiIndex, q: str, n: str, full_map: dict[str, str]) -> list[Change]:
+    """A model's base, its functions and its new deprecation notes."""
+    v = new.version
+    out: list[Change] = []
+    ob, nb = old.base(q), new.base(n)
+    if (ob and _map_type(ob, full_map)) != nb and old.models[q]["k"] != "g":
+        out.append(Change("base-changed", v, q, PERSON, old=ob, new=nb))
+    o_fn, n_fn = old.models[q].get("fn", {}), new.models[n].get("fn", {})
+    for f in sorted(set(o_fn) | set(n_fn)):
+        if f not in n_fn:
+            out.append(Change("fn-removed", v, q, PERSON, attr=f, old=o_fn[f]))
+        elif f not in o_fn:
+            out.append(Change("fn-added", v, n, INFO, attr=f, new=n_fn[f]))
+        elif _map_type(o_fn[f], full_map) != n_fn[f]:
+            out.append(Change("fn-changed", v, q, PERSON, attr=f, old=o_fn[f], new=n_fn[f]))
+    o_dep, n_dep = old.models[q].get("dep", {}), new.models[n].get("dep", {})
+    for a in sorted(set(n_dep) - set(o_dep)):
+        out.append(Change("deprecated", v, n, INFO, attr=a or None, detail=n_dep[a], where=[_where(new, n)]))
     return out
 
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity, Span
 from plxtools.model import resolve
-from plxtools.model.program import Program
+from plxtools.model.program import Program, compose_type
 from plxtools.model.symbols import (
     BOOL,
     INT,
@@ -269,19 +269,8 @@ class Checker:
         if texpr is None:
             return UNKNOWN
         alts = [self._type_ref(r, want) for r in texpr.alternatives]
-        traits = []
-        for q in texpr.traits:
-            t = self._type_ref(ast.TypeRef(q.span, q), "trait")
-            if t.model is not None and t.model.is_trait:
-                traits.append(t.model)
-        if len(alts) == 1:
-            a = alts[0]
-            if a.unknown:
-                return UNKNOWN
-            return a if not traits and not a.traits else Ty(a.sym, a.array, tuple(traits))
-        if any(a.unknown for a in alts):
-            return UNKNOWN
-        return Ty(alts=tuple(alts))
+        traits = [self._type_ref(ast.TypeRef(q.span, q), "trait").model for q in texpr.traits]
+        return compose_type(alts, [t for t in traits if t is not None])
 
     # ------------------------------------------------------------------ models
 

@@ -29,6 +29,23 @@ from plxtools.syntax import ast
 _DEPRECATED_DOC = re.compile(r"^\s*(\w+)\s*[-:]\s*(.*deprecated.*)$", re.I | re.M)
 
 
+def compose_type(alts: list[Ty], traits: list[ModelSym]) -> Ty:
+    """The type of a type expression from its resolved alternatives and the models named after `with`.
+
+    The one answer for lint's checker and everything else (completion, completeness, check): only a
+    trait is applied; a model named after `with` is reported by lint (N005) and adds no members here.
+    """
+    applied = tuple(t for t in traits if t.is_trait)
+    if len(alts) == 1:
+        a = alts[0]
+        if a.unknown:
+            return UNKNOWN
+        return a if not applied and not a.traits else Ty(a.sym, a.array, applied)
+    if any(a.unknown for a in alts):
+        return UNKNOWN
+    return Ty(alts=tuple(alts))
+
+
 class Program:
     def __init__(self) -> None:
         self.root = Namespace("", ())
@@ -304,19 +321,8 @@ class Program:
         if texpr is None:
             return UNKNOWN
         alts = [self.resolve_type_ref(r, unit) for r in texpr.alternatives]
-        traits = []
-        for q in texpr.traits:
-            t = self.lookup([p.name for p in q.parts], unit)
-            if isinstance(t, ModelSym):
-                traits.append(t)
-        if len(alts) == 1:
-            a = alts[0]
-            if a.unknown:
-                return UNKNOWN
-            return a if not traits and not a.traits else Ty(a.sym, a.array, tuple(traits))
-        if any(a.unknown for a in alts):
-            return UNKNOWN
-        return Ty(alts=tuple(alts))
+        found = (self.lookup([p.name for p in q.parts], unit) for q in texpr.traits)
+        return compose_type(alts, [t for t in found if isinstance(t, ModelSym)])
 
     def base_of(self, model: ModelSym) -> Ty | None:
         if model.base is None:

@@ -9,7 +9,7 @@ import sys
 import subprocess
 
 from plxtools.fmt import document, format_text
-from tests.conftest import REPO, run_plx
+from tests.conftest import REPO, plx_here
 
 HEAD = "Scene is Physics3D.System:\n"
 MESSY = HEAD + "    x is   Real: 1\n"
@@ -22,10 +22,10 @@ TIDY = HEAD + "    x is Real: 1\n"
 def _lint_fmt_lint(tmp_path, text: str) -> tuple[str, str, str]:
     p = tmp_path / "x.openplx"
     p.write_text(text)
-    before = run_plx("lint", str(p))
-    r = run_plx("fmt", str(p))
+    before = plx_here("lint", str(p))
+    r = plx_here("fmt", str(p))
     assert r.returncode == 0, r.stderr
-    after = run_plx("lint", str(p))
+    after = plx_here("lint", str(p))
     return before.stdout, after.stdout, p.read_text()
 
 
@@ -60,7 +60,7 @@ def test_fmt_refuses_a_line_between_two_levels(tmp_path):
     text = "A is B:\n    c is B:\n        a: 1\n      b: 2\n        d: 3\n"
     p = tmp_path / "x.openplx"
     p.write_text(text)
-    r = run_plx("fmt", str(p))
+    r = plx_here("fmt", str(p))
     assert r.returncode == 2
     assert f"{p}:4:7: error S015" in r.stderr and "not formatted" in r.stderr
     assert p.read_text() == text
@@ -74,7 +74,7 @@ def test_fmt_writes_through_a_symlink(tmp_path):
     real.write_text(MESSY)
     link = tmp_path / "link.openplx"
     link.symlink_to(real)
-    r = run_plx("fmt", str(link))
+    r = plx_here("fmt", str(link))
     assert r.returncode == 0, r.stderr
     assert link.is_symlink() and real.read_text() == TIDY
 
@@ -86,7 +86,7 @@ def test_fmt_keeps_hard_links_and_mode(tmp_path):
     b = tmp_path / "b.openplx"
     os.link(a, b)
     ino = a.stat().st_ino
-    r = run_plx("fmt", str(a))
+    r = plx_here("fmt", str(a))
     assert r.returncode == 0, r.stderr
     assert a.stat().st_ino == ino and b.read_text() == TIDY and a.stat().st_nlink == 2
     assert stat.S_IMODE(a.stat().st_mode) == 0o640
@@ -97,7 +97,7 @@ def test_fmt_keeps_mode_on_a_single_link(tmp_path):
     a = tmp_path / "a.openplx"
     a.write_text(MESSY)
     os.chmod(a, 0o604)
-    assert run_plx("fmt", str(a)).returncode == 0
+    assert plx_here("fmt", str(a)).returncode == 0
     assert a.read_text() == TIDY and stat.S_IMODE(a.stat().st_mode) == 0o604
 
 
@@ -105,7 +105,7 @@ def test_fmt_refuses_a_read_only_file(tmp_path):
     a = tmp_path / "a.openplx"
     a.write_text(MESSY)
     os.chmod(a, 0o444)
-    r = run_plx("fmt", str(a))
+    r = plx_here("fmt", str(a))
     assert r.returncode == 2
     assert "is read-only; not changing it" in r.stderr
     assert "bug" not in r.stderr and a.read_text() == MESSY

@@ -2,10 +2,16 @@
 
 One server per test module and client (Neovim 0.11: UTF-8 positions, no document links; VS Code
 1.65: UTF-16, hierarchical symbols, link support), shared by the module's tests.
+
+Most modules test what the server does, which does not depend on the client: they run with VS Code
+only. A module whose answers do depend on it (positions in non-ASCII text, link and symbol
+capabilities) says `EVERY_CLIENT = True` and runs with both; `PLX_ALL_CLIENTS=1` runs every module
+with both (a stage of .ci/run).
 """
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -18,6 +24,23 @@ EXAMPLE = REPO / "examples" / "boxtruck" / "boxtruck.openplx"
 EXAMPLE_URI = EXAMPLE.as_uri()
 CLIENTS = ["neovim", "visual-studio-code"]
 SERVER = ClientServerConfig(server_command=[sys.executable, "-m", "plxtools", "lsp"])
+
+
+def pytest_collection_modifyitems(config, items):
+    """Leave out the Neovim run of a server test whose module did not ask for every client."""
+    if os.environ.get("PLX_ALL_CLIENTS") == "1":
+        return
+    here = Path(__file__).resolve().parent
+    keep, drop = [], []
+    for item in items:
+        spec = getattr(item, "callspec", None)
+        one_client = (spec is not None and Path(item.path).resolve().parent == here
+                      and any(isinstance(v, str) and v == "neovim" for v in spec.params.values())
+                      and not getattr(item.module, "EVERY_CLIENT", False))
+        (drop if one_client else keep).append(item)
+    if drop:
+        config.hook.pytest_deselected(items=drop)
+        items[:] = keep
 
 
 def example_text() -> str:

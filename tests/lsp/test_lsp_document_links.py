@@ -11,6 +11,9 @@ pytestmark = [pytest.mark.asyncio(loop_scope="module"),
               pytest.mark.filterwarnings("error::pytest_lsp.LspSpecificationWarning")]
 
 
+EVERY_CLIENT = True  # its answers depend on the client's capabilities (see conftest.py)
+
+
 async def test_document_links(client, tmp_path_factory):
     folder = tmp_path_factory.mktemp(f"links-{client.name}")
     (folder / "mesh.obj").write_text("")

@@ -11,6 +11,9 @@ pytestmark = [pytest.mark.asyncio(loop_scope="module"),
               pytest.mark.filterwarnings("error::pytest_lsp.LspSpecificationWarning")]
 
 
+EVERY_CLIENT = True  # its answers depend on the client's capabilities (see conftest.py)
+
+
 async def hover(client, uri, text, needle, delta=0, nth=0):
     return await client.text_document_hover_async(types.HoverParams(
         text_document=types.TextDocumentIdentifier(uri=uri), position=position(client, text, needle, delta, nth)))

@@ -25,6 +25,8 @@ from tests.lsp.conftest import (
 pytestmark = [pytest.mark.asyncio(loop_scope="module"),
               pytest.mark.filterwarnings("error::pytest_lsp.LspSpecificationWarning")]
 
+EVERY_CLIENT = True  # its answers depend on the client's capabilities (see conftest.py)
+
 FAULTY = "textDocument/foldingRange"  # made to fail on purpose in this module's server
 
 

@@ -15,6 +15,8 @@ from tests.lsp.conftest import (REPO, accept_registrations, change, open_and_wai
 pytestmark = [pytest.mark.asyncio(loop_scope="module"),
               pytest.mark.filterwarnings("error::pytest_lsp.LspSpecificationWarning")]
 
+EVERY_CLIENT = True  # its answers depend on the client's capabilities (see conftest.py)
+
 TEXT = "a_scene is Physics3D.System:\n    is_dynamc: 1\n"
 
 

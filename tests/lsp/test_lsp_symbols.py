@@ -11,6 +11,9 @@ pytestmark = [pytest.mark.asyncio(loop_scope="module"),
               pytest.mark.filterwarnings("error::pytest_lsp.LspSpecificationWarning")]
 
 
+EVERY_CLIENT = True  # its answers depend on the client's capabilities (see conftest.py)
+
+
 async def test_document_symbols(client):
     await open_and_wait(client, EXAMPLE_URI, example_text())
     syms = await client.text_document_document_symbol_async(types.DocumentSymbolParams(

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from tests.bundles.conftest import fetched  # noqa: F401 - the fixture that provides old versions
-from tests.conftest import run_plx
+from tests.conftest import plx_here
 
 OLD = """\
 # a pendulum written for 0.17: charges became connectors, Charges became Geometries/Interactions
@@ -45,48 +45,48 @@ def old_model(tmp_path, fetched):  # noqa: F811
     fetched("0.17.26")
     f = tmp_path / "pendulum.openplx"
     f.write_text(OLD, encoding="utf-8")
-    assert run_plx("lint", "--openplx-version", "0.17.26", str(f)).returncode == 0
+    assert plx_here("lint", "--openplx-version", "0.17.26", str(f)).returncode == 0
     return f
 
 
 def test_migrate_rewrites_moved_models_and_renamed_attributes_and_keeps_the_rest(old_model: Path):
-    r = run_plx("migrate", "--from", "0.17.26", "--to", "0.19.0", str(old_model))
+    r = plx_here("migrate", "--from", "0.17.26", "--to", "0.19.0", str(old_model))
     assert r.returncode == 0, r.stderr
     assert old_model.read_text(encoding="utf-8") == NEW
     assert "4 changes" in r.stderr
-    lint = run_plx("lint", "--openplx-version", "0.19.0", str(old_model))
+    lint = plx_here("lint", "--openplx-version", "0.19.0", str(old_model))
     assert lint.returncode == 0, lint.stdout
     # the input was in the formatter's style, and so is the result
-    assert run_plx("fmt", "--check", str(old_model)).returncode == 0
-    again = run_plx("migrate", "--from", "0.19.0", "--to", "0.19.0", "--check", str(old_model))
+    assert plx_here("fmt", "--check", str(old_model)).returncode == 0
+    again = plx_here("migrate", "--from", "0.19.0", "--to", "0.19.0", "--check", str(old_model))
     assert again.returncode == 0 and "0 files (0 changes)" in again.stderr
-    fmt = run_plx("fmt", "--check", str(old_model))
+    fmt = plx_here("fmt", "--check", str(old_model))
     assert fmt.returncode in (0, 1) and "internal error" not in fmt.stderr
 
 
 def test_diff_and_check_write_nothing(old_model: Path):
-    d = run_plx("migrate", "--from", "0.17.26", "--to", "0.19.0", "--diff", str(old_model))
+    d = plx_here("migrate", "--from", "0.17.26", "--to", "0.19.0", "--diff", str(old_model))
     assert d.returncode == 0 and "+        connectors: [link.top, world_top]" in d.stdout
-    c = run_plx("migrate", "--from", "0.17.26", "--to", "0.19.0", "--check", str(old_model))
+    c = plx_here("migrate", "--from", "0.17.26", "--to", "0.19.0", "--check", str(old_model))
     assert c.returncode == 1 and "would migrate" in c.stderr
     assert old_model.read_text(encoding="utf-8") == OLD
 
 
 def test_the_from_version_defaults_to_the_projects_pin(old_model: Path):
     (old_model.parent / "plx.toml").write_text('openplx-version = "0.17.26"\n', encoding="utf-8")
-    r = run_plx("migrate", "--to", "0.19.0", str(old_model))
+    r = plx_here("migrate", "--to", "0.19.0", str(old_model))
     assert r.returncode == 0, r.stderr
     assert "0.17.26 -> 0.19.0" in r.stderr and old_model.read_text(encoding="utf-8") == NEW
 
 
 def test_bad_input_is_a_message_and_the_file_is_untouched(old_model: Path, tmp_path):
-    r = run_plx("migrate", "--from", "0.17.26", "--to", "9.9", str(old_model))
+    r = plx_here("migrate", "--from", "0.17.26", "--to", "9.9", str(old_model))
     assert r.returncode == 2 and "9.9" in r.stderr and "Traceback" not in r.stderr
-    r = run_plx("migrate", "--from", "0.19.0", "--to", "0.17.26", str(old_model))
+    r = plx_here("migrate", "--from", "0.19.0", "--to", "0.17.26", str(old_model))
     assert r.returncode == 2 and "only moves forward" in r.stderr
     broken = tmp_path / "broken.openplx"
     broken.write_text("Scene is Physics3D.System:\n    x is = 1\n", encoding="utf-8")
-    r = run_plx("migrate", "--from", "0.17.26", "--to", "0.19.0", str(broken))
+    r = plx_here("migrate", "--from", "0.17.26", "--to", "0.19.0", str(broken))
     assert r.returncode == 2 and "syntax errors" in r.stderr
     assert broken.read_text(encoding="utf-8") == "Scene is Physics3D.System:\n    x is = 1\n"
     assert old_model.read_text(encoding="utf-8") == OLD
@@ -101,7 +101,7 @@ def test_what_needs_a_person_is_listed_where_it_is_and_the_file_is_untouched(tmp
             "    top is Physics3D.Charges.MateConnector:\n        position: {0, 0, 0.5}\n\n"
             "Scene is Physics3D.System:\n    probe is Probe\n    sensor is Sensors.ForceTorqueSensor\n")
     f.write_text(text, encoding="utf-8")
-    r = run_plx("migrate", "--from", "0.17.26", "--to", "0.19.0", str(f))
+    r = plx_here("migrate", "--from", "0.17.26", "--to", "0.19.0", str(f))
     assert r.returncode == 2
     assert "would have 1 error (under 0.17.26: 0)" in r.stderr
     assert f"{f}:8:15: N001 unknown type 'Sensors.ForceTorqueSensor'" in r.stderr

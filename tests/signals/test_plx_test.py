@@ -8,7 +8,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from tests.conftest import run_plx
+from tests.conftest import plx_here
 from tests.signals.helpers import boxtruck_copy, scenario
 
 DRIVE = """
@@ -25,7 +25,7 @@ below = -1.0
 
 
 def test_example_scenario_drives_forward_and_backward_and_passes():
-    r = run_plx("test", "examples/boxtruck")
+    r = plx_here("test", "examples/boxtruck")
     assert r.returncode == 0, r.stdout + r.stderr
     assert r.stdout.splitlines()[0] == "examples/boxtruck/drive.scenario.toml::drive PASSED " \
                                        "(5 expectations, 4.00 s simulated)"
@@ -34,7 +34,7 @@ def test_example_scenario_drives_forward_and_backward_and_passes():
 
 def test_a_wrong_motor_sign_fails_with_the_scenario_line_expected_and_measured(tmp_path):
     boxtruck_copy(tmp_path, wrong_sign=True)
-    r = run_plx("test", ".", cwd=tmp_path)
+    r = plx_here("test", ".", cwd=tmp_path)
     assert r.returncode == 1, r.stdout + r.stderr
     assert "drive.scenario.toml::drive FAILED" in r.stdout
     line = next(ln for ln in r.stdout.splitlines() if ln.startswith("drive.scenario.toml:22:1: error A140"))
@@ -45,7 +45,7 @@ def test_a_wrong_motor_sign_fails_with_the_scenario_line_expected_and_measured(t
 
 
 def test_json_reports_every_expectation_with_measured_values():
-    r = run_plx("test", "examples/boxtruck/drive.scenario.toml", "--output-format", "json")
+    r = plx_here("test", "examples/boxtruck/drive.scenario.toml", "--output-format", "json")
     assert r.returncode == 0, r.stderr
     doc = json.loads(r.stdout)
     assert doc["summary"]["passed"] == 1 and doc["summary"]["failed"] == 0
@@ -59,16 +59,16 @@ def test_json_reports_every_expectation_with_measured_values():
 
 def test_junit_github_and_sarif_name_the_failing_line(tmp_path):
     boxtruck_copy(tmp_path, wrong_sign=True)
-    junit = run_plx("test", ".", "--output-format", "junit", cwd=tmp_path)
+    junit = plx_here("test", ".", "--output-format", "junit", cwd=tmp_path)
     assert junit.returncode == 1
     root = ET.fromstring(junit.stdout)
     case = root.find("testsuite/testcase")
     assert root.get("failures") == "1" and case.get("name") == "drive"
     assert "drive.scenario.toml:22:1: A140" in case.find("failure").text
-    gh = run_plx("test", ".", "--output-format", "github", cwd=tmp_path)
+    gh = plx_here("test", ".", "--output-format", "github", cwd=tmp_path)
     assert any(ln.startswith("::error file=drive.scenario.toml,line=22,") and "A140" in ln
                for ln in gh.stdout.splitlines()), gh.stdout
-    sarif = json.loads(run_plx("test", ".", "--output-format", "sarif", cwd=tmp_path).stdout)
+    sarif = json.loads(plx_here("test", ".", "--output-format", "sarif", cwd=tmp_path).stdout)
     results = sarif["runs"][0]["results"]
     assert {r["ruleId"] for r in results} == {"A140"}
     assert results[0]["locations"][0]["physicalLocation"]["region"]["startLine"] == 22
@@ -111,7 +111,7 @@ def test_bad_scenarios_are_located_errors_with_exit_2(tmp_path, body, line, mess
     boxtruck_copy(tmp_path)
     (tmp_path / "drive.scenario.toml").unlink()
     scenario(tmp_path, body)
-    r = run_plx("test", "case.scenario.toml", cwd=tmp_path)
+    r = plx_here("test", "case.scenario.toml", cwd=tmp_path)
     assert r.returncode == 2, r.stdout + r.stderr
     assert "case.scenario.toml::case ERROR" in r.stdout
     errs = [ln for ln in r.stdout.splitlines() if " error A141 " in ln]
@@ -122,12 +122,12 @@ def test_bad_scenarios_are_located_errors_with_exit_2(tmp_path, body, line, mess
 
 def test_a_missing_model_file_and_missing_paths(tmp_path):
     (tmp_path / "x.scenario.toml").write_text('model = "nope.openplx"\n', encoding="utf-8")
-    r = run_plx("test", ".", cwd=tmp_path)
+    r = plx_here("test", ".", cwd=tmp_path)
     assert r.returncode == 2 and "x.scenario.toml:1:1: error A141 model file 'nope.openplx' not found" in r.stdout
-    r = run_plx("test", "does-not-exist", cwd=tmp_path)
+    r = plx_here("test", "does-not-exist", cwd=tmp_path)
     assert r.returncode == 2 and "does-not-exist: no such file or folder" in r.stderr
     (tmp_path / "x.scenario.toml").unlink()
-    r = run_plx("test", ".", cwd=tmp_path)
+    r = plx_here("test", ".", cwd=tmp_path)
     assert r.returncode == 2 and "no scenario files" in r.stderr
 
 
@@ -135,7 +135,7 @@ def test_a_model_with_errors_fails_the_scenario_with_its_first_error(tmp_path):
     boxtruck_copy(tmp_path)
     model = tmp_path / "boxtruck.openplx"
     model.write_text(model.read_text().replace("inertia.mass: 1000", "inertia.mass: -1000"), encoding="utf-8")
-    r = run_plx("test", "drive.scenario.toml", cwd=tmp_path)
+    r = plx_here("test", "drive.scenario.toml", cwd=tmp_path)
     assert r.returncode == 1, r.stdout + r.stderr
     assert "drive.scenario.toml:7:1: error A142 drive: the model cannot be simulated" in r.stdout
 

@@ -16,6 +16,8 @@ import json
 from functools import lru_cache
 from pathlib import Path
 
+from plxtools.model.resolve import replaces
+
 DATA = Path(__file__).resolve().parent / "data"
 
 
@@ -51,6 +53,10 @@ def check_version(v: str) -> str:
                          f"{len(known)} released openplx-bundles versions)")
 
 
+def _keyword(flags: str) -> str:
+    return "becomes" if "b" in flags else "is"
+
+
 class ApiIndex:
     """One version's models, with the inherited view the diff and the rules need."""
 
@@ -59,6 +65,7 @@ class ApiIndex:
         self.bundles: dict[str, str] = data.get("bundles", {})
         self.models: dict[str, dict] = data["models"]
         self._all: dict[str, dict[str, list]] = {}
+        self._lin: dict[str, list[str]] = {}
 
     def __contains__(self, qname: str) -> bool:
         return qname in self.models
@@ -69,30 +76,61 @@ class ApiIndex:
             return None
         return b.split(" with ")[0].removesuffix("[]")
 
-    def ancestors(self, qname: str) -> list[str]:
-        """The model, its bases and their traits, nearest first (no duplicates, cycles cut)."""
-        out: list[str] = []
+    def linearize(self, qname: str) -> list[str]:
+        """The layers of a model, lowest priority first, by the class ordering of model/resolve.py:
+        the base's layers, then each trait's layers (a layer already present is skipped), then the
+        model itself. The index stores a model's traits sorted by name (`w`), so two traits that
+        declare the same attribute are ordered by name here, not by source order. Cycles are cut."""
+        cached = self._lin.get(qname)
+        if cached is not None:
+            return cached
+        if qname not in self.models:
+            return []
+        in_progress: set[str] = set()
         stack = [qname]
         while stack:
-            q = stack.pop(0)
-            if q in out or q not in self.models:
+            q = stack[-1]
+            if q in self._lin:
+                stack.pop()
                 continue
-            out.append(q)
-            b = self.base(q)
-            if b:
-                stack.append(b)
-            stack.extend(self.models[q].get("w", []))
-        return out
+            parents = [x for x in [self.base(q), *self.models[q].get("w", [])] if x and x in self.models]
+            if q not in in_progress:
+                in_progress.add(q)
+                pending = [x for x in parents if x not in self._lin and x not in in_progress]
+                if pending:
+                    stack.extend(reversed(pending))
+                    continue
+            lin: list[str] = []
+            seen: set[str] = set()
+            for par in parents:
+                for layer in self._lin.get(par, ()):  # a parent still in progress is part of a cycle
+                    if layer not in seen:
+                        seen.add(layer)
+                        lin.append(layer)
+            lin.append(q)
+            self._lin[q] = lin
+            in_progress.discard(q)
+            stack.pop()
+        return self._lin[qname]
+
+    def ancestors(self, qname: str) -> list[str]:
+        """The model, its bases and their traits, highest priority first (the reverse of `linearize`)."""
+        return self.linearize(qname)[::-1]
 
     def all_attrs(self, qname: str) -> dict[str, list]:
-        """Every attribute of a model, inherited ones included; each item is [type, flags, line, doc, declaring model]."""
+        """Every attribute of a model, inherited ones included; each item is [type, flags, line, doc, declaring model].
+
+        The same answer as `Program.all_members` (model/resolve.py): a later layer replaces an earlier
+        one, traits win over the base, and a plain `is` never undoes a `becomes` (flag `b`)."""
         cached = self._all.get(qname)
         if cached is not None:
             return cached
         out: dict[str, list] = {}
-        for anc in reversed(self.ancestors(qname)):
+        for anc in self.linearize(qname):
             for name, rec in self.models[anc].get("a", {}).items():
-                out[name] = [*rec, anc]
+                old = out.get(name)
+                if old is None or replaces(_keyword(old[1]), _keyword(rec[1])):
+                    out[name] = [*rec, anc]
         self._all[qname] = out
         return out
 

@@ -1,0 +1,86 @@
+"""A case file and an expected snapshot for every registered rule code (issue 28, point 5).
+
+`tests/cases/rules/<CODE>.openplx` is the smallest model that makes plx report CODE. Its first line
+names the command that reports it (`# plx check --simulate --duration 0.5`; the file is appended);
+`<CODE>.expected` is what that command prints, followed by its exit code. The case must report its
+own code. Codes reported by the topic cases of `tests/cases/lint` count as covered there, so each
+registered code has a case file somewhere, and the last test fails for any code that has none.
+
+After a deliberate change, regenerate with
+`PLX_UPDATE_SNAPSHOTS=1 python -m pytest tests/test_rule_case_files.py` and review the diff.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shlex
+from pathlib import Path
+
+import pytest
+
+from plxtools.rules.registry import all_rules
+from tests.conftest import CASES, plx_here
+
+RULE_CASES = CASES / "rules"
+CASE_FILES = sorted(RULE_CASES.glob("*.openplx"))  # beside them: files a case imports (A042_machine.agx)
+UPDATE = os.environ.get("PLX_UPDATE_SNAPSHOTS") == "1"
+REPORTED = re.compile(r"^\S+:\d+:\d+: (?:error|warning|info) ([A-Z]\d{3}) ", re.M)
+# codes that no case file can show, each with the test that reports it instead
+NOT_A_CASE = {
+    "B000": "tests/ide/test_bundles_unavailable.py",  # the bundles are not installed at all
+}
+
+
+def command_of(path: Path) -> list[str]:
+    first = path.read_text(encoding="utf-8", errors="replace").splitlines()[0]
+    assert first.startswith("# plx "), f"{path.name}: the first line must name the command"
+    return shlex.split(first[len("# plx "):])
+
+
+# what differs between two runs of the same case: the wall time a simulation took, the checkout's folder
+WALL = re.compile(r"\(\d+(?:\.\d+)? s wall\)")
+
+
+def snapshot(path: Path) -> str:
+    r = plx_here(*command_of(path), path.name, cwd=path.parent)
+    text = r.stdout + (("# stderr\n" + r.stderr) if r.stderr else "") + f"# exit code {r.returncode}\n"
+    return WALL.sub("(<t> s wall)", text.replace(str(path.parent), "<cases>"))
+
+
+@pytest.mark.parametrize("path", CASE_FILES, ids=lambda p: p.stem)
+def test_rule_case(path: Path):
+    got = snapshot(path)
+    expected = path.with_suffix(".expected")
+    if UPDATE:
+        expected.write_text(got, encoding="utf-8")
+    assert got == expected.read_text(encoding="utf-8"), f"snapshot differs: {expected.name}"
+    own = path.stem.split("_")[0]
+    assert own in REPORTED.findall(got), f"{path.name} does not report {own}"
+
+
+def reported_by_cases() -> set[str]:
+    found: set[str] = set()
+    for snap in [*(CASES / "lint").glob("*.expected"), *RULE_CASES.glob("*.expected")]:
+        found |= set(REPORTED.findall(snap.read_text(encoding="utf-8")))
+    return found
+
+
+# codes still without a case file (issue 28): this list may only shrink; a code that gets a case
+# must leave it (the test below fails while it is still named here)
+WITHOUT_A_CASE_YET = set("""
+A004 A005 A006 A008 A023 A101 A102 A103 A104 A107 A108 A109 A110 A112 A113
+A114 A115 A116 A117 A118 A121 A122 A124 A127 A131 A132 A133 A140 A141 A142
+B001 B002 B003 B004 B005 E001
+""".split())
+
+
+def test_every_registered_code_has_a_case_file():
+    registered = {r.code for r in all_rules()}
+    covered = reported_by_cases()
+    missing = registered - covered - set(NOT_A_CASE) - WITHOUT_A_CASE_YET
+    assert not missing, f"registered codes that no case file reports: {sorted(missing)}"
+    assert not WITHOUT_A_CASE_YET & covered, "these codes have a case now: remove them from WITHOUT_A_CASE_YET"
+    assert WITHOUT_A_CASE_YET <= registered
+    for code, test in NOT_A_CASE.items():
+        assert code in registered and code in (Path(__file__).parents[1] / test).read_text(encoding="utf-8")
