@@ -123,6 +123,22 @@ def listdir(path) -> list[str]:
     return names
 
 
+def scan(path) -> list[tuple[str, bool]]:
+    """A folder's (name, is a real folder: not a link to one) pairs, sorted by name, with the
+    names noted as `listdir` notes them (one scandir: no stat per entry). Raises OSError."""
+    p = os.fspath(path)
+    try:
+        with os.scandir(p) as it:
+            got = sorted((e.name, e.is_dir(follow_symlinks=False)) for e in it)
+    except OSError:
+        if _frames:
+            note(["l", p, None])
+        raise
+    if _frames:
+        note(["l", p, [n for n, _d in got]])
+    return got
+
+
 def env(name: str) -> str | None:
     """An environment variable, noted."""
     value = os.environ.get(name)
@@ -185,12 +201,29 @@ def is_racy(sig) -> bool:
 
 
 def all_hold(deps) -> bool:
+    """Whether every read holds. Files are checked in one tight loop (a replayed run checks a
+    few hundred): the stat fast path inline, the content only when it cannot decide."""
     if not isinstance(deps, list):
         return False
+    stat = os.stat
     try:
-        return all(holds(d) for d in dedupe(deps))
+        for d in deps:
+            if d[0] == "f":
+                size, mtime, ctime, ino, dev, _want, recorded = sig = d[2]
+                try:
+                    st = stat(d[1])
+                except (OSError, ValueError):
+                    return False
+                if (st.st_mtime_ns == mtime and st.st_ctime_ns == ctime and st.st_size == size and st.st_ino == ino
+                        and st.st_dev == dev and recorded - (mtime if mtime > ctime else ctime) > RACY_NS):
+                    continue
+                if not _file_holds(d[1], sig):
+                    return False
+            elif not holds(d):
+                return False
     except (TypeError, IndexError, KeyError, ValueError):
         return False
+    return True
 
 
 def content_digest(deps: list) -> str:

@@ -17,10 +17,17 @@ _stamps: dict[str, str] = {}
 
 
 def package_files(top: str) -> list[str]:
-    out = []
-    for d, dirs, files in os.walk(top):
-        dirs[:] = sorted(x for x in dirs if x != "__pycache__" and not x.startswith("."))
-        out.extend(os.path.join(d, n) for n in sorted(files) if n.endswith(_SUFFIXES))
+    out: list[str] = []
+    subs = []
+    with os.scandir(top) as it:
+        for e in sorted(it, key=lambda e: e.name):
+            if e.is_dir(follow_symlinks=False):
+                if e.name != "__pycache__" and not e.name.startswith("."):
+                    subs.append(e.path)
+            elif e.name.endswith(_SUFFIXES):
+                out.append(e.path)
+    for p in subs:
+        out.extend(package_files(p))
     return out
 
 
@@ -34,18 +41,29 @@ def tree_digest(top: str, use_index: bool = True) -> str:
     new: dict = {}
     h = store.new_hash()
     cut = len(top) + 1
+    stat = os.stat
+    racy = reads.RACY_NS
+    changed = False
     for p in files:
-        sig = old.get(p)
-        if sig is None or reads.is_racy(sig) or not reads.holds(["f", p, sig]):
+        rel = p[cut:]
+        sig = old.get(rel)
+        try:
+            st = stat(p)
+        except OSError:
+            continue
+        if not (sig and st.st_mtime_ns == sig[1] and st.st_ctime_ns == sig[2] and st.st_size == sig[0]
+                and st.st_ino == sig[3] and st.st_dev == sig[4] and sig[6] - max(sig[1], sig[2]) > racy):
             try:
                 with reads.recording() as got:
                     reads.read_bytes(p)
-                sig = got[0][2]
+                fresh = got[0][2]
             except (OSError, IndexError):
                 continue
-        new[p] = sig
-        h.update(f"{p[cut:]}\0{sig[5]}\n".encode())
-    if use_index and (len(new) != len(old) or any(old.get(p) != s for p, s in new.items())):
+            changed = changed or fresh != sig
+            sig = fresh
+        new[rel] = sig
+        h.update(f"{rel}\0{sig[5]}\n".encode())
+    if use_index and (changed or len(new) != len(old)):
         store.put_json("stamps", key, new)
     return h.hexdigest()
 

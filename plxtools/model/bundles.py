@@ -62,17 +62,18 @@ def _walk(root: str, folder: str, out: list[str]) -> None:
     """os.walk's order (files, then sub-folders, sorted; links to folders not entered), with each
     listing noted (`plxtools.cache.reads`): a file added to a bundle changes a cached answer."""
     try:
-        names = reads.listdir(folder)
+        entries = reads.scan(folder)
     except OSError:
         return
     subs = []
-    for n in names:
-        p = os.path.join(folder, n)
-        if os.path.isdir(p):
-            if not n.startswith(".") and n != "__pycache__" and not os.path.islink(p):
-                subs.append(p)
+    for n, is_dir in entries:
+        if is_dir:
+            if not n.startswith(".") and n != "__pycache__":
+                subs.append(os.path.join(folder, n))
         elif n.endswith(".openplx") and not (folder == root and n == "config.openplx"):
-            out.append(p)
+            p = os.path.join(folder, n)
+            if not os.path.isdir(p):  # (a link to a folder named *.openplx: not a file)
+                out.append(p)
     for p in subs:
         _walk(root, p, out)
 

@@ -658,12 +658,12 @@ def _renamed_attributes_before(using: str, use_cache: bool = True) -> dict[str, 
         from plxtools.cache.stamp import code_stamp
 
         name = store.new_hash(f"renames\0{code_stamp()}\0{using}".encode()).hexdigest()
-        got = store.get_json("results", name)
+        got = store.get_json("renames", name)
         if isinstance(got, dict):
             return {k: [tuple(t) for t in v] for k, v in got.items()}
     for c in changes(first, using):
         if c.kind == "attr-renamed" and c.handling in (AUTO, TABLE) and c.old and c.new:
             out.setdefault(c.old, []).append((c.new, c.model, c.since))
     if name is not None:
-        store.put_json("results", name, out)
+        store.put_json("renames", name, out)
     return out
