@@ -103,17 +103,17 @@ class Runner:
             shutil.rmtree(Path(self.env["PLX_CACHE_DIR"]) / "plxtools" / name, ignore_errors=True)
 
     def warm_no_result(self) -> tuple[float, float]:
-        self.forget("lint-results", "runs")
+        self.forget("lint-results", "runs", "results", "replays")  # (older checkouts' folder names too)
         return run(self.cmd("lint", "--exit-zero", "-q", str(ONE)), self.env)
 
     def cached_lint(self, replay: bool = True) -> tuple[float, float]:
         if not replay:
-            self.forget("runs")  # the per-file result is there, the whole run is not
+            self.forget("runs", "replays")  # the per-file result is there, the whole run is not
         return run(self.cmd("lint", "--exit-zero", "-q", str(ONE)), self.env)
 
     def cached_fmt(self, replay: bool = True) -> tuple[float, float]:
         if not replay:
-            self.forget("runs")
+            self.forget("runs", "replays")
         return run(self.cmd("fmt", "--check", "-q", str(ONE)), self.env)
 
 

@@ -158,6 +158,19 @@ def _add_lsp(sub) -> None:
     p.set_defaults(func=_run_lsp)
 
 
+def _add_cache(sub) -> None:
+    p = sub.add_parser("cache", help="show or empty plx's cache (docs/caching.md)",
+                       description="plx's cache: 'dir' prints its folder, 'info' what it holds, 'clean' empties it.")
+    p.add_argument("action", choices=("dir", "info", "clean"))
+    p.set_defaults(func=_run_cache)
+
+
+def _run_cache(args) -> int:
+    from plxtools.cache.command import run
+
+    return run(args)
+
+
 def _add_migrate(sub) -> None:
     p = sub.add_parser("migrate", help="move model files to another official OpenPLX version, or explain the changes",
                        description="Rewrite OpenPLX files for another official OpenPLX version: models that moved "
@@ -249,7 +262,7 @@ def _parser_class():
     return _CLASSES[0]
 
 
-_COMMANDS = ("lint", "fmt", "check", "test", "lsp", "rule", "bundles", "migrate")
+_COMMANDS = ("lint", "fmt", "check", "test", "lsp", "rule", "bundles", "migrate", "cache")
 
 
 def build_parser(only: str | None = None):
@@ -266,7 +279,7 @@ def build_parser(only: str | None = None):
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     stub = _Skip()
     for name, add in zip(_COMMANDS, (_add_lint, _add_fmt, _add_check, _add_test, _add_lsp, _add_rule,
-                                     _add_bundles, _add_migrate)):
+                                     _add_bundles, _add_migrate, _add_cache)):
         add(sub if only is None or only == name else stub)
     return parser
 

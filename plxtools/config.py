@@ -90,15 +90,20 @@ def _glob(rel: str, pattern: str) -> bool:
 
 
 def find_config_file(start: Path) -> tuple[Path, dict] | None:
-    """Closest plx.toml or pyproject.toml with a [tool.plx] table, walking up from `start`."""
-    folder = start if start.is_dir() else start.parent
-    folder = folder.resolve()
+    """Closest plx.toml or pyproject.toml with a [tool.plx] table, walking up from `start`.
+
+    Every file looked for is noted (`plxtools.cache.reads`), found or not: a config file that
+    appears later in a parent folder changes the answer of a cached run."""
+    from plxtools.cache import reads
+
+    folder = start if reads.is_dir(start) else start.parent
+    folder = Path(reads.realpath(folder))
     for d in (folder, *folder.parents):
         plx = d / "plx.toml"
-        if plx.is_file():
+        if reads.is_file(plx):
             return plx, _read_toml(plx)
         pyproject = d / "pyproject.toml"
-        if pyproject.is_file():
+        if reads.is_file(pyproject):
             data = _read_toml(pyproject)
             tool = data.get("tool", {}).get("plx")
             if tool is not None:
@@ -109,9 +114,12 @@ def find_config_file(start: Path) -> tuple[Path, dict] | None:
 def _read_toml(path: Path) -> dict:
     import tomllib  # only when there is a config file to read
 
+    from plxtools.cache import reads
+
     try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
+        return tomllib.loads(reads.read_bytes(path).decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise ConfigError(f"{path}: invalid TOML: not UTF-8 ({exc.reason})") from None
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: invalid TOML: {exc}") from None
     except OSError as exc:

@@ -17,5 +17,8 @@ def variables(value: str) -> list[str]:
 
 def expand(value: str) -> tuple[str, list[str]]:
     """(``value`` with every `{VAR}` replaced by its value, "" when unset; the unset variables)."""
-    unset = [v for v in variables(value) if os.environ.get(v) is None]
-    return _VAR.sub(lambda m: os.environ.get(m.group(1), ""), value), unset
+    from plxtools.cache import reads  # each variable read is noted: a cached answer depends on it
+
+    got = {v: reads.env(v) for v in variables(value)}
+    unset = [v for v, x in got.items() if x is None]
+    return _VAR.sub(lambda m: got.get(m.group(1)) or "", value), unset

@@ -18,6 +18,7 @@ CASES = REPO / "tests" / "cases"
 # does) and hypothesis' example database; pytest's own cache is off (pyproject's addopts).
 _TMP = Path(tempfile.gettempdir()) / f"plxtools-tests-{os.getuid() if hasattr(os, 'getuid') else 'user'}"
 os.environ.setdefault("PLX_CACHE_DIR", str(_TMP / "cache"))
+os.environ.setdefault("PLX_CACHE_SECRET_FILE", str(_TMP / "cache-secret"))  # the key of cache entries
 set_hypothesis_home_dir(str(_TMP / "hypothesis-home"))
 settings.register_profile("plxtools", database=DirectoryBasedExampleDatabase(str(_TMP / "hypothesis")))
 settings.load_profile("plxtools")

@@ -61,29 +61,33 @@ def _report_refusal(name: str, result) -> None:
     _say(f"{name}: not formatted: it has syntax errors")
 
 
-def _format_file(path: Path, args, tally: _Tally, formatted=None) -> None:
-    """Format one file; `formatted` (a runcache.Store) remembers the contents already in canonical
-    form, so an unchanged, formatted file is not parsed again."""
+def _format_file(path: Path, args, tally: _Tally, formatted: bool = False) -> None:
+    """Format one file; with `formatted`, plx's cache remembers the contents already in canonical
+    form (by their digest and plxtools' code stamp), so an unchanged, formatted file is not parsed
+    again. The bytes keyed are the bytes formatted (read once)."""
+    from plxtools.cache import reads
+
     name = str(path)
     try:
-        data = path.read_bytes()
+        data = reads.read_bytes(path)
     except OSError as exc:
         _say(f"{name}: cannot read: {exc.strerror}")
         tally.failed += 1
         return
     key = None
-    if formatted is not None:
-        from plxtools.runcache import code_stamp, new_hash
+    if formatted:
+        from plxtools.cache import store
+        from plxtools.cache.stamp import code_stamp
 
-        key = new_hash(code_stamp() + b"\0fmt\0" + data).hexdigest()
-        if formatted.get(key) is True:  # formatted already, byte for byte: nothing to do
+        key = store.new_hash(code_stamp().encode() + b"\0fmt\0" + data).hexdigest()
+        if store.get("formatted", key) == b"1":  # formatted already, byte for byte: nothing to do
             tally.unchanged += 1
             return
     from plxtools.fmt.api import format_bytes
 
     result = format_bytes(data, name)
     if key is not None and result.text is not None and not result.changed:
-        formatted.put(key, True)
+        store.put("formatted", key, b"1")
     if result.text is None:
         _report_refusal(name, result)
         tally.failed += 1
@@ -175,18 +179,16 @@ def run_fmt(args) -> int:
         return 2
     from plxtools.gcpolicy import command_collector, file_done
 
-    from plxtools.runcache import Store
-
     tally = _Tally()
-    formatted = None if getattr(args, "no_cache", False) else Store("fmt-formatted")
+    formatted = not getattr(args, "no_cache", False)
     with command_collector():
         for path in files:
             _format_file(path, args, tally, formatted)
             file_done()
     if not args.quiet or tally.failed:
         _say(_summary(tally, args.check or args.diff))
-    if formatted is not None and tally.unchanged == len(files):
+    if formatted and tally.unchanged == len(files):
         from plxtools import runmemo
 
-        runmemo.allow(files)  # every file is formatted: the same files give the same answer
+        runmemo.allow()  # every file is formatted, every read recorded: the same reads give the same answer
     return _exit_code(tally, args.check)

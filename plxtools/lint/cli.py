@@ -91,9 +91,18 @@ def _run_lint(args) -> int:
         print(f"plx lint: {note}", file=sys.stderr)
     results = None
     if use_cache and not stdin and not args.fix and not args.diff:
+        from plxtools.cache import records
+        from plxtools.cache.stamp import code_stamp
         from plxtools.lint.resultcache import ResultCache
 
-        results = ResultCache(bundle_set)
+        stamp = records.recorded_digest(records.set_key(code_stamp(), bundle_set.key(), bundle_set.official_version))
+        if stamp is None:  # the set changed, or was never loaded with the cache on: load it to know
+            try:
+                stamp = workspace().read_digest
+            except (UsageError, ConfigError, ValueError) as exc:
+                print(f"plx lint: {exc}", file=sys.stderr)
+                return 2
+        results = ResultCache(bundle_set, stamp)
     all_diags = []
     # the run may be replayed (plxtools.runmemo) when every file's result is in the result cache
     replayable = results is not None
@@ -114,7 +123,15 @@ def _run_lint(args) -> int:
             all_diags.extend(parallel[f])
             replayable = False
             continue
-        key = results.key(f, cfg) if results is not None else None
+        data = None
+        if not stdin:  # read once: the bytes keyed are the bytes linted
+            from plxtools.cache import reads
+
+            try:
+                data = reads.read_bytes(f)
+            except OSError:
+                pass  # lint_file reads again and reports why it cannot
+        key = results.key(f, data, cfg) if results is not None and data is not None else None
         cached = results.get(key) if key is not None else None
         replayable = replayable and key is not None
         if cached is not None:
@@ -125,12 +142,14 @@ def _run_lint(args) -> int:
         except (UsageError, ConfigError, ValueError) as exc:
             print(f"plx lint: {exc}", file=sys.stderr)
             return 2
+        from plxtools.cache import reads
         from plxtools.lint.runner import fixed_text, lint_file
 
-        result = _lint_stdin(f, cfg, ws) if stdin else lint_file(f, cfg, ws)
+        with reads.recording() as deps:  # what checking this file read besides its bytes
+            result = _lint_stdin(f, cfg, ws) if stdin else lint_file(f, cfg, ws, data=data)
         diags = result.diagnostics
         if key is not None:
-            results.put(key, diags)
+            results.put(key, deps, diags)
             replayable = replayable and results.stores(diags)
         fixable = (args.fix or args.diff) and result.tree is not None and not result.tree.has_errors_of_syntax()
         new_text, n = fixed_text(result.tree, diags, args.unsafe_fixes) if fixable else (None, 0)
@@ -178,27 +197,11 @@ def _run_lint(args) -> int:
     if args.fix and fixes_applied and args.output_format == "text":
         print(f"Fixed {_plural(fixes_applied, 'problem')} in {_plural(fixed_files, 'file')}.", file=out)
     has_error = any(d.severity == Severity.ERROR for d in all_diags)
-    if replayable:
-        _allow_replay(files, bundle_set)
+    if replayable:  # every read was recorded (plxtools.runmemo records the run if it may replay it)
+        from plxtools import runmemo
+
+        runmemo.allow()
     return 0 if (args.exit_zero or not has_error) else 1
-
-
-def _allow_replay(files: list[Path], bundle_set) -> None:
-    """Tell plxtools.runmemo what this run depended on besides its command line (it records it
-    only when the command line is one it replays)."""
-    from plxtools import runmemo
-    from plxtools.lint.resultcache import imported_files
-
-    imports: list[str] = []
-    for f in files:
-        try:
-            found = imported_files(f, f.read_bytes())
-        except OSError:
-            return
-        if found is None:
-            return
-        imports.extend(found)
-    runmemo.allow(files, bundle_set, imports)
 
 
 def _config(f: Path, stdin: bool, args) -> Config:
@@ -245,11 +248,14 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
             if inside:
                 return {}
             cfg = _config(f, False, args)
-            key = results.key(f, cfg) if results is not None else None
+            from plxtools.cache import reads
+
+            data = reads.read_bytes(f)  # read once: the bytes keyed are the bytes linted
+            key = results.key(f, data, cfg) if results is not None else None
             if key is not None and results.get(key) is not None:
                 continue
-            todo.append((f, cfg, key))
-            size += f.stat().st_size
+            todo.append((f, cfg, key, data))
+            size += len(data)
     except (ConfigError, ValueError, OSError):
         return {}
     if len(todo) < PARALLEL_MIN_FILES or size < PARALLEL_MIN_BYTES:
@@ -260,8 +266,8 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
     _WORKER_WORKSPACE = workspace()  # loaded once, here: the forked workers inherit it
     # the first file is linted here, before the fork: what it computes on the bundle program (bases,
     # member tables, types of bundle attributes) is then inherited, not computed again per worker
-    done = [_lint_one((todo[0][0], todo[0][1]))]
-    rest = [(f, cfg) for f, cfg, _ in todo[1:]]
+    done = [_lint_one((todo[0][0], todo[0][1], todo[0][3]))]
+    rest = [(f, cfg, data) for f, cfg, _k, data in todo[1:]]
     # this process is one of the workers: it lints its share of the files while the forked ones lint
     # theirs, instead of waiting for them (one fork fewer: its start and the pages it would copy)
     cores = workpool.cores()
@@ -271,27 +277,30 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
                                  meanwhile=lambda: own.extend(_lint_one(item) for item in mine))
     done[1:1] = own
     out = {}
-    for (f, _cfg, key), diags in zip(todo, done):
+    for (f, _cfg, key, _data), (diags, deps) in zip(todo, done):
         out[f] = diags
         if key is not None:
-            results.put(key, diags)  # (a run with files linted in parallel is not replayed)
+            results.put(key, deps, diags)  # (a run with files linted in parallel is not replayed)
     return out
 
 
-def _lint_one(item: tuple) -> list:
-    """A file's diagnostics, as the ordinary loop computes them (in a worker, or before the fork)."""
+def _lint_one(item: tuple) -> tuple[list, list]:
+    """A file's diagnostics and the reads its check made, as the ordinary loop computes them (in a
+    worker, or before the fork)."""
+    from plxtools.cache import reads
     from plxtools.gcpolicy import file_done
     from plxtools.lint.runner import lint_file
 
-    f, cfg = item
+    f, cfg, data = item
     ws = _WORKER_WORKSPACE
-    result = lint_file(f, cfg, ws)
+    with reads.recording() as deps:
+        result = lint_file(f, cfg, ws, data=data)
     diags = result.diagnostics
     if result.tree is not None and result.tree.path:
         ws.forget_loose(result.tree.path)
     del result
     file_done()
-    return diags
+    return diags, deps
 
 
 def _lint_stdin(name: Path, cfg: Config, workspace):

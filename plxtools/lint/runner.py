@@ -21,10 +21,13 @@ class FileResult:
     diagnostics: list[Diagnostic] = field(default_factory=list)
 
 
-def lint_file(path: Path, cfg: Config | None = None, workspace=None) -> FileResult:
+def lint_file(path: Path, cfg: Config | None = None, workspace=None, data: bytes | None = None) -> FileResult:
+    """Lint one file: `data`, when given, are its bytes as the caller read them (read once: a cached
+    result is keyed by the same bytes)."""
     cfg = cfg or config_for(path)
     try:
-        data = path.read_bytes()
+        if data is None:
+            data = path.read_bytes()
     except OSError as exc:
         from plxtools.diagnostics import EMPTY_SPAN
 

@@ -13,37 +13,27 @@ This module imports no pygls or lsprotocol, and stays small: it runs before the 
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import sys
-from pathlib import Path
-
-from plxtools import __version__
-
-_HERE = Path(__file__).resolve().parent
 
 
 def _code_stamp() -> str:
-    """What the reply depends on besides the params: this server's code and its libraries."""
-    paths = sorted(_HERE.glob("*.py")) + sorted((_HERE.parent / "ide").glob("*.py"))
-    try:
-        from importlib.util import find_spec
+    """What the reply depends on besides the params: this server's code (plxtools' code stamp, by
+    content) and its libraries' versions."""
+    from importlib.util import find_spec
 
+    from plxtools.cache.stamp import code_stamp, tree_digest
+
+    parts = [code_stamp()]
+    try:
         for name in ("pygls", "lsprotocol"):
             spec = find_spec(name)
-            if spec is not None and spec.origin:
-                folder = Path(spec.origin).parent
-                paths += [folder / "__init__.py", folder / "types.py"] if name == "lsprotocol" else [folder / "__init__.py"]
+            if spec is None or not spec.origin:
+                return ""
+            parts.append(tree_digest(os.path.dirname(spec.origin)))
     except (ImportError, ValueError):
         return ""
-    parts = [__version__]
-    for p in paths:
-        try:
-            st = p.stat()
-        except OSError:
-            continue
-        parts.append(f"{p}:{st.st_size}:{st.st_mtime_ns}")
     return "\n".join(parts)
 
 
@@ -59,31 +49,25 @@ def cache_key(raw: dict) -> str | None:
         text = json.dumps(kept, sort_keys=True)
     except (TypeError, ValueError):
         return None
-    return hashlib.sha256(f"{stamp}\n{text}".encode()).hexdigest()[:32]
+    from plxtools.cache.store import new_hash
 
-
-def _cache_file(key: str) -> Path:
-    from plxtools.model.versions import cache_dir
-
-    return cache_dir() / "lsp-initialize" / f"{key}.json"
+    return new_hash(f"{stamp}\n{text}".encode()).hexdigest()
 
 
 def cached_result(key: str):
-    try:
-        with open(_cache_file(key), encoding="utf-8") as fh:
-            return json.load(fh)["result"]
-    except (OSError, ValueError, KeyError, TypeError):
-        return None
+    """The stored reply (an authenticated JSON entry of plx's cache), or None."""
+    from plxtools.cache import store
+
+    got = store.get_json("lsp", key)
+    return got.get("result") if isinstance(got, dict) else None
 
 
 def store_result(key: str, result) -> None:
-    path = _cache_file(key)
+    from plxtools.cache import store
+
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-        tmp.write_text(json.dumps({"result": result}), encoding="utf-8")
-        os.replace(tmp, path)
-    except (OSError, TypeError, ValueError):
+        store.put_json("lsp", key, {"result": result})
+    except (TypeError, ValueError):
         pass
 
 

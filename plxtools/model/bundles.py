@@ -11,6 +11,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from plxtools.cache import reads
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity, Span
 from plxtools.syntax import ast
 
@@ -34,14 +35,9 @@ class Bundle:
 
     def file_names(self) -> list[str]:
         """`files()` as strings (the bundle loader builds no Path per file: 465 of them on a cold run)."""
-        out = []
+        out: list[str] = []
         root = str(self.root)
-        for dirpath, dirnames, filenames in os.walk(root):
-            dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d != "__pycache__")
-            top = dirpath == root
-            for n in sorted(filenames):
-                if n.endswith(".openplx") and not (top and n == "config.openplx"):
-                    out.append(os.path.join(dirpath, n))
+        _walk(root, root, out)
         return out
 
     def namespace_of_name(self, path: str) -> tuple[str, ...]:
@@ -60,6 +56,26 @@ class Bundle:
         except ValueError:
             rel = path.resolve().parent.relative_to(self.root.resolve())
         return (self.name, *[p for p in rel.parts if p not in ("", ".")])
+
+
+def _walk(root: str, folder: str, out: list[str]) -> None:
+    """os.walk's order (files, then sub-folders, sorted; links to folders not entered), with each
+    listing noted (`plxtools.cache.reads`): a file added to a bundle changes a cached answer."""
+    try:
+        entries = reads.scan(folder)
+    except OSError:
+        return
+    subs = []
+    for n, is_dir in entries:
+        if is_dir:
+            if not n.startswith(".") and n != "__pycache__":
+                subs.append(os.path.join(folder, n))
+        elif n.endswith(".openplx") and not (folder == root and n == "config.openplx"):
+            p = os.path.join(folder, n)
+            if not os.path.isdir(p):  # (a link to a folder named *.openplx: not a file)
+                out.append(p)
+    for p in subs:
+        _walk(root, p, out)
 
 
 def read_config(bundle: Bundle, tree: ast.File) -> None:
@@ -105,11 +121,11 @@ def read_config(bundle: Bundle, tree: ast.File) -> None:
 
 def find_user_bundle_root(path: Path, stop_at: set[Path]) -> Path | None:
     """The nearest folder at or above `path` holding a config.openplx, if any."""
-    folder = path.resolve().parent
+    folder = Path(reads.realpath(path)).parent
     for d in (folder, *folder.parents):
         if d in stop_at:
             return None
-        if (d / "config.openplx").is_file():
+        if reads.is_file(d / "config.openplx"):
             return d
     return None
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
+from plxtools.cache import reads
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity, Span
 from plxtools.model import resolve
 from plxtools.model.program import Program, compose_type
@@ -201,9 +202,9 @@ class Checker:
         if full is None and not unset:
             self.report("N006", "the import names no file (an empty path)", stmt.source.span,
                         help="write the file's path between the quotes: import @\"mesh.obj\" as Mesh")
-        elif full is not None and not unset and not os.path.isfile(full):
+        elif full is not None and not unset and (found := reads.kind(full)) != "file":
             shown = stmt.source.value if stmt.source.kind != "interp" else full
-            what = "is a folder, not a file" if os.path.isdir(full) else "does not exist"
+            what = "is a folder, not a file" if found == "dir" else "does not exist"
             self.report("N006", f"imported file {shown!r} {what}", stmt.source.span,
                         help="an @\"...\" path is relative to the folder of the .openplx file that imports it")
 

@@ -22,6 +22,8 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from plxtools.cache import reads
+
 VERSION_RE = re.compile(r"^\d+\.\d+\.\d+$")
 DEP_PIN_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:==|@)(\d+(?:\.\d+)*)$")
 PACKAGE = "openplx-bundles"
@@ -68,7 +70,16 @@ def installed() -> tuple[Path, str | None] | None:
         if spec is None or not spec.origin:
             return None
         root = Path(os.path.dirname(os.path.abspath(spec.origin)))
-    if not (root / "Math" / "config.openplx").is_file():
+    from plxtools.cache import reads
+
+    for entry in sys.path:  # a package of that name earlier on the path would be found first
+        entry = os.path.abspath(entry or os.curdir)
+        if entry == str(root.parent):
+            break
+        reads.kind(os.path.join(entry, "openplxbundles"))
+        reads.kind(os.path.join(entry, "openplxbundles.py"))
+    reads.realpath(root)
+    if not reads.is_file(root / "Math" / "config.openplx"):
         return None
     v = _dist_info_version(root.parent)
     if v is None:
@@ -84,12 +95,14 @@ def installed() -> tuple[Path, str | None] | None:
 def _dist_info_version(site: Path) -> str | None:
     """The Version of the one openplx_bundles-*.dist-info beside the package: what
     importlib.metadata would answer, without its ~30 ms import (email parsing) at every start."""
+    from plxtools.cache import reads
+
     try:
-        found = [p for p in site.iterdir() if p.name.startswith("openplx_bundles-") and p.name.endswith(".dist-info")]
+        found = [site / n for n in reads.listdir(site) if n.startswith("openplx_bundles-") and n.endswith(".dist-info")]
         if len(found) != 1:
             return None
-        with open(found[0] / "METADATA", encoding="utf-8") as fh:
-            for line in fh:
+        if True:
+            for line in reads.read_bytes(found[0] / "METADATA").decode("utf-8", "replace").splitlines():
                 if line.startswith("Version:"):
                     return line.split(":", 1)[1].strip() or None
                 if not line.strip():
@@ -100,8 +113,10 @@ def _dist_info_version(site: Path) -> str | None:
 
 
 def _version_in(root: Path) -> str | None:
+    from plxtools.cache import reads
+
     try:
-        text = (root / "Math" / "config.openplx").read_text(encoding="utf-8")
+        text = reads.read_bytes(root / "Math" / "config.openplx").decode("utf-8", "replace")
     except OSError:
         return None
     m = re.search(r'version:\s*"([^"]+)"', text)
@@ -293,17 +308,21 @@ class BundleSet:
 
 def bundle_roots_in(folder: Path) -> list[Path]:
     """A bundle folder itself, or the bundle folders directly inside a folder of bundles."""
-    if (folder / "config.openplx").is_file():
+    from plxtools.cache import reads
+
+    if reads.is_file(folder / "config.openplx"):
         return [folder]
     try:
-        return [d for d in sorted(folder.iterdir()) if d.is_dir() and (d / "config.openplx").is_file()]
+        return [folder / n for n in reads.listdir(folder) if reads.is_file(folder / n / "config.openplx")]
     except OSError:
         return []
 
 
 def _config_name(root: Path) -> str:
+    from plxtools.cache import reads
+
     try:
-        text = (root / "config.openplx").read_text(encoding="utf-8", errors="replace")
+        text = reads.read_bytes(root / "config.openplx").decode("utf-8", "replace")
     except OSError:
         return root.name
     m = re.search(r'^\s*name:\s*"([^"]+)"', text, re.M)
@@ -335,13 +354,15 @@ def discover_bundles(paths: list[Path], stop_at: set[Path] | None = None, max_de
             seen.add(r)
             found.append(r)
 
+    from plxtools.cache import reads
+
     for p in paths:
-        if p.is_file() or not p.exists():
-            folder = p.resolve().parent
+        if reads.kind(p) != "dir":
+            folder = Path(reads.realpath(p)).parent
             for d in (folder, *folder.parents):
                 if d in stop:
                     break
-                if (d / "config.openplx").is_file():
+                if reads.is_file(d / "config.openplx"):
                     add(d)
                     break
             continue
@@ -370,7 +391,7 @@ def _pins(roots: list[Path], official_names: set[str]) -> list[tuple[str, str]]:
         if name in official_names:
             continue  # a copy of an official bundle: it replaces that bundle, it pins nothing
         try:
-            lines = cfg.read_text(encoding="utf-8", errors="replace").splitlines()
+            lines = reads.read_bytes(cfg).decode("utf-8", "replace").splitlines()
         except OSError:
             continue
         for i, line in enumerate(lines, 1):
@@ -399,14 +420,17 @@ def resolve_bundle_set(
     sources: list[BundleSource] = []
     seen: set[Path] = set()
 
+    from plxtools.cache import reads
+
     def add(p: Path, why: str, must_exist: bool = True) -> None:
-        if not p.exists():
+        found = reads.kind(p)
+        if found is None:
             if must_exist:
                 raise BundleSetError(f"bundle path {p} does not exist ({why})")
             return
-        if not p.is_dir():
+        if found != "dir":
             raise BundleSetError(f"bundle path {p} is not a folder ({why})")
-        rp = p.resolve()
+        rp = Path(reads.realpath(p))
         if rp in seen:
             return
         if not bundle_roots_in(rp):
@@ -433,7 +457,7 @@ def resolve_bundle_set(
                 add(Path(part), "OPENPLX_BUNDLE_PATH")
     configured = bool(sources)
     inst = installed()
-    official_names = {d.name for d in inst[0].iterdir() if (d / "config.openplx").is_file()} if inst else set()
+    official_names = {d.name for d in bundle_roots_in(inst[0])} if inst else set()
     official_names |= {"Math", "Physics", "Physics1D", "Physics3D", "DriveTrain", "Robotics", "Simulation",
                        "Terrain", "Urdf", "Vehicles", "Visuals"}
     found: list[Path] = []

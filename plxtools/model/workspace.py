@@ -1,27 +1,26 @@
 """The workspace: official bundles, user bundles and loose files loaded into one Program.
 
-This is the semantic model's front door for lint, the language server and check. Parsed bundle
-trees are cached on disk (keyed by every bundle file's path, size and mtime and the plxtools
-version), so a one-file lint does not re-parse 465 bundle files.
+This is the semantic model's front door for lint, the language server and check. The official
+bundles' program is kept in plx's cache (`plxtools.cache`), with the record of every file and
+folder listing its load read, by content, and plxtools' own code stamp: a one-file lint does not
+re-parse 465 bundle files, and never uses a program built from other files or by other code.
 """
 
 from __future__ import annotations
 
 import functools
-import zlib
 import os
 import pickle
 from pathlib import Path
 
-from plxtools import __version__
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix, Severity
 from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
 from plxtools.model.checker import Checker, Occurrence
 from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
-from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, cache_dir, explicit_bundle_set
-from plxtools.syntax import ast, parse_bytes, parse_file
+from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, explicit_bundle_set
+from plxtools.syntax import ast, parse_bytes
 
 
 
@@ -70,61 +69,42 @@ class FileAnalysis:
         return got
 
 
-def _cache_dir() -> Path:
-    return cache_dir()
+def _load_cached(kind: str, key: str):
+    """An authenticated pickle of plx's cache (`plxtools.cache.store`), or None. The payload is
+    unpickled only after its tag proved this user's plx wrote it."""
+    from plxtools.cache import store
 
-
-_CACHE_FORMAT = 9  # bump when the pickled classes change shape
-
-
-def _cache_key(paths: list) -> str:
-    h = zlib.crc32(f"{__version__}/{_CACHE_FORMAT}".encode())
-    n = 0
-    for p in paths:
-        try:
-            st = os.stat(p)
-        except OSError:
-            continue
-        h = zlib.crc32(f"{p}\0{st.st_size}\0{st.st_mtime_ns}\n".encode(), h)
-        n += 1
-    return f"{h:08x}-{n}"
-
-
-def _load_cached(name: str):
-    path = _cache_dir() / name
-    if not path.is_file():
+    data = store.get(kind, key)
+    if data is None:
         return None
     import gc
 
     enabled = gc.isenabled()
     gc.disable()  # ~50k acyclic nodes: collection passes during the load are pure cost
     try:
-        with open(path, "rb") as fh:
-            value = pickle.load(fh)
+        value = pickle.loads(data)
         gc.freeze()  # long-lived: keep the collector from rescanning them on every later pass
         return value
-    except Exception:  # a broken cache is rebuilt, never trusted
+    except Exception:  # an entry of another shape is rebuilt, never trusted
         return None
     finally:
         if enabled:
             gc.enable()
 
 
-def _store_cached(name: str, value, prefix: str) -> None:
-    """Write a cache file. In a one-shot CLI process (`plxtools.ONE_SHOT`, set by `cli.entry`) a
-    forked child writes it: pickling the bundle program is about a third of a cold run, and the
-    child does it on a snapshot of the program as it is now (copy-on-write, so the file is what the
-    parent would have written) while the parent checks and reports. The child holds none of the
-    parent's standard streams (a caller waiting for their end is not kept waiting), runs in its
-    own session (a Ctrl-C of the command does not cut it off) and at a lower priority, and leaves
-    with os._exit. The file is replaced atomically, so a run that starts before it is there parses
-    the bundles again and a reader never sees half a file."""
+def _store_cached(writes: list) -> None:
+    """Write cache entries [(kind, key, value, as_json)]. In a one-shot CLI process
+    (`plxtools.ONE_SHOT`, set by `cli.entry`) a forked child writes them: pickling the bundle
+    program is about a third of a cold run, and the child does it on a snapshot of the program as
+    it is now (copy-on-write, so the file is what the parent would have written) while the parent
+    checks and reports. The child holds none of the parent's standard streams (a caller waiting
+    for their end is not kept waiting), runs in its own session (a Ctrl-C of the command does not
+    cut it off) and at a lower priority, and leaves with os._exit. Entries are replaced
+    atomically, in order (the program before the record that names it)."""
     import plxtools
+    from plxtools.cache import folder
 
-    try:
-        folder = _cache_dir()
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError:
+    if folder.root() is None or folder.secret() is None:
         return
     pid = -1
     if getattr(plxtools, "ONE_SHOT", False) and hasattr(os, "fork"):
@@ -135,7 +115,7 @@ def _store_cached(name: str, value, prefix: str) -> None:
     if pid > 0:
         return  # the parent goes on
     if pid < 0:
-        _write_cached(folder, name, value, prefix)
+        _write_cached(writes)
         return
     try:  # the child
         try:
@@ -146,34 +126,60 @@ def _store_cached(name: str, value, prefix: str) -> None:
             os.nice(5)
         except OSError:
             pass
-        _write_cached(folder, name, value, prefix)
+        _write_cached(writes)
     finally:
         os._exit(0)
 
 
-def _write_cached(folder: Path, name: str, value, prefix: str) -> None:
-    try:
-        tmp = folder / f".{name}.{os.getpid()}.tmp"
-        from plxtools.diagnostics import Pos, Span
-        from plxtools.pickling import tuple_reducers
+def _write_cached(writes: list) -> None:
+    from plxtools.cache import store
+    from plxtools.diagnostics import Pos, Span
+    from plxtools.pickling import tuple_reducers
 
-        with open(tmp, "wb") as fh:
-            pickler = pickle.Pickler(fh, protocol=pickle.HIGHEST_PROTOCOL)
+    for kind, key, value, as_json in writes:
+        if as_json:
+            if not store.put_json(kind, key, value):
+                return
+            continue
+        import io
+        import sys
+
+        limit = sys.getrecursionlimit()
+        sys.setrecursionlimit(max(limit, 20000))  # the namespace tree links parents and children
+        try:
+            buf = io.BytesIO()
+            pickler = pickle.Pickler(buf, protocol=pickle.HIGHEST_PROTOCOL)
             # about 45k positions and spans: rebuilt by tuple.__new__, not their Python __new__
             pickler.dispatch_table = tuple_reducers(Pos, Span)
             pickler.dump(value)
-        os.replace(tmp, folder / name)
-        for old in folder.glob(f"{prefix}*.pickle"):
-            if old.name != name:
-                old.unlink(missing_ok=True)
-    except (OSError, pickle.PicklingError, RecursionError):
-        pass
+        except (pickle.PicklingError, RecursionError, TypeError, AttributeError):
+            return
+        finally:
+            sys.setrecursionlimit(limit)
+        if not store.put(kind, key, buf.getvalue()):
+            return
 
 
-def _parse_path(path: str) -> ast.File:
-    """parse_file(path) for a path string."""
-    with open(path, "rb") as fh:
-        return parse_bytes(fh.read(), path)
+def bundle_set_digest(bs: BundleSet) -> str | None:
+    """The digest of everything loading this bundle set read last time, if each of those reads
+    still gives the same (`plxtools.cache.records`), else None: the set must be loaded to know."""
+    from plxtools.cache import records
+
+    return records.recorded_digest(_set_key(bs))
+
+
+def _set_key(bs: BundleSet) -> str:
+    from plxtools.cache import records
+    from plxtools.cache.stamp import code_stamp
+
+    return records.set_key(code_stamp(), bs.key(), bs.official_version)
+
+
+def _parse_path(path) -> ast.File:
+    """parse_file(path), its bytes noted as read (`plxtools.cache.reads`)."""
+    from plxtools.cache import reads
+
+    return parse_bytes(reads.read_bytes(path), str(path))
 
 
 class Workspace:
@@ -195,6 +201,20 @@ class Workspace:
             except BundleSetError as exc:  # callers of the library API catch WorkspaceError
                 raise WorkspaceError(str(exc)) from None
         self.bundle_set = bundle_set
+        from plxtools.cache import reads
+
+        with reads.recording() as deps:
+            self._load(bundle_set)
+        self.read_deps = reads.dedupe(deps)  # what loading the set read (`bundle_set_digest`)
+        from plxtools.cache.stamp import code_stamp
+
+        self.read_digest = f"{code_stamp()}-{reads.content_digest(self.read_deps)}"
+        if use_cache:  # small: written here, not by a forked child
+            from plxtools.cache import store
+
+            store.put_json("bundle-sets", _set_key(bundle_set), {"deps": self.read_deps, "digest": self.read_digest})
+
+    def _load(self, bundle_set: BundleSet) -> None:
         official, user = self._plan(bundle_set)
         root = bundle_set.official_root or (official[0][0].parent if official else None)
         if root is None:
@@ -243,18 +263,18 @@ class Workspace:
         The pickle is named by the set of bundle folders, so switching between versions or sets keeps
         each one's cache warm, and by every file's size and mtime, so an edited bundle invalidates it.
         """
+        from plxtools.cache import reads, store
+        from plxtools.cache.stamp import code_stamp
+
         bundles = [Bundle(root.name, root, official=True, origin=why) for root, why, _v in plan]
-        files: list[str] = []  # strings, not Paths: a cold run lists, reads and registers 465 of them
-        per_bundle: list[list[str]] = []
-        for b in bundles:
-            files.append(os.path.join(str(b.root), "config.openplx"))
-            per_bundle.append(b.file_names())
-            files.extend(per_bundle[-1])
-        set_id = f"{zlib.crc32(chr(0).join(str(b.root) for b in bundles).encode()):08x}"
-        name = f"official-{set_id}-{_cache_key(files)}.pickle"
-        if self.use_cache:
-            state = _load_cached(name)
-            if isinstance(state, dict) and state.get("files") == len(files):
+        set_key = store.new_hash(repr((code_stamp(), [str(b.root) for b in bundles])).encode()).hexdigest()
+        if self.use_cache:  # the record of the last load: what it read, and the program it built
+            record = store.get_json("bundle-sets", set_key)
+            state = None
+            if isinstance(record, dict) and reads.all_hold(record.get("deps")):
+                state = _load_cached("programs", str(record.get("program")))
+            if isinstance(state, dict) and state.get("files") == record.get("files"):
+                reads.note_all(record["deps"])
                 self.program = state["program"]
                 self.bundles = state["bundles"]
                 self.known_annotations = state["annotations"]
@@ -262,7 +282,14 @@ class Workspace:
                 for b in self.bundles.values():  # the reason is this run's, not the cached run's
                     b.origin = why.get(b.root, b.origin)
                 return
-        trees = {p: _parse_path(p) for p in files}
+        with reads.recording() as deps:
+            files: list[str] = []  # strings, not Paths: a cold run lists, reads and registers 465 of them
+            per_bundle: list[list[str]] = []
+            for b in bundles:
+                files.append(os.path.join(str(b.root), "config.openplx"))
+                per_bundle.append(b.file_names())
+                files.extend(per_bundle[-1])
+            trees = {p: _parse_path(p) for p in files}
         for b, listed in zip(bundles, per_bundle):
             read_config(b, trees[os.path.join(str(b.root), "config.openplx")])
             self.bundles[b.name] = b
@@ -276,15 +303,13 @@ class Workspace:
                 if isinstance(s, ast.Annotation):
                     self.known_annotations.add(s.name.name)
         if self.use_cache:
-            import sys
-
-            limit = sys.getrecursionlimit()
-            sys.setrecursionlimit(max(limit, 20000))  # the namespace tree links parents and children
-            try:
-                _store_cached(name, {"files": len(files), "program": self.program, "bundles": self.bundles,
-                                     "annotations": self.known_annotations}, f"official-{set_id}-")
-            finally:
-                sys.setrecursionlimit(limit)
+            deps = reads.dedupe(deps)
+            program = f"{code_stamp()}-{reads.content_digest(deps)}"
+            # now, before user bundles join the program: the child pickles this moment's snapshot
+            _store_cached([("programs", program, {"files": len(files), "program": self.program,
+                                                  "bundles": self.bundles, "annotations": self.known_annotations},
+                            False),
+                           ("bundle-sets", set_key, {"deps": deps, "program": program, "files": len(files)}, True)])
 
     def add_bundle_folder(self, folder: Path) -> None:
         """A configured bundle folder: a bundle itself, or a folder of bundles."""
@@ -305,7 +330,7 @@ class Workspace:
             if b.root.resolve() == root:
                 return b
         b = Bundle(root.name, root, official=False)
-        read_config(b, parse_file(root / "config.openplx"))
+        read_config(b, _parse_path(root / "config.openplx"))
         if b.name in self.bundles and self.bundles[b.name].root.resolve() != root:
             b.diagnostics.append(Diagnostic("B003", f"a bundle named '{b.name}' is already loaded from "
                                             f"{self.bundles[b.name].root}", EMPTY_SPAN, Severity.ERROR,
@@ -313,7 +338,7 @@ class Workspace:
             return b
         self.bundles[b.name] = b
         for f in b.files():
-            self._add_bundle_file(b, f, parse_file(f))
+            self._add_bundle_file(b, f, _parse_path(f))
         self._compute_visibility()
         return b
 
@@ -620,24 +645,25 @@ def _renamed_attributes_before(using: str, use_cache: bool = True) -> dict[str, 
     Composing the changes diffs every pair of consecutive indexed versions (about 1.5 s of CPU), so
     the answer is kept per process and in plx's cache folder, keyed by the index's files and the
     code that diffs them (shared: callers only read it)."""
-    from plxtools.model import apichanges
     from plxtools.model.apichanges import AUTO, TABLE, changes
-    from plxtools.model.apiindex import DATA, versions
+    from plxtools.model.apiindex import versions
 
     out: dict[str, list[tuple[str, str, str]]] = {}
     first = versions()[0]
     if first == using:
         return out
     name = None
-    if use_cache:
-        stamp = [DATA / f"{v}.json.gz" for v in versions()] + [apichanges.RENAMES, Path(apichanges.__file__)]
-        name = f"renames-{using}-{_cache_key(stamp)}.pickle"
-        got = _load_cached(name)
+    if use_cache:  # the index and the code that diffs it are plxtools' own files: the code stamp
+        from plxtools.cache import store
+        from plxtools.cache.stamp import code_stamp
+
+        name = store.new_hash(f"renames\0{code_stamp()}\0{using}".encode()).hexdigest()
+        got = store.get_json("renames", name)
         if isinstance(got, dict):
-            return got
+            return {k: [tuple(t) for t in v] for k, v in got.items()}
     for c in changes(first, using):
         if c.kind == "attr-renamed" and c.handling in (AUTO, TABLE) and c.old and c.new:
             out.setdefault(c.old, []).append((c.new, c.model, c.since))
     if name is not None:
-        _store_cached(name, out, f"renames-{using}-")
+        store.put_json("renames", name, out)
     return out

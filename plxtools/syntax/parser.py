@@ -214,18 +214,6 @@ class _Build:
         return ast.Declaration(span, span, c[1], None, None, const=True, colon=c[2] is not None)
 
 
-def _lark_cache_file() -> str | bool:
-    import os
-
-    base = os.environ.get("PLX_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache")
-    folder = os.path.join(base, "plxtools")
-    try:
-        os.makedirs(folder, exist_ok=True)
-    except OSError:
-        return False
-    return os.path.join(folder, "grammar.lark-cache")
-
-
 _parser_lock = threading.Lock()
 _PARSER: "Lark | None" = None
 
@@ -241,10 +229,9 @@ def _get_parser() -> Lark:
                 from plxtools.syntax.lalr import LarkBuild, PassThrough
 
                 options = dict(parser="lalr", lexer=PassThrough, transformer=LarkBuild(), maybe_placeholders=True)
-                try:  # lark caches its grammar analysis, keyed by the grammar and options
-                    _PARSER = Lark(grammar, cache=_lark_cache_file(), **options)
-                except Exception:  # an unwritable or stale cache must never stop parsing
-                    _PARSER = Lark(grammar, **options)
+                # built in each process that needs it, never loaded from a file: lark's own grammar
+                # cache is a pickle that anyone able to write to the cache folder could plant
+                _PARSER = Lark(grammar, **options)
     return _PARSER
 
 

@@ -13,7 +13,7 @@ UNKNOWN = CLEAN.replace("Physics3D.Bodies.RigidBody", "Physics3D.Bodies.RigidBod
 
 
 def _runs(cache):
-    folder = cache / "plxtools" / "runs"
+    folder = cache / "plxtools" / "replays"
     return sorted(p for p in folder.rglob("*") if p.is_file()) if folder.is_dir() else []
 
 
@@ -126,10 +126,10 @@ def test_a_cold_run_leaves_the_bundle_program_cache_behind(tmp_path):
     assert _same(first, _fresh(tmp_path, "lint", str(f)))
     folder = cache / "plxtools"
     for _ in range(600):  # the child is done when its temporary file has been renamed
-        if list(folder.glob("official-*.pickle")) and not list(folder.glob(".official-*.tmp")):
+        if list(folder.glob("programs/*")) and not list(folder.glob("programs/.*.tmp")):
             break
         time.sleep(0.1)
-    assert list(folder.glob("official-*.pickle"))
+    assert list(folder.glob("programs/*"))
     second = run_plx("lint", "--output-format", "json", str(f), env={"PLX_CACHE_DIR": str(cache)})
     assert _same(second, _fresh(tmp_path, "lint", "--output-format", "json", str(f)))
 
@@ -144,14 +144,14 @@ def test_unrelated_files_beside_it_keep_the_run_replayable(tmp_path):
     f = tmp_path / "w.openplx"
     f.write_text(BROKEN)
     first = run_plx("lint", str(f), env=env)
-    shutil.rmtree(cache / "plxtools" / "lint-results")
+    shutil.rmtree(cache / "plxtools" / "results")
     (tmp_path / ".w.openplx.swp").write_text("x")
     again = run_plx("lint", str(f), env=env)
     assert _same(first, again)
-    assert not (cache / "plxtools" / "lint-results").exists()  # replayed, not checked
+    assert not (cache / "plxtools" / "results").exists()  # replayed, not checked
     (tmp_path / "plx.toml").write_text("")  # a config, even an empty one: run again
     assert _same(first, run_plx("lint", str(f), env=env))
-    assert (cache / "plxtools" / "lint-results").exists()
+    assert (cache / "plxtools" / "results").exists()
 
 
 def test_a_damaged_entry_is_a_miss(tmp_path):
@@ -161,7 +161,8 @@ def test_a_damaged_entry_is_a_miss(tmp_path):
     f.write_text(BROKEN)
     first = run_plx("lint", str(f), env=env)
     (entry,) = _runs(cache)
-    for junk in (b"", b"\x00garbage", __import__("marshal").dumps((1, [("x",)], "", "", 0))):
+    for junk in (b"", b"\x00garbage", b'{"deps": [], "out": "All checks passed in 1 file.\\n", "err": "", "code": 0}',
+                 entry.read_bytes()[:-3]):
         entry.write_bytes(junk)
         again = run_plx("lint", str(f), env=env)
         assert _same(first, again) and "Traceback" not in again.stderr

@@ -10,7 +10,7 @@ UNKNOWN = CLEAN.replace("Physics3D.Bodies.RigidBody", "Physics3D.Bodies.RigidBod
 
 
 def _entries(cache, name):
-    return sorted(p for p in (cache / "plxtools" / name).rglob("*.pickle")) if (cache / "plxtools" / name).is_dir() \
+    return sorted(p for p in (cache / "plxtools" / name).rglob("*")) if (cache / "plxtools" / name).is_dir() \
         else []
 
 
@@ -23,10 +23,10 @@ def test_lint_results_are_reused_until_the_file_or_config_changes(tmp_path):
     f.write_text(BROKEN)
     first = run_plx("lint", str(f), env=env)
     assert first.returncode == 1 and "N002" in first.stdout
-    assert len(_entries(cache, "lint-results")) == 1
+    assert len(_entries(cache, "results")) == 1
     again = run_plx("lint", str(f), env=env)
     assert (again.returncode, again.stdout, again.stderr) == (first.returncode, first.stdout, first.stderr)
-    assert len(_entries(cache, "lint-results")) == 1  # a hit: nothing new stored
+    assert len(_entries(cache, "results")) == 1  # a hit: nothing new stored
 
     f.write_text(CLEAN)  # the file changed: checked again
     clean = run_plx("lint", str(f), env=env)
@@ -42,7 +42,7 @@ def test_lint_results_are_reused_until_the_file_or_config_changes(tmp_path):
     assert ignored.returncode == 0, ignored.stdout
 
     nocache = run_plx("lint", "--no-cache", str(f), env={"PLX_CACHE_DIR": str(tmp_path / "other")})
-    assert nocache.returncode == 1 and not _entries(tmp_path / "other", "lint-results")
+    assert nocache.returncode == 1 and not _entries(tmp_path / "other", "results")
 
 
 def test_results_that_depend_on_the_surroundings_are_not_stored(tmp_path):
@@ -51,7 +51,7 @@ def test_results_that_depend_on_the_surroundings_are_not_stored(tmp_path):
     f.write_text(UNKNOWN)
     r = run_plx("lint", str(f), env={"PLX_CACHE_DIR": str(cache)})
     assert "N001" in r.stdout
-    assert not _entries(cache, "lint-results")  # its help may name a bundle folder found nearby
+    assert not _entries(cache, "results")  # its help may name a bundle folder found nearby
 
 
 def test_files_in_a_user_bundle_are_always_checked(tmp_path):
@@ -62,7 +62,7 @@ def test_files_in_a_user_bundle_are_always_checked(tmp_path):
     (b / "Part.openplx").write_text("Part is Physics3D.Bodies.RigidBody:\n    inertia.mass: 1\n")
     r = run_plx("lint", str(b / "Part.openplx"), env={"PLX_CACHE_DIR": str(cache)})
     assert r.returncode in (0, 1)
-    assert not _entries(cache, "lint-results")
+    assert not _entries(cache, "results")
 
 
 def test_fmt_remembers_formatted_files_only(tmp_path):
@@ -71,13 +71,13 @@ def test_fmt_remembers_formatted_files_only(tmp_path):
     f = tmp_path / "w.openplx"
     f.write_text(CLEAN)
     assert run_plx("fmt", "--check", str(f), env=env).returncode == 0
-    assert len(_entries(cache, "fmt-formatted")) == 1
+    assert len(_entries(cache, "formatted")) == 1
     again = run_plx("fmt", "--check", str(f), env=env)
     assert again.returncode == 0 and "1 file would be left unchanged" in again.stderr
     f.write_text(CLEAN.replace("    inertia", "  inertia"))  # not formatted: checked, and not stored
     changed = run_plx("fmt", "--check", str(f), env=env)
     assert changed.returncode == 1 and "would reformat" in changed.stderr
-    assert len(_entries(cache, "fmt-formatted")) == 1
+    assert len(_entries(cache, "formatted")) == 1
     assert run_plx("fmt", "--no-cache", "--check", str(f), env=env).returncode == 1
 
 

@@ -38,7 +38,7 @@ def _session(cache: str, msg_id) -> tuple[dict, list[dict]]:
 def test_second_start_answers_initialize_from_the_cache(tmp_path):
     first, dup1 = _session(str(tmp_path), 1)
     assert "capabilities" in first["result"] and not dup1
-    assert list((tmp_path / "plxtools" / "lsp-initialize").glob("*.json"))
+    assert list((tmp_path / "plxtools" / "lsp").glob("*"))
     second, dup2 = _session(str(tmp_path), "init-2")  # another id: the cached reply carries this one
     assert second["id"] == "init-2"
     assert second["result"] == first["result"]
@@ -54,4 +54,4 @@ def test_other_params_are_not_answered_from_the_cache(tmp_path):
         assert "capabilities" in srv.response(5)["result"]
     finally:
         srv.proc.kill()
-    assert len(list((tmp_path / "plxtools" / "lsp-initialize").glob("*.json"))) == 2
+    assert len(list((tmp_path / "plxtools" / "lsp").glob("*"))) == 2

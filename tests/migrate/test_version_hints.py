@@ -62,7 +62,7 @@ def test_the_renamed_attribute_table_from_the_cache_folder_gives_the_same_hints(
     f.write_text(OLD_STYLE, encoding="utf-8")
     env = {"PLX_CACHE_DIR": str(tmp_path / "cache")}
     first = run_plx("lint", "--output-format", "json", str(f), env=env).stdout
-    assert list((tmp_path / "cache").rglob("renames-*.pickle")), "the table was not kept"
+    assert list((tmp_path / "cache" / "plxtools" / "renames").glob("*")), "the table was not kept"
     (f.parent / "scene2.openplx").write_text(OLD_STYLE, encoding="utf-8")  # not a stored result
     second = run_plx("lint", "--output-format", "json", str(f.parent / "scene2.openplx"), env=env).stdout
     uncached = run_plx("lint", "--no-cache", "--output-format", "json", str(f), env=env).stdout

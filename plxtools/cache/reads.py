@@ -1,0 +1,249 @@
+"""What a computation really read, recorded by the code that read it (the rule of salsa, the
+incremental engine of rust-analyzer: dependencies are recorded, never declared).
+
+Code that reads something a cached answer may depend on goes through this module: `read_bytes`
+(a file, by its content), `kind` (whether a path is a file, a folder or nothing: a config file
+looked for and not found is a dependency too), `listdir` (a folder's names) and `env` (an
+environment variable). Each read is noted in every open `recording()`; an answer is stored with
+the reads of its recording, and believed later only when `holds` says every read would give the
+same value now.
+
+A file is compared by content. Its stat is kept only as a fast path that cannot be fooled, as in
+git's index: size, mtime, ctime, inode and device must all be equal (ctime cannot be set by a
+user: `touch -r`, `cp -p`, `rsync -t` or an unpacked archive change it), and a file whose mtime or
+ctime is within two seconds of the moment it was recorded is "racily clean" and has its bytes
+hashed again every time.
+"""
+
+from __future__ import annotations
+
+import os
+import stat as _stat
+import time
+
+from plxtools.cache.store import new_hash
+
+_frames: list[list] = []
+RACY_NS = 2 * 10**9
+
+
+class recording:
+    """`with recording() as deps:` collects every read made inside (nested recordings each get
+    them all)."""
+
+    def __enter__(self) -> list:
+        self.deps: list = []
+        _frames.append(self.deps)
+        return self.deps
+
+    def __exit__(self, *exc) -> None:
+        _frames.remove(self.deps)
+
+
+def active() -> bool:
+    return bool(_frames)
+
+
+def note(dep: list) -> None:
+    for f in _frames:
+        f.append(dep)
+
+
+def note_all(deps: list) -> None:
+    """Add reads recorded earlier (a cache hit's own dependencies) to every open recording."""
+    for f in _frames:
+        f.extend(deps)
+
+
+def digest(data: bytes) -> str:
+    return new_hash(data).hexdigest()
+
+
+def _sig(st, data: bytes) -> list:
+    return [st.st_size, st.st_mtime_ns, st.st_ctime_ns, st.st_ino, st.st_dev, digest(data), time.time_ns()]
+
+
+def read_bytes(path) -> bytes:
+    """The bytes of a file, noted by content (the stat is taken from the open file, before reading).
+    Raises OSError as open() does; a missing file is noted as missing."""
+    p = os.fspath(path)
+    try:
+        fd = os.open(p, os.O_RDONLY)
+    except OSError:
+        if _frames:
+            note(["k", p, _kind(p)])
+        raise
+    try:
+        st = os.fstat(fd)
+        with os.fdopen(fd, "rb", closefd=False) as fh:
+            data = fh.read()
+    finally:
+        os.close(fd)
+    if _frames:
+        note(["f", p, _sig(st, data)])
+    return data
+
+
+def _kind(p: str) -> str | None:
+    try:
+        mode = os.stat(p).st_mode
+    except (OSError, ValueError):
+        return None
+    return "file" if _stat.S_ISREG(mode) else "dir" if _stat.S_ISDIR(mode) else "other"
+
+
+def kind(path) -> str | None:
+    """'file', 'dir', 'other' or None (nothing there), noted."""
+    p = os.fspath(path)
+    k = _kind(p)
+    if _frames:
+        note(["k", p, k])
+    return k
+
+
+def is_file(path) -> bool:
+    return kind(path) == "file"
+
+
+def is_dir(path) -> bool:
+    return kind(path) == "dir"
+
+
+def listdir(path) -> list[str]:
+    """A folder's names, sorted, noted (raises OSError as os.listdir does)."""
+    p = os.fspath(path)
+    try:
+        names = sorted(os.listdir(p))
+    except OSError:
+        if _frames:
+            note(["l", p, None])
+        raise
+    if _frames:
+        note(["l", p, names])
+    return names
+
+
+def scan(path) -> list[tuple[str, bool]]:
+    """A folder's (name, is a real folder: not a link to one) pairs, sorted by name, with the
+    names noted as `listdir` notes them (one scandir: no stat per entry). Raises OSError."""
+    p = os.fspath(path)
+    try:
+        with os.scandir(p) as it:
+            got = sorted((e.name, e.is_dir(follow_symlinks=False)) for e in it)
+    except OSError:
+        if _frames:
+            note(["l", p, None])
+        raise
+    if _frames:
+        note(["l", p, [n for n, _d in got]])
+    return got
+
+
+def env(name: str) -> str | None:
+    """An environment variable, noted."""
+    value = os.environ.get(name)
+    if _frames:
+        note(["e", name, value])
+    return value
+
+
+def realpath(path) -> str:
+    p = os.fspath(path)
+    real = os.path.realpath(p)
+    if _frames:
+        note(["r", p, real])
+    return real
+
+
+def holds(dep) -> bool:
+    """Whether reading again would give what was recorded."""
+    try:
+        what, p, value = dep
+        if what == "f":
+            return _file_holds(p, value)
+        if what == "k":
+            return _kind(p) == value
+        if what == "l":
+            try:
+                return sorted(os.listdir(p)) == value
+            except OSError:
+                return value is None
+        if what == "e":
+            return os.environ.get(p) == value
+        if what == "r":
+            return os.path.realpath(p) == value
+    except (TypeError, ValueError):
+        pass
+    return False
+
+
+def _file_holds(p: str, sig) -> bool:
+    size, mtime, ctime, ino, dev, want, recorded = sig
+    try:
+        st = os.stat(p)
+    except (OSError, ValueError):
+        return False
+    if st.st_size != size or not _stat.S_ISREG(st.st_mode):
+        return False
+    if (st.st_mtime_ns == mtime and st.st_ctime_ns == ctime and st.st_ino == ino and st.st_dev == dev
+            and not is_racy(sig)):
+        return True
+    try:
+        with open(p, "rb") as fh:
+            return digest(fh.read()) == want
+    except OSError:
+        return False
+
+
+def is_racy(sig) -> bool:
+    """Whether a file's record was taken too soon after its last change to trust its stat."""
+    return sig[6] - max(sig[1], sig[2]) <= RACY_NS
+
+
+def all_hold(deps) -> bool:
+    """Whether every read holds. Files are checked in one tight loop (a replayed run checks a
+    few hundred): the stat fast path inline, the content only when it cannot decide."""
+    if not isinstance(deps, list):
+        return False
+    stat = os.stat
+    try:
+        for d in deps:
+            if d[0] == "f":
+                size, mtime, ctime, ino, dev, _want, recorded = sig = d[2]
+                try:
+                    st = stat(d[1])
+                except (OSError, ValueError):
+                    return False
+                if (st.st_mtime_ns == mtime and st.st_ctime_ns == ctime and st.st_size == size and st.st_ino == ino
+                        and st.st_dev == dev and recorded - (mtime if mtime > ctime else ctime) > RACY_NS):
+                    continue
+                if not _file_holds(d[1], sig):
+                    return False
+            elif not holds(d):
+                return False
+    except (TypeError, IndexError, KeyError, ValueError):
+        return False
+    return True
+
+
+def content_digest(deps: list) -> str:
+    """A digest of what was read (values and contents, not stats): two loads that read the same
+    things have the same digest."""
+    h = new_hash()
+    for what, p, value in deps:
+        v = value[5] if what == "f" else value
+        h.update(repr((what, p, v)).encode())
+    return h.hexdigest()
+
+
+def dedupe(deps: list) -> list:
+    """The reads without repeats. A thing read twice with different results (a file saved during
+    the run) stays twice: both cannot hold, so such an answer is never believed."""
+    seen: set = set()
+    out = []
+    for d in deps:
+        k = (d[0], d[1], d[2][5] if d[0] == "f" and d[2] else repr(d[2]))
+        if k not in seen:
+            seen.add(k)
+            out.append(d)
+    return out
