@@ -281,7 +281,11 @@ def _artefacts(args, results) -> int:
                         print(f"plx check: cannot render {out}: {exc}", file=sys.stderr)
                         status = 2
             except OSError as exc:
-                print(f"plx check: cannot write {out}: {exc.strerror or exc}", file=sys.stderr)
+                from plxtools.fileio import WriteError
+
+                why = exc.strerror or str(exc)
+                print(f"plx check: {why if isinstance(exc, WriteError) else f'cannot write {out}: {why}'}",
+                      file=sys.stderr)
                 status = 2
     return status
 
@@ -296,8 +300,8 @@ def _write_trace(fc, out: Path) -> int:
         return 2
     try:
         write_trace(sim.trace, out)
-    except TraceWriteError as exc:
-        print(f"plx check: cannot write {out}: {exc}", file=sys.stderr)
+    except TraceWriteError as exc:  # the message names the file and what happened
+        print(f"plx check: {exc}", file=sys.stderr)
         return 2
     return 0
 
