@@ -94,6 +94,9 @@ def _add_check(sub) -> None:
                    help="wall-clock limit of each file's simulation (default 300); a run cut short is A109")
     p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
                    help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
+    p.add_argument("--show-env", action="store_true",
+                   help="let messages show what $\"{VAR}\" paths expand to (off: they show the expression, so "
+                   "no environment value, such as a CI secret, reaches a log)")
     p.add_argument("--exit-zero", action="store_true", help="exit 0 even when errors are found")
     p.add_argument("-j", "--jobs", type=_jobs, default=0, metavar="N",
                    help="processes that check files at once: 'auto' (default: every core when the files' "

@@ -422,7 +422,9 @@ def _check_string(s: ast.String, base: str, rep: Reporter, variables_only: bool 
         if not unset and not variables_only:
             looks_like_file = "/" in val or os.sep in val or re.search(r"\.[A-Za-z0-9]{2,4}$", val)
             if looks_like_file and not os.path.exists(val if os.path.isabs(val) else os.path.join(base, val)):
-                rep.add("A031", f"file {val!r} (from {s.raw}) does not exist", span=s.span, severity="warning")
+                named = envpath.shown(s.raw, val)
+                rep.add("A031", f"file {named} does not exist", span=s.span, severity="warning",
+                        help="plx check --show-env shows the path the variables give" if named == s.raw else None)
 
 
 def _owners(obj: Obj):

@@ -37,6 +37,9 @@ def run_check(args) -> int:
         print(f"plx check: --duration must be a number of seconds in (0, {MAX_DURATION:g}]; got {args.duration:g}",
               file=sys.stderr)
         return 2
+    from plxtools import envpath
+
+    envpath.show_values(getattr(args, "show_env", False))  # set before any worker process forks
     timeout = getattr(args, "timeout", None)
     if timeout is None:
         timeout = DEFAULT_TIMEOUT
