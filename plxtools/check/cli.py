@@ -10,6 +10,7 @@ import json
 import math
 import os
 import sys
+import time
 import traceback
 from dataclasses import dataclass
 from pathlib import Path
@@ -130,13 +131,14 @@ def _check_one(item: tuple, run: _Run, analysed=None) -> tuple:
     from plxtools.check.pipeline import Skip, analyse, blocking_reason, run_backend
 
     f, cfg = item
+    start = time.perf_counter()  # --timeout covers the file's whole check, not only the step loop
     try:
         fc = analysed if analysed is not None else analyse(f, run.workspace, cfg, model=run.model)
         if run.want_backend and fc.scene is not None:
             reason = blocking_reason(fc)
             if reason is None:
                 run_backend(fc, simulate=run.simulate, duration=run.duration, record=run.record,
-                            timeout=run.timeout)
+                            timeout=run.timeout, deadline=start + run.timeout)
             else:
                 fc.skip, fc.skip_detail = Skip.BLOCKED, reason
         return fc, [], 0

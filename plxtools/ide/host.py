@@ -527,6 +527,37 @@ class AnalysisHost:
             return diags
         return final_diagnostics(tree, cfg, analysis)
 
+    def config_reread(self) -> None:
+        """A config file changed but chose the same bundle set: its other keys (select, ignore,
+        per-file ignores) may differ, so every file's diagnostics are computed again."""
+        self._states.clear()
+        self.generation += 1
+
+    def imports_of(self, path: str) -> set[str]:
+        """The files an open document imports (by the paths their import statements name now;
+        a missing file too: creating it changes the diagnostics)."""
+        from plxtools.model.imports import resolve_file
+
+        st = self._states.get(path)
+        if st is None or st.tree is None:
+            return set()
+        out = set()
+        for stmt in st.tree.statements:
+            if isinstance(stmt, ast.Import):
+                full, _unset = resolve_file(stmt, path)
+                if full is not None and not full.endswith(".openplx"):
+                    out.add(full)
+        return out
+
+    def import_changed(self, path: str) -> list[str]:
+        """A file imported by open documents was created, changed or deleted: those documents are
+        analysed afresh (not re-used: an import's check reads the file system). Returns them."""
+        hit = [doc for doc in self.docs if path in self.imports_of(doc)]
+        for doc in hit:
+            self._states.pop(doc, None)
+            self._analyses.pop(doc, None)
+        return hit
+
     def dependents(self, path: str) -> list[str]:
         """Open documents whose diagnostics may change when `path` changes."""
         ws = self._ws
