@@ -533,6 +533,13 @@ class AnalysisHost:
         self._states.clear()
         self.generation += 1
 
+    def user_bundle_roots(self) -> list[str]:
+        """The folders of the user bundles loaded now (they may lie outside the workspace)."""
+        ws = self._ws
+        if ws is None:
+            return []
+        return sorted(str(b.root) for b in ws.bundles.values() if not b.official)
+
     def imports_of(self, path: str) -> set[str]:
         """The files an open document imports (by the paths their import statements name now;
         a missing file too: creating it changes the diagnostics)."""

@@ -6,8 +6,9 @@ the files imports name (a mesh that is created or deleted turns N006 on or off).
 the editor to watch all of them by dynamic registration when the client supports it:
 
 - `plx-watched-files` (registered once at `initialized`): `**/*.openplx` and the config files;
-- `plx-imported-files`: the files the open documents import, exactly (RelativePattern when the
-  client supports it), registered again whenever that set changes.
+- `plx-imported-files`: the files the open documents import, exactly, and (when the client
+  supports RelativePattern) the `.openplx` files of the user bundles loaded, which may lie outside
+  the workspace; registered again whenever that set changes.
 
 On an event the open documents that depend on what changed are checked again from scratch (a
 re-used analysis would keep a stale import error), and the editor is told (pushed diagnostics,
@@ -59,18 +60,22 @@ def refresh_import_watchers(ls) -> None:
     """Register the files the open documents import, when that set changed since the last time."""
     if not ls.cap("workspace.did_change_watched_files.dynamic_registration"):
         return
+    relative = bool(ls.cap("workspace.did_change_watched_files.relative_pattern_support"))
     files = imported_files(ls)
+    bundles = ls.host.user_bundle_roots() if relative else []
     state = getattr(ls, "_watched_imports", None)
-    if state is not None and state[0] == files:
+    if state is not None and state[0] == (files, bundles):
         return
     count = state[1] + 1 if state is not None else 0
-    ls._watched_imports = (files, count)
-    relative = bool(ls.cap("workspace.did_change_watched_files.relative_pattern_support"))
+    ls._watched_imports = ((files, bundles), count)
     watchers = []
     for f in sorted(files):
         folder, name = os.path.split(f)
         pattern = types.RelativePattern(base_uri=ls.uri_of(folder), pattern=name) if relative else f
         watchers.append(types.FileSystemWatcher(glob_pattern=pattern))
+    for root in bundles:
+        watchers.append(types.FileSystemWatcher(
+            glob_pattern=types.RelativePattern(base_uri=ls.uri_of(root), pattern="**/*.openplx")))
     try:
         if state is not None:
             ls.client_unregister_capability(types.UnregistrationParams(unregisterations=[

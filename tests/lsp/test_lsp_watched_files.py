@@ -41,21 +41,7 @@ async def test_a_config_change_with_the_same_bundle_set_is_applied(client, tmp_p
     close(client, uri)
 
 
-def _accept_unregistrations(client) -> None:
-    """Answer client/unregisterCapability as editors do (the shared fixture answers registrations)."""
-    if getattr(client, "unregistrations", None) is not None:
-        return
-    client.unregistrations = []
-
-    @client.feature(types.CLIENT_UNREGISTER_CAPABILITY)
-    def _unregister(params: types.UnregistrationParams) -> None:
-        gone = {u.id for u in params.unregisterations}
-        client.unregistrations.extend(gone)
-        client.registrations[:] = [r for r in client.registrations if r.id not in gone]
-
-
 async def test_an_imported_file_created_or_deleted_updates_the_import_error(client, tmp_path):
-    _accept_unregistrations(client)
     doc = tmp_path / "imp.openplx"
     doc.write_text(IMPORTS)
     uri = doc.as_uri()
