@@ -146,6 +146,7 @@ class AnalysisHost:
         self._parsers: dict[str, IncrementalParser] = {}
         self._trees: dict[str, ast.File] = {}  # the last parse of each open buffer
         self._analyses: dict = {}  # the last analysis of each open buffer, re-used by the next (model/reuse.py)
+        self._imports_seen: dict = {}  # path -> (tree, the files its imports name): see imports_of
         self._ws = None
         self._ws_before: tuple | None = None  # (bundle-set key, workspace) while choosing the set again
         self._set_key: tuple | None = None
@@ -254,6 +255,7 @@ class AnalysisHost:
         self._parsers.pop(path, None)
         self._trees.pop(path, None)
         self._analyses.pop(path, None)
+        self._imports_seen.pop(path, None)
         ws = self._ws
         if doc is None or ws is None:
             return
@@ -548,12 +550,16 @@ class AnalysisHost:
         st = self._states.get(path)
         if st is None or st.tree is None:
             return set()
+        known = self._imports_seen.get(path)
+        if known is not None and known[0] is st.tree:  # asked after every check: once per tree
+            return known[1]
         out = set()
         for stmt in st.tree.statements:
             if isinstance(stmt, ast.Import):
                 full, _unset = resolve_file(stmt, path)
                 if full is not None and not full.endswith(".openplx"):
                     out.add(full)
+        self._imports_seen[path] = (st.tree, out)
         return out
 
     def import_changed(self, path: str) -> list[str]:
