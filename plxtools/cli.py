@@ -91,7 +91,8 @@ def _add_check(sub) -> None:
                    help="write the simulated motion (every body's pose and velocity, every mate's coordinate, "
                    "every 0.01 s) as CSV; implies --simulate")
     p.add_argument("--timeout", type=float, default=None, metavar="SECONDS",
-                   help="wall-clock limit of each file's simulation (default 300); a run cut short is A109")
+                   help="wall-clock limit of each file's whole check (default 300): the checks, the initial-overlap "
+                   "check and the simulation; a run cut short is A109")
     p.add_argument("--integrator", choices=("auto", "implicitfast", "implicit", "rk4", "euler"), default=None,
                    help="MuJoCo integrator (default auto: rk4 for conservative, contact-free scenes, implicitfast "
                    "otherwise; config key check.integrator)")
@@ -100,6 +101,9 @@ def _add_check(sub) -> None:
                    "check.timestep)")
     p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
                    help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
+    p.add_argument("--show-env", action="store_true",
+                   help="let messages show what $\"{VAR}\" paths expand to (off: they show the expression, so "
+                   "no environment value, such as a CI secret, reaches a log)")
     p.add_argument("--exit-zero", action="store_true", help="exit 0 even when errors are found")
     p.add_argument("-j", "--jobs", type=_jobs, default=0, metavar="N",
                    help="processes that check files at once: 'auto' (default: every core when the files' "

@@ -14,6 +14,7 @@ from itertools import combinations
 import numpy as np
 
 from plxtools import envpath
+from plxtools.check.broadphase import first_overlaps
 from plxtools.check import coverage, drivetrain
 from plxtools.check.assemble import DOF_OF_MATE, Assembler, Assembly, CtrlRec, Kinds, MateRec, Node, Placement
 from plxtools.check.convert import Collector, GeomRec
@@ -379,31 +380,31 @@ class StaticChecks:
             cur = boxes.get(id(g.node))
             boxes[id(g.node)] = (lo, hi) if cur is None else (np.minimum(cur[0], lo), np.maximum(cur[1], hi))
         nodes = {id(n): n for n in self.asm.nodes}
-        reported: set[int] = set()
+        unplaced = {id(n) for n in self.asm.bodies  # static geometry at the origin is normal (a ground)
+                    if n.placement is Placement.UNPLACED and n.is_dynamic and id(n) in boxes}
+        if not unplaced:
+            return
+        keys = list(boxes)
+        index = {k: i for i, k in enumerate(keys)}
+        # sort and sweep (check/broadphase.py): linear in the boxes plus the overlapping pairs
+        partner = first_overlaps(np.array([boxes[k][0] for k in keys]), np.array([boxes[k][1] for k in keys]),
+                                 [k in unplaced for k in keys],
+                                 lambda i, j: (keys[i], keys[j]) not in excluded and (keys[i], keys[j]) not in mated,
+                                 margin=0.01)
         for n in self.asm.bodies:
-            if n.placement is not Placement.UNPLACED or not n.is_dynamic:
-                continue  # static geometry at its system's origin is normal (a ground); report what moves
-            if id(n) not in boxes:
+            found = partner.get(index[id(n)]) if id(n) in unplaced else None
+            if found is None:
                 continue
-            lo, hi = boxes[id(n)]
-            for other_id, (olo, ohi) in boxes.items():
-                if other_id == id(n) or (id(n), other_id) in excluded or (id(n), other_id) in mated:
-                    continue
-                other = nodes[other_id]
-                if not (n.is_dynamic or (other.kind == "body" and other.is_dynamic)):
-                    continue
-                depth = np.minimum(hi, ohi) - np.maximum(lo, olo)
-                if np.all(depth > 0.01) and id(n) not in reported:
-                    reported.add(id(n))
-                    broken = [m for m in self.asm.broken if self.k.isa(m, "Physics3D.Interactions.Mate")]
-                    if broken:  # the cause is more likely a mate that failed than a missing transform
-                        help = (f"{broken[0].display} could not be built (see its error); fix that first: it "
-                                f"may be the mate that places {n.path}")
-                    else:
-                        help = "give it kinematics.local_transform.position, or join it to the scene with a mate"
-                    self.rep.add("A037", f"{n.path} has no declared transform and no mate places it, so it stays "
-                                 f"at {_v(n.world[1])}, where it overlaps {other.path} "
-                                 f"(by {float(np.min(depth)):.3g} m)", obj=n.obj, help=help)
+            other, depth = nodes[keys[found[0]]], found[1]
+            broken = [m for m in self.asm.broken if self.k.isa(m, "Physics3D.Interactions.Mate")]
+            if broken:  # the cause is more likely a mate that failed than a missing transform
+                help = (f"{broken[0].display} could not be built (see its error); fix that first: it "
+                        f"may be the mate that places {n.path}")
+            else:
+                help = "give it kinematics.local_transform.position, or join it to the scene with a mate"
+            self.rep.add("A037", f"{n.path} has no declared transform and no mate places it, so it stays "
+                         f"at {_v(n.world[1])}, where it overlaps {other.path} "
+                         f"(by {depth:.3g} m)", obj=n.obj, help=help)
 
 
 def scan_strings(tree: ast.File, rep: Reporter) -> None:
@@ -448,7 +449,9 @@ def _check_string(s: ast.String, base: str, rep: Reporter, variables_only: bool 
         if not unset and not variables_only:
             looks_like_file = "/" in val or os.sep in val or re.search(r"\.[A-Za-z0-9]{2,4}$", val)
             if looks_like_file and not os.path.exists(val if os.path.isabs(val) else os.path.join(base, val)):
-                rep.add("A031", f"file {val!r} (from {s.raw}) does not exist", span=s.span, severity="warning")
+                named = envpath.shown(s.raw, val)
+                rep.add("A031", f"file {named} does not exist", span=s.span, severity="warning",
+                        help="plx check --show-env shows the path the variables give" if named == s.raw else None)
 
 
 def _owners(obj: Obj):

@@ -10,6 +10,7 @@ import json
 import math
 import os
 import sys
+import time
 import traceback
 from dataclasses import dataclass
 from pathlib import Path
@@ -37,6 +38,9 @@ def run_check(args) -> int:
         print(f"plx check: --duration must be a number of seconds in (0, {MAX_DURATION:g}]; got {args.duration:g}",
               file=sys.stderr)
         return 2
+    from plxtools import envpath
+
+    envpath.show_values(getattr(args, "show_env", False))  # set before any worker process forks
     timeout = getattr(args, "timeout", None)
     if timeout is None:
         timeout = DEFAULT_TIMEOUT
@@ -134,6 +138,7 @@ def _check_one(item: tuple, run: _Run, analysed=None) -> tuple:
     from plxtools.check.pipeline import Skip, analyse, blocking_reason, run_backend
 
     f, cfg = item
+    start = time.perf_counter()  # --timeout covers the file's whole check, not only the step loop
     try:
         fc = analysed if analysed is not None else analyse(f, run.workspace, cfg, model=run.model)
         if run.want_backend and fc.scene is not None:
@@ -144,7 +149,7 @@ def _check_one(item: tuple, run: _Run, analysed=None) -> tuple:
                 if run.integrator is not None:
                     fc.scene.integrator = run.integrator
                 run_backend(fc, simulate=run.simulate, duration=run.duration, record=run.record,
-                            timeout=run.timeout)
+                            timeout=run.timeout, deadline=start + run.timeout)
             else:
                 fc.skip, fc.skip_detail = Skip.BLOCKED, reason
         return fc, [], 0
@@ -292,7 +297,11 @@ def _artefacts(args, results) -> int:
                         print(f"plx check: cannot render {out}: {exc}", file=sys.stderr)
                         status = 2
             except OSError as exc:
-                print(f"plx check: cannot write {out}: {exc.strerror or exc}", file=sys.stderr)
+                from plxtools.fileio import WriteError
+
+                why = exc.strerror or str(exc)
+                print(f"plx check: {why if isinstance(exc, WriteError) else f'cannot write {out}: {why}'}",
+                      file=sys.stderr)
                 status = 2
     return status
 
@@ -307,8 +316,8 @@ def _write_trace(fc, out: Path) -> int:
         return 2
     try:
         write_trace(sim.trace, out)
-    except TraceWriteError as exc:
-        print(f"plx check: cannot write {out}: {exc}", file=sys.stderr)
+    except TraceWriteError as exc:  # the message names the file and what happened
+        print(f"plx check: {exc}", file=sys.stderr)
         return 2
     return 0
 

@@ -38,7 +38,8 @@ from plxtools.model.symbols import FileUnit, ModelSym, Ty
 from plxtools.syntax import ast
 
 DECL, VALUE, WITH = 0, 1, 2
-MAX_DEPTH = 48  # nesting of owned objects; deeper means a model (indirectly) contains itself
+MAX_DEPTH = 48  # nesting of owned objects from which a model met again among the owners contains itself
+MAX_NESTING = 500  # distinct models nested deeper than this are not instantiated: a limit, not a cycle
 
 
 @dataclass(slots=True, eq=False)
@@ -272,13 +273,12 @@ class Builder:
             obj.effects = effs
             return
         if depth > MAX_DEPTH:
-            self.too_deep.append(obj)
-            if self.report is not None:
-                parts = obj.display.split(".")
-                shown = obj.display if len(parts) <= 6 else ".".join(parts[:3]) + ". ... ." + ".".join(parts[-2:])
-                self.report("A009", f"{shown} is nested {depth} objects deep: does a model contain itself? "
-                            f"Its members are not instantiated", obj)
-            return
+            loop = _same_model_above(obj) if depth <= MAX_NESTING else None
+            if loop is not None or depth > MAX_NESTING:
+                self.too_deep.append(obj)
+                if self.report is not None:
+                    self.report("A009", _too_deep_message(obj, depth, loop), obj)
+                return
         own_decls, own_order, own_flags, own_routed = info
         decls: dict[str, Eff] = {}
         flags: dict[str, list] = {}
@@ -352,6 +352,31 @@ class Builder:
             child = Obj(name, path, cmodel, ctraits, obj, e)
             obj.children[name] = child
             self._build(child, cmodel, ctraits, sub, depth + 1)
+
+
+def _same_model_above(obj: Obj) -> list[Obj] | None:
+    """The owners from the nearest one of the same model and traits down to `obj` (a model that
+    contains itself), or None when every owner is of another model (deep, but finite)."""
+    chain = [obj]
+    o = obj.owner
+    while o is not None:
+        chain.append(o)
+        if o.model is obj.model and o.traits == obj.traits:
+            return chain[::-1]
+        o = o.owner
+    return None
+
+
+def _too_deep_message(obj: Obj, depth: int, loop: list[Obj] | None) -> str:
+    parts = obj.display.split(".")
+    shown = obj.display if len(parts) <= 6 else ".".join(parts[:3]) + ". ... ." + ".".join(parts[-2:])
+    if loop is None:
+        return (f"{shown} is nested {depth} objects deep, more than plx check instantiates ({MAX_NESTING}); "
+                "no model contains itself, but its members are not instantiated")
+    names = [o.model.name for o in loop]
+    through = " -> ".join(names if len(names) <= 6 else names[:3] + ["..."] + names[-2:])
+    return (f"{shown} is nested {depth} objects deep: {obj.model.name} contains itself ({through}); "
+            "its members are not instantiated")
 
 
 def walk_owned(root: Obj):

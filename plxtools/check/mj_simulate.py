@@ -185,6 +185,7 @@ class SimOptions:
 
     sample_dt: float = 0.01
     timeout: float | None = None  # s of wall-clock time; None: no limit
+    deadline: float | None = None  # time.perf_counter() by which the file's whole check ends (--timeout)
     energy_tol: float = 0.05  # energy gain tolerated, as a fraction of the run's energy scale
     drift_tol: float = 0.01  # conservative, contact-free scenes: energy drift either way tolerated, same scale
     penetration_tol: float = 0.005
@@ -356,20 +357,64 @@ def _running_max(best: np.ndarray, when: np.ndarray, vals: np.ndarray, times: np
     return up
 
 
-def initial_penetrations(run: SimRun) -> None:
-    """Geometries that start deeper than ``penetration_tol`` in each other (A104)."""
+MAX_OVERLAPS_LISTED = 1000  # A104 pairs listed one by one; the rest are counted (a heap of bodies has n^2/2)
+
+
+def _limit(opt: SimOptions) -> str:
+    return f"{opt.timeout:g} s of wall time" if opt.timeout is not None else "the deadline given"
+
+
+def initial_penetrations(run: SimRun, deadline: float | None = None) -> bool:
+    """Geometries that start deeper than ``penetration_tol`` in each other (A104), from the contacts
+    MuJoCo's own broad and narrow phase found at t=0. The contact fields are read once as arrays and
+    grouped per pair with numpy (linear in the contacts; indexing ``data.contact[k]`` copies the
+    whole list each time). Pairs are reported deepest first until ``deadline``; False when it cut
+    the report short (what was found so far is reported, and how many pairs were left)."""
     model, data, names = run.model, run.data, run.compiled.names
-    deepest: dict[tuple[int, int], tuple[float, int, list[float]]] = {}
-    for k in range(data.ncon):
-        c = data.contact[k]
-        if c.dist < -run.opt.penetration_tol:
-            key = (int(c.geom[0]), int(c.geom[1]))
-            depth, count, pos = deepest.get(key, (0.0, 0, []))
-            deepest[key] = (max(depth, float(-c.dist)), count + 1, _vec(c.pos) if -c.dist > depth else pos)
-    for (ga, gb), (depth, count, pos) in deepest.items():
-        g1, g2 = (names.path("geom", model.geom(g).name) for g in (ga, gb))
-        run.res.penetrations.append({"geom1": g1, "geom2": g2, "depth": depth, "contacts": count, "pos": pos})
+    n = int(data.ncon)
+    if n == 0:
+        return True
+    con = data.contact
+    dist = np.asarray(con.dist[:n], dtype=float)
+    deep = np.flatnonzero(dist < -run.opt.penetration_tol)
+    if deep.size == 0:
+        return True
+    geom = np.asarray(con.geom[:n])[deep].astype(np.int64)
+    pos = np.asarray(con.pos[:n])[deep]
+    dist = dist[deep]
+    key = geom[:, 0] * max(int(model.ngeom), 1) + geom[:, 1]
+    order = np.lexsort((dist, key))  # by pair, the deepest contact first within each pair
+    first = np.flatnonzero(np.r_[True, key[order][1:] != key[order][:-1]])
+    counts = np.diff(np.r_[first, order.size])
+    heads = order[first]
+    by_depth = np.argsort(dist[heads], kind="stable")  # the deepest pairs are reported first
+    paths: dict[int, str] = {}
+
+    def path(g: int) -> str:
+        p = paths.get(g)
+        if p is None:
+            p = paths[g] = names.path("geom", model.geom(g).name)
+        return p
+
+    for done, j in enumerate(by_depth):
+        if done == MAX_OVERLAPS_LISTED:
+            run.add(WARNING, "A104", f"{len(by_depth) - done} more pairs of geometries overlap at t=0 (the "
+                    f"{done} deepest are listed)", None)
+            break
+        if deadline is not None and done % 256 == 0 and time.perf_counter() > deadline:
+            left = len(by_depth) - done
+            run.add(ERROR, "A109", f"the check of initial overlaps was stopped by the time limit "
+                    f"({_limit(run.opt)}) after {done} of {len(by_depth)} overlapping pairs "
+                    f"({left} not reported); the simulation did not run", None)
+            return False
+        k = heads[j]
+        ga, gb = int(geom[k, 0]), int(geom[k, 1])
+        g1, g2 = path(ga), path(gb)
+        depth = float(-dist[k])
+        run.res.penetrations.append({"geom1": g1, "geom2": g2, "depth": depth, "contacts": int(counts[j]),
+                                     "pos": _vec(pos[k])})
         run.add(WARNING, "A104", f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
+    return True
 
 
 class BlowUp:
@@ -1086,6 +1131,10 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
     import mujoco
 
     opt = SimOptions(**options)
+    t_wall = time.perf_counter()
+    # the limit covers everything from here (and, given a deadline, the file's checks before it)
+    deadline = opt.deadline if opt.deadline is not None else (
+        t_wall + opt.timeout if opt.timeout is not None else None)
     scene = compiled.scene
     res = SimulationResult(False, scene.name, float(duration), 0.0, 0, float(scene.timestep), 0.0,
                            compiled.compile_ms, notes=list(compiled.notes))
@@ -1108,7 +1157,9 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
     run.movers = stepper.movers
     run.controlled = controller is not None
 
-    initial_penetrations(run)
+    if not initial_penetrations(run, deadline):
+        res.wall_time_s = time.perf_counter() - t_wall
+        return res
     monitors: list[Monitor] = [m(run) for m in MONITORS if m is not Trace or opt.record]
     blowup = BlowUp(run)
     per_step = [m for m in monitors if m.per_step]
@@ -1132,13 +1183,12 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
             and type(per_step[0]).before_step is Monitor.before_step):
         fast_after = per_step[0].after_step
     done = 0
-    t_wall = time.perf_counter()
     while done < n_steps:
-        if opt.timeout is not None and time.perf_counter() - t_wall > opt.timeout:
+        if deadline is not None and time.perf_counter() > deadline:
             if primed:
                 mujoco.mj_forward(model, data)
             batch.flush(run, batched)
-            run.add(ERROR, "A109", f"the simulation was stopped by the time limit ({opt.timeout:g} s of wall time) "
+            run.add(ERROR, "A109", f"the simulation was stopped by the time limit ({_limit(opt)}) "
                     f"at t={done * h:.3f} s of {duration:g} s; the motion after that is not checked", None)
             break
         k = min(chunk, n_steps - done)

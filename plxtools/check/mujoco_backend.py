@@ -100,14 +100,9 @@ def export_mjcf(compiled: CompiledScene, path: str | None = None) -> str:
     xml = compiled.spec.to_xml()
     if path is None:
         return xml
-    import os
-    import tempfile
+    from plxtools.fileio import write_output
 
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".plx-export-", suffix=".xml", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(xml)
+    def loads_back(tmp: str) -> None:
         try:
             mujoco.MjModel.from_xml_path(tmp)
         except ValueError as exc:
@@ -115,11 +110,8 @@ def export_mjcf(compiled: CompiledScene, path: str | None = None) -> str:
             note.code = "A132"
             note.message = note.message.replace("MuJoCo rejected the model", "MuJoCo cannot load the exported MJCF", 1)
             raise ExportError(note) from None
-        os.replace(tmp, path)
-        tmp = None
-    finally:
-        if tmp is not None and os.path.exists(tmp):
-            os.unlink(tmp)
+
+    write_output(path, xml, check=loads_back)  # through symlinks; devices refused; nothing half-written
     return xml
 
 

@@ -255,7 +255,7 @@ def blocking_reason(fc: FileCheck) -> str | None:
 
 
 def run_backend(fc: FileCheck, *, simulate: bool, duration: float, compile_only: bool = False,
-                record: bool = False, timeout: float | None = None) -> None:
+                record: bool = False, timeout: float | None = None, deadline: float | None = None) -> None:
     """Compile (and simulate) the file's scene; backend notes become diagnostics."""
     from plxtools.check import mujoco_backend as mjb
 
@@ -265,7 +265,7 @@ def run_backend(fc: FileCheck, *, simulate: bool, duration: float, compile_only:
     notes = list(fc.compiled.notes)
     if simulate and fc.compiled.ok:
         t1 = time.perf_counter()
-        fc.simulation = mjb.simulate(fc.compiled, duration, record=record, timeout=timeout)
+        fc.simulation = mjb.simulate(fc.compiled, duration, record=record, timeout=timeout, deadline=deadline)
         fc.timings["simulate"] = time.perf_counter() - t1
         notes = list(fc.simulation.notes)
     add_backend_notes(fc.rep, fc.tree, notes)

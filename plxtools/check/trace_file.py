@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import csv
 import io
-import os
-import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -52,20 +50,12 @@ class TraceWriteError(OSError):
 
 
 def write_trace(trace: dict[str, Any], out: Path) -> None:
-    """Write atomically: a reader never sees half a table, and a failed write leaves no file."""
-    text = trace_csv(trace)
-    folder = out.parent if str(out.parent) else Path(".")
+    """Write through the one safe writer (plxtools.fileio.write_output): a reader never sees half a
+    table, a failed write leaves what was there, a symlink is written through and a device or
+    folder is refused."""
+    from plxtools.fileio import write_output
+
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".plxtmp", dir=folder)
+        write_output(out, trace_csv(trace))
     except OSError as exc:
-        raise TraceWriteError(exc.strerror or str(exc)) from None
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
-            fh.write(text)
-        os.replace(tmp, out)
-    except OSError as exc:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
         raise TraceWriteError(exc.strerror or str(exc)) from None

@@ -104,7 +104,7 @@ def _format_file(path: Path, args, tally: _Tally, formatted: bool = False) -> No
             _say(f"would reformat {name}")
         return
     try:
-        write_atomic(path, result.text, result.had_bom)
+        write_atomic(path, result.text, result.had_bom, expected=data)
     except OSError as exc:
         _say(exc.strerror or f"{name}: cannot write: {exc}")
         tally.changed -= 1

@@ -146,6 +146,7 @@ class AnalysisHost:
         self._parsers: dict[str, IncrementalParser] = {}
         self._trees: dict[str, ast.File] = {}  # the last parse of each open buffer
         self._analyses: dict = {}  # the last analysis of each open buffer, re-used by the next (model/reuse.py)
+        self._imports_seen: dict = {}  # path -> (tree, the files its imports name): see imports_of
         self._ws = None
         self._ws_before: tuple | None = None  # (bundle-set key, workspace) while choosing the set again
         self._set_key: tuple | None = None
@@ -254,6 +255,7 @@ class AnalysisHost:
         self._parsers.pop(path, None)
         self._trees.pop(path, None)
         self._analyses.pop(path, None)
+        self._imports_seen.pop(path, None)
         ws = self._ws
         if doc is None or ws is None:
             return
@@ -526,6 +528,48 @@ class AnalysisHost:
                                     Severity.WARNING, file=tree.path))
             return diags
         return final_diagnostics(tree, cfg, analysis)
+
+    def config_reread(self) -> None:
+        """A config file changed but chose the same bundle set: its other keys (select, ignore,
+        per-file ignores) may differ, so every file's diagnostics are computed again."""
+        self._states.clear()
+        self.generation += 1
+
+    def user_bundle_roots(self) -> list[str]:
+        """The folders of the user bundles loaded now (they may lie outside the workspace)."""
+        ws = self._ws
+        if ws is None:
+            return []
+        return sorted(str(b.root) for b in ws.bundles.values() if not b.official)
+
+    def imports_of(self, path: str) -> set[str]:
+        """The files an open document imports (by the paths their import statements name now;
+        a missing file too: creating it changes the diagnostics)."""
+        from plxtools.model.imports import resolve_file
+
+        st = self._states.get(path)
+        if st is None or st.tree is None:
+            return set()
+        known = self._imports_seen.get(path)
+        if known is not None and known[0] is st.tree:  # asked after every check: once per tree
+            return known[1]
+        out = set()
+        for stmt in st.tree.statements:
+            if isinstance(stmt, ast.Import):
+                full, _unset = resolve_file(stmt, path)
+                if full is not None and not full.endswith(".openplx"):
+                    out.add(full)
+        self._imports_seen[path] = (st.tree, out)
+        return out
+
+    def import_changed(self, path: str) -> list[str]:
+        """A file imported by open documents was created, changed or deleted: those documents are
+        analysed afresh (not re-used: an import's check reads the file system). Returns them."""
+        hit = [doc for doc in self.docs if path in self.imports_of(doc)]
+        for doc in hit:
+            self._states.pop(doc, None)
+            self._analyses.pop(doc, None)
+        return hit
 
     def dependents(self, path: str) -> list[str]:
         """Open documents whose diagnostics may change when `path` changes."""

@@ -168,7 +168,7 @@ def _run_lint(args) -> int:
                 from plxtools.fileio import write_atomic
 
                 try:
-                    write_atomic(f, new_text, result.tree.had_bom)
+                    write_atomic(f, new_text, result.tree.had_bom, expected=result.data)
                 except OSError as exc:  # the user's file system, not a bug: say what happened
                     print(f"plx lint: {exc.strerror}", file=sys.stderr)
                     return 2

@@ -19,6 +19,7 @@ class FileResult:
     path: Path
     tree: ast.File | None
     diagnostics: list[Diagnostic] = field(default_factory=list)
+    data: bytes | None = None  # the bytes read: `--fix` writes only if the file still holds them
 
 
 def lint_file(path: Path, cfg: Config | None = None, workspace=None, data: bytes | None = None) -> FileResult:
@@ -45,7 +46,7 @@ def lint_file(path: Path, cfg: Config | None = None, workspace=None, data: bytes
     if tree is None:
         tree = parse_bytes(data, str(path))
         forget_last()  # lint does not format: the tokens need not outlive the parse
-    return FileResult(path, tree, analyse_tree(tree, cfg, workspace))
+    return FileResult(path, tree, analyse_tree(tree, cfg, workspace), data)
 
 
 def fixed_text(tree: ast.File, diags: list[Diagnostic], unsafe: bool) -> tuple[str, int]:

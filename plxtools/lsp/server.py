@@ -29,6 +29,7 @@ from plxtools.diagnostics import Diagnostic, Severity
 from plxtools.ide.host import AnalysisHost, Settings
 from plxtools.lsp.convert import Positions
 from plxtools.lsp.documents import Documents
+from plxtools.lsp import watching
 
 log = logging.getLogger("plxtools.lsp")
 
@@ -554,6 +555,7 @@ class PlxServer(LanguageServer):
             pos = self.positions(st.path, st)
             diags = [self.lsp_diagnostic(d, pos) for d in st.diagnostics]
             self._record("check", t0, c0)
+        watching.refresh_import_watchers(self)  # the files its imports name: watched from now on
         return doc.version, diags
 
     def publish(self, uri: str, background: bool = True) -> None:
@@ -991,20 +993,13 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
 
     @server_feature(types.WORKSPACE_DID_CHANGE_WATCHED_FILES)
     def did_change_watched(ls: PlxServer, params: types.DidChangeWatchedFilesParams) -> None:
-        changed = False
-        config = False
-        for ev in params.changes:
-            path = ls.path_of(ev.uri)
-            config = config or os.path.basename(path) in CONFIG_FILES
-            if path.endswith(".openplx"):
-                changed = ls.host.file_changed_on_disk(path) or changed
-        if config and ls.host.config_changed():  # a new bundle set: the old model is garbage now
+        changed, new_set = watching.on_watched_files(ls, params, CONFIG_FILES)  # config, bundles, imports
+        if new_set:  # a new bundle set: the old model is garbage now
             gc.unfreeze()
             _ = ls.host.workspace
             freeze_loaded()
             ls.notify_messages()
-            changed = True
-        if changed or config:
+        if changed:
             ls.recheck_all()
 
     # -------------------------------------------------------------- hover and navigation

@@ -86,7 +86,7 @@ def run_migrate(args) -> int:
             _say(f"would migrate {f} ({_plural(fm.edits, 'change')}, {from_v} -> {to_v})")
         else:
             try:
-                write_atomic(f, fm.new_text, had_bom)
+                write_atomic(f, fm.new_text, had_bom, expected=data)
             except OSError as exc:
                 _say(f"plx migrate: {f}: {exc.strerror}")
                 return 2

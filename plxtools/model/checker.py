@@ -6,7 +6,6 @@ go-to-definition, references and rename use in the language server.
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 
 from plxtools.cache import reads
@@ -203,10 +202,12 @@ class Checker:
             self.report("N006", "the import names no file (an empty path)", stmt.source.span,
                         help="write the file's path between the quotes: import @\"mesh.obj\" as Mesh")
         elif full is not None and not unset and (found := reads.kind(full)) != "file":
-            shown = stmt.source.value if stmt.source.kind != "interp" else full
+            # a $"..." path is named as written: its expansion would print environment values (secrets)
+            shown = repr(stmt.source.value) if stmt.source.kind != "interp" else stmt.source.raw
             what = "is a folder, not a file" if found == "dir" else "does not exist"
-            self.report("N006", f"imported file {shown!r} {what}", stmt.source.span,
-                        help="an @\"...\" path is relative to the folder of the .openplx file that imports it")
+            self.report("N006", f"imported file {shown} {what}", stmt.source.span,
+                        help="an @\"...\" path is relative to the folder of the .openplx file that imports it"
+                        if stmt.source.kind != "interp" else "a $\"...\" path takes each {VAR} from the environment")
 
     # ------------------------------------------------------------------ types
 

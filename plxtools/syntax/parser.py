@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Severity, Span
 from plxtools.syntax import ast
+from plxtools.syntax.depth import MAX_EXPR_DEPTH, too_deep
 from plxtools.syntax.keywords import closest_keyword
 from plxtools.syntax.lexer import LogicalLine, Token, lex
 
@@ -753,16 +754,25 @@ def _parse_line(parser: Lark | None, line: LogicalLine, text: str, diags: list[D
     if FAST_PATH:
         stmt = _fast(line.tokens)
         if stmt is not None:
-            return stmt
+            if not too_deep(stmt, len(line.tokens)):
+                return stmt
+            diags.append(_too_deep(line))
+            return _error_stmt(line, text)
     try:  # the LALR parser is built on the first line the fast path leaves to it (not at all for most files)
-        return (parser if parser is not None else _get_parser()).parse(line.tokens)
+        stmt = (parser if parser is not None else _get_parser()).parse(line.tokens)
+        if not too_deep(stmt, len(line.tokens)):
+            return stmt
+        diags.append(_too_deep(line))
     except _unexpected_input() as exc:  # (evaluated only when the parse raised: lark is loaded then)
         diags.append(_syntax_error(exc, line))
     except RecursionError:
-        diags.append(
-            Diagnostic("S007", "expression nested too deeply", _line_span(line), Severity.ERROR)
-        )
+        diags.append(_too_deep(line))
     return _error_stmt(line, text)
+
+
+def _too_deep(line: LogicalLine) -> Diagnostic:
+    return Diagnostic("S007", f"expression nested more than {MAX_EXPR_DEPTH} levels deep (operators, signs and "
+                      "brackets): split it into named parts", _line_span(line), Severity.ERROR)
 
 
 def _unexpected_input():

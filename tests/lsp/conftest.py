@@ -63,12 +63,18 @@ async def client(request, lsp_client: LanguageClient):
 
 
 def accept_registrations(client: LanguageClient) -> None:
-    """Answer client/registerCapability as editors do (pytest-lsp's client has no handler for it)."""
+    """Answer client/registerCapability and client/unregisterCapability as editors do (pytest-lsp's
+    client has no handler for them)."""
     client.registrations = []
 
     @client.feature(types.CLIENT_REGISTER_CAPABILITY)
     def _register(params: types.RegistrationParams) -> None:
         client.registrations.extend(params.registrations)
+
+    @client.feature(types.CLIENT_UNREGISTER_CAPABILITY)
+    def _unregister(params: types.UnregistrationParams) -> None:
+        gone = {u.id for u in params.unregisterations}
+        client.registrations[:] = [r for r in client.registrations if r.id not in gone]
 
 
 def record_diagnostics(client: LanguageClient) -> None:

@@ -57,8 +57,10 @@ rule("A008", "unsupported-function", W,
      "Such functions need the AGX runtime. The value is left unknown and whatever depends on it is "
      "skipped.", stage=C)
 rule("A009", "instantiation-too-deep", E,
-     "Owned objects nest more than 48 levels deep: a model contains itself, directly or through others.",
-     "Instantiating would never end; the objects below that depth are not created.",
+     "A model contains itself, directly or through others (owned objects more than 48 levels deep, "
+     "a model met again among its owners), or distinct models nest more than 500 levels deep.",
+     "Instantiating a model that contains itself would never end; the objects below that depth are not "
+     "created. The message says which it is: the chain of models that repeats, or plx check's nesting limit.",
      example="Link is Physics3D.System:\n    next is Link", stage=C)
 
 # ---------------------------------------------------------------- connectors and mates

@@ -40,8 +40,10 @@ rule("S005", "invalid-number", E,
 rule("S006", "empty-backtick-name", E, "A backtick-quoted name has no characters.",
      "Backticks quote names that contain dots; an empty one names nothing.", stage="syntax")
 rule("S007", "nesting-too-deep", E,
-     "Brackets are nested more than 200 levels deep on one line.",
-     "Such an expression is machine-generated or broken; refusing it keeps every later stage safe.",
+     "Brackets are nested more than 200 levels deep on one line, or an expression is more than 500 "
+     "levels deep (20,000 unary minus signs, a sum of 1,000 terms).",
+     "Such an expression is machine-generated or broken; refusing it with a located error keeps every "
+     "later stage (checker, evaluator, formatter) safe. Give the parts names and combine those.",
      stage="syntax")
 rule("S008", "unexpected-character", E,
      "A character that is not part of OpenPLX, such as `=`, `<` or `'`.",
