@@ -1,0 +1,121 @@
+"""The window: MuJoCo's own interactive viewer (``mujoco.viewer.launch_passive``) over a ViewSession.
+
+MuJoCo's viewer owns the camera, mouse, pause of drawing, contact and joint display and body
+perturbation; this loop steps the simulation in real time, feeds keys to the session, polls the
+watched files and swaps the model into the open window on reload (keeping the camera).
+
+MuJoCo calls the key callback on presses only, on its render thread: the callback queues the key
+and remembers the GLFW window, and this loop polls ``glfw.get_key`` for the held keys to send
+their releases (a held Up drives, releasing it stops).
+"""
+
+from __future__ import annotations
+
+import queue
+import sys
+import time
+from typing import Any
+
+from plxtools.view.session import ViewSession
+
+POLL_S = 0.2  # how often the watched files are looked at
+FRAME_S = 1 / 60
+MAX_SIGNAL_LINES = 12
+
+
+def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
+    """Open the window on the session's model; returns when the window is closed."""
+    import glfw
+    import mujoco
+    import mujoco.viewer
+
+    from plxtools.check.mj_video import COLLISION_BEHIND_VISUALS, show_visuals
+    from plxtools.check.mj_types import VISUAL_GROUP
+    from plxtools.check.mj_render import frame_camera
+
+    session.load()
+    while session.sim is None:  # nothing to show yet: say why and wait for a fix, never a blank window
+        if not wait_for_fix:
+            return 1
+        print(f"plx view: waiting for a change to {session.path} (Ctrl+C quits)", file=sys.stderr)
+        try:
+            while session.poll() is None:
+                time.sleep(POLL_S)
+        except KeyboardInterrupt:
+            return 1
+
+    keys: "queue.Queue[int]" = queue.Queue()
+    window: dict[str, Any] = {}
+
+    def on_key(code: int) -> None:  # MuJoCo's render thread
+        window.setdefault("glfw", glfw.get_current_context())
+        keys.put(code)
+
+    sim = session.sim
+    show_visuals(sim.model)
+    handle = mujoco.viewer.launch_passive(sim.model, sim.data, key_callback=on_key,
+                                          show_left_ui=False, show_right_ui=False)  # Tab / Shift+Tab show them
+    shown = session.generation
+    with handle.lock():
+        _set_camera(handle.cam, frame_camera(sim.model, sim.data))
+    handle.sync()
+    last = time.perf_counter()
+    next_poll = last + POLL_S
+    try:
+        while handle.is_running():
+            with handle.lock():
+                while not keys.empty():
+                    session.key(keys.get(), True)
+                win = window.get("glfw")
+                if win is not None:
+                    for code in list(session.held):
+                        if glfw.get_key(win, code) == glfw.RELEASE:
+                            session.key(code, False)
+            now = time.perf_counter()
+            if now >= next_poll:
+                session.poll()
+                next_poll = now + POLL_S
+            if session.generation != shown and session.sim is not None:
+                _swap(handle, session, show_visuals)
+                shown = session.generation
+            with handle.lock():
+                now = time.perf_counter()
+                session.advance(now - last)
+                last = now
+                handle.opt.geomgroup[VISUAL_GROUP] = 0 if session.show_collision else 1
+                handle.opt.geomgroup[COLLISION_BEHIND_VISUALS] = 1 if session.show_collision else 0
+                status = session.status()
+                signals = session.signals()[:MAX_SIGNAL_LINES]
+            # set_texts takes the viewer's lock itself: outside ours, or it waits for ever
+            handle.set_texts([(mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_TOPLEFT,
+                               "\n".join(status), ""),
+                              (mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_BOTTOMLEFT,
+                               "\n".join(signals), "")])
+            handle.sync()
+            spare = FRAME_S - (time.perf_counter() - now)
+            if spare > 0:
+                time.sleep(spare)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        handle.close()
+    return 0
+
+
+def _set_camera(dst: Any, src: Any) -> None:
+    dst.lookat[:] = src.lookat
+    dst.distance = src.distance
+    dst.azimuth = src.azimuth
+    dst.elevation = src.elevation
+
+
+def _swap(handle: Any, session: ViewSession, show_visuals: Any) -> None:
+    """Put the session's new model into the open window, keeping the camera where the user left it."""
+    import mujoco
+
+    keep = mujoco.MjvCamera()
+    _set_camera(keep, handle.cam)
+    sim = session.sim
+    show_visuals(sim.model)
+    handle._get_sim().load(sim.model, sim.data, session.path)
+    _set_camera(handle.cam, keep)
