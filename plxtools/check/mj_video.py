@@ -98,11 +98,12 @@ def record(compiled: Any, path: str, duration: float, fps: float = 25.0, width: 
     try:
         con = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_100)
         mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, con)
-        scn = mujoco.MjvScene(model, maxgeom=max(1000, 4 * model.ngeom))
+        scn = mujoco.MjvScene(model, maxgeom=max(1000, 4 * model.ngeom + 200))
         opt = mujoco.MjvOption()
         cam = frame_camera(model, data)
         start = np.array(cam.lookat)
         offset = start - _centre(model, data)
+        floor = floor_height(model, data)
         rect = mujoco.MjrRect(0, 0, width, height)
         for k in range(n):
             target = int(round(k / fps / dt))
@@ -110,6 +111,7 @@ def record(compiled: Any, path: str, duration: float, fps: float = 25.0, width: 
                 mujoco.mj_step(model, data)
             cam.lookat[:] = _centre(model, data) + offset
             mujoco.mjv_updateScene(model, data, opt, None, cam, mujoco.mjtCatBit.mjCAT_ALL, scn)
+            floor_grid(scn, floor, cam.lookat)
             mujoco.mjr_render(rect, scn, con)
             rgb = np.empty((height, width, 3), dtype=np.uint8)
             mujoco.mjr_readPixels(rgb, None, rect, con)
@@ -121,6 +123,41 @@ def record(compiled: Any, path: str, duration: float, fps: float = 25.0, width: 
     _encode(frames, path, fps)
     return {"path": path, "frames": n, "fps": fps, "width": width, "height": height,
             "seconds": float(data.time)}
+
+
+def floor_height(model: Any, data: Any) -> float | None:
+    """The top of the highest static box or plane under the scene (None: there is no floor)."""
+    import mujoco
+
+    tops = []
+    for g in range(model.ngeom):
+        if model.body_weldid[model.geom_bodyid[g]] != 0 or model.geom_group[g] not in (0, COLLISION_BEHIND_VISUALS):
+            continue
+        if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE:
+            tops.append(float(data.geom_xpos[g][2]))
+        elif model.geom_type[g] == mujoco.mjtGeom.mjGEOM_BOX and min(model.geom_size[g][:2]) > 2.0:
+            tops.append(float(data.geom_xpos[g][2] + abs(data.geom_xmat[g].reshape(3, 3)[2]) @ model.geom_size[g]))
+    return max(tops) if tops else None
+
+
+def floor_grid(scn: Any, floor: float | None, centre: Any, extent: int = 12, rgba=(0.25, 0.28, 0.25, 1.0)) -> None:
+    """Draw 1 m grid lines on the floor around ``centre``: with a camera that follows the bodies,
+    the grid is what shows that they move."""
+    import mujoco
+
+    if floor is None:
+        return
+    cx, cy = round(float(centre[0])), round(float(centre[1]))
+    z = floor + 0.003
+    for i in range(-extent, extent + 1):
+        for a, b in (((cx + i, cy - extent), (cx + i, cy + extent)), ((cx - extent, cy + i), (cx + extent, cy + i))):
+            if scn.ngeom >= scn.maxgeom:
+                return
+            g = scn.geoms[scn.ngeom]
+            mujoco.mjv_initGeom(g, mujoco.mjtGeom.mjGEOM_LINE, np.zeros(3), np.zeros(3), np.zeros(9),
+                                np.array(rgba, dtype=np.float32))
+            mujoco.mjv_connector(g, mujoco.mjtGeom.mjGEOM_LINE, 2.0, np.array([a[0], a[1], z]), np.array([b[0], b[1], z]))
+            scn.ngeom += 1
 
 
 def _centre(model: Any, data: Any) -> np.ndarray:

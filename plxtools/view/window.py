@@ -29,7 +29,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
     import mujoco
     import mujoco.viewer
 
-    from plxtools.check.mj_video import COLLISION_BEHIND_VISUALS, show_visuals
+    from plxtools.check.mj_video import COLLISION_BEHIND_VISUALS, floor_grid, floor_height, show_visuals
     from plxtools.check.mj_types import VISUAL_GROUP
     from plxtools.check.mj_render import frame_camera
 
@@ -84,6 +84,9 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                 last = now
                 handle.opt.geomgroup[VISUAL_GROUP] = 0 if session.show_collision else 1
                 handle.opt.geomgroup[COLLISION_BEHIND_VISUALS] = 1 if session.show_collision else 0
+                if handle.user_scn is not None:  # a 1 m grid on the floor, around where the camera looks
+                    handle.user_scn.ngeom = 0
+                    floor_grid(handle.user_scn, floor_height(session.sim.model, session.sim.data), handle.cam.lookat)
                 status = session.status()
                 signals = session.signals()[:MAX_SIGNAL_LINES]
             # set_texts takes the viewer's lock itself: outside ours, or it waits for ever
