@@ -124,7 +124,8 @@ def _add_view(sub) -> None:
                        description="Check and compile FILE as 'plx check' does and open it in MuJoCo's interactive "
                        "viewer. Saving the file (or anything it read) reloads it in the open window; 1 or F5 "
                        "reloads, E plays or pauses, G shows collision geometry instead of the visuals, R resets. "
-                       "Exit 1 when the file never loaded. Keys and set-up: docs/view.md.")
+                       "A file that does not load is reported and watched until it does. Keys and set-up: "
+                       "docs/view.md.")
     p.add_argument("path", metavar="FILE", help="the .openplx file")
     p.add_argument("--model", metavar="NAME", help="the model to show alone (default: the last model in the file)")
     p.add_argument("-p", "--paused", action="store_true", help="start paused (E plays)")

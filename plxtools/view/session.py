@@ -224,10 +224,14 @@ class ViewSession:
                 v = b.read(self.sim.model, self.sim.data)
             except Exception:  # noqa: BLE001 - a value that cannot be read is left out
                 continue
-            text = f"{v:.3g}" if isinstance(v, float) else "(" + ", ".join(f"{x:.3g}" for x in v) + ")" \
+            text = _num(v) if isinstance(v, float) else "(" + ", ".join(_num(x) for x in v) + ")" \
                 if isinstance(v, tuple) else str(v)
             out.append(f"{'in ' if info.direction == 'input' else 'out'} {info.path} = {text}")
         return out
+
+
+def _num(x: float) -> str:
+    return "0" if abs(x) < 5e-4 else f"{x:.3g}"
 
 
 def _line(d: Any) -> str:

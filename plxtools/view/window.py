@@ -21,6 +21,7 @@ from plxtools.view.session import ViewSession
 POLL_S = 0.2  # how often the watched files are looked at
 FRAME_S = 1 / 60
 MAX_SIGNAL_LINES = 12
+MAX_OVERLAY_CHARS = 440  # MuJoCo's overlay drops what is past about 500 characters
 
 
 def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
@@ -88,7 +89,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                     handle.user_scn.ngeom = 0
                     floor_grid(handle.user_scn, floor_height(session.sim.model, session.sim.data), handle.cam.lookat)
                 status = session.status()
-                signals = session.signals()[:MAX_SIGNAL_LINES]
+                signals = _fit(session.signals())
             # set_texts takes the viewer's lock itself: outside ours, or it waits for ever
             handle.set_texts([(mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_TOPLEFT,
                                "\n".join(status), ""),
@@ -103,6 +104,19 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
     finally:
         handle.close()
     return 0
+
+
+def _fit(lines: list[str]) -> list[str]:
+    """As many lines as MuJoCo's overlay shows whole (it cuts long text), then how many are left out."""
+    out: list[str] = []
+    used = 0
+    for i, line in enumerate(lines):
+        if len(out) == MAX_SIGNAL_LINES or used + len(line) + 1 > MAX_OVERLAY_CHARS:
+            out.append(f"... {len(lines) - i} more")
+            break
+        out.append(line)
+        used += len(line) + 1
+    return out
 
 
 def _set_camera(dst: Any, src: Any) -> None:
