@@ -7,6 +7,7 @@ thin loop over it.
 
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass
 from typing import Any, Callable
@@ -67,6 +68,7 @@ class ViewSession:
         t0 = time.perf_counter()
         watched = [self.path, *([self.controller] if self.controller else []),
                    *([self.keymap] if self.keymap else [])]
+        before = {os.path.abspath(p): deps.stamp(p) for p in watched}  # a save during the load reloads again
         try:
             prepared = prepare(self.path, self.model, bundle_path=self.bundle_path,
                                openplx_version=self.openplx_version)
@@ -78,10 +80,10 @@ class ViewSession:
             if self.controller:
                 run_controller(self.controller, sim)
         except ModelError as exc:
-            return self._failed(str(exc), [_line(d) for d in exc.diagnostics], watched, t0)
+            return self._failed(str(exc), [_line(d) for d in exc.diagnostics], watched, before, t0)
         except (KeymapError, ControllerError) as exc:
-            return self._failed(str(exc).splitlines()[0], str(exc).splitlines()[1:], watched, t0)
-        self._watch(watched + deps.config_candidates(self.path))
+            return self._failed(str(exc).splitlines()[0], str(exc).splitlines()[1:], watched, before, t0)
+        self._watch(watched + deps.config_candidates(self.path), before)
         self.sim = sim
         self.generation += 1
         self.error = None
@@ -93,10 +95,10 @@ class ViewSession:
             self.say("  " + f)
         return LoadResult(True, msg, findings, time.perf_counter() - t0)
 
-    def _failed(self, message: str, details: list[str], watched: list[str], t0: float) -> LoadResult:
+    def _failed(self, message: str, details: list[str], watched: list[str], before: dict, t0: float) -> LoadResult:
         if self.sim is not None:  # keep watching what the good load read too
             watched += deps.files_read(self.sim.prepared)
-        self._watch(watched + deps.config_candidates(self.path))
+        self._watch(watched + deps.config_candidates(self.path), before)
         self.error = message
         kept = "; still showing the last good scene" if self.sim is not None else ""
         self.say(f"cannot load: {message}{kept}")
@@ -104,8 +106,10 @@ class ViewSession:
             self.say("  " + d)
         return LoadResult(False, message, details, time.perf_counter() - t0)
 
-    def _watch(self, paths: list[str]) -> None:
-        self.stamps = {p: deps.stamp(p) for p in dict.fromkeys(paths)}
+    def _watch(self, paths: list[str], before: dict[str, tuple[int, int] | None]) -> None:
+        """Remember the files' stamps: those taken before the load where there is one."""
+        self.stamps = {p: before[p] if p in before else deps.stamp(p)
+                       for p in dict.fromkeys(os.path.abspath(p) for p in paths)}
 
     def changed(self) -> list[str]:
         """Watched files whose content may have changed since the last load."""

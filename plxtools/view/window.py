@@ -2,7 +2,7 @@
 
 MuJoCo's viewer owns the camera, mouse, pause of drawing, contact and joint display and body
 perturbation; this loop steps the simulation in real time, feeds keys to the session, polls the
-watched files and swaps the model into the open window on reload (keeping the camera).
+watched files and swaps the new model into the open window on reload (keeping the camera).
 
 MuJoCo calls the key callback on presses only, on its render thread: the callback queues the key
 and remembers the GLFW window, and this loop polls ``glfw.get_key`` for the held keys to send
@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import queue
 import sys
+import threading
 import time
 from typing import Any
 
@@ -20,6 +21,10 @@ from plxtools.view.session import ViewSession
 
 POLL_S = 0.2  # how often the watched files are looked at
 FRAME_S = 1 / 60
+OVERLAY = True
+# MuJoCo's passive viewer loses a pending overlay text when it loads a model, and set_texts() then
+# waits for ever: a swap starts only this long after the last set_texts()
+QUIET_BEFORE_SWAP_S = 0.5
 MAX_SIGNAL_LINES = 12
 MAX_OVERLAY_CHARS = 440  # MuJoCo's overlay drops what is past about 500 characters
 
@@ -45,6 +50,10 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
         except KeyboardInterrupt:
             return 1
 
+    # GLFW reports errors through the Python glfw package's callback, which needs the GIL; MuJoCo's
+    # set_texts() holds the GIL while it waits for the render thread: a GLFW error then (Xvfb has
+    # a few) would hang both threads. The viewer works without the report.
+    glfw.set_error_callback(None)
     keys: "queue.Queue[int]" = queue.Queue()
     window: dict[str, Any] = {}
 
@@ -52,16 +61,23 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
         window.setdefault("glfw", glfw.get_current_context())
         keys.put(code)
 
+    def _open(sim: Any) -> Any:
+        show_visuals(sim.model)
+        return mujoco.viewer.launch_passive(sim.model, sim.data, key_callback=on_key,
+                                            show_left_ui=False, show_right_ui=False)  # Tab / Shift+Tab show them
+
     sim = session.sim
-    show_visuals(sim.model)
-    handle = mujoco.viewer.launch_passive(sim.model, sim.data, key_callback=on_key,
-                                          show_left_ui=False, show_right_ui=False)  # Tab / Shift+Tab show them
+    handle = _open(sim)
     shown = session.generation
     with handle.lock():
         _set_camera(handle.cam, frame_camera(sim.model, sim.data))
     handle.sync()
     last = time.perf_counter()
     next_poll = last + POLL_S
+    shown_texts: tuple[str, str] = ("", "")
+    swapping: threading.Thread | None = None
+    texts_at = 0.0
+    kept: Any = None
     try:
         while handle.is_running():
             with handle.lock():
@@ -76,9 +92,30 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
             if now >= next_poll:
                 session.poll()
                 next_poll = now + POLL_S
+            if swapping is not None:
+                if swapping.is_alive():  # the render thread takes the new model: keep syncing meanwhile
+                    handle.sync()
+                    time.sleep(FRAME_S)
+                    continue
+                with handle.lock():
+                    _set_camera(handle.cam, kept)
+                swapping, last = None, time.perf_counter()
+            if session.generation != shown and session.sim is not None and \
+                    time.perf_counter() - texts_at < QUIET_BEFORE_SWAP_S:
+                handle.sync()  # no new overlay text until the viewer has taken the last one
+                time.sleep(FRAME_S)
+                continue
             if session.generation != shown and session.sim is not None:
-                _swap(handle, session, show_visuals)
+                kept = mujoco.MjvCamera()
+                _set_camera(kept, handle.cam)
+                show_visuals(session.sim.model)
+                # the viewer's load() returns once its render thread has taken the model, which in
+                # passive mode needs this loop's sync() calls: so it runs on a helper thread
+                swapping = threading.Thread(target=handle._get_sim().load, daemon=True,
+                                            args=(session.sim.model, session.sim.data, session.path))
+                swapping.start()
                 shown = session.generation
+                continue
             with handle.lock():
                 now = time.perf_counter()
                 session.advance(now - last)
@@ -90,12 +127,13 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                     floor_grid(handle.user_scn, floor_height(session.sim.model, session.sim.data), handle.cam.lookat)
                 status = session.status()
                 signals = _fit(session.signals())
-            # set_texts takes the viewer's lock itself: outside ours, or it waits for ever
-            handle.set_texts([(mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_TOPLEFT,
-                               "\n".join(status), ""),
-                              (mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_BOTTOMLEFT,
-                               "\n".join(signals), "")])
             handle.sync()
+            # outside our lock (set_texts waits for the render thread to take the previous text)
+            texts = ("\n".join(status), "\n".join(signals))
+            if texts != shown_texts and OVERLAY:
+                handle.set_texts([(mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_TOPLEFT, texts[0], ""),
+                                  (mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_BOTTOMLEFT, texts[1], "")])
+                shown_texts, texts_at = texts, time.perf_counter()
             spare = FRAME_S - (time.perf_counter() - now)
             if spare > 0:
                 time.sleep(spare)
@@ -124,15 +162,3 @@ def _set_camera(dst: Any, src: Any) -> None:
     dst.distance = src.distance
     dst.azimuth = src.azimuth
     dst.elevation = src.elevation
-
-
-def _swap(handle: Any, session: ViewSession, show_visuals: Any) -> None:
-    """Put the session's new model into the open window, keeping the camera where the user left it."""
-    import mujoco
-
-    keep = mujoco.MjvCamera()
-    _set_camera(keep, handle.cam)
-    sim = session.sim
-    show_visuals(sim.model)
-    handle._get_sim().load(sim.model, sim.data, session.path)
-    _set_camera(handle.cam, keep)

@@ -22,7 +22,8 @@ def missing_tools() -> list[str]:
 class ViewInXvfb:
     """``plx view ARGS`` on a fresh virtual display; use as a context manager."""
 
-    def __init__(self, args: list[str], workdir: Path, size: str = "1280x800"):
+    def __init__(self, args: list[str], workdir: Path, size: str = "1280x800", command: list[str] | None = None):
+        self.command = command or [sys.executable, "-m", "plxtools", "view"]
         self.args = args
         self.workdir = workdir
         self.size = size
@@ -38,7 +39,8 @@ class ViewInXvfb:
         self.env = dict(os.environ, DISPLAY=self.display)
         self._wait(lambda: subprocess.run(["xdotool", "getmouselocation"], env=self.env,
                                           capture_output=True).returncode == 0, 10, "Xvfb did not start")
-        self.proc = subprocess.Popen([sys.executable, "-m", "plxtools", "view", *self.args], cwd=self.workdir,
+        self.started = time.perf_counter()
+        self.proc = subprocess.Popen([*self.command, *self.args], cwd=self.workdir,
                                      env=self.env, stdout=subprocess.DEVNULL, stderr=open(self.log, "w"))
         self.window = self._wait(self._find_window, 60, "no MuJoCo window appeared")
         geo = subprocess.run(["xdotool", "getwindowgeometry", "--shell", self.window], env=self.env,
@@ -60,8 +62,8 @@ class ViewInXvfb:
 
     def _find_window(self) -> str | None:
         if self.proc.poll() is not None:
-            raise AssertionError(f"plx view exited with {self.proc.returncode}: {self.stderr()}")
-        r = subprocess.run(["xdotool", "search", "--name", "MuJoCo"], env=self.env, capture_output=True, text=True)
+            raise AssertionError(f"{self.command[-1]} exited with {self.proc.returncode}: {self.stderr()}")
+        r = subprocess.run(["xdotool", "search", "--onlyvisible", "--name", "MuJoCo"], env=self.env, capture_output=True, text=True)
         return r.stdout.split()[0] if r.returncode == 0 and r.stdout.split() else None
 
     def _wait(self, what, seconds: float, message: str):
