@@ -105,6 +105,7 @@ def main() -> int:
         mp4 = min(run_check("--video", str(Path(tmp) / "a.mp4")) for _ in range(2))
 
     med = statistics.median
+    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores (a shared machine inflates every time below)")
     print(f"time to window (median of {args.runs}): plx view {med(plx_open):.2f} s; "
           f"MuJoCo's viewer on the exported MJCF {med(mj_open):.2f} s")
     print(f"saved edit on screen (median of {args.runs}): plx view {med(reloads):.2f} s "

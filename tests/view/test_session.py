@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import time
+from pathlib import Path
 
 import pytest
 
@@ -203,3 +204,18 @@ def test_watched_files_include_user_bundles_and_config():
     t = time.perf_counter()
     assert s.changed() == []
     assert time.perf_counter() - t < 0.5
+
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+@pytest.mark.parametrize("model", [
+    *sorted(p.name for p in (EXAMPLES / "tutorial").glob("*.openplx")),
+    "../boxtruck/boxtruck.openplx", "../user_bundle/cart_scene.openplx", "../viewer/truck.openplx",
+])
+def test_every_example_and_tutorial_step_loads_and_runs(model):
+    s, lines = _session(EXAMPLES / "tutorial" / model)
+    r = s.load()
+    assert r.ok, lines
+    assert s.advance(0.05) == 25 and s.status()
+    assert all(" = " in line or line.startswith("in ") for line in s.signals())
