@@ -41,6 +41,6 @@ def buildScene():  # noqa: N802 - the runtime's name; plx view calls it after ev
     here = os.path.dirname(os.path.abspath(__file__))
     result = application().loadOpenPlxFile(os.path.join(here, "truck.openplx"), root())
     scene = result.scene()
-    left = scene.getObject("boxTruck.front_left_drive_motor.target_angular_velocity_input")
-    right = scene.getObject("boxTruck.front_right_drive_motor.target_angular_velocity_input")
+    left = scene.getObject("box_truck.front_left_drive_motor.target_angular_velocity_input")
+    right = scene.getObject("box_truck.front_right_drive_motor.target_angular_velocity_input")
     ArrowKeyDriver(result.getInputSignalQueue(), left, right).listen()

@@ -12,7 +12,7 @@ from plxtools.view.keys import GuiEventListener as K
 from plxtools.view.keys import KeyboardCallback, key_code
 from plxtools.view.session import ViewSession
 
-LEFT = "boxTruck.front_left_drive_motor.target_angular_velocity_input"
+LEFT = "box_truck.front_left_drive_motor.target_angular_velocity_input"
 
 
 def _session(path, **kw):
@@ -30,7 +30,7 @@ def _touch_edit(path, old: str, new: str) -> None:
 
 
 def _x(s) -> float:
-    return s.sim.body("boxTruck.chassis").position[0]
+    return s.sim.body("box_truck.chassis").position[0]
 
 
 def test_load_shows_the_model_and_steps_in_real_time(truck):
@@ -49,11 +49,11 @@ def test_a_saved_edit_reloads_the_new_model(truck):
     s, lines = _session(truck)
     s.load()
     assert s.poll() is None  # nothing changed
-    z0 = s.sim.body("boxTruck.chassis").position[2]
+    z0 = s.sim.body("box_truck.chassis").position[2]
     _touch_edit(truck, "position.z: 1.1", "position.z: 2.5")
     r = s.poll()
     assert r is not None and r.ok and s.generation == 2
-    assert s.sim.body("boxTruck.chassis").position[2] == pytest.approx(z0 + 1.4)
+    assert s.sim.body("box_truck.chassis").position[2] == pytest.approx(z0 + 1.4)
     assert any(line.startswith("changed:") for line in lines)
 
 
@@ -127,7 +127,7 @@ def test_a_key_table_drives_inputs_while_held(truck):
 
 def test_a_key_table_with_a_wrong_path_is_a_message_not_a_dead_key(truck):
     km = truck.parent / "bad.keys.toml"
-    km.write_text('[keys.Up]\n"boxTruck.front_left_drive_motor.target_angular_velocity_inptu" = 1\n')
+    km.write_text('[keys.Up]\n"box_truck.front_left_drive_motor.target_angular_velocity_inptu" = 1\n')
     s, _ = _session(truck, keymap=str(km))
     r = s.load()
     assert not r.ok and "bad.keys.toml" in s.error and "did you mean" in s.error

@@ -32,8 +32,8 @@ class Driver:
         scene = result.scene()
         self.result = result
         self.queue = result.getInputSignalQueue()
-        self.left = scene.getObject("boxTruck.front_left_drive_motor.target_angular_velocity_input")
-        self.right = scene.getObject("boxTruck.front_right_drive_motor.target_angular_velocity_input")
+        self.left = scene.getObject("box_truck.front_left_drive_motor.target_angular_velocity_input")
+        self.right = scene.getObject("box_truck.front_right_drive_motor.target_angular_velocity_input")
 
     def on_up(self, key):
         speed = 3.0 if key.down else 0.0
@@ -42,7 +42,7 @@ class Driver:
 
     def on_log(self, key):
         if key.down:
-            b = self.result.body("boxTruck.chassis")
+            b = self.result.body("box_truck.chassis")
             with open("states.jsonl", "a") as fh:
                 fh.write(json.dumps({"t": self.result.time, "x": b.position[0], "vx": b.linear_velocity[0]}) + "\\n")
 
