@@ -4,7 +4,7 @@ The tutorial's AGX controller::
 
     result = application().loadOpenPlxFile("boxtruck.openplx", root())
     scene = result.scene()
-    speed_in = scene.getObject("box_truck.front_left_drive_motor.target_angular_velocity_input")
+    speed_in = scene.getObject("boxTruck.front_left_drive_motor.target_angular_velocity_input")
     result.getInputSignalQueue().send(RealInputSignal.create(3.0, speed_in))
 
 runs headless against plx with other imports::

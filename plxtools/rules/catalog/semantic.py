@@ -168,7 +168,7 @@ rule("C001", "naming-convention", I,
      "A definition does not follow the naming conventions: models and traits PascalCase, attributes "
      "snake_case, globals snake_case or UPPER_CASE (const instances may be lowercase).",
      "Consistent names make models easier to read and match the official bundles.",
-     example="Scene is Physics3D.System:\n    box_truck is BoxTruck",
+     example="Scene is Physics3D.System:\n    boxTruck is BoxTruck",
      use_instead="Scene is Physics3D.System:\n    box_truck is BoxTruck")
 rule("C003", "unused-model", W,
      "A model or trait defined in a file outside any bundle is never used in that file and is not its "
