@@ -87,6 +87,9 @@ def _add_check(sub) -> None:
     p.add_argument("--output-format", choices=OUTPUT_FORMATS, default="text", help="text, json, github or sarif")
     p.add_argument("--render", metavar="FILE.png", help="save a picture of the assembled scene (offscreen)")
     p.add_argument("--export-mjcf", metavar="FILE.xml", help="write the compiled MuJoCo model")
+    p.add_argument("--video", metavar="FILE.gif|FILE.mp4",
+                   help="with --simulate, record the run offscreen, the camera following the bodies (docs/view.md)")
+    p.add_argument("--fps", type=float, default=25.0, metavar="N", help="frames per simulated second of --video (default 25)")
     p.add_argument("--trace", metavar="FILE.csv",
                    help="write the simulated motion (every body's pose and velocity, every mate's coordinate, "
                    "every 0.01 s) as CSV; implies --simulate")
@@ -124,6 +127,25 @@ def _jobs(text: str) -> int:
 
         raise argparse.ArgumentTypeError(f"expected 'auto' or a whole number >= 1, got {text!r}")
     return n
+
+
+def _add_view(sub) -> None:
+    p = sub.add_parser("view", help="open the scene in MuJoCo's viewer, reload it on save, drive it with keys",
+                       description="Check and compile FILE as 'plx check' does and open it in MuJoCo's interactive "
+                       "viewer. Saving the file (or anything it read) reloads it in the open window; 1 or F5 "
+                       "reloads, E plays or pauses, G shows collision geometry instead of the visuals, R resets. "
+                       "A file that does not load is reported and watched until it does. Keys and set-up: "
+                       "docs/view.md.")
+    p.add_argument("path", metavar="FILE", help="the .openplx file")
+    p.add_argument("--model", metavar="NAME", help="the model to show alone (default: the last model in the file)")
+    p.add_argument("-p", "--paused", action="store_true", help="start paused (E plays)")
+    p.add_argument("--controller", metavar="SCRIPT.py",
+                   help="a Python script whose buildScene() binds keys with plxtools.view.KeyboardCallback")
+    p.add_argument("--keys", metavar="KEYS.toml", help="a key-binding table: key -> input path -> value while held")
+    p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
+                   help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
+    _add_bundle_options(p)
+    p.set_defaults(func=_run_view)
 
 
 def _add_test(sub) -> None:
@@ -266,7 +288,7 @@ def _parser_class():
     return _CLASSES[0]
 
 
-_COMMANDS = ("lint", "fmt", "check", "test", "lsp", "rule", "bundles", "migrate", "cache")
+_COMMANDS = ("lint", "fmt", "check", "test", "lsp", "rule", "bundles", "migrate", "cache", "view")
 
 
 def build_parser(only: str | None = None):
@@ -283,7 +305,7 @@ def build_parser(only: str | None = None):
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     stub = _Skip()
     for name, add in zip(_COMMANDS, (_add_lint, _add_fmt, _add_check, _add_test, _add_lsp, _add_rule,
-                                     _add_bundles, _add_migrate, _add_cache)):
+                                     _add_bundles, _add_migrate, _add_cache, _add_view)):
         add(sub if only is None or only == name else stub)
     return parser
 
@@ -339,6 +361,12 @@ def _run_check(args) -> int:
     from plxtools.check.cli import run_check
 
     return run_check(args)
+
+
+def _run_view(args) -> int:
+    from plxtools.view.command import run_view
+
+    return run_view(args)
 
 
 def _run_test(args) -> int:

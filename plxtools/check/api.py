@@ -168,6 +168,7 @@ class Prepared:
     signals: list[SignalInfo]
     objects: dict[str, str]  # every owned object: path -> qualified type
     bodies: list[str]  # rigid body paths
+    workspace: Any = None  # the Workspace the file was checked in (which user bundles it could read)
 
 
 def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str] | tuple = (),
@@ -207,7 +208,7 @@ def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str
     signals = collect(owned, ev, fc.kinds, lambda o: _source(fc.rep, o))
     objects = {o.display: program.concrete(o.model).qname for o in owned}
     bodies = [n.path for n in fc.assembly.bodies]
-    return Prepared(str(p), fc.model or "", fc, compiled, signals, objects, bodies)
+    return Prepared(str(p), fc.model or "", fc, compiled, signals, objects, bodies, ws)
 
 
 def _first(errors: list) -> str:

@@ -54,6 +54,17 @@ def run_check(args) -> int:
     trace = getattr(args, "trace", None)
     if trace:
         args.simulate = True
+    video = getattr(args, "video", None)
+    if video:
+        from plxtools.check.mj_video import VideoError, check_fps, check_target
+
+        args.simulate = True
+        try:
+            check_target(video)
+            check_fps(args.fps)
+        except VideoError as exc:
+            print(f"plx check: {exc}", file=sys.stderr)
+            return 2
     want_backend = bool(args.simulate or args.render or args.export_mjcf)
     try:
         files = discover(args.paths)
@@ -184,7 +195,8 @@ def _workers(args, files: list[Path], run: _Run) -> int:
     from plxtools import workpool
 
     jobs = getattr(args, "jobs", 0) or 0
-    if len(files) < 2 or jobs == 1 or args.render or args.export_mjcf or run.record or not workpool.can_fork():
+    if len(files) < 2 or jobs == 1 or args.render or args.export_mjcf or getattr(args, "video", None) \
+            or run.record or not workpool.can_fork():
         return 0  # the artefacts are written from the compiled models, which stay in this process
     if jobs > 1:
         return min(jobs, len(files) - 1)
@@ -259,7 +271,7 @@ def _artefacts(args, results) -> int:
     status = 0
     targets = [fc for fc in results if fc.scene is not None]
     for kind, template in (("render", args.render), ("export", args.export_mjcf),
-                           ("trace", getattr(args, "trace", None))):
+                           ("trace", getattr(args, "trace", None)), ("video", getattr(args, "video", None))):
         if not template:
             continue
         if not targets:
@@ -271,6 +283,9 @@ def _artefacts(args, results) -> int:
             out = _artefact_path(template, i, len(targets))
             if kind == "trace":
                 status = max(status, _write_trace(fc, out))
+                continue
+            if kind == "video":
+                status = max(status, _write_video(fc, out, args))
                 continue
             if fc.compiled is None or not fc.compiled.ok:
                 why = fc.skipped if fc.compiled is None and fc.skipped else "the scene did not compile to MuJoCo"
@@ -304,6 +319,22 @@ def _artefacts(args, results) -> int:
                       file=sys.stderr)
                 status = 2
     return status
+
+
+def _write_video(fc, out: Path, args) -> int:
+    """Record the file's scene again from its initial state, offscreen, for --duration seconds."""
+    from plxtools.check.mj_video import VideoError, record
+
+    if fc.simulation is None or fc.compiled is None or not fc.compiled.ok:
+        why = fc.skipped or "the scene was not simulated"
+        print(f"plx check: {fc.path}: cannot write {out}: {why}", file=sys.stderr)
+        return 2
+    try:
+        record(fc.compiled, str(out), args.duration, fps=args.fps)
+    except VideoError as exc:
+        print(f"plx check: cannot write {out}: {exc}", file=sys.stderr)
+        return 2
+    return 0
 
 
 def _write_trace(fc, out: Path) -> int:

@@ -9,7 +9,7 @@ import {
 } from 'vscode-languageclient/node';
 import { activePythonInterpreter, onPythonInterpreterChanged } from './python';
 import { discoverPlx, type DiscoveryResult, type PlxInvocation } from './serverDiscovery';
-import { checkArgs, type LaunchSettings, plxCommand, serverLaunch } from './serverLaunch';
+import { checkArgs, type LaunchSettings, plxCommand, serverLaunch, viewArgs } from './serverLaunch';
 
 const LANGUAGE_ID = 'openplx';
 const TASK_TYPE = 'openplx';
@@ -238,6 +238,39 @@ async function runCheck(simulate: boolean, uri?: vscode.Uri): Promise<void> {
   }
 }
 
+/**
+ * "OpenPLX: View scene": `plx view FILE` in its own terminal panel. The window stays open while
+ * the user edits: every save reloads the scene in it (plx view watches the files the model read).
+ */
+async function runView(uri?: vscode.Uri): Promise<void> {
+  const target = targetDocumentUri(uri);
+  if (!target || target.scheme !== 'file') {
+    void vscode.window.showWarningMessage('Open a saved .openplx file to view it.');
+    return;
+  }
+  const open = vscode.workspace.textDocuments.find((d) => d.uri.toString() === target.toString());
+  if (open?.isDirty) {
+    await open.save();
+  }
+  const plx = await plxForCheck(target);
+  if (!plx) {
+    return;
+  }
+  const scope = vscode.workspace.getWorkspaceFolder(target);
+  const folder = scope?.uri.fsPath;
+  const spec = plxCommand(plx, viewArgs(target.fsPath), launchSettings(folder));
+  const execution = new vscode.ProcessExecution(spec.command, spec.args, {
+    env: spec.env,
+    cwd: folder ?? path.dirname(target.fsPath),
+  });
+  const definition: OpenPlxTaskDefinition = { type: TASK_TYPE, file: target.fsPath };
+  const task = new vscode.Task(definition, scope ?? vscode.TaskScope.Workspace, `view ${path.basename(target.fsPath)}`,
+    'plx', execution, []);
+  task.isBackground = true;
+  task.presentationOptions = { reveal: vscode.TaskRevealKind.Always, panel: vscode.TaskPanelKind.Dedicated, clear: true };
+  await vscode.tasks.executeTask(task);
+}
+
 /** Lets users put `{"type": "openplx", "file": "...", "simulate": true}` in tasks.json. */
 const taskProvider: vscode.TaskProvider = {
   provideTasks: () => [],
@@ -269,6 +302,7 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     vscode.commands.registerCommand('openplx.showServerLog', () => log.show()),
     vscode.commands.registerCommand('openplx.checkScene', (uri?: vscode.Uri) => runCheck(false, uri)),
     vscode.commands.registerCommand('openplx.simulateScene', (uri?: vscode.Uri) => runCheck(true, uri)),
+    vscode.commands.registerCommand('openplx.viewScene', (uri?: vscode.Uri) => runView(uri)),
     vscode.tasks.registerTaskProvider(TASK_TYPE, taskProvider),
     vscode.workspace.onDidChangeConfiguration((e) => {
       if (RESTART_SETTINGS.some((s) => e.affectsConfiguration(s))) {

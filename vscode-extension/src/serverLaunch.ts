@@ -93,6 +93,11 @@ export function checkArgs(file: string, simulate: boolean): string[] {
   return simulate ? ['check', '--simulate', file] : ['check', file];
 }
 
+/** Arguments for "View scene": `plx view FILE` (MuJoCo's viewer window, reloaded when FILE is saved). */
+export function viewArgs(file: string): string[] {
+  return ['view', file];
+}
+
 /** Starts a process spec with piped stdio (used by the Node-side integration test). */
 export function spawnProcess(spec: ProcessSpec): ChildProcessWithoutNullStreams {
   return spawn(spec.command, spec.args, { env: spec.env, cwd: spec.cwd, stdio: 'pipe', windowsHide: true });

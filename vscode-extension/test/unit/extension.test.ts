@@ -105,4 +105,14 @@ describe('extension bundle (with a stand-in vscode module)', () => {
     assert.equal(simulate.execution.options?.env?.OPENPLX_BUNDLE_PATH, path.join(tmp, 'bundles'));
     assert.equal(saved, true, 'unsaved changes are saved before plx check reads the file');
   });
+
+  it('"View scene" runs `plx view FILE` as its own background task', async () => {
+    const scene = path.join(tmp, 'scene.openplx');
+    const before = rec.tasks.length;
+    await rec.commands.get('openplx.viewScene')!(StubUri.file(scene));
+    assert.equal(rec.tasks.length, before + 1);
+    const view = rec.tasks[before];
+    assert.deepEqual(view.execution.args, ['view', scene]);
+    assert.deepEqual(view.definition, { type: 'openplx', file: scene });
+  });
 });

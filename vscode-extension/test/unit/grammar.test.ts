@@ -91,6 +91,7 @@ describe('manifest and language configuration', () => {
       'OpenPLX: Show server log',
       'OpenPLX: Check this scene',
       'OpenPLX: Check and simulate this scene',
+      'OpenPLX: View scene',
     ]);
     assert.deepEqual(Object.keys(pkg.contributes.configuration.properties).sort(), [
       'openplx.bundlePath',

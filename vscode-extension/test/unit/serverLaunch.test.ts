@@ -2,7 +2,7 @@ import * as assert from 'node:assert/strict';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
 import type { PlxInvocation } from '../../src/serverDiscovery';
-import { BUNDLE_PATH_ENV, checkArgs, plxCommand, serverLaunch } from '../../src/serverLaunch';
+import { BUNDLE_PATH_ENV, checkArgs, plxCommand, serverLaunch, viewArgs } from '../../src/serverLaunch';
 
 const plx: PlxInvocation = { command: '/venv/bin/plx', prefixArgs: [], source: 'PATH', description: 'plx' };
 const module: PlxInvocation = {
@@ -67,6 +67,11 @@ describe('check commands', () => {
   it('builds `plx check FILE` and `plx check --simulate FILE`', () => {
     assert.deepEqual(checkArgs('/m/scene.openplx', false), ['check', '/m/scene.openplx']);
     assert.deepEqual(checkArgs('/m/scene.openplx', true), ['check', '--simulate', '/m/scene.openplx']);
+  });
+
+  it('builds `plx view FILE` for "View scene"', () => {
+    assert.deepEqual(viewArgs('/m/a b.openplx'), ['view', '/m/a b.openplx']);
+    assert.deepEqual(plxCommand(module, viewArgs('/m/s.openplx'), { env: {} }).args, ['-m', 'plxtools', 'view', '/m/s.openplx']);
   });
 
   it('prefixes `-m plxtools` for a module invocation and sets the bundle path', () => {

@@ -1,0 +1,245 @@
+"""The view's state without a window: load, reload, keys, stepping in real time.
+
+Everything a test needs to prove is here (a reload swaps the model, a model that stops compiling
+keeps the last good one and says why, keys drive inputs), so the window layer (window.py) is a
+thin loop over it.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from dataclasses import dataclass
+from typing import Any, Callable
+
+from plxtools.view import deps
+from plxtools.view.keys import GuiEventListener as K
+from plxtools.view.keys import KeyboardCallback
+
+# The tutorial's agxViewer keys the view handles itself (MuJoCo's own viewer keys work as well).
+RELOAD_KEYS = (K.KEY_1, K.KEY_F5)
+PAUSE_KEY = K.KEY_E
+GEOMS_KEY = K.KEY_G
+RESET_KEY = K.KEY_R
+MAX_FRAME_S = 0.25  # a slow frame does not try to catch up more than this much simulated time
+
+
+@dataclass
+class LoadResult:
+    ok: bool
+    message: str  # one line for the screen
+    details: list[str]  # the findings, one per line (errors first)
+    seconds: float
+
+
+class ViewSession:
+    """One model file in the view: the current simulation, what to watch, the key state."""
+
+    def __init__(self, path: str, model: str | None = None, *, bundle_path: list[str] | tuple = (),
+                 openplx_version: str | None = None, controller: str | None = None,
+                 keymap: str | None = None, paused: bool = False,
+                 say: Callable[[str], None] = lambda line: None):
+        self.path = path
+        self.model = model
+        self.bundle_path = list(bundle_path)
+        self.openplx_version = openplx_version
+        self.controller = controller
+        self.keymap = keymap
+        self.paused = paused
+        self.say = say
+        self.sim: Any = None  # plxtools.check.api.Simulation of the last good load
+        self.generation = 0  # how many good loads so far (the window swaps its model when it moves)
+        self.error: str | None = None  # why the last load failed (None: it did not)
+        self.show_collision = False  # G: collision geometry instead of the visuals
+        self.stamps: dict[str, tuple[int, int] | None] = {}
+        self.realtime = 1.0  # simulated seconds per wall second over the last frames
+        self.held: set[int] = set()
+        self.owed = 0.0  # wall-clock time not yet stepped (less than one step, or a frame's cap)
+        self._wall = self._simulated = 0.0
+
+    # -- loading ----------------------------------------------------------------------------------
+
+    def load(self) -> LoadResult:
+        """(Re)load the model; on failure the current simulation stays and ``error`` says why."""
+        from plxtools.check.api import ModelError, Simulation, prepare
+        from plxtools.view.controller import ControllerError, run_controller
+        from plxtools.view.keymap import KeymapError, bind_keymap, read_keymap
+
+        t0 = time.perf_counter()
+        watched = [self.path, *([self.controller] if self.controller else []),
+                   *([self.keymap] if self.keymap else [])]
+        before = {os.path.abspath(p): deps.stamp(p) for p in watched}  # a save during the load reloads again
+        try:
+            prepared = prepare(self.path, self.model, bundle_path=self.bundle_path,
+                               openplx_version=self.openplx_version)
+            sim = Simulation(prepared)
+            watched += deps.files_read(prepared)
+            KeyboardCallback.clear()
+            if self.keymap:
+                bind_keymap(read_keymap(self.keymap), sim)
+            if self.controller:
+                run_controller(self.controller, sim)
+        except ModelError as exc:
+            return self._failed(str(exc), [_line(d) for d in exc.diagnostics], watched, before, t0)
+        except (KeymapError, ControllerError) as exc:
+            return self._failed(str(exc).splitlines()[0], str(exc).splitlines()[1:], watched, before, t0)
+        self._watch(watched + deps.config_candidates(self.path), before)
+        self.sim = sim
+        self.generation += 1
+        self.error = None
+        self.held.clear()
+        findings = [_line(d) for d in sim.diagnostics]
+        msg = f"loaded {sim.model_name} from {self.path}" + (f" ({len(findings)} finding(s))" if findings else "")
+        self.say(msg)
+        for f in findings:
+            self.say("  " + f)
+        return LoadResult(True, msg, findings, time.perf_counter() - t0)
+
+    def _failed(self, message: str, details: list[str], watched: list[str], before: dict, t0: float) -> LoadResult:
+        if self.sim is not None:  # keep watching what the good load read too
+            watched += deps.files_read(self.sim.prepared)
+        self._watch(watched + deps.config_candidates(self.path), before)
+        self.error = message
+        kept = "; still showing the last good scene" if self.sim is not None else ""
+        self.say(f"cannot load: {message}{kept}")
+        for d in details:
+            self.say("  " + d)
+        return LoadResult(False, message, details, time.perf_counter() - t0)
+
+    def _watch(self, paths: list[str], before: dict[str, tuple[int, int] | None]) -> None:
+        """Remember the files' stamps: those taken before the load where there is one."""
+        self.stamps = {p: before[p] if p in before else deps.stamp(p)
+                       for p in dict.fromkeys(os.path.abspath(p) for p in paths)}
+
+    def changed(self) -> list[str]:
+        """Watched files whose content may have changed since the last load."""
+        return [p for p, st in self.stamps.items() if deps.stamp(p) != st]
+
+    def poll(self) -> LoadResult | None:
+        """Reload when a watched file changed (None: nothing changed)."""
+        moved = self.changed()
+        if not moved:
+            return None
+        self.say(f"changed: {', '.join(moved)}; reloading")
+        return self.load()
+
+    # -- keys ------------------------------------------------------------------------------------
+
+    def key(self, code: int, down: bool = True) -> str | None:
+        """A key press or release; returns the view action it caused, if any."""
+        if down:
+            if code in self.held and code in KeyboardCallback.keys():
+                return None  # a repeat of a held key
+            self.held.add(code)
+        else:
+            self.held.discard(code)
+        if KeyboardCallback.dispatch(code, down):
+            return "bound"
+        if not down:
+            return None
+        if code in RELOAD_KEYS:
+            self.say("reload requested")
+            self.load()
+            return "reload"
+        if code == PAUSE_KEY:
+            self.paused = not self.paused
+            return "pause" if self.paused else "play"
+        if code == GEOMS_KEY:
+            self.show_collision = not self.show_collision
+            return "collision" if self.show_collision else "visuals"
+        if code == RESET_KEY:
+            self.reset()
+            return "reset"
+        return None
+
+    def reset(self) -> None:
+        """Back to the initial state of the current load (inputs as the model gives them)."""
+        from plxtools.check.api import Simulation
+
+        if self.sim is not None:
+            self.sim = Simulation(self.sim.prepared)
+            KeyboardCallback.clear()
+            try:
+                if self.keymap:
+                    from plxtools.view.keymap import bind_keymap, read_keymap
+
+                    bind_keymap(read_keymap(self.keymap), self.sim)
+                if self.controller:
+                    from plxtools.view.controller import run_controller
+
+                    run_controller(self.controller, self.sim)
+            except Exception as exc:  # noqa: BLE001 - shown, the view goes on
+                self.say(f"cannot rebind keys after reset: {exc}")
+            self.generation += 1
+
+    # -- time ------------------------------------------------------------------------------------
+
+    def advance(self, wall_seconds: float) -> int:
+        """Step the simulation by ``wall_seconds`` of real time (none when paused); returns steps."""
+        if self.sim is None or self.paused or wall_seconds <= 0:
+            return 0
+        # simulated time owed to the wall clock, stepped in whole steps (the rest is kept for the next frame)
+        self.owed = min(self.owed + wall_seconds, MAX_FRAME_S)
+        dt = self.sim.timestep
+        n = int(self.owed / dt)
+        before = self.sim.steps
+        if n:
+            self.sim.step(n * dt)
+        self.owed -= (self.sim.steps - before) * dt
+        # simulated seconds per wall second, over about a second: below 1 when the view cannot keep up
+        self._wall += wall_seconds
+        self._simulated += (self.sim.steps - before) * dt
+        if self._wall >= 1.0:
+            self.realtime = self._simulated / self._wall
+            self._wall = self._simulated = 0.0
+        return self.sim.steps - before
+
+    # -- what the screen shows ------------------------------------------------------------------------
+
+    def status(self) -> list[str]:
+        lines = []
+        if self.error:
+            lines.append(f"LOAD FAILED: {self.error}" + (" (showing the last good scene)" if self.sim else ""))
+        if self.sim is None:
+            return lines
+        state = "paused (E plays)" if self.paused else "running"
+        lines.append(f"{self.sim.model_name}  t={self.sim.time:.2f}s  {state}"
+                     + ("" if self.realtime > 0.95 or self.paused else f"  slower than real time: x{self.realtime:.2f}"))
+        for name, code in KeyboardCallback.bindings():
+            from plxtools.view.keys import key_name
+
+            lines.append(f"key {key_name(code)}: {name}")
+        return lines
+
+    def signals(self) -> list[str]:
+        """The scene's inputs and outputs with their current values, one per line."""
+        if self.sim is None:
+            return []
+        out = []
+        for info in sorted(self.sim.prepared.signals, key=lambda i: i.direction != "input"):
+            if info.path not in self.sim.runtime.bindings:
+                continue
+            b = self.sim.runtime.bindings[info.path]
+            if b.read is None:
+                out.append(f"in  {info.path}")
+                continue
+            try:
+                self.sim._fresh()
+                v = b.read(self.sim.model, self.sim.data)
+            except Exception:  # noqa: BLE001 - a value that cannot be read is left out
+                continue
+            text = _num(v) if isinstance(v, float) else "(" + ", ".join(_num(x) for x in v) + ")" \
+                if isinstance(v, tuple) else str(v)
+            out.append(f"{'in ' if info.direction == 'input' else 'out'} {info.path} = {text}")
+        return out
+
+
+def _num(x: float) -> str:
+    return "0" if abs(x) < 5e-4 else f"{x:.3g}"
+
+
+def _line(d: Any) -> str:
+    sev = getattr(getattr(d, "severity", None), "name", "").lower()
+    if getattr(d, "span", None) is not None and getattr(d, "file", None):
+        return f"{d.file}:{d.span.start.line + 1}:{d.span.start.column + 1}: {sev} {d.code} {d.message}"
+    return str(d)

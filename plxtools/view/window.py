@@ -1,0 +1,164 @@
+"""The window: MuJoCo's own interactive viewer (``mujoco.viewer.launch_passive``) over a ViewSession.
+
+MuJoCo's viewer owns the camera, mouse, pause of drawing, contact and joint display and body
+perturbation; this loop steps the simulation in real time, feeds keys to the session, polls the
+watched files and swaps the new model into the open window on reload (keeping the camera).
+
+MuJoCo calls the key callback on presses only, on its render thread: the callback queues the key
+and remembers the GLFW window, and this loop polls ``glfw.get_key`` for the held keys to send
+their releases (a held Up drives, releasing it stops).
+"""
+
+from __future__ import annotations
+
+import queue
+import sys
+import threading
+import time
+from typing import Any
+
+from plxtools.view.session import ViewSession
+
+POLL_S = 0.2  # how often the watched files are looked at
+FRAME_S = 1 / 60
+OVERLAY = True
+# MuJoCo's passive viewer loses a pending overlay text when it loads a model, and set_texts() then
+# waits for ever: a swap starts only this long after the last set_texts()
+QUIET_BEFORE_SWAP_S = 0.5
+MAX_SIGNAL_LINES = 12
+MAX_OVERLAY_CHARS = 440  # MuJoCo's overlay drops what is past about 500 characters
+
+
+def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
+    """Open the window on the session's model; returns when the window is closed."""
+    import glfw
+    import mujoco
+    import mujoco.viewer
+
+    from plxtools.check.mj_video import COLLISION_BEHIND_VISUALS, floor_grid, floor_height, show_visuals
+    from plxtools.check.mj_types import VISUAL_GROUP
+    from plxtools.check.mj_render import frame_camera
+
+    session.load()
+    while session.sim is None:  # nothing to show yet: say why and wait for a fix, never a blank window
+        if not wait_for_fix:
+            return 1
+        print(f"plx view: waiting for a change to {session.path} (Ctrl+C quits)", file=sys.stderr)
+        try:
+            while session.poll() is None:
+                time.sleep(POLL_S)
+        except KeyboardInterrupt:
+            return 1
+
+    # GLFW reports errors through the Python glfw package's callback, which needs the GIL; MuJoCo's
+    # set_texts() holds the GIL while it waits for the render thread: a GLFW error then (Xvfb has
+    # a few) would hang both threads. The viewer works without the report.
+    glfw.set_error_callback(None)
+    keys: "queue.Queue[int]" = queue.Queue()
+    window: dict[str, Any] = {}
+
+    def on_key(code: int) -> None:  # MuJoCo's render thread
+        window.setdefault("glfw", glfw.get_current_context())
+        keys.put(code)
+
+    def _open(sim: Any) -> Any:
+        show_visuals(sim.model)
+        return mujoco.viewer.launch_passive(sim.model, sim.data, key_callback=on_key,
+                                            show_left_ui=False, show_right_ui=False)  # Tab / Shift+Tab show them
+
+    sim = session.sim
+    handle = _open(sim)
+    shown = session.generation
+    with handle.lock():
+        _set_camera(handle.cam, frame_camera(sim.model, sim.data))
+    handle.sync()
+    last = time.perf_counter()
+    next_poll = last + POLL_S
+    shown_texts: tuple[str, str] = ("", "")
+    swapping: threading.Thread | None = None
+    texts_at = 0.0
+    kept: Any = None
+    try:
+        while handle.is_running():
+            with handle.lock():
+                while not keys.empty():
+                    session.key(keys.get(), True)
+                win = window.get("glfw")
+                if win is not None:
+                    for code in list(session.held):
+                        if glfw.get_key(win, code) == glfw.RELEASE:
+                            session.key(code, False)
+            now = time.perf_counter()
+            if now >= next_poll:
+                session.poll()
+                next_poll = now + POLL_S
+            if swapping is not None:
+                if swapping.is_alive():  # the render thread takes the new model: keep syncing meanwhile
+                    handle.sync()
+                    time.sleep(FRAME_S)
+                    continue
+                with handle.lock():
+                    _set_camera(handle.cam, kept)
+                swapping, last = None, time.perf_counter()
+            if session.generation != shown and session.sim is not None and \
+                    time.perf_counter() - texts_at < QUIET_BEFORE_SWAP_S:
+                handle.sync()  # no new overlay text until the viewer has taken the last one
+                time.sleep(FRAME_S)
+                continue
+            if session.generation != shown and session.sim is not None:
+                kept = mujoco.MjvCamera()
+                _set_camera(kept, handle.cam)
+                show_visuals(session.sim.model)
+                # the viewer's load() returns once its render thread has taken the model, which in
+                # passive mode needs this loop's sync() calls: so it runs on a helper thread
+                swapping = threading.Thread(target=handle._get_sim().load, daemon=True,
+                                            args=(session.sim.model, session.sim.data, session.path))
+                swapping.start()
+                shown = session.generation
+                continue
+            with handle.lock():
+                now = time.perf_counter()
+                session.advance(now - last)
+                last = now
+                handle.opt.geomgroup[VISUAL_GROUP] = 0 if session.show_collision else 1
+                handle.opt.geomgroup[COLLISION_BEHIND_VISUALS] = 1 if session.show_collision else 0
+                if handle.user_scn is not None:  # a 1 m grid on the floor, around where the camera looks
+                    handle.user_scn.ngeom = 0
+                    floor_grid(handle.user_scn, floor_height(session.sim.model, session.sim.data), handle.cam.lookat)
+                status = session.status()
+                signals = _fit(session.signals())
+            handle.sync()
+            # outside our lock (set_texts waits for the render thread to take the previous text)
+            texts = ("\n".join(status), "\n".join(signals))
+            if texts != shown_texts and OVERLAY:
+                handle.set_texts([(mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_TOPLEFT, texts[0], ""),
+                                  (mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_BOTTOMLEFT, texts[1], "")])
+                shown_texts, texts_at = texts, time.perf_counter()
+            spare = FRAME_S - (time.perf_counter() - now)
+            if spare > 0:
+                time.sleep(spare)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        handle.close()
+    return 0
+
+
+def _fit(lines: list[str]) -> list[str]:
+    """As many lines as MuJoCo's overlay shows whole (it cuts long text), then how many are left out."""
+    out: list[str] = []
+    used = 0
+    for i, line in enumerate(lines):
+        if len(out) == MAX_SIGNAL_LINES or used + len(line) + 1 > MAX_OVERLAY_CHARS:
+            out.append(f"... {len(lines) - i} more")
+            break
+        out.append(line)
+        used += len(line) + 1
+    return out
+
+
+def _set_camera(dst: Any, src: Any) -> None:
+    dst.lookat[:] = src.lookat
+    dst.distance = src.distance
+    dst.azimuth = src.azimuth
+    dst.elevation = src.elevation

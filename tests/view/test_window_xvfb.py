@@ -1,0 +1,106 @@
+"""The real viewer window under Xvfb (PLX_VIEW_TESTS=1, as .ci/run sets; needs xvfb, xdotool and
+imagemagick): it shows the scene, a saved edit reloads it, a broken edit keeps it on screen with a
+message, and holding Up through a controller drives the truck forward until the key is released."""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+
+import numpy as np
+import pytest
+
+from tests.view.xvfb_session import ViewInXvfb, missing_tools
+
+REQUIRED = os.environ.get("PLX_VIEW_TESTS") == "1"
+if not REQUIRED:
+    pytest.skip("the window tests run with PLX_VIEW_TESTS=1 (as .ci/run sets)", allow_module_level=True)
+if missing_tools():
+    pytest.fail(f"PLX_VIEW_TESTS=1 but {', '.join(missing_tools())} not installed "
+                "(apt-get install xvfb xdotool imagemagick)", pytrace=False)
+
+# a controller in the runtime's style that also writes the chassis state when L is pressed
+LOGGING_CONTROLLER = '''
+import json
+import os
+from plxtools.check.api import RealInputSignal
+from plxtools.view import KeyboardCallback, agxSDK, application, root
+
+class Driver:
+    def __init__(self, result):
+        scene = result.scene()
+        self.result = result
+        self.queue = result.getInputSignalQueue()
+        self.left = scene.getObject("box_truck.front_left_drive_motor.target_angular_velocity_input")
+        self.right = scene.getObject("box_truck.front_right_drive_motor.target_angular_velocity_input")
+
+    def on_up(self, key):
+        speed = 3.0 if key.down else 0.0
+        self.queue.send(RealInputSignal.create(speed, self.left))
+        self.queue.send(RealInputSignal.create(-speed, self.right))
+
+    def on_log(self, key):
+        if key.down:
+            b = self.result.body("box_truck.chassis")
+            with open("states.jsonl", "a") as fh:
+                fh.write(json.dumps({"t": self.result.time, "x": b.position[0], "vx": b.linear_velocity[0]}) + "\\n")
+
+def buildScene():
+    result = application().loadOpenPlxFile(os.path.abspath("truck.openplx"), root())
+    d = Driver(result)
+    KeyboardCallback.bind(name="forward", key=agxSDK.GuiEventListener.KEY_Up, callback=d.on_up)
+    KeyboardCallback.bind(name="log", key=agxSDK.GuiEventListener.KEY_L, callback=d.on_log)
+'''
+
+
+def _scene_pixels(img: np.ndarray) -> int:
+    """Distinct colours: a drawn scene has hundreds (shading), a blank or menu-only window a few."""
+    return len(np.unique(img.reshape(-1, 3), axis=0))
+
+
+def test_window_shows_the_scene_and_reloads_a_saved_edit(truck, tmp_path):
+    with ViewInXvfb([truck.name], truck.parent) as v:
+        v.wait_for("loaded Scene")
+        time.sleep(1.5)
+        first = v.screenshot(tmp_path / "first.png")
+        assert _scene_pixels(first) > 200, "the window looks blank"
+        text = truck.read_text()
+        truck.write_text(text.replace("position.z: 1.1", "position.z: 3.0"))
+        t0 = time.monotonic()
+        v.wait_for("loaded Scene", count=2, seconds=10)
+        reload_s = time.monotonic() - t0
+        time.sleep(0.5)
+        after = v.screenshot(tmp_path / "after.png")
+        assert np.abs(after.astype(int) - first.astype(int)).mean() > 0.5, "the reloaded scene looks the same"
+        # a broken edit: a message, the last good scene stays on screen, the window stays open
+        truck.write_text(text.replace("radius: 0.26", "radius: "))
+        v.wait_for("cannot load", seconds=10)
+        time.sleep(0.5)
+        broken = v.screenshot(tmp_path / "broken.png")
+        assert _scene_pixels(broken) > 200 and v.proc.poll() is None
+        assert "still showing the last good scene" in v.stderr()
+    print(f"reload on screen after {reload_s:.2f} s")
+
+
+def test_holding_up_drives_the_truck_and_releasing_stops_it(truck, tmp_path):
+    (truck.parent / "drive.py").write_text(LOGGING_CONTROLLER)
+    with ViewInXvfb([truck.name, "--controller", "drive.py"], truck.parent) as v:
+        v.wait_for("loaded Scene")
+        time.sleep(2.0)  # land
+        v.xdotool("key", "l")
+        v.xdotool("keydown", "Up")
+        time.sleep(3.0)
+        v.xdotool("keyup", "Up")
+        time.sleep(0.2)
+        v.xdotool("key", "l")
+        time.sleep(2.0)
+        v.xdotool("key", "l")
+        time.sleep(0.5)
+        v.xdotool("key", "l")
+        time.sleep(0.5)
+    states = [json.loads(line) for line in (truck.parent / "states.jsonl").read_text().splitlines()]
+    assert len(states) == 4, states
+    start, released, later, last = states
+    assert released["t"] > start["t"] and released["x"] < start["x"] - 0.2, states  # forward is -x
+    assert abs(later["vx"]) < 0.05 and abs(last["x"] - later["x"]) < 0.02, states  # stopped
