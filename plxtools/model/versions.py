@@ -7,7 +7,8 @@ Order, the same for the CLI, the language server and check:
    same name, so a copy of the official bundles (an AGX installation) is read instead of the package.
 2. `--openplx-version` / `openplx-version` in the config: that `openplx-bundles` release, fetched with
    pip into the cache on first use.
-3. with nothing configured, a version pinned by a user bundle's `config.openplx`.
+3. a version written in a user bundle's dependency (`"Physics3D==0.17.26"`), however the bundle was
+   found; a bundle's own `version:` is its own and selects nothing.
 4. the installed `openplx-bundles` package.
 
 A `BundleSet` is a plain value (hashable `key()`), so several sets, hence several versions, can be
@@ -361,26 +362,34 @@ def discover_bundles(paths: list[Path], stop_at: set[Path] | None = None, max_de
     return found
 
 
-def _pins(roots: list[Path], official_names: set[str]) -> list[tuple[str, str]]:
-    """OpenPLX versions pinned by user bundles' config.openplx: (version, 'file:line: text')."""
+def dependency_pins(roots: list[Path], official_names: set[str]) -> list[tuple[str, str]]:
+    """OpenPLX versions selected by user bundles' dependencies: (version, 'file:line:col: dependency "..."').
+
+    Only a dependency on an official bundle written with a version (`"Physics3D==0.17.26"`, the form
+    every official bundle's own config uses, or `"Physics3D@0.17.26"`) selects a release. A bundle's
+    own `version:` is the bundle's version, never a choice of OpenPLX release (issue 29: a test bundle
+    whose own version looked like a release number pinned a whole folder to old bundles). A bundle
+    that is itself an official bundle (a copy, an AGX installation) pins nothing: it replaces that bundle.
+    """
     out: list[tuple[str, str]] = []
     for r in roots:
         cfg = r / "config.openplx"
-        name = _config_name(r)
-        if name in official_names:
-            continue  # a copy of an official bundle: it replaces that bundle, it pins nothing
+        if _config_name(r) in official_names:
+            continue
         try:
-            lines = cfg.read_text(encoding="utf-8", errors="replace").splitlines()
+            text = cfg.read_text(encoding="utf-8", errors="replace")
         except OSError:
             continue
-        for i, line in enumerate(lines, 1):
-            m = re.match(r'\s*version:\s*"([^"]+)"', line)
-            if m and m.group(1) in KNOWN_VERSIONS:
-                out.append((m.group(1), f"{cfg}:{i}:{m.start(1)}: version \"{m.group(1)}\""))
-            for sm in re.finditer(r'"([^"]+)"', line) if "dependencies" in line or line.strip().startswith('"') else ():
-                dm = DEP_PIN_RE.match(sm.group(1))
-                if dm and dm.group(1) in official_names:
-                    out.append((dm.group(2), f"{cfg}:{i}:{sm.start(0) + 1}: dependency \"{sm.group(1)}\""))
+        m = re.search(r"^[ \t]*dependencies[ \t]*:[ \t]*\[([^\]]*)\]", text, re.M)
+        if m is None:
+            continue
+        for sm in re.finditer(r'"([^"\n]*)"', m.group(1)):
+            dm = DEP_PIN_RE.match(sm.group(1).strip())
+            if dm and dm.group(1) in official_names:
+                at = m.start(1) + sm.start(0)
+                line = text.count("\n", 0, at) + 1
+                col = at - (text.rfind("\n", 0, at) + 1) + 1
+                out.append((dm.group(2), f"{cfg}:{line}:{col}: dependency \"{sm.group(1)}\""))
     return out
 
 
@@ -431,11 +440,10 @@ def resolve_bundle_set(
         for part in (os.environ.get("OPENPLX_BUNDLE_PATH") or "").split(os.pathsep):
             if part:
                 add(Path(part), "OPENPLX_BUNDLE_PATH")
-    configured = bool(sources)
     inst = installed()
     official_names = {d.name for d in inst[0].iterdir() if (d / "config.openplx").is_file()} if inst else set()
-    official_names |= {"Math", "Physics", "Physics1D", "Physics3D", "DriveTrain", "Robotics", "Simulation",
-                       "Terrain", "Urdf", "Vehicles", "Visuals"}
+    official_names |= {"Math", "Physics", "Physics1D", "Physics3D", "DriveTrain", "Robotics", "Sensors",
+                       "Simulation", "Terrain", "Urdf", "Vehicles", "Visuals"}
     found: list[Path] = []
     if discover:
         stop = {s.path for s in sources}
@@ -446,18 +454,23 @@ def resolve_bundle_set(
     version: str | None = None
     why = ""
     notes: list[str] = []
+    # every user bundle counts the same, however it was found (flag, config, environment, the tree)
+    user_roots = [r for s in sources for r in bundle_roots_in(s.path)] + list(found)
+    replacing = [s for s in sources if any(_config_name(r) in official_names for r in bundle_roots_in(s.path))]
+    pins = dependency_pins(user_roots, official_names)
     if cli_version:
         version, why = cli_version, "--openplx-version"
     elif cfg_version:
         version, why = cfg_version
-    elif not configured:
-        pins = _pins(found, official_names)
-        if pins:
-            version, where = pins[0]
-            why = f"pinned by {where}"
-            others = sorted({v for v, _w in pins if v != version})
-            if others:
-                notes.append(f"other pins ignored: {', '.join(others)} (the first pin, {where}, wins)")
+    elif pins and replacing:
+        notes.append(f"the dependency version {pins[0][1]} is not used: the official bundles come from "
+                     f"{replacing[0].path} ({replacing[0].why})")
+    elif pins:
+        version, where = pins[0]
+        why = f"pinned by {where}"
+        others = sorted({v for v, _w in pins if v != version})
+        if others:
+            notes.append(f"other pins ignored: {', '.join(others)} (the first pin, {where}, wins)")
     if version is not None:
         try:
             root = version_root(version)
@@ -465,7 +478,7 @@ def resolve_bundle_set(
             raise BundleSetError(f"{exc} (the version comes from {why})") from None
         official = (root, version, why)
     elif inst is not None:
-        official = (inst[0], inst[1], f"the installed {PACKAGE} package")
+        official = (inst[0], inst[1], f"the installed {PACKAGE} package: no dependency selects a version")
     else:
         official = (None, None, f"{PACKAGE} is not installed")
     for r in found:
