@@ -195,15 +195,18 @@ def diff(old: ApiIndex, new: ApiIndex) -> list[Change]:
     for q, n in sorted(full_map.items()):
         rest_gone, rest_fresh = pending[q]
         found = renames[n]
-        for a in list(rest_gone):  # a subtype redeclaring (`becomes`) an attribute its base renamed
-            for anc in new.ancestors(n)[1:]:
-                hit = renames.get(anc, {}).get(a)
-                if hit and hit[0] in rest_fresh:
-                    found[a] = (hit[0], hit[1], f"follows {anc}.{a}")
-                    rest_gone.remove(a)
-                    rest_fresh.remove(hit[0])
-                    break
         o_all, n_all = old.all_attrs(q), new.all_attrs(n)
+        for a in list(rest_gone):  # a subtype redeclaring (`becomes`) an attribute its base renamed
+            hit = _follow_base_rename(old, new, q, n, a, full_map, renames)
+            if hit is None:
+                continue
+            b, how, anc = hit
+            # redeclared again under the new name, or no longer redeclared (inherited under the new name)
+            if b in rest_fresh or ("b" in old.models[q]["a"][a][1] and b in n_all):
+                found[a] = (b, how, f"follows {anc}.{a}")
+                rest_gone.remove(a)
+                if b in rest_fresh:
+                    rest_fresh.remove(b)
         for a, (b, how, why) in sorted(found.items()):
             out.append(Change("attr-renamed", v, q, how, attr=a, old=a, new=b, detail=why,
                               where=[_where(old, q, a), _where(new, n, b)]))
@@ -247,6 +250,22 @@ def diff(old: ApiIndex, new: ApiIndex) -> list[Change]:
         for a in sorted(set(n_dep) - set(o_dep)):
             out.append(Change("deprecated", v, n, INFO, attr=a or None, detail=n_dep[a], where=[_where(new, n)]))
     return out
+
+
+def _follow_base_rename(old: ApiIndex, new: ApiIndex, q: str, n: str, a: str, full_map: dict[str, str],
+                        renames: dict[str, dict[str, tuple[str, str, str]]]) -> tuple[str, str, str] | None:
+    """The rename of attribute `a` in a base of `q` (old name) / `n` (new name): (new attr, handling, base).
+
+    The bases are looked up in both versions: a redeclaration (`charges becomes ...`) in a subtype
+    follows the rename its base made, whether the subtype redeclares the new name or drops the
+    redeclaration (Physics1D.Interactions.Mate in 0.18.11).
+    """
+    bases = [full_map.get(x, x) for x in old.ancestors(q)[1:]] + new.ancestors(n)[1:]
+    for anc in dict.fromkeys(bases):
+        hit = renames.get(anc, {}).get(a)
+        if hit:
+            return hit[0], hit[1], anc
+    return None
 
 
 @lru_cache(maxsize=None)
