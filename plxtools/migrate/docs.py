@@ -54,7 +54,8 @@ written for, so an attribute of your own that happens to be called `charges` sta
 Everything else in the file (comments, layout, blank lines) is kept.
 
 A rewrite is applied when the result parses, the formatter accepts it, and it lints with no
-more errors under the new version than the untouched file would have there. A file that was in
+more errors under the new version than the file has under its old version (or would have
+untouched under the new one). A file that was in
 the formatter's style stays in it. **Partial migration:** what needs a person (a removed model or
 attribute, a changed type, a new required attribute) does not stop the safe rewrites of the same
 file; they are applied, and plx lists each error that remains under the new version at its line

@@ -142,7 +142,7 @@ def migrate_text(path: Path, text: str, p: Plan, cfg, from_ws, to_ws) -> FileMig
     """The migration of one file's text (nothing is written here).
 
     Partial migration: the rewrites are kept when they leave no more errors under the target
-    version than the untouched file would have there; what still fails (a removed model, a changed
+    version than the file has under its own version or would have untouched under the target; what still fails (a removed model, a changed
     type) is listed in `left` at its line for a person, instead of refusing the whole file. When the
     whole rewrite would add errors, the edits that add none are kept one by one.
     """
@@ -168,8 +168,11 @@ def migrate_text(path: Path, text: str, p: Plan, cfg, from_ws, to_ws) -> FileMig
     if got is None:
         fm.refused = "the rewritten text would not parse (a bug in plx migrate; please report it)"
         return fm
-    if len(got[0]) > len(untouched):
-        kept = _safe_subset(path, text, edits, cfg, to_ws, len(untouched))
+    # the bar: no more errors than the file has under its own version, or would have untouched
+    # under the target (where an old name's single error can hide what the new type requires)
+    limit = max(fm.errors_before, len(untouched))
+    if len(got[0]) > limit:
+        kept = _safe_subset(path, text, edits, cfg, to_ws, limit)
         fm.notes.append(f"{len(edits) - len(kept)} of {len(edits)} rewrites would add errors under "
                         f"{p.to_version} and were not applied")
         edits = kept
