@@ -50,6 +50,14 @@ rule("N007", "import-needs-alias", E,
      "Without an alias the imported name is the file's stem; a stem with a dash, a space or a leading digit "
      "cannot be written as a name, so nothing in the file can use the import.",
      example='import @"my-robot.urdf"', use_instead='import @"my-robot.urdf" as MyRobot')
+rule("N008", "name-from-opaque-import", I,
+     "A one-part type name that no file plx reads defines, in a file that imports a file plx cannot read "
+     "(an `.agx` archive, a URDF): `ExtendedRod is PendulumScene_rod` after `import @\"pendulum.agx\"`.",
+     "An AGX archive's bodies and systems keep their AGX names, which only the runtime can read from the "
+     "archive. plx takes the name as an opaque model (no N001, no missing-attribute errors) and says so "
+     "here; `plx check` lists what is built on it as not analysed (A042). A name close to one in scope "
+     "is still reported as N001 with the suggestion (a typo).",
+     example='import @"pendulum.agx"\n\nExtendedRod is PendulumScene_rod')
 
 # ---------------------------------------------------------------- types
 rule("T001", "type-mismatch", E,
