@@ -1,7 +1,7 @@
 """Project configuration: `[tool.plx]` in pyproject.toml or a `plx.toml`; the closest file wins.
 
 Keys (kebab-case): select, ignore, extend-select, per-file-ignores, exclude, extend-exclude,
-bundle-path, openplx-version, fmt.exclude. A `plx.toml` holds the keys at its top level.
+bundle-path, openplx-version, agx-dir, fmt.exclude. A `plx.toml` holds the keys at its top level.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from pathlib import Path
 
 DEFAULT_EXCLUDE = (".git", ".hg", ".venv", "venv", "node_modules", "__pycache__", ".tox", "build", "dist")
 KNOWN_KEYS = {"select", "ignore", "extend-select", "per-file-ignores", "exclude", "extend-exclude",
-              "bundle-path", "openplx-version", "fmt"}
+              "bundle-path", "openplx-version", "agx-dir", "fmt"}
 
 
 class ConfigError(Exception):
@@ -32,6 +32,7 @@ class Config:
     exclude: list[str] = field(default_factory=list)
     bundle_paths: list[Path] = field(default_factory=list)
     openplx_version: str | None = None  # official openplx-bundles release to lint against
+    agx_dir: str | None = None  # an AGX installation (model/agx.py); "" turns the search off; None: search
     fmt_exclude: list[str] = field(default_factory=list)
 
     def rule_enabled(self, code: str, path: str | None = None) -> bool:
@@ -147,6 +148,11 @@ def parse_config(path: Path, table: dict) -> Config:
         if not isinstance(ov, str) or not re.match(r"^\d+\.\d+\.\d+$", ov):
             raise ConfigError(f"{path}: 'openplx-version' must be a version string such as \"0.17.26\"")
         cfg.openplx_version = ov
+    agx_dir = table.get("agx-dir")
+    if agx_dir is not None:
+        if not isinstance(agx_dir, str):
+            raise ConfigError(f"{path}: 'agx-dir' must be a folder (a string; \"\" turns the AGX search off)")
+        cfg.agx_dir = str((path.parent / agx_dir).resolve()) if agx_dir else ""
     fmt = table.get("fmt", {})
     if not isinstance(fmt, dict):
         raise ConfigError(f"{path}: 'fmt' must be a table")

@@ -8,7 +8,7 @@ written by the last identical run, importing nothing but `os`, `sys`, `marshal` 
 
 An entry is found by a key of everything the command line decides: the arguments, the working
 folder, plxtools itself (`runcache.code_stamp`), the interpreter and its `sys.path`, the
-environment variables plx reads (PLX_*, OPENPLX_*, colour and cache settings) and whether stdout
+environment variables plx reads (PLX_*, OPENPLX_*, AGX_*, colour and cache settings) and whether stdout
 and stderr are terminals. It holds the run's output and exit code and the list of what else the
 run depended on, each checked again before the output is replayed:
 
@@ -87,7 +87,7 @@ def _key(argv: list[str]) -> str:
 
     h = new_hash(code_stamp())
     env = sorted((k, v) for k, v in os.environ.items()
-                 if k.startswith(("PLX_", "OPENPLX_")) or k in _ENV)
+                 if k.startswith(("PLX_", "OPENPLX_", "AGX_")) or k in _ENV)
     tty = tuple(os.isatty(fd) for fd in (1, 2))
     h.update(repr((_FORMAT, sys.executable, sys.path, os.getcwd(), argv, env, tty)).encode())
     return h.hexdigest()
@@ -254,6 +254,12 @@ def allow(files, bundle_set=None, imports: list[str] = ()) -> None:
             deps.append(("tree", root, _tree(root)))
     for src in bundle_set.sources if bundle_set is not None else ():
         deps.append(("tree", os.fspath(src.path), _tree(os.fspath(src.path))))
+    if bundle_set is not None:  # an AGX installed (or removed) since: model/agx.py finds it
+        from plxtools.model.agx import usual_folders
+
+        for where in [os.path.dirname(p) for p in usual_folders()] + [os.path.join(os.path.abspath(e or os.curdir),
+                                                                                    "agx") for e in sys.path]:
+            deps.append(("stat", where, _sig(where)))
     for p in imports:
         deps.append(("stat", p, _sig(p)))
     _record = deps

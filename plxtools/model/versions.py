@@ -8,8 +8,10 @@ Order, the same for the CLI, the language server and check:
 2. `--openplx-version` / `openplx-version` in the config: that `openplx-bundles` release, fetched with
    pip into the cache on first use.
 3. a version written in a user bundle's dependency (`"Physics3D==0.17.26"`), however the bundle was
-   found; a bundle's own `version:` is its own and selects nothing.
-4. the installed `openplx-bundles` package.
+   found; a bundle's own `version:` is its own and selects nothing (an AGX installation whose
+   bundles are that version is used for it).
+4. the bundles of an AGX installation found without configuration (model/agx.py).
+5. the installed `openplx-bundles` package.
 
 A `BundleSet` is a plain value (hashable `key()`), so several sets, hence several versions, can be
 loaded side by side in one process, each into its own `Workspace`.
@@ -281,6 +283,8 @@ class BundleSet:
     official_why: str
     sources: list[BundleSource] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)  # said once by --show-settings / the server
+    agx: object | None = None  # the AGX installation found (model/agx.AgxInstall), used or not
+    agx_used: bool = False  # its bundles are the official base
 
     def key(self) -> tuple:
         return (str(self.official_root), tuple(str(s.path) for s in self.sources))
@@ -430,8 +434,11 @@ def resolve_bundle_set(
     anchors = [workspace_root] if workspace_root is not None else []
     anchors += sorted({(t if t.is_dir() else t.parent) for t in targets}) or [Path(".")]
     cfg_version: tuple[str, str] | None = None
+    cfg_agx: str | None = None
     for a in anchors if use_config else []:
         cfg = config_for(a / "x.openplx")
+        if cfg.agx_dir is not None and cfg_agx is None:
+            cfg_agx = cfg.agx_dir
         for p in cfg.bundle_paths:
             add(p, f"bundle-path in {cfg.source}")
         if cfg.openplx_version and cfg_version is None:
@@ -458,6 +465,12 @@ def resolve_bundle_set(
     user_roots = [r for s in sources for r in bundle_roots_in(s.path)] + list(found)
     replacing = [s for s in sources if any(_config_name(r) in official_names for r in bundle_roots_in(s.path))]
     pins = dependency_pins(user_roots, official_names)
+    agx = None
+    if discover and use_env:
+        from plxtools.model.agx import find_agx
+
+        agx = find_agx(cfg_agx)
+    agx_official: tuple[Path, str | None, str] | None = None
     if cli_version:
         version, why = cli_version, "--openplx-version"
     elif cfg_version:
@@ -471,7 +484,17 @@ def resolve_bundle_set(
         others = sorted({v for v, _w in pins if v != version})
         if others:
             notes.append(f"other pins ignored: {', '.join(others)} (the first pin, {where}, wins)")
-    if version is not None:
+        if agx is not None and agx.openplx_version == version:
+            agx_official = (agx.bundles, version, f"{why}; {agx.describe()}")
+            version = None
+    elif agx is not None and not replacing:
+        agx_official = (agx.bundles, agx.openplx_version, agx.describe())
+    if agx is not None and agx_official is None:
+        notes.append(f"{agx.describe()}: not used ({why or 'bundle folders are configured'}); "
+                     f"'agx-dir' in the config chooses another installation, \"\" turns the search off")
+    if agx_official is not None:
+        official = agx_official
+    elif version is not None:
         try:
             root = version_root(version)
         except BundleSetError as exc:
@@ -489,7 +512,8 @@ def resolve_bundle_set(
         sources.append(BundleSource(r, "found in the linted tree" if workspace_root is None or
                                     workspace_root.resolve() not in (r, *r.parents) else "found in the workspace"))
         seen.add(r)
-    bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources, notes)
+    bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources, notes,
+                   agx, agx_official is not None)
     if bs.official_root is None and not any((s.path / "Math" / "config.openplx").is_file() or
                                             (s.path / "config.openplx").is_file() and _config_name(s.path) == "Math"
                                             for s in sources):
