@@ -131,12 +131,12 @@ def _agx_package_folder() -> Path | None:
         spec = find_spec("agx")
     except (ImportError, ValueError):
         return None
-    if spec is None:
+    # a real module or package only: a folder that happens to be called agx (a namespace package,
+    # say in the working folder) is not AGX's package
+    if spec is None or not spec.origin or spec.origin in ("namespace", "built-in", "frozen") \
+            or not os.path.isfile(spec.origin):
         return None
-    where = spec.origin if spec.origin and spec.origin not in ("namespace", "built-in") else None
-    if where is None and spec.submodule_search_locations:
-        where = os.path.join(list(spec.submodule_search_locations)[0], "__init__.py")
-    return Path(where).resolve().parent if where else None
+    return Path(spec.origin).resolve().parent
 
 
 def find_agx(configured: str | None = None, env: dict | None = None,
@@ -190,9 +190,10 @@ def defines(bundles: Path, qname: str) -> bool:
     return False
 
 
-def newer_bundles_help(written: str, bundle_set, newest_release: str) -> str | None:
+def newer_bundles_help(written: str, bundle_set, newest_release: str, typo: bool = False) -> str | None:
     """The help for an unknown official-looking name that no `openplx-bundles` release has: where
-    newer bundles are (an AGX installation found but not in use), or that they are needed."""
+    newer bundles are (an AGX installation found but not in use, whose bundles define it), or that
+    they may be needed (not said when `typo`: a near miss of an existing name has its suggestion)."""
     agx = getattr(bundle_set, "agx", None)
     using = getattr(bundle_set, "official_version", None) or "?"
     if agx is not None and not getattr(bundle_set, "agx_used", False):
@@ -201,7 +202,7 @@ def newer_bundles_help(written: str, bundle_set, newest_release: str) -> str | N
                     f"(OpenPLX {agx.openplx_version or '?'}, {agx.bundles}) have it: set bundle-path to that "
                     f"folder, or AGX_DIR, instead of what chooses {using} now").replace("AGX 's", "AGX's")
         return None
-    if agx is None:
+    if agx is None and not typo:
         return (f"'{written}' is in no openplx-bundles release up to {newest_release}: it may need a newer "
                 f"OpenPLX; AGX ships newer bundles: set AGX_DIR to an AGX installation or bundle-path to its "
                 f"bundles folder")

@@ -471,6 +471,7 @@ def resolve_bundle_set(
 
         agx = find_agx(cfg_agx)
     agx_official: tuple[Path, str | None, str] | None = None
+    installed_why = f"the installed {PACKAGE} package: no dependency selects a version"
     if cli_version:
         version, why = cli_version, "--openplx-version"
     elif cfg_version:
@@ -487,6 +488,9 @@ def resolve_bundle_set(
         if agx is not None and agx.openplx_version == version:
             agx_official = (agx.bundles, version, f"{why}; {agx.describe()}")
             version = None
+        elif inst is not None and inst[1] == version:  # what is installed anyway: nothing to announce
+            version = None
+            installed_why = f"the installed {PACKAGE} package, the version {where.split(': ', 1)[0]} asks for"
     elif agx is not None and not replacing:
         agx_official = (agx.bundles, agx.openplx_version, agx.describe())
     if agx is not None and agx_official is None:
@@ -501,7 +505,7 @@ def resolve_bundle_set(
             raise BundleSetError(f"{exc} (the version comes from {why})") from None
         official = (root, version, why)
     elif inst is not None:
-        official = (inst[0], inst[1], f"the installed {PACKAGE} package: no dependency selects a version")
+        official = (inst[0], inst[1], installed_why)
     else:
         official = (None, None, f"{PACKAGE} is not installed")
     for r in found:

@@ -464,7 +464,7 @@ class Workspace:
                     from plxtools.model.agx import newer_bundles_help
                     from plxtools.model.apiindex import versions
 
-                    newer = newer_bundles_help(written, bs, versions()[-1])
+                    newer = newer_bundles_help(written, bs, versions()[-1], typo=d.fix is not None)
                     if newer:
                         d.help = f"{newer}; {d.help}" if d.help else newer
                 continue

@@ -48,7 +48,8 @@ def test_agx_dir_is_found_used_and_reported(tmp_path):
     d = run_plx("lint", str(scene), "--show-settings", env={**NO_AGX, "AGX_DATA_DIR": str(agx / "data")})
     assert f"AGX 2.42.0.0 at {agx.resolve()}, OpenPLX 0.20.1 (AGX_DATA_DIR)" in d.stdout, d.stdout
     # without it, the installed bundles, and the help says newer bundles are needed and how to get them
-    n = run_plx("lint", str(scene), env=NO_AGX)
+    lidar = _write(tmp_path / "proj" / "lidar.openplx", "Scene is Physics3D.System:\n    l is Sensors.LidarModel\n")
+    n = run_plx("lint", str(lidar), env=NO_AGX)
     assert n.returncode == 1 and "N001" in n.stdout and "set AGX_DIR" in n.stdout, n.stdout
 
 
