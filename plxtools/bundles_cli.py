@@ -62,6 +62,13 @@ def print_settings(ws) -> int:
 
     bs = ws.bundle_set
     print(f"official bundles: {bs.official_version or '?'} from {bs.official_root} ({bs.official_why})")
+    agx = getattr(bs, "agx", None)
+    if agx is not None:
+        print(f"AGX: {agx.describe()}{'' if bs.agx_used else ' (found, not used: see the note below)'}")
+    else:
+        from plxtools.model.agx import ENV_VARS
+
+        print(f"AGX: none found ({', '.join(ENV_VARS)}, the agx Python package, the usual install folders)")
     for s in bs.sources:
         print(f"bundle folder: {s.path} ({s.why})")
     for n in bs.notes:

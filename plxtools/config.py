@@ -1,8 +1,8 @@
 """Project configuration: `[tool.plx]` in pyproject.toml or a `plx.toml`; the closest file wins.
 
 Keys (kebab-case): select, ignore, extend-select, per-file-ignores, exclude, extend-exclude,
-bundle-path, openplx-version, fmt.exclude, check.integrator, check.timestep. A `plx.toml` holds the
-keys at its top level.
+bundle-path, openplx-version, agx-dir, fmt.exclude, check.integrator, check.timestep. A `plx.toml`
+holds the keys at its top level.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from pathlib import Path
 
 DEFAULT_EXCLUDE = (".git", ".hg", ".venv", "venv", "node_modules", "__pycache__", ".tox", "build", "dist")
 KNOWN_KEYS = {"select", "ignore", "extend-select", "per-file-ignores", "exclude", "extend-exclude",
-              "bundle-path", "openplx-version", "fmt", "check"}
+              "bundle-path", "openplx-version", "agx-dir", "fmt", "check"}
 INTEGRATORS = ("auto", "implicitfast", "implicit", "rk4", "euler")  # `plx check --integrator`, check.integrator
 
 
@@ -34,6 +34,7 @@ class Config:
     exclude: list[str] = field(default_factory=list)
     bundle_paths: list[Path] = field(default_factory=list)
     openplx_version: str | None = None  # official openplx-bundles release to lint against
+    agx_dir: str | None = None  # an AGX installation (model/agx.py); "" turns the search off; None: search
     fmt_exclude: list[str] = field(default_factory=list)
     check_integrator: str | None = None  # [check] integrator: one of INTEGRATORS; None = auto
     check_timestep: float | None = None  # [check] timestep in seconds; None = the backend's default
@@ -159,6 +160,11 @@ def parse_config(path: Path, table: dict) -> Config:
         if not isinstance(ov, str) or not re.match(r"^\d+\.\d+\.\d+$", ov):
             raise ConfigError(f"{path}: 'openplx-version' must be a version string such as \"0.17.26\"")
         cfg.openplx_version = ov
+    agx_dir = table.get("agx-dir")
+    if agx_dir is not None:
+        if not isinstance(agx_dir, str):
+            raise ConfigError(f"{path}: 'agx-dir' must be a folder (a string; \"\" turns the AGX search off)")
+        cfg.agx_dir = str((path.parent / agx_dir).resolve()) if agx_dir else ""
     fmt = table.get("fmt", {})
     if not isinstance(fmt, dict):
         raise ConfigError(f"{path}: 'fmt' must be a table")

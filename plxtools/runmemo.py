@@ -8,7 +8,7 @@ written by the last identical run, importing nothing but the cache package.
 
 An entry is found by a key of everything the command line decides: the arguments, the working
 folder, plxtools itself (`cache.stamp.code_stamp`), the interpreter and its `sys.path`, the
-environment variables plx reads (PLX_*, OPENPLX_*, colour and cache settings) and whether stdout
+environment variables plx reads (PLX_*, OPENPLX_*, AGX_*, colour and cache settings) and whether stdout
 and stderr are terminals. It holds the run's output and exit code and every read the run made
 (`cache.reads`: the files it linted or formatted, by content; the config files it found and the
 ones it looked for and did not find; the bundle files the loader read or the record of them its
@@ -79,7 +79,7 @@ def _key(argv: list[str]) -> str:
     from plxtools.cache.store import new_hash
 
     env = sorted((k, v) for k, v in os.environ.items()
-                 if k.startswith(("PLX_", "OPENPLX_")) or k in _ENV)
+                 if k.startswith(("PLX_", "OPENPLX_", "AGX_")) or k in _ENV)
     tty = tuple(os.isatty(fd) for fd in (1, 2))
     h = new_hash(repr((_FORMAT, code_stamp(), sys.executable, sys.path, os.getcwd(), argv, env, tty)).encode())
     return h.hexdigest()

@@ -262,6 +262,25 @@ class Scene:
     def outputs(self) -> list[Output]:
         return [self._sim.get_object(i.path) for i in self._sim.prepared.signals if i.direction == "output"]
 
+    def bodies(self) -> list[str]:
+        """The dotted paths of the assembled scene's rigid bodies (what the run simulates)."""
+        from plxtools.check.scenecounts import scene_paths
+
+        return scene_paths(self._sim.prepared.compiled.scene)["bodies"]
+
+    def mates(self) -> list[str]:
+        """The dotted paths of the assembled scene's mates."""
+        from plxtools.check.scenecounts import scene_paths
+
+        return scene_paths(self._sim.prepared.compiled.scene)["mates"]
+
+    def counts(self) -> dict[str, int]:
+        """How many bodies, mates, controllers and drive-train parts, in all and per kind
+        (`{"bodies": 3, "mates": 2, "mates.hinge": 2, ...}`)."""
+        from plxtools.check.scenecounts import scene_counts
+
+        return scene_counts(self._sim.prepared.compiled.scene)
+
 
 @dataclass(frozen=True)
 class BodyState:

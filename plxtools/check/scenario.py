@@ -15,6 +15,7 @@ Format (docs/testing.md)::
     [[expect]]                   # at `at` (or at every step of `during = [t0, t1]`)
     at = 2.0
     of = "box_truck.chassis.x"   # an output path (+ .x/.y/.z, .roll/.pitch/.yaw) or <body>.x|y|z|roll|...
+                                 # or a count of the assembled scene: scene.bodies, scene.mates.hinge, ...
     below = -1.0                 # and/or above, abs_below, between = [lo, hi], equals + tolerance
     unit = "deg"                 # optional: thresholds of angles in degrees (deg/s for angular speeds)
 
@@ -89,6 +90,7 @@ class Expect:
     index: int | None = None  # component of a vector output; None with norm=True
     norm: bool = False  # |v| of a vector output ("speed")
     angular: bool = False
+    count: int | None = None  # `of = "scene.bodies"`: a count of the assembled scene (check/scenecounts.py)
 
     def _condition(self, op: str, v, of: str | None) -> str:
         """One comparison as written: about ``of`` (``x between 1 and 2``) or alone (``between 1 and 2``)."""
@@ -413,10 +415,11 @@ def _parse_expect(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[Scenar
 
 
 def bind(sc: Scenario, signals: list[SignalInfo], bodies: list[str], bound: set[str],
-         unbound: dict[str, str], model_file: str) -> list[ScenarioError]:
+         unbound: dict[str, str], model_file: str, counts: dict[str, int] | None = None) -> list[ScenarioError]:
     """Check the scenario's paths, values and times against the loaded model; fills in what each
     input and expectation refers to.  ``bound`` are the signal paths that act on the MuJoCo model,
-    ``unbound`` why the others do not."""
+    ``unbound`` why the others do not; ``counts`` what the assembled scene holds (`scene.bodies`)."""
+    from plxtools.check.scenecounts import PREFIX
     from plxtools.check.api import ANGULAR_OUTPUTS, BODY_QUANTITIES, component_index
 
     errors: list[ScenarioError] = []
@@ -453,6 +456,20 @@ def bind(sc: Scenario, signals: list[SignalInfo], bodies: list[str], bound: set[
         step.info = info
     for e in sc.expects:
         kl = e.keys.get("of", e.loc)
+        if counts is not None and e.of.startswith(PREFIX) and e.of not in by_path and \
+                e.of.rsplit(".", 1)[0] not in by_path and e.of.rsplit(".", 1)[0] not in bodies:
+            what = e.of[len(PREFIX):]
+            if e.unit is not None:
+                errors.append(ScenarioError(f"{e.of} is a count; it takes no unit", e.keys.get("unit", e.loc)))
+            elif what in counts or what.split(".", 1)[0] in ("bodies", "mates", "controllers", "shafts",
+                                                              "shaft_couplings", "shaft_motors"):
+                e.count = counts.get(what, 0)  # a kind the scene does not hold: 0 of them
+            else:
+                hint = did_you_mean(what, list(counts))
+                errors.append(ScenarioError(f"the scene has no count '{what}' (counts: bodies, mates, controllers, "
+                                            "shafts, shaft_couplings, shaft_motors, and per kind such as mates.hinge)"
+                                            + (f"; did you mean '{PREFIX}{hint}'?" if hint else ""), kl))
+            continue
         err = _bind_subject(e, by_path, bodies, outputs, bound, unbound, model_file, BODY_QUANTITIES,
                             component_index)
         if err is not None:

@@ -45,17 +45,22 @@ SOURCE_KINDS = {
     "Physics3D.Interactions.Ball": "ball",
     "Physics3D.Interactions.MateConnector": "connector",
     "Physics3D.Bodies.RigidBody": "body",
+    # drive trains (check/mj_drivetrain.py: a shaft is a hinge joint of its own, 1D motors act on it)
+    "Physics1D.Interactions.RotationalVelocityMotor": "rotational_velocity_motor_1d",
+    "DriveTrain.TorqueMotor": "torque_motor_1d",
+    "Physics1D.Bodies.RotationalBody": "shaft",
 }
 ROT_MOTOR, LIN_MOTOR = "rotational_velocity_motor", "linear_velocity_motor"
+ROT_MOTOR_1D, TORQUE_MOTOR_1D = "rotational_velocity_motor_1d", "torque_motor_1d"
 
 # (signal type, source kinds) -> quantity; the first matching row wins.  A quantity names how the
 # runtime reads or writes it (see SignalRuntime._bind_*); its value kind is in VALUE_KIND.
 INPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
-    ("Physics.Signals.AngularVelocity1DInput", (ROT_MOTOR,), "target_speed"),
+    ("Physics.Signals.AngularVelocity1DInput", (ROT_MOTOR, ROT_MOTOR_1D), "target_speed"),
     ("Physics.Signals.LinearVelocity1DInput", (LIN_MOTOR,), "target_speed"),
-    ("Physics.Signals.Torque1DInput", ("torque_motor",), "effort"),
+    ("Physics.Signals.Torque1DInput", ("torque_motor", TORQUE_MOTOR_1D), "effort"),
     ("Physics.Signals.Force1DInput", ("force_motor",), "effort"),
-    ("Physics.Signals.TorqueRangeInput", (ROT_MOTOR,), "effort_range"),
+    ("Physics.Signals.TorqueRangeInput", (ROT_MOTOR, ROT_MOTOR_1D), "effort_range"),
     ("Physics.Signals.ForceRangeInput", (LIN_MOTOR,), "effort_range"),
     ("Physics.Signals.AngleInput", ("torsion_spring",), "spring_rest"),
     ("Physics.Signals.Position1DInput", ("linear_spring",), "spring_rest"),
@@ -64,25 +69,74 @@ INPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
 )
 OUTPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
     ("Physics.Signals.AngleOutput", ("hinge", "cylindrical"), "joint_position"),
+    ("Physics.Signals.AngleOutput", ("shaft",), "shaft_position"),
+    ("Physics.Signals.AngularVelocity1DOutput", ("shaft",), "shaft_velocity"),
     ("Physics.Signals.AngleOutput", ("torsion_spring",), "spring_rest"),
     ("Physics.Signals.Position1DOutput", ("prismatic", "cylindrical"), "joint_position"),
     ("Physics.Signals.Position1DOutput", ("linear_spring",), "spring_rest"),
     ("Physics.Signals.AngularVelocity1DOutput", ("hinge", "cylindrical"), "joint_velocity"),
     ("Physics.Signals.LinearVelocity1DOutput", ("prismatic", "cylindrical"), "joint_velocity"),
-    ("Physics.Signals.AngularVelocity1DOutput", (ROT_MOTOR,), "target_speed"),
+    ("Physics.Signals.AngularVelocity1DOutput", (ROT_MOTOR, ROT_MOTOR_1D), "target_speed"),
     ("Physics.Signals.LinearVelocity1DOutput", (LIN_MOTOR,), "target_speed"),
-    ("Physics.Signals.Torque1DOutput", (ROT_MOTOR, "torque_motor"), "actuator_effort"),
+    ("Physics.Signals.Torque1DOutput", (ROT_MOTOR, "torque_motor", ROT_MOTOR_1D, TORQUE_MOTOR_1D), "actuator_effort"),
     ("Physics.Signals.Force1DOutput", (LIN_MOTOR, "force_motor"), "actuator_effort"),
     ("Physics.Signals.Torque1DOutput", ("torsion_spring",), "spring_effort"),
     ("Physics.Signals.Force1DOutput", ("linear_spring",), "spring_effort"),
-    ("Physics.Signals.TorqueRangeOutput", (ROT_MOTOR,), "effort_range"),
+    ("Physics.Signals.TorqueRangeOutput", (ROT_MOTOR, ROT_MOTOR_1D), "effort_range"),
     ("Physics.Signals.ForceRangeOutput", (LIN_MOTOR,), "effort_range"),
     ("Physics3D.Signals.Position3DOutput", ("body",), "body_position"),
     ("Physics3D.Signals.RPYOutput", ("body",), "body_rpy"),
     ("Physics3D.Signals.LinearVelocity3DOutput", ("body",), "body_linear_velocity"),
     ("Physics3D.Signals.AngularVelocity3DOutput", ("body",), "body_angular_velocity"),
 )
+# every other Input / Output type of the bundles, refused by name with the reason (a test checks that
+# each signal type the installed bundles define is mapped above or listed here)
+_NO_PEER = "the MuJoCo backend has no counterpart of this value"
+REFUSED: dict[str, str] = {
+    "Physics.Signals.Input": "the abstract base of inputs",
+    "Physics.Signals.Output": "the abstract base of outputs",
+    "Physics.Signals.ActivateInput": _NO_PEER,
+    "Physics.Signals.ActivatedOutput": _NO_PEER,
+    "Physics.Signals.BoolInput": _NO_PEER,
+    "Physics.Signals.BoolOutput": _NO_PEER,
+    "Physics.Signals.IntInput": _NO_PEER,
+    "Physics.Signals.IntOutput": _NO_PEER,
+    "Physics.Signals.DurationInput": _NO_PEER,
+    "Physics.Signals.DurationOutput": _NO_PEER,
+    "Physics.Signals.FractionInput": "gear ratios, clutch and brake engagement fractions are fixed in the MuJoCo model",
+    "Physics.Signals.FractionOutput": "gear ratios, clutch and brake engagement fractions are fixed in the MuJoCo model",
+    "Physics.Signals.EngageInput": "clutches and brakes are not simulated",
+    "Physics.Signals.EngagedOutput": "clutches and brakes are not simulated",
+    "Physics.Signals.EnableInteractionInput": "interactions cannot be switched on or off during a run",
+    "Physics.Signals.InteractionEnabledOutput": "interactions cannot be switched on or off during a run",
+    "Physics.Signals.MassOutput": _NO_PEER,
+    "Physics.Signals.RatioOutput": _NO_PEER,
+    "Physics.Signals.RpmOutput": _NO_PEER,
+    "Physics.Signals.RelativeVelocity1DOutput": "clutches and brakes are not simulated",
+    "Physics3D.Signals.Torque3DInput": "external torques on bodies are not applied",
+    "Physics3D.Signals.Force3DOutput": "constraint forces of mates are not read",
+    "Physics3D.Signals.Torque3DOutput": "constraint torques of mates are not read",
+    "Physics3D.Signals.MateConnector.Output": "outputs of mate connectors are not read",
+    "Physics3D.Signals.MateConnector.PositionOutput": "outputs of mate connectors are not read",
+    "Physics3D.Signals.MateConnector.RPYOutput": "outputs of mate connectors are not read",
+    "Physics3D.Signals.MateConnector.LinearVelocity3DOutput": "outputs of mate connectors are not read",
+    "Physics3D.Signals.MateConnector.AngularVelocity3DOutput": "outputs of mate connectors are not read",
+    "Physics3D.Signals.MateConnector.Acceleration3DOutput": "outputs of mate connectors are not read",
+    "Physics3D.Signals.MateConnector.AngularAcceleration3DOutput": "outputs of mate connectors are not read",
+    "DriveTrain.Signals.AutomaticClutchDisengagementDurationInput": "clutches and brakes are not simulated",
+    "DriveTrain.Signals.AutomaticClutchEngagementDurationInput": "clutches and brakes are not simulated",
+    "DriveTrain.Signals.AutomaticClutchDisengagementDurationOutput": "clutches and brakes are not simulated",
+    "DriveTrain.Signals.AutomaticClutchEngagementDurationOutput": "clutches and brakes are not simulated",
+    "DriveTrain.Signals.TorqueConverterLockUpInput": "torque converters are not simulated",
+    "DriveTrain.Signals.TorqueConverterLockedUpOutput": "torque converters are not simulated",
+    "DriveTrain.Signals.TorqueConverterPumpTorqueOutput": "torque converters are not simulated",
+    "DriveTrain.Signals.TorqueConverterTurbineTorqueOutput": "torque converters are not simulated",
+    "Robotics.Signals.RobotInput": "robot-level signals are not simulated",
+    "Robotics.Signals.RobotOutput": "robot-level signals are not simulated",
+    "Sensors.Signals.LidarOutput": "sensors are not simulated",
+}
 VALUE_KIND = {
+    "shaft_position": "real", "shaft_velocity": "real",
     "target_speed": "real", "effort": "real", "effort_range": "vec2", "spring_rest": "real",
     "joint_position": "real", "joint_velocity": "real", "actuator_effort": "real", "spring_effort": "real",
     "body_position": "vec3", "body_rpy": "vec3", "body_linear_velocity": "vec3", "body_angular_velocity": "vec3",
@@ -153,13 +207,24 @@ def classify(obj: Any, ev: Any, kinds: Any) -> SignalInfo | None:
             if skind in sources:
                 info.quantity = quantity
                 return info
-    if src is None:
+    refused = next((REFUSED[t] for t in _lineage(obj, kinds) if t in REFUSED and t not in (INPUT, OUTPUT)), None)
+    if refused is not None:
+        of = f" of a {skind.replace('_', ' ')}" if skind else ""
+        info.why = f"{qn}{of} is not mapped: {refused}"
+    elif src is None:
         info.why = "it has no source"
     elif skind is None:
         info.why = f"its source {src.display} ({kinds.p.concrete(src.model).qname}) has no MuJoCo mapping"
     else:
         info.why = f"{_short(qn)} of a {skind.replace('_', ' ')} has no MuJoCo mapping"
     return info
+
+
+def _lineage(obj: Any, kinds: Any) -> list[str]:
+    """The qualified names of an object's model and its bases, nearest first."""
+    from plxtools.model.resolve import linearize
+
+    return [m.qname for m in reversed(linearize(kinds.p, kinds.p.concrete(obj.model)))]
 
 
 def _short(qn: str) -> str:
@@ -339,6 +404,17 @@ class SignalRuntime:
 
                 b.write = write_ctrl
             return b
+        if q in ("shaft_position", "shaft_velocity"):
+            jname = self.compiled.names.name("joint", src)
+            if jname is None:
+                raise _Unbindable(f"the shaft {src} is not simulated (see the check notes)")
+            jid = self.compiled.model.joint(jname).id
+            qadr, dadr = int(self.compiled.model.jnt_qposadr[jid]), int(self.compiled.model.jnt_dofadr[jid])
+            if q == "shaft_position":
+                b.read = lambda m, d: float(d.qpos[qadr])
+            else:
+                b.read = lambda m, d: float(d.qvel[dadr])
+            return b
         if q in ("joint_position", "joint_velocity"):
             rotational = info.type.endswith(("AngleOutput", "AngularVelocity1DOutput"))
             dof = "rotational" if rotational else "linear"
@@ -445,3 +521,17 @@ def did_you_mean(name: str, candidates: list[str]) -> str | None:
     if same_tail:
         return difflib.get_close_matches(name, same_tail, n=1, cutoff=0.0)[0]
     return None
+
+
+def coverage_table(types: dict[str, str]) -> str:
+    """The Markdown table of docs/testing.md: every signal type (qualified name -> "input" | "output",
+    from the bundles) with what it maps to on the MuJoCo run, or why it is refused."""
+    kinds_of = {v: f"{k.split('.', 1)[0]} {k.rsplit('.', 1)[-1]}" for k, v in SOURCE_KINDS.items()}
+    rows = ["| signal type | direction | on the MuJoCo run |", "|---|---|---|"]
+    for qn in sorted(types):
+        table = INPUT_MAP if types[qn] == "input" else OUTPUT_MAP
+        mapped = [f"{', '.join(kinds_of[k] for k in sources)}: {quantity.replace('_', ' ')}"
+                  for t, sources, quantity in table if t == qn]
+        what = "; ".join(mapped) if mapped else f"refused: {REFUSED.get(qn, 'not mapped')}"
+        rows.append(f"| `{qn}` | {types[qn]} | {what} |")
+    return "\n".join(rows) + "\n"

@@ -141,7 +141,10 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
         return
     res.model = prep.model
     runtime = SignalRuntime.bind(mujoco, prep.compiled, prep.signals)
-    errors = bind(sc, prep.signals, prep.bodies, set(runtime.bindings), runtime.unbound, model_file)
+    from plxtools.check.scenecounts import scene_counts
+
+    errors = bind(sc, prep.signals, prep.bodies, set(runtime.bindings), runtime.unbound, model_file,
+                  scene_counts(prep.compiled.scene))
     if errors:
         _error(res, errors)
         return
@@ -154,6 +157,8 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
     nxt = 0
 
     def measure(e: Expect, m: Any, d: Any) -> float:
+        if e.count is not None:
+            return float(e.count)
         v = runtime.read(e.output, m, d)
         if e.norm:
             return math.sqrt(sum(x * x for x in v))

@@ -41,7 +41,7 @@ def run_migrate(args) -> int:
     except (UnknownVersion, UsageError, ConfigError, ValueError) as exc:
         _say(f"plx migrate: {exc}")
         return 2
-    changed = refused = edits = 0
+    changed = refused = edits = partial = 0
     plans: dict[str, object] = {}
     for f in files:
         try:
@@ -75,31 +75,40 @@ def run_migrate(args) -> int:
             _say(f"{f}: not migrated from {from_v} to {to_v}: {fm.refused}")
             _left_for_a_person(f, fm, to_v)
             continue
+        for note in fm.notes:
+            _say(f"{f}: {note}")
+        if fm.errors_after > fm.errors_before:
+            partial += 1  # the safe rewrites (if any) are applied; the rest is listed below
         if not fm.changed:
             _left_for_a_person(f, fm, to_v)
             continue
         changed += 1
         edits += fm.edits
+        remain = ""
+        if fm.errors_after:
+            remain = f"; {_plural(fm.errors_after, 'error')} left for a person"
+            if fm.errors_after > fm.errors_before:
+                remain += f" (under {from_v}: {fm.errors_before})"
         if args.diff:
             sys.stdout.write(unified_diff(str(f), fm.old_text, fm.new_text))
         elif args.check:
-            _say(f"would migrate {f} ({_plural(fm.edits, 'change')}, {from_v} -> {to_v})")
+            _say(f"would migrate {f} ({_plural(fm.edits, 'change')}, {from_v} -> {to_v}){remain}")
         else:
             try:
                 write_atomic(f, fm.new_text, had_bom, expected=data)
             except OSError as exc:
                 _say(f"plx migrate: {f}: {exc.strerror}")
                 return 2
-            remain = f"; {_plural(fm.errors_after, 'error')} left for a person" if fm.errors_after else ""
             _say(f"migrated {f} ({_plural(fm.edits, 'change')}, {from_v} -> {to_v}){remain}")
         _left_for_a_person(f, fm, to_v)
     verb = "would migrate" if (args.check or args.diff) else "migrated"
     _say(f"{verb.capitalize()} {_plural(changed, 'file')} ({_plural(edits, 'change')}); "
          f"{_plural(len(files) - changed - refused, 'file')} unchanged"
+         + (f"; {_plural(partial, 'file')} with errors left for a person" if partial else "")
          + (f"; {_plural(refused, 'file')} refused" if refused else "") + ".")
     if refused:
         return 2 if not changed else 1
-    return 1 if args.check and changed else 0
+    return 1 if (args.check and changed) or partial else 0
 
 
 def add_arguments(p) -> None:

@@ -53,20 +53,26 @@ touched; attributes are found through the semantic model of the file under the v
 written for, so an attribute of your own that happens to be called `charges` stays as it is.
 Everything else in the file (comments, layout, blank lines) is kept.
 
-A file is written only when the result parses, the formatter accepts it, and it lints with no
-more errors under the new version than it had under the old one; otherwise it is left as it was
-and plx says why. A file that was in the formatter's style stays in it. What needs a person (a
-removed model or attribute, a changed type, a new required attribute) is not touched: plx lists
-each error that remains under the new version at its line (`file:line:col: code message`), with a
-help line saying which versions have the name, whether the file was migrated or refused.
+A rewrite is applied when the result parses, the formatter accepts it, and it lints with no
+more errors under the new version than the file has under its old version (or would have
+untouched under the new one). A file that was in
+the formatter's style stays in it. **Partial migration:** what needs a person (a removed model or
+attribute, a changed type, a new required attribute) does not stop the safe rewrites of the same
+file; they are applied, and plx lists each error that remains under the new version at its line
+(`file:line:col: code message`), with a help line saying which versions have the name, and says
+`N errors left for a person (under OLD: M)`. Should the whole rewrite add an error (it should
+not), the rewrites that add none are applied one by one and the others are named. Only a file
+with syntax errors is refused as a whole.
 
 - `--from VERSION`: the version the files were written for. By default, the version plx lints
-  them with: `openplx-version` in `plx.toml` / `[tool.plx]`, a version pinned by a user bundle's
-  `config.openplx`, else the installed bundles (then there is nothing to do: pass `--from`).
+  them with: `openplx-version` in `plx.toml` / `[tool.plx]`, a version written in a user bundle's
+  dependency (`"Physics3D==0.17.26"`; a bundle's own `version:` is not one), else the installed
+  bundles (then there is nothing to do: pass `--from`).
 - `--diff` prints the changes as a unified diff and writes nothing; `--check` writes nothing and
   exits 1 when a file would change.
-- Exit codes: 0 done, 1 with `--check` when something would change or when some files were
-  refused, 2 for a usage error or when no file could be migrated.
+- Exit codes: 0 done, 1 with `--check` when something would change, or when a file has errors
+  left for a person that it did not have under its old version (its safe rewrites are applied),
+  or when some files were refused; 2 for a usage error or when no file could be migrated.
 
 ## How changes are found
 
@@ -77,6 +83,11 @@ Each consecutive pair of versions is compared:
 - an attribute replaced by exactly one new attribute of the same type (after moves), the same
   flags and the same documentation, or named by the old one's deprecation note, is **renamed**
   automatically;
+- a model that redeclares an attribute (`charges becomes Physics1D.Charges.MateConnector[]`)
+  follows the rename its base made (`charges` to `connectors` in `Physics.Interactions.Interaction`),
+  whether the new version redeclares the new name or drops the redeclaration, in every bundle
+  (Physics1D's `Mate` and `VelocityMotor` as well as Physics3D's `Mate`); these come from the
+  bundles of both versions, not from a list;
 - renames the data cannot prove are taken from a short **reviewed table**
   (`plxtools/model/apiindex/renames.toml`), where each entry cites the bundle file and line in both
   versions; the tests check those citations against the index;

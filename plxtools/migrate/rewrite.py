@@ -8,8 +8,8 @@ model of the file under the version it was written for, so `charges` is renamed 
 means the attribute of a mate or interaction, also inside dotted paths.
 
 A rewrite is kept only when the result parses, the formatter accepts it, and it lints with no
-more errors under the target version than the input had under its own; otherwise the file is left
-as it was, with a message saying why. A file that was in the formatter's style stays in it (a
+more errors under the target version than the untouched file would have there (partial migration:
+the safe rewrites are applied, what needs a person is listed at its line). A file that was in the formatter's style stays in it (a
 longer name may need a line split); any other file keeps its layout exactly, apart from the edits.
 The errors that remain under the target version are handed back, located, for a person.
 """
@@ -114,8 +114,38 @@ def _errors(diags) -> int:
     return sum(1 for d in diags if d.severity is Severity.ERROR)
 
 
+def _target_errors(path: Path, text: str, cfg, to_ws) -> tuple[list, object] | None:
+    """The errors of `text` under the target version (None when it does not parse)."""
+    from plxtools.rules.analysis import analyse_file, final_diagnostics
+
+    tree = parse_text(text, str(path))
+    if tree.has_errors_of_syntax():
+        return None
+    diags = final_diagnostics(tree, cfg, analyse_file(to_ws, tree))
+    return [d for d in diags if d.severity is Severity.ERROR], tree
+
+
+def _safe_subset(path: Path, text: str, edits: list[Edit], cfg, to_ws, limit: int) -> list[Edit]:
+    """The edits that, added one by one, never add an error under the target version (at most
+    `limit` errors in all): what can be applied when the whole rewrite would make things worse."""
+    kept: list[Edit] = []
+    current = limit
+    for e in edits:
+        got = _target_errors(path, apply_edits(text, kept + [e]), cfg, to_ws)
+        if got is not None and len(got[0]) <= current:
+            kept.append(e)
+            current = len(got[0])
+    return kept
+
+
 def migrate_text(path: Path, text: str, p: Plan, cfg, from_ws, to_ws) -> FileMigration:
-    """The migration of one file's text (nothing is written here)."""
+    """The migration of one file's text (nothing is written here).
+
+    Partial migration: the rewrites are kept when they leave no more errors under the target
+    version than the file has under its own version or would have untouched under the target; what still fails (a removed model, a changed
+    type) is listed in `left` at its line for a person, instead of refusing the whole file. When the
+    whole rewrite would add errors, the edits that add none are kept one by one.
+    """
     from plxtools.fmt import format_text
     from plxtools.rules.analysis import analyse_file, final_diagnostics
 
@@ -127,34 +157,43 @@ def migrate_text(path: Path, text: str, p: Plan, cfg, from_ws, to_ws) -> FileMig
     before = analyse_file(from_ws, tree)
     fm.errors_before = _errors(final_diagnostics(tree, cfg, before))
     edits = type_edits(tree, p.types) + attribute_edits(tree, before, p.attrs)
+    untouched = _target_errors(path, text, cfg, to_ws)[0] if p.from_version != p.to_version else []
     if not edits:
         fm.new_text = text
-        fm.errors_after = fm.errors_before
-        if p.from_version != p.to_version:
-            after = final_diagnostics(tree, cfg, analyse_file(to_ws, tree))
-            fm.errors_after = _errors(after)
-            fm.left = [d for d in after if d.severity is Severity.ERROR]
+        fm.errors_after = len(untouched) if p.from_version != p.to_version else fm.errors_before
+        fm.left = untouched
         return fm
     new_text = apply_edits(text, edits)
-    new_tree = parse_text(new_text, str(path))
-    if new_tree.has_errors_of_syntax():
+    got = _target_errors(path, new_text, cfg, to_ws)
+    if got is None:
         fm.refused = "the rewritten text would not parse (a bug in plx migrate; please report it)"
         return fm
+    # the bar: no more errors than the file has under its own version, or would have untouched
+    # under the target (where an old name's single error can hide what the new type requires)
+    limit = max(fm.errors_before, len(untouched))
+    if len(got[0]) > limit:
+        kept = _safe_subset(path, text, edits, cfg, to_ws, limit)
+        fm.notes.append(f"{len(edits) - len(kept)} of {len(edits)} rewrites would add errors under "
+                        f"{p.to_version} and were not applied")
+        edits = kept
+        if not edits:
+            fm.new_text = text
+            fm.errors_after = len(untouched)
+            fm.left = untouched
+            return fm
+        new_text = apply_edits(text, edits)
     formatted = format_text(new_text, str(path))
     if formatted.text is None:
         fm.refused = "the formatter refuses the rewritten text (a bug in plx migrate; please report it)"
         return fm
     if formatted.text != new_text and format_text(text, str(path)).text == text:
         new_text, fm.reformatted = formatted.text, True
-        new_tree = parse_text(new_text, str(path))
-    after = final_diagnostics(new_tree, cfg, analyse_file(to_ws, new_tree))
-    fm.errors_after = _errors(after)
-    fm.left = [d for d in after if d.severity is Severity.ERROR]
-    if fm.errors_after > fm.errors_before:
-        n = fm.errors_after
-        fm.refused = (f"under {p.to_version} it would have {n} error{'' if n == 1 else 's'} (under "
-                      f"{p.from_version}: {fm.errors_before}); a person must resolve {'it' if n == 1 else 'them'} first")
+    got = _target_errors(path, new_text, cfg, to_ws)
+    if got is None:
+        fm.refused = "the rewritten text would not parse (a bug in plx migrate; please report it)"
         return fm
+    fm.left = got[0]
+    fm.errors_after = len(fm.left)
     fm.new_text = new_text
     fm.edits = len(edits)
     return fm

@@ -133,7 +133,7 @@ def diff(old: ApiIndex, new: ApiIndex) -> list[Change]:
         renames[n], pending[q] = _attr_renames(old, new, q, n, table, full_map)
     for q, n in sorted(full_map.items()):
         rest_gone, rest_fresh = pending[q]
-        _follow_base_renames(new, n, renames, rest_gone, rest_fresh)
+        _follow_base_renames(old, new, q, n, renames, rest_gone, rest_fresh, full_map)
         out += _attr_changes(old, new, q, n, renames, rest_gone, rest_fresh, full_map)
         out += _model_body_changes(old, new, q, n, full_map)
     return out
@@ -219,17 +219,35 @@ def _attr_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, table: list[Tabl
     return found, (rest_gone, rest_fresh)
 
 
-def _follow_base_renames(new: ApiIndex, n: str, renames: dict, rest_gone: list[str], rest_fresh: list[str]) -> None:
-    """A subtype redeclaring (`becomes`) an attribute its base renamed follows the base's rename."""
+def _follow_base_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, renames: dict, rest_gone: list[str],
+                         rest_fresh: list[str], full_map: dict[str, str]) -> None:
+    """A subtype redeclaring (`becomes`) an attribute its base renamed follows the base's rename:
+    whether it redeclares the new name or drops the redeclaration (inherited under the new name)."""
     found = renames[n]
+    n_all = new.all_attrs(n)
     for a in list(rest_gone):
-        for anc in new.ancestors(n)[1:]:
-            hit = renames.get(anc, {}).get(a)
-            if hit and hit[0] in rest_fresh:
-                found[a] = (hit[0], hit[1], f"follows {anc}.{a}")
-                rest_gone.remove(a)
-                rest_fresh.remove(hit[0])
-                break
+        hit = _base_rename(old, new, q, n, a, full_map, renames)
+        if hit is None:
+            continue
+        b, how, anc = hit
+        if b in rest_fresh or ("b" in old.models[q]["a"][a][1] and b in n_all):
+            found[a] = (b, how, f"follows {anc}.{a}")
+            rest_gone.remove(a)
+            if b in rest_fresh:
+                rest_fresh.remove(b)
+
+
+def _base_rename(old: ApiIndex, new: ApiIndex, q: str, n: str, a: str, full_map: dict[str, str],
+                 renames: dict[str, dict[str, tuple[str, str, str]]]) -> tuple[str, str, str] | None:
+    """The rename of attribute `a` in a base of `q` (old name) / `n` (new name): (new attr, handling,
+    base). The bases are looked up in both versions (Physics1D.Interactions.Mate drops its
+    redeclaration of `charges` in 0.18.11)."""
+    bases = [full_map.get(x, x) for x in old.ancestors(q)[1:]] + new.ancestors(n)[1:]
+    for anc in dict.fromkeys(bases):
+        hit = renames.get(anc, {}).get(a)
+        if hit:
+            return hit[0], hit[1], anc
+    return None
 
 
 def _attr_changes(old: ApiIndex, new: ApiIndex, q: str, n: str, renames: dict, rest_gone: list[str],

@@ -15,7 +15,11 @@ from plxtools.cache import reads
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity, Span
 from plxtools.syntax import ast
 
+# the dependency forms OpenPLX accepts: a bare name, `Name==1.2.3` (every official bundle's own
+# config, 0.15.0 to 0.19.0) and `Name@1.2.3` (openplx.org's bundle documentation)
 DEP_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:(==|@)(\d+(?:\.\d+)*))?$")
+# a name followed by something else (`Physics>=0.19`, `Physics3D 0.17.26`): read as the bare name, with a warning
+DEP_OTHER_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*([^A-Za-z0-9_\s].*|\s+.*)$")
 
 
 @dataclass(slots=True)
@@ -83,8 +87,8 @@ def read_config(bundle: Bundle, tree: ast.File) -> None:
     bundle.config_tree = tree
     cfg = next((s for s in tree.statements if isinstance(s, ast.Declaration) and s.path.text == "config"), None)
 
-    def diag(code: str, msg: str, span: Span, help_: str | None = None) -> None:
-        bundle.diagnostics.append(Diagnostic(code, msg, span, Severity.ERROR, file=tree.path, help=help_))
+    def diag(code: str, msg: str, span: Span, help_: str | None = None, sev: Severity = Severity.ERROR) -> None:
+        bundle.diagnostics.append(Diagnostic(code, msg, span, sev, file=tree.path, help=help_))
 
     if cfg is None or cfg.body is None:
         diag("B001", "config.openplx must declare 'config is BundleConfig:' with a name",
@@ -109,6 +113,15 @@ def read_config(bundle: Bundle, tree: ast.File) -> None:
                     diag("B002", "a dependency must be a string like \"Physics==0.19.0\"", item.span)
                     continue
                 m = DEP_RE.match(item.value)
+                other = None if m else DEP_OTHER_RE.match(item.value)
+                if other:
+                    diag("B006", f"OpenPLX does not read the dependency form '{item.value}'; plx reads it as "
+                         f"'{other.group(1)}' and selects no bundle version from it", item.span,
+                         f"write '{other.group(1)}' or an exact version: '{other.group(1)}==0.19.0'",
+                         Severity.WARNING)
+                    bundle.dependencies.append(other.group(1))
+                    bundle.dep_spans[other.group(1)] = item.span
+                    continue
                 if not m:
                     diag("B002", f"malformed dependency '{item.value}'", item.span,
                          "write 'Name', 'Name==1.2.3' or 'Name@1.2.3'")

@@ -231,6 +231,22 @@ class Checker:
                             f"bundle '{self.unit.bundle}' does not depend on", ref.name.span,
                             help=f"add \"{outside.namespace.qname[0]}\" to the dependencies in config.openplx")
                 return UNKNOWN
+            archived = self.p.archive_name(parts, self.unit)
+            if archived is not None:
+                # a near miss of a model in scope is a typo: N001 with the suggestion
+                from plxtools.model.imports import ImportSym
+
+                defined = [n for n, sym in self.unit.locals.items() if not isinstance(sym, ImportSym)]
+                close = self._closest(parts[0], defined + list(self.unit.namespace.symbols))
+                if close:
+                    self.report("N001", f"unknown type '{ref.name.text}'", ref.name.span, suggest=close)
+                    return UNKNOWN
+                self.occ(ref.name.span, archived, "type")
+                self.report("N008", f"'{ref.name.text}' is defined in no file plx reads; it can only come from "
+                            f"{archived.written}, which plx cannot read, so it is taken as an opaque model",
+                            ref.name.span, Severity.INFO,
+                            help="its attributes are not checked; `plx check` does not analyse what is built on it")
+                return Ty(archived, ref.array)
             help_, word = self._type_suggestion(parts)
             self.report("N001", f"unknown type '{ref.name.text}'", ref.name.span, help=help_, suggest=word)
             return UNKNOWN

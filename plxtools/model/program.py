@@ -309,8 +309,37 @@ class Program:
 
     # ------------------------------------------------------------------ types
 
+    def archive_name(self, parts: list[str], unit: FileUnit):
+        """The opaque model a name stands for when only an import plx cannot read can define it.
+
+        An `.agx` archive (or a URDF) defines names plx cannot see: `import @"pendulum.agx"` binds
+        `pendulum`, and the archive's bodies keep their AGX names (`PendulumScene_rod`). A one-part
+        name that nothing in scope defines, in a file with such an import, is one of those: unknown,
+        not wrong. It is a model of kind "import" without a base (model/imports.py), so it is open
+        (no missing-attribute cascades) and `plx check` names it as not analysed.
+        """
+        from plxtools.model.imports import ImportSym
+
+        if len(parts) != 1 or parts[0] in PRIMITIVES:
+            return None
+        cache = getattr(unit, "archive", None)  # None: a unit unpickled from before the field existed
+        if cache is not None and parts[0] in cache:
+            return cache[parts[0]]
+        source = next((s for s in unit.locals.values() if isinstance(s, ImportSym) and s.opaque), None)
+        if source is None or self.lookup(parts, unit) is not None:
+            return None
+        stmt = source.import_stmt
+        sym = ImportSym(parts[0], parts[0], "import", source.stmt, unit, unit.namespace, import_stmt=stmt,
+                        file_kind="opaque", suffix=source.suffix)
+        sym.doc = f"a name plx cannot see: it can only come from {source.written}, which plx cannot read"
+        if cache is not None:
+            cache[parts[0]] = sym
+        return sym
+
     def resolve_type_ref(self, ref: ast.TypeRef, unit: FileUnit) -> Ty:
         found = self.lookup([p.name for p in ref.name.parts], unit)
+        if found is None:
+            found = self.archive_name([p.name for p in ref.name.parts], unit)
         if isinstance(found, str):
             return Ty(found, ref.array)
         if isinstance(found, ModelSym):

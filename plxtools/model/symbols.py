@@ -25,6 +25,9 @@ class FileUnit:
     bundle: str | None  # None: a loose file outside any bundle
     official: bool = False
     locals: dict[str, "Symbol"] = field(default_factory=dict)  # loose files: their own names
+    # names only an import plx cannot read can define (`PendulumScene_rod` after `import @"p.agx"`):
+    # made on first use by Program.archive_name, one symbol per name
+    archive: dict[str, "Symbol"] = field(default_factory=dict)
 
 
 @dataclass(slots=True, eq=False)

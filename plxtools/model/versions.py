@@ -7,8 +7,11 @@ Order, the same for the CLI, the language server and check:
    same name, so a copy of the official bundles (an AGX installation) is read instead of the package.
 2. `--openplx-version` / `openplx-version` in the config: that `openplx-bundles` release, fetched with
    pip into the cache on first use.
-3. with nothing configured, a version pinned by a user bundle's `config.openplx`.
-4. the installed `openplx-bundles` package.
+3. a version written in a user bundle's dependency (`"Physics3D==0.17.26"`), however the bundle was
+   found; a bundle's own `version:` is its own and selects nothing (an AGX installation whose
+   bundles are that version is used for it).
+4. the bundles of an AGX installation found without configuration (model/agx.py).
+5. the installed `openplx-bundles` package.
 
 A `BundleSet` is a plain value (hashable `key()`), so several sets, hence several versions, can be
 loaded side by side in one process, each into its own `Workspace`.
@@ -295,6 +298,8 @@ class BundleSet:
     official_why: str
     sources: list[BundleSource] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)  # said once by --show-settings / the server
+    agx: object | None = None  # the AGX installation found (model/agx.AgxInstall), used or not
+    agx_used: bool = False  # its bundles are the official base
 
     def key(self) -> tuple:
         return (str(self.official_root), tuple(str(s.path) for s in self.sources))
@@ -382,26 +387,34 @@ def discover_bundles(paths: list[Path], stop_at: set[Path] | None = None, max_de
     return found
 
 
-def _pins(roots: list[Path], official_names: set[str]) -> list[tuple[str, str]]:
-    """OpenPLX versions pinned by user bundles' config.openplx: (version, 'file:line: text')."""
+def dependency_pins(roots: list[Path], official_names: set[str]) -> list[tuple[str, str]]:
+    """OpenPLX versions selected by user bundles' dependencies: (version, 'file:line:col: dependency "..."').
+
+    Only a dependency on an official bundle written with a version (`"Physics3D==0.17.26"`, the form
+    every official bundle's own config uses, or `"Physics3D@0.17.26"`) selects a release. A bundle's
+    own `version:` is the bundle's version, never a choice of OpenPLX release (issue 29: a test bundle
+    whose own version looked like a release number pinned a whole folder to old bundles). A bundle
+    that is itself an official bundle (a copy, an AGX installation) pins nothing: it replaces that bundle.
+    """
     out: list[tuple[str, str]] = []
     for r in roots:
         cfg = r / "config.openplx"
-        name = _config_name(r)
-        if name in official_names:
-            continue  # a copy of an official bundle: it replaces that bundle, it pins nothing
+        if _config_name(r) in official_names:
+            continue
         try:
-            lines = reads.read_bytes(cfg).decode("utf-8", "replace").splitlines()
+            text = reads.read_bytes(cfg).decode("utf-8", "replace")
         except OSError:
             continue
-        for i, line in enumerate(lines, 1):
-            m = re.match(r'\s*version:\s*"([^"]+)"', line)
-            if m and m.group(1) in KNOWN_VERSIONS:
-                out.append((m.group(1), f"{cfg}:{i}:{m.start(1)}: version \"{m.group(1)}\""))
-            for sm in re.finditer(r'"([^"]+)"', line) if "dependencies" in line or line.strip().startswith('"') else ():
-                dm = DEP_PIN_RE.match(sm.group(1))
-                if dm and dm.group(1) in official_names:
-                    out.append((dm.group(2), f"{cfg}:{i}:{sm.start(0) + 1}: dependency \"{sm.group(1)}\""))
+        m = re.search(r"^[ \t]*dependencies[ \t]*:[ \t]*\[([^\]]*)\]", text, re.M)
+        if m is None:
+            continue
+        for sm in re.finditer(r'"([^"\n]*)"', m.group(1)):
+            dm = DEP_PIN_RE.match(sm.group(1).strip())
+            if dm and dm.group(1) in official_names:
+                at = m.start(1) + sm.start(0)
+                line = text.count("\n", 0, at) + 1
+                col = at - (text.rfind("\n", 0, at) + 1) + 1
+                out.append((dm.group(2), f"{cfg}:{line}:{col}: dependency \"{sm.group(1)}\""))
     return out
 
 
@@ -445,8 +458,11 @@ def resolve_bundle_set(
     anchors = [workspace_root] if workspace_root is not None else []
     anchors += sorted({(t if t.is_dir() else t.parent) for t in targets}) or [Path(".")]
     cfg_version: tuple[str, str] | None = None
+    cfg_agx: str | None = None
     for a in anchors if use_config else []:
         cfg = config_for(a / "x.openplx")
+        if cfg.agx_dir is not None and cfg_agx is None:
+            cfg_agx = cfg.agx_dir
         for p in cfg.bundle_paths:
             add(p, f"bundle-path in {cfg.source}")
         if cfg.openplx_version and cfg_version is None:
@@ -455,11 +471,10 @@ def resolve_bundle_set(
         for part in (os.environ.get("OPENPLX_BUNDLE_PATH") or "").split(os.pathsep):
             if part:
                 add(Path(part), "OPENPLX_BUNDLE_PATH")
-    configured = bool(sources)
     inst = installed()
     official_names = {d.name for d in bundle_roots_in(inst[0])} if inst else set()
-    official_names |= {"Math", "Physics", "Physics1D", "Physics3D", "DriveTrain", "Robotics", "Simulation",
-                       "Terrain", "Urdf", "Vehicles", "Visuals"}
+    official_names |= {"Math", "Physics", "Physics1D", "Physics3D", "DriveTrain", "Robotics", "Sensors",
+                       "Simulation", "Terrain", "Urdf", "Vehicles", "Visuals"}
     found: list[Path] = []
     if discover:
         stop = {s.path for s in sources}
@@ -470,26 +485,51 @@ def resolve_bundle_set(
     version: str | None = None
     why = ""
     notes: list[str] = []
+    # every user bundle counts the same, however it was found (flag, config, environment, the tree)
+    user_roots = [r for s in sources for r in bundle_roots_in(s.path)] + list(found)
+    replacing = [s for s in sources if any(_config_name(r) in official_names for r in bundle_roots_in(s.path))]
+    pins = dependency_pins(user_roots, official_names)
+    agx = None
+    if discover and use_env:
+        from plxtools.model.agx import find_agx
+
+        agx = find_agx(cfg_agx)
+    agx_official: tuple[Path, str | None, str] | None = None
+    installed_why = f"the installed {PACKAGE} package: no dependency selects a version"
     if cli_version:
         version, why = cli_version, "--openplx-version"
     elif cfg_version:
         version, why = cfg_version
-    elif not configured:
-        pins = _pins(found, official_names)
-        if pins:
-            version, where = pins[0]
-            why = f"pinned by {where}"
-            others = sorted({v for v, _w in pins if v != version})
-            if others:
-                notes.append(f"other pins ignored: {', '.join(others)} (the first pin, {where}, wins)")
-    if version is not None:
+    elif pins and replacing:
+        notes.append(f"the dependency version {pins[0][1]} is not used: the official bundles come from "
+                     f"{replacing[0].path} ({replacing[0].why})")
+    elif pins:
+        version, where = pins[0]
+        why = f"pinned by {where}"
+        others = sorted({v for v, _w in pins if v != version})
+        if others:
+            notes.append(f"other pins ignored: {', '.join(others)} (the first pin, {where}, wins)")
+        if agx is not None and agx.openplx_version == version:
+            agx_official = (agx.bundles, version, f"{why}; {agx.describe()}")
+            version = None
+        elif inst is not None and inst[1] == version:  # what is installed anyway: nothing to announce
+            version = None
+            installed_why = f"the installed {PACKAGE} package, the version {where.split(': ', 1)[0]} asks for"
+    elif agx is not None and not replacing:
+        agx_official = (agx.bundles, agx.openplx_version, agx.describe())
+    if agx is not None and agx_official is None:
+        notes.append(f"{agx.describe()}: not used ({why or 'bundle folders are configured'}); "
+                     f"'agx-dir' in the config chooses another installation, \"\" turns the search off")
+    if agx_official is not None:
+        official = agx_official
+    elif version is not None:
         try:
             root = version_root(version)
         except BundleSetError as exc:
             raise BundleSetError(f"{exc} (the version comes from {why})") from None
         official = (root, version, why)
     elif inst is not None:
-        official = (inst[0], inst[1], f"the installed {PACKAGE} package")
+        official = (inst[0], inst[1], installed_why)
     else:
         official = (None, None, f"{PACKAGE} is not installed")
     for r in found:
@@ -500,7 +540,8 @@ def resolve_bundle_set(
         sources.append(BundleSource(r, "found in the linted tree" if workspace_root is None or
                                     workspace_root.resolve() not in (r, *r.parents) else "found in the workspace"))
         seen.add(r)
-    bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources, notes)
+    bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources, notes,
+                   agx, agx_official is not None)
     if bs.official_root is None and not any((s.path / "Math" / "config.openplx").is_file() or
                                             (s.path / "config.openplx").is_file() and _config_name(s.path) == "Math"
                                             for s in sources):

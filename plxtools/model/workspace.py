@@ -485,6 +485,13 @@ class Workspace:
                 continue
             found = [v for v in where_defined(written) if v != using]
             if not found:
+                if not where_defined(written) and written.split(".", 1)[0] in self.bundles:
+                    from plxtools.model.agx import newer_bundles_help
+                    from plxtools.model.apiindex import versions
+
+                    newer = newer_bundles_help(written, bs, versions()[-1], typo=d.fix is not None)
+                    if newer:
+                        d.help = f"{newer}; {d.help}" if d.help else newer
                 continue
             older = [v for v in found if version_key(v) < version_key(using)]
             try:

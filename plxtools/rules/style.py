@@ -124,6 +124,9 @@ def style_of_file(program: Program, unit, occurrences, root: ModelSym | None = N
         if isinstance(sym, ModelSym) and sym is not root and id(sym) not in used:
             span = sym.stmt.name.span if isinstance(sym.stmt, ast.TraitDef) else sym.stmt.path.span
             if sym.kind == "import":
+                if getattr(sym, "opaque", False) and any(getattr(a, "import_stmt", None) is sym.import_stmt
+                                                         for a in (getattr(unit, "archive", None) or {}).values()):
+                    continue  # names from the archive are used (model/program.py archive_name)
                 add("C003", f"imported name '{name}' is never used in this file", span, Severity.WARNING,
                     "use it or remove the import")
                 continue

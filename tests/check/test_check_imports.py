@@ -127,3 +127,21 @@ def test_import_lines_are_byte_stable_in_fmt(tmp_path):
     assert r.returncode == 0 and src.read_text(encoding="utf-8") == text
     r = run_plx("fmt", "--check", "--no-cache", str(src))
     assert r.returncode == 0
+
+
+def test_names_from_an_agx_archive_are_opaque_not_unknown(tmp_path):
+    """`ExtendedRod is PendulumScene_rod` after `import @"pendulum.agx"` (issue 29, point 3): the
+    name can only come from the archive, so it is not N001; check says what it does not analyse."""
+    shutil.copy(IMPORTS / "inverted_pendulum.agx", tmp_path / "pendulum.agx")
+    f = tmp_path / "rod.openplx"
+    f.write_text('import @"pendulum.agx"\n\nExtendedRod is PendulumScene_rod:\n    tip is Physics3D.Bodies.RigidBody\n\n'
+                 "Scene is Physics3D.System:\n    rod is ExtendedRod\n    floor is Physics3D.Bodies.RigidBody:\n"
+                 "        inertia.mass: 1\n        is_dynamic: false\n", encoding="utf-8")
+    r, doc = _check_json(str(f))
+    assert r.returncode == 0, r.stdout
+    got = _codes(doc, "rod.openplx")
+    assert ("N008", 3, "info") in got and not [c for c in got if c[0] == "N001" or c[2] == "error"], got
+    [a042] = [d for d in doc["diagnostics"] if d["code"] == "A042"]
+    assert a042["message"].startswith('rod is built from @"pendulum.agx"'), a042
+    lint = run_plx("lint", str(f))
+    assert lint.returncode == 0 and "N001" not in lint.stdout and "C003" not in lint.stdout, lint.stdout

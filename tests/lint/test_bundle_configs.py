@@ -41,12 +41,12 @@ def test_user_bundle_namespaces_and_visibility(tmp_path):
 
 
 def test_config_problems(tmp_path):
-    make_bundle(tmp_path, "A", ["B", "Nope", "Physics>=1"], {"X.openplx": "X is Physics3D.System\n"})
+    make_bundle(tmp_path, "A", ["B", "Nope", "Physics>=1", "0.19.0"], {"X.openplx": "X is Physics3D.System\n"})
     make_bundle(tmp_path, "B", ["A"], {"Y.openplx": "Y is Physics3D.System\n"})
     make_bundle(tmp_path, "C", [], {"Z.openplx": "Z\n"}, raw_config='config is BundleConfig:\n    version: "1"\n')
     ws = Workspace([tmp_path])
     got = sorted(c for c, _ in codes(tmp_path / "A" / "config.openplx", ws))
-    assert got == ["B002", "B003", "B004"]
+    assert got == ["B002", "B003", "B004", "B006"]  # "0.19.0" names no bundle; "Physics>=1" a form OpenPLX does not read
     assert [c for c, _ in codes(tmp_path / "C" / "config.openplx", ws)] == ["B001"]
 
 

@@ -119,7 +119,7 @@ def test_values_of_the_wrong_kind_and_unmapped_signals(rig):
         queue.send(RealInputSignal.create(1.0, scene.getObject("ball.linear_velocity_world_input")))
     with pytest.raises(TypeError, match="the target must be an Input"):
         RealInputSignal.create(1.0, scene.getObject("hinge.angle_output"))
-    with pytest.raises(NotSimulatedError, match="my_force is not simulated: Force3DOutput of a hinge"):
+    with pytest.raises(NotSimulatedError, match="my_force is not simulated: Physics3D.Signals.Force3DOutput of a hinge is not mapped: constraint forces"):
         rig.read("my_force")
     with pytest.raises(NotSimulatedError, match="arm is attached to other bodies by mates"):
         rig.set("arm.linear_velocity_world_input", [1, 0, 0])
@@ -141,4 +141,5 @@ def test_check_names_only_the_signals_it_does_not_map():
     r = run_plx("check", RIG)
     a040 = [ln for ln in r.stdout.splitlines() if " A040 " in ln]
     assert a040 == [f"{RIG}:30:5: warning A040 my_force (Physics3D.Signals.Force3DOutput): not simulated by "
-                    f"the MuJoCo backend: Force3DOutput of a hinge has no MuJoCo mapping"], r.stdout
+                    f"the MuJoCo backend: Physics3D.Signals.Force3DOutput of a hinge is not mapped: "
+                    f"constraint forces of mates are not read"], r.stdout

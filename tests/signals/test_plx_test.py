@@ -94,10 +94,12 @@ BAD = [
     ("TOML syntax", DRIVE.replace("value = 3.0", "value = = 3"), 7, "invalid TOML"),
     ("input that is not simulated",
      DRIVE.replace("front_left_motor.target_angular_velocity_input", "front_left_hinge.enable_interaction_input"), 6,
-     "box_truck.front_left_hinge.enable_interaction_input is not simulated: EnableInteractionInput of a hinge"),
+     "box_truck.front_left_hinge.enable_interaction_input is not simulated: "
+     "Physics.Signals.EnableInteractionInput of a hinge is not mapped: interactions cannot be switched"),
     ("output that is not simulated", DRIVE.replace('"box_truck.chassis.x"',
                                                    '"box_truck.front_left_hinge.force_output.x"'), 10,
-     "box_truck.front_left_hinge.force_output is not simulated: Force3DOutput of a hinge"),
+     "box_truck.front_left_hinge.force_output is not simulated: Physics3D.Signals.Force3DOutput of a hinge is not "
+     "mapped: constraint forces"),
     ("vector output without a component", DRIVE.replace('"box_truck.chassis.x"', '"box_truck.chassis.position_output"'),
      10, "is three numbers [x, y, z]: name one component (box_truck.chassis.position_output.x"),
     ("degrees on a length", DRIVE.replace("below = -1.0", 'below = -1.0\nunit = "deg"'), 12,

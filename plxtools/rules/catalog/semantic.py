@@ -50,6 +50,14 @@ rule("N007", "import-needs-alias", E,
      "Without an alias the imported name is the file's stem; a stem with a dash, a space or a leading digit "
      "cannot be written as a name, so nothing in the file can use the import.",
      example='import @"my-robot.urdf"', use_instead='import @"my-robot.urdf" as MyRobot')
+rule("N008", "name-from-opaque-import", I,
+     "A one-part type name that no file plx reads defines, in a file that imports a file plx cannot read "
+     "(an `.agx` archive, a URDF): `ExtendedRod is PendulumScene_rod` after `import @\"pendulum.agx\"`.",
+     "An AGX archive's bodies and systems keep their AGX names, which only the runtime can read from the "
+     "archive. plx takes the name as an opaque model (no N001, no missing-attribute errors) and says so "
+     "here; `plx check` lists what is built on it as not analysed (A042). A name close to one in scope "
+     "is still reported as N001 with the suggestion (a typo).",
+     example='import @"pendulum.agx"\n\nExtendedRod is PendulumScene_rod')
 
 # ---------------------------------------------------------------- types
 rule("T001", "type-mismatch", E,
@@ -150,8 +158,16 @@ rule("B001", "bundle-config-name", E, "A bundle's config.openplx has no `config 
      example='config is BundleConfig:\n    version: "0.1.0"',
      use_instead='config is BundleConfig:\n    name: "MyBundle"\n    version: "0.1.0"')
 rule("B002", "bad-dependency-string", E,
-     "A dependency is not written as `Name`, `Name==1.2.3` or `Name@1.2.3`.",
-     "These are the three forms OpenPLX bundles use.", example='dependencies: ["Physics>=0.19"]',
+     "A dependency is not a string that starts with a bundle name.",
+     "A dependency names the bundle it needs; plx cannot tell which bundle is meant.",
+     example='dependencies: ["0.19.0"]',
+     use_instead='dependencies: ["Physics==0.19.0"]')
+rule("B006", "unread-dependency-form", W,
+     "A dependency names a bundle but is not written as `Name`, `Name==1.2.3` or `Name@1.2.3`.",
+     "These are the forms OpenPLX reads: `==` is what every official bundle's own config uses, `@` is "
+     "the form in openplx.org's documentation, and a bare name takes whatever version is loaded. plx "
+     "reads the string as the bare name, so it selects no official bundle version (see Bundle versions).",
+     example='dependencies: ["Physics>=0.19"]',
      use_instead='dependencies: ["Physics==0.19.0"]')
 rule("B003", "unknown-dependency", E,
      "A bundle depends on a bundle that is not loaded, or two bundles share a name.",

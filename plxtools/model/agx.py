@@ -1,0 +1,228 @@
+"""Finding an AGX Dynamics installation and the OpenPLX bundles it ships, without configuration.
+
+AGX ships its own OpenPLX bundles, often newer than any `openplx-bundles` release on PyPI (AGX 2.41
+ships OpenPLX 0.20.1), and its users' models are written against them. So plx looks for an AGX
+installation the way a shell set up for AGX would find it, in this order:
+
+1. `agx-dir` in the configuration (a folder; `""` turns the search off);
+2. the environment AGX's own setup scripts export (`setup_env.bash` / `setup_env.bat`): `AGX_DIR`,
+   then `AGX_DATA_DIR` and `AGX_PLUGIN_PATH` (whose parent folders are inside the installation);
+3. the `agx` Python package when it can be imported (found, not imported: it loads native libraries);
+4. the usual install folders: `/opt/Algoryx/AGX-*` on Linux, `%ProgramFiles%\\Algoryx\\AGX-*` on Windows.
+
+The bundles are the folder inside the installation that holds `Math/config.openplx` and
+`Physics/config.openplx` (searched a few levels deep, since layouts differ between releases). Only the
+file system is read here; nothing is run.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import os
+import re
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+from plxtools.cache import reads
+
+ENV_VARS = ("AGX_DIR", "AGX_DATA_DIR", "AGX_PLUGIN_PATH")
+_VERSION_IN_NAME = re.compile(r"(?i)agx[-_ ]?(\d+\.\d+(?:\.\d+)*)")
+
+
+@dataclass(frozen=True, slots=True)
+class AgxInstall:
+    """An AGX installation with OpenPLX bundles."""
+
+    root: Path  # the installation folder
+    bundles: Path  # the folder holding Math/, Physics/, ... (and AGX's own bundles)
+    agx_version: str | None  # "2.42.0.0", from the folder name or the agx package; None when unknown
+    openplx_version: str | None  # the bundles' own version (Math/config.openplx)
+    why: str  # how it was found
+
+    def describe(self) -> str:
+        """`AGX 2.42.0.0 at /opt/Algoryx/AGX-2.42.0.0, OpenPLX 0.20.1 (AGX_DIR)`."""
+        return (f"AGX {self.agx_version or '(version unknown)'} at {self.root}, "
+                f"OpenPLX {self.openplx_version or '?'} ({self.why})")
+
+
+def usual_folders() -> list[str]:
+    """Glob patterns of the folders AGX's installers use."""
+    if sys.platform.startswith("win"):
+        bases = [os.environ.get("ProgramFiles") or r"C:\Program Files", os.environ.get("ProgramW6432") or ""]
+        return [os.path.join(b, "Algoryx", "AGX-*") for b in bases if b]
+    return ["/opt/Algoryx/AGX-*", "/opt/Algoryx/agx*", "/usr/local/Algoryx/AGX-*",
+            os.path.join(os.path.expanduser("~"), "Algoryx", "AGX-*")]
+
+
+def _has_bundles(folder: Path) -> bool:
+    return reads.is_file(folder / "Math" / "config.openplx") and reads.is_file(folder / "Physics" / "config.openplx")
+
+
+def bundles_in(root: Path, max_depth: int = 4) -> Path | None:
+    """The folder of OpenPLX bundles inside an AGX installation (shallowest first), or None."""
+    if not reads.is_dir(root):
+        return None
+    level = [root]
+    for _depth in range(max_depth + 1):
+        nxt: list[Path] = []
+        for d in level:
+            if _has_bundles(d):
+                return d
+            try:
+                nxt += [d / name for name in reads.listdir(d) if not name.startswith(".")
+                        and name not in ("__pycache__", "include", "lib", "bin", "Math", "Physics")
+                        and reads.is_dir(d / name)]
+            except OSError:
+                continue
+        level = nxt
+    return None
+
+
+def _openplx_version(bundles: Path) -> str | None:
+    try:
+        text = reads.read_bytes(bundles / "Math" / "config.openplx").decode("utf-8", errors="replace")
+    except OSError:
+        return None
+    m = re.search(r'^\s*version:\s*"([^"]+)"', text, re.M)
+    return m.group(1) if m else None
+
+
+def _agx_version(root: Path) -> str | None:
+    for part in reversed(root.parts):
+        m = _VERSION_IN_NAME.search(part)
+        if m:
+            return m.group(1)
+    for name in ("VERSION", "version.txt"):
+        try:
+            text = reads.read_bytes(root / name).decode("utf-8", errors="replace").strip()
+        except OSError:
+            continue
+        m = re.search(r"\d+\.\d+(?:\.\d+)*", text)
+        if m:
+            return m.group(0)
+    return None
+
+
+def _release_key(path: str) -> tuple[int, ...]:
+    m = _VERSION_IN_NAME.search(os.path.basename(path))
+    return tuple(int(x) for x in m.group(1).split(".")) if m else ()
+
+
+def _install_at(root: Path, why: str, look_in: Path | None = None) -> AgxInstall | None:
+    """The installation at `root` with bundles found in `look_in` (default: the root)."""
+    root = root.expanduser()
+    b = bundles_in(look_in or root) or (bundles_in(root) if look_in is not None else None)
+    if b is None:
+        return None
+    return AgxInstall(root.resolve(), b.resolve(), _agx_version(root), _openplx_version(b), why)
+
+
+def _install_above(folder: Path, why: str, levels: int = 3) -> AgxInstall | None:
+    """The installation holding `folder` (the agx package's folder): the nearest parent with bundles."""
+    for cand in folder.parents[:levels]:
+        found = _install_at(cand, why)
+        if found is not None:
+            return found
+    return None
+
+
+def _agx_package_folder() -> Path | None:
+    from importlib.util import find_spec
+
+    for entry in sys.path:  # noted for a cached answer: an agx package that appears later must be seen
+        base = os.path.abspath(entry or os.curdir)
+        reads.kind(os.path.join(base, "agx"))
+        reads.kind(os.path.join(base, "agx.py"))
+
+    try:
+        spec = find_spec("agx")
+    except (ImportError, ValueError):
+        return None
+    # a real module or package only: a folder that happens to be called agx (a namespace package,
+    # say in the working folder) is not AGX's package
+    if spec is None or not spec.origin or spec.origin in ("namespace", "built-in", "frozen") \
+            or not os.path.isfile(spec.origin):
+        return None
+    return Path(spec.origin).resolve().parent
+
+
+def _glob(pattern: str) -> list[str]:
+    """`glob` of a pattern whose wildcards are in its last part, with the folder's names noted."""
+    folder, leaf = os.path.split(pattern)
+    try:
+        names = reads.listdir(folder)
+    except OSError:
+        return []
+    return [os.path.join(folder, n) for n in fnmatch.filter(names, leaf)]
+
+
+def find_agx(configured: str | None = None, env: dict | None = None,
+             usual: list[str] | None = None) -> AgxInstall | None:
+    """The AGX installation plx uses, in the order of the module docstring (None: none found).
+
+    `configured`: `agx-dir` from the configuration (`""` turns the search off)."""
+    if env is None:
+        env = {var: reads.env(var) for var in ENV_VARS}
+    if configured is not None:
+        return _install_at(Path(configured), "agx-dir in the configuration") if configured else None
+    for var in ENV_VARS:
+        value = env.get(var)
+        if not value:
+            continue
+        folder = Path(value)
+        # AGX_DIR is the installation; AGX_DATA_DIR (<root>/data) and AGX_PLUGIN_PATH (<root>/plugins) are in it
+        found = _install_at(folder, var) if var == "AGX_DIR" else _install_at(folder.parent, var, folder)
+        if found is not None:
+            return found
+    pkg = _agx_package_folder()
+    if pkg is not None:
+        found = _install_above(pkg, "the agx Python package", levels=4)
+        if found is not None:
+            return found
+    for pattern in usual_folders() if usual is None else usual:
+        for cand in sorted(_glob(pattern), key=_release_key, reverse=True):  # the newest release first
+            found = _install_at(Path(cand), "a usual install folder")
+            if found is not None:
+                return found
+    return None
+
+
+def defines(bundles: Path, qname: str) -> bool:
+    """Whether a folder of bundles defines a model or trait of that qualified name (its namespace
+    folder holds a file with a top-level `Name is ...` / `trait Name`)."""
+    parts = qname.split(".")
+    if len(parts) < 2:
+        return False
+    folder = bundles.joinpath(*parts[:-1])
+    pattern = re.compile(rf"^(?:const\s+)?(?:trait\s+)?{re.escape(parts[-1])}\b", re.M)
+    try:
+        files = [folder / n for n in reads.listdir(folder) if n.endswith(".openplx") and n != "config.openplx"]
+    except OSError:
+        return False
+    for f in files:
+        try:
+            if pattern.search(reads.read_bytes(f).decode("utf-8", errors="replace")):
+                return True
+        except OSError:
+            continue
+    return False
+
+
+def newer_bundles_help(written: str, bundle_set, newest_release: str, typo: bool = False) -> str | None:
+    """The help for an unknown official-looking name that no `openplx-bundles` release has: where
+    newer bundles are (an AGX installation found but not in use, whose bundles define it), or that
+    they may be needed (not said when `typo`: a near miss of an existing name has its suggestion)."""
+    agx = getattr(bundle_set, "agx", None)
+    using = getattr(bundle_set, "official_version", None) or "?"
+    if agx is not None and not getattr(bundle_set, "agx_used", False):
+        if defines(agx.bundles, written):
+            return (f"'{written}' is not in OpenPLX {using} (in use); AGX {agx.agx_version or ''}'s bundles "
+                    f"(OpenPLX {agx.openplx_version or '?'}, {agx.bundles}) have it: set bundle-path to that "
+                    f"folder, or AGX_DIR, instead of what chooses {using} now").replace("AGX 's", "AGX's")
+        return None
+    if agx is None and not typo:
+        return (f"'{written}' is in no openplx-bundles release up to {newest_release}: it may need a newer "
+                f"OpenPLX; AGX ships newer bundles: set AGX_DIR to an AGX installation or bundle-path to its "
+                f"bundles folder")
+    return None
