@@ -134,12 +134,14 @@ def final_diagnostics(tree: ast.File, cfg: Config, analysis) -> list[Diagnostic]
 
 
 def finalize(tree: ast.File, diags: list[Diagnostic], cfg: Config) -> list[Diagnostic]:
-    """Config selection, inline suppressions and ordering: shared by lint, check and the server."""
+    """Config selection, follow-on findings dropped, inline suppressions and ordering (syntax first):
+    shared by lint, check and the server."""
+    from plxtools.rules.consequences import drop_consequences, report_order
     from plxtools.rules.suppress import apply
 
     for d in diags:
         d.file = tree.path
     diags = [d for d in diags if cfg.rule_enabled(d.code, tree.path)]
-    diags = apply(tree, diags, report_unused=cfg.rule_enabled("C002", tree.path))
-    diags.sort(key=Diagnostic.sort_key)
+    diags = apply(tree, drop_consequences(diags), report_unused=cfg.rule_enabled("C002", tree.path))
+    diags.sort(key=report_order)
     return diags
