@@ -324,10 +324,18 @@ class StaticChecks:
             d = fy[1] - fx[1]
             if float(np.dot(d, ay)) <= 0:
                 continue
-            self.add_at("A023", f"{x.path} and {y.path} have the same target_speed ({vx:g}) on hinges whose axes "
-                        f"point opposite ways ({_v(ax)} and {_v(ay)}): the two sides turn in opposite directions, "
-                        f"so a vehicle yaws on the spot instead of driving straight", y.obj, "target_speed",
-                        help=f"if it should drive straight, give {y.obj.name} target_speed: {-vy:g}")
+            d = self.rep.add(
+                "A023", f"{x.path} and {y.path} have the same target_speed ({vx:g}) on hinges whose axes "
+                f"point opposite ways ({_v(ax)} and {_v(ay)}): the two wheels are driven in opposite directions, "
+                f"so on the ground they work against each other: the wheels scrub, the vehicle barely moves, and "
+                f"both motors fall short of their target (A106 with --simulate)",
+                **self._where_kw(y.obj, "target_speed"), obj=y.obj,
+                help=f"to drive straight, give {y.obj.name} target_speed: {-vy:g}")
+            self.rep.mirrored_motors.append((x.path, y.path, d))
+
+    def _where_kw(self, obj: Obj, attr: str) -> dict:
+        node, unit = self.where(obj, attr)
+        return {"node": node, "unit": unit}
 
     # ------------------------------------------------------------------ overlaps at the origin
 
@@ -454,3 +462,61 @@ def _v(a) -> str:
 
 
 __all__ = ["StaticChecks", "scan_strings", "MateRec", "CtrlRec", "Node"]
+
+
+# A body that ends this far below everything it started near has left the scene (issue 32.4)
+OUT_OF_WORLD_DROP = 5.0  # m
+OUT_OF_WORLD_NEAR = 20.0  # m between starting positions
+
+
+def bodies_out_of_world(sim, sources) -> list:
+    """A102 for a dynamic body that ended far below every body it started near, while one of those
+    stayed (a static ground, the chassis a loose wheel should have been mated to).
+
+    The monitor of the simulation reports a body that sinks through static geometry it started
+    above; a body that never had anything under it (the loose wheel of a mis-mated hinge beside
+    the chassis, a part off the edge of the ground) falls out of the world without crossing any,
+    so the start and end positions decide here. A scene that falls as a whole (a free-fall test
+    with no ground) has nothing that stayed, and is not reported."""
+    from plxtools.check.mj_notes import ERROR, BackendNote
+
+    if sim is None:
+        return []
+    fell = {f["body"] for f in sim.fall_through}
+    bodies = list(sim.bodies.values())
+    out = []
+    for b in bodies:
+        if not b.dynamic or b.path in fell:
+            continue
+        start = np.asarray(b.initial_pos, dtype=float)
+        near = [o for o in bodies if o is not b
+                and float(np.linalg.norm(np.asarray(o.initial_pos, dtype=float) - start)) <= OUT_OF_WORLD_NEAR]
+        stayed = [o for o in near if not o.dynamic or o.final_pos[2] > o.initial_pos[2] - OUT_OF_WORLD_DROP]
+        if not stayed:
+            continue
+        floor = min([b.initial_pos[2]] + [o.initial_pos[2] for o in near])
+        if b.final_pos[2] < floor - OUT_OF_WORLD_DROP:
+            below = floor - b.final_pos[2]
+            sim.fall_through.append({"body": b.path, "time": None, "ground": None, "com": list(b.final_pos),
+                                     "drop": below})
+            out.append(BackendNote(
+                ERROR, "A102",
+                f"{b.path} fell out of the world: it ended at z = {b.final_pos[2]:.1f} m, {below:.1f} m below "
+                f"everything it started near (nothing held it: is it mated, and is there ground under it?)",
+                sources.get(b.path), b.path))
+    return out
+
+
+def tie_mirrored_motors(rep: Reporter) -> None:
+    """A106 on a motor of an A023 pair says why it misses its target: the two motors drive the
+    wheels against each other (issue 32.6); the two findings name each other."""
+    if not rep.mirrored_motors:
+        return
+    partner = {}
+    for a, b, d in rep.mirrored_motors:
+        partner[a], partner[b] = (b, d), (a, d)
+    for e in rep.entries:
+        if e.diag.code == "A106" and e.path in partner:
+            other, a023 = partner[e.path]
+            e.diag.help = (f"it is driven against {other} (A023, line {a023.span.start.line + 1}): give one of "
+                           "the two the opposite target_speed to drive straight")

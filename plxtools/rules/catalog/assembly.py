@@ -132,8 +132,10 @@ rule("A023", "mirrored-drive-motors", I,
      "Two velocity motors with the same target speed drive hinges whose axes point in opposite directions "
      "(the left and right hubs of a vehicle).",
      "The BoxTruck trap: left hubs look along -Y and right hubs along +Y, so equal target speeds turn the "
-     "two sides in opposite directions and the vehicle yaws on the spot. Give one side the opposite sign "
-     "to drive straight. This is information only: spinning on the spot may be intended.",
+     "two wheels in opposite directions. On the ground they work against each other: the wheels scrub, "
+     "the vehicle barely moves or turns, and with `--simulate` both motors miss their target speed "
+     "(A106, whose help then names the other motor of the pair). Give one side the opposite sign to "
+     "drive straight. This is information only: opposite speeds may be intended.",
      example="front_left_motor ...:\n    target_speed: 1\nfront_right_motor ...:\n    target_speed: 1",
      use_instead="front_left_motor ...:\n    target_speed: 1\nfront_right_motor ...:\n    target_speed: -1",
      stage=C)
@@ -244,8 +246,12 @@ rule("A101", "simulation-blowup", E,
      "or deep initial penetration.", stage=SIM)
 rule("A102", "fell-through-ground", E,
      "A dynamic body that started above static geometry ended up below it (its centre of mass more than "
-     "1 cm below the top, inside the footprint).",
-     "Collisions are off for that pair (collision groups, `enable_collisions: false`) or the body tunnelled.",
+     "1 cm below the top, inside the footprint), or a body fell out of the world: it ended more than 5 m "
+     "below every body it started near (within 20 m) while one of those stayed.",
+     "Collisions are off for that pair (collision groups, `enable_collisions: false`) or the body tunnelled. "
+     "A body that falls out of the world had nothing under it and nothing holding it: a wheel whose hinge "
+     "names another wheel's connector, a part placed past the edge of the ground. A scene that falls as a "
+     "whole (a free-fall test without ground) is not reported.",
      stage=SIM)
 rule("A103", "mate-came-apart", W,
      "During the simulation a mate's connectors separated by more than 5 mm, or its axes by more than "
