@@ -132,9 +132,10 @@ rule("A023", "mirrored-drive-motors", I,
      "Two velocity motors with the same target speed drive hinges whose axes point in opposite directions "
      "(the left and right hubs of a vehicle).",
      "The BoxTruck trap: left hubs look along -Y and right hubs along +Y, so equal target speeds turn the "
-     "two wheels in opposite directions. On the ground they work against each other: the wheels scrub, "
-     "the vehicle barely moves or turns, and with `--simulate` both motors miss their target speed "
-     "(A106, whose help then names the other motor of the pair). Give one side the opposite sign to "
+     "two wheels in opposite directions and the vehicle does not drive straight. Where nothing resists it "
+     "turns on the spot; where other wheels on the ground resist the turn (the tutorial's four-wheeled "
+     "truck) the driven wheels scrub against each other, the truck hardly moves, and with `--simulate` "
+     "both motors miss their target speed (A106, whose help then names the other motor of the pair). Give one side the opposite sign to "
      "drive straight. This is information only: opposite speeds may be intended.",
      example="front_left_motor ...:\n    target_speed: 1\nfront_right_motor ...:\n    target_speed: 1",
      use_instead="front_left_motor ...:\n    target_speed: 1\nfront_right_motor ...:\n    target_speed: -1",
