@@ -1314,7 +1314,14 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
                 diags.append(match or ls.lsp_diagnostic(d, pos))
             out.append(types.CodeAction(title=a.title, kind=a.kind, diagnostics=diags or None,
                                         is_preferred=a.preferred or None, edit=types.WorkspaceEdit(changes=changes)))
-        migrate = ls.migrate_action(st, only)
+        # where the version diagnostic is (VS Code's Ctrl+. shows quick fixes, not source actions),
+        # "migrate this file" is also a quick fix of it; elsewhere it is a source action only
+        version_diags = [x for x in sent if x.code in ("U001", "U002")]
+        as_quickfix = bool(version_diags) and (only is None or any(k in ("quickfix", "") for k in only))
+        migrate = ls.migrate_action(st, None if as_quickfix else only)
+        if migrate is not None and as_quickfix and migrate.edit is not None:
+            migrate = types.CodeAction(title=migrate.title, kind=types.CodeActionKind.QuickFix,
+                                       diagnostics=version_diags, edit=migrate.edit)
         if migrate is not None:
             out.append(migrate)
         return out
