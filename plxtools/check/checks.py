@@ -55,6 +55,7 @@ class StaticChecks:
         self.hinge_axes()
         self.mirrored_motors()
         self.overlaps()
+        self.collision_pairs_without_effect()
 
     # ------------------------------------------------------------------ helpers
 
@@ -334,6 +335,57 @@ class StaticChecks:
                 help=f"to drive straight, give {y.obj.name} target_speed: {-vy:g}")
             self.rep.mirrored_motors.append((x.path, y.path, d))
 
+    # ------------------------------------------------------------------ collision groups
+
+    def collision_pairs_without_effect(self) -> None:
+        """A044 where a DisableCollisionPair changes nothing at the start: each body pair it names
+        is joined by a mate (mated bodies' contacts are excluded anyway) or apart. The tutorial's
+        step 8 group is such a one (issue 32.6): say so where it is declared, so the reader does not
+        look for its effect in the simulation."""
+        mated: set[tuple[int, int]] = set()
+        for m in self.asm.mates:
+            if len(m.conns) == 2 and all(c is not None for c in m.conns):
+                a, b = self.asm.mover(m.conns[0]), self.asm.mover(m.conns[1])
+                mated |= {(id(a), id(b)), (id(b), id(a))}
+        boxes = self._collision_boxes()
+        by_pair: dict[int, list] = {}
+        for x, y, pair in self.col.exclude_pairs():
+            if x is not y:
+                by_pair.setdefault(id(pair), [pair, set()])[1].add(frozenset((id(x), id(y))))
+        for pair, pairs in by_pair.values():
+            joined = apart = 0
+            for key in pairs:
+                a, b = tuple(key)
+                if (a, b) in mated:
+                    joined += 1
+                elif a in boxes and b in boxes and not _boxes_touch(boxes[a], boxes[b]):
+                    apart += 1
+                else:
+                    break
+            else:
+                if joined:
+                    self.rep.add("A044", f"{pair.display} changes nothing at the start of the simulation: "
+                                 f"{joined} of its {len(pairs)} body pairs are joined by mates, whose contacts are "
+                                 f"excluded anyway, and the other {apart} are apart",
+                                 obj=pair, help="keep it if those bodies can come to touch as they move; "
+                                 "otherwise it can go")
+
+    def _collision_boxes(self) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+        """World bounding box of each body's colliding geometry at the start, by node id."""
+        boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        for g in self.col.geoms:
+            if g.visual or not g.valid or not g.enable_collisions:
+                continue
+            he = g.half_extents()
+            if he is None:
+                continue
+            w = compose(g.node.world, g.pose)
+            half = np.abs(w[0]) @ he
+            lo, hi = w[1] - half, w[1] + half
+            cur = boxes.get(id(g.node))
+            boxes[id(g.node)] = (lo, hi) if cur is None else (np.minimum(cur[0], lo), np.maximum(cur[1], hi))
+        return boxes
+
     def _where_kw(self, obj: Obj, attr: str) -> dict:
         node, unit = self.where(obj, attr)
         return {"node": node, "unit": unit}
@@ -521,3 +573,7 @@ def tie_mirrored_motors(rep: Reporter) -> None:
             other, a023 = partner[e.path]
             e.diag.help = (f"it is driven against {other} (A023, line {a023.span.start.line + 1}): give one of "
                            "the two the opposite target_speed to drive straight")
+
+
+def _boxes_touch(a, b, margin: float = 0.01) -> bool:
+    return bool(np.all(a[0] - margin <= b[1]) and np.all(b[0] - margin <= a[1]))

@@ -240,6 +240,14 @@ rule("A043", "connector-used-by-two-mates", E,
                  "front_right_hinge is Physics3D.Interactions.Hinge:\n"
                  "    connectors: [chassis.front_right_connector, front_right_wheel.connector]",
      fix="unsafe")
+rule("A044", "collision-pair-without-effect", I,
+     "A `DisableCollisionPair` whose body pairs are all either joined by a mate or apart at the start: "
+     "it changes nothing at the start of the simulation.",
+     "Bodies joined by a mate never collide with each other (MuJoCo excludes their contacts, as AGX "
+     "does), so a collision group around a truck's chassis and its wheels, as in the BoxTruck tutorial's "
+     "step 8, has no visible effect: the wheels are mated to the chassis and apart from each other. It "
+     "is information only: the pair still matters if those bodies come to touch as they move.",
+     stage=C)
 rule("A101", "simulation-blowup", E,
      "The simulation became numerically unstable: NaN/Inf, MuJoCo's bad-state warnings, or a velocity "
      "above 1000 (m or rad)/s. The time and the fastest body are named.",
