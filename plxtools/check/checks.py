@@ -56,6 +56,7 @@ class StaticChecks:
         self.hinge_axes()
         self.mirrored_motors()
         self.overlaps()
+        self.collision_pairs_without_effect()
 
     # ------------------------------------------------------------------ helpers
 
@@ -351,10 +352,70 @@ class StaticChecks:
             d = fy[1] - fx[1]
             if float(np.dot(d, ay)) <= 0:
                 continue
-            self.add_at("A023", f"{x.path} and {y.path} have the same target_speed ({vx:g}) on hinges whose axes "
-                        f"point opposite ways ({_v(ax)} and {_v(ay)}): the two sides turn in opposite directions, "
-                        f"so a vehicle yaws on the spot instead of driving straight", y.obj, "target_speed",
-                        help=f"if it should drive straight, give {y.obj.name} target_speed: {-vy:g}")
+            d = self.rep.add(
+                "A023", f"{x.path} and {y.path} have the same target_speed ({vx:g}) on hinges whose axes "
+                f"point opposite ways ({_v(ax)} and {_v(ay)}): the two wheels are driven in opposite directions, "
+                f"so the vehicle does not drive straight: it turns on the spot where nothing resists, and where "
+                f"other wheels on the ground resist (a four-wheeled truck) the driven wheels scrub against each "
+                f"other and both motors fall short of their target (A106 with --simulate)",
+                **self._where_kw(y.obj, "target_speed"), obj=y.obj,
+                help=f"to drive straight, give {y.obj.name} target_speed: {-vy:g}")
+            self.rep.mirrored_motors.append((x.path, y.path, d))
+
+    # ------------------------------------------------------------------ collision groups
+
+    def collision_pairs_without_effect(self) -> None:
+        """A044 where a DisableCollisionPair changes nothing at the start: each body pair it names
+        is joined by a mate (mated bodies' contacts are excluded anyway) or apart. The tutorial's
+        step 8 group is such a one (issue 32.6): say so where it is declared, so the reader does not
+        look for its effect in the simulation."""
+        mated: set[tuple[int, int]] = set()
+        for m in self.asm.mates:
+            if len(m.conns) == 2 and all(c is not None for c in m.conns):
+                a, b = self.asm.mover(m.conns[0]), self.asm.mover(m.conns[1])
+                mated |= {(id(a), id(b)), (id(b), id(a))}
+        boxes = self._collision_boxes()
+        by_pair: dict[int, list] = {}
+        for x, y, pair in self.col.exclude_pairs():
+            if x is not y:
+                by_pair.setdefault(id(pair), [pair, set()])[1].add(frozenset((id(x), id(y))))
+        for pair, pairs in by_pair.values():
+            joined = apart = 0
+            for key in pairs:
+                a, b = tuple(key)
+                if (a, b) in mated:
+                    joined += 1
+                elif a in boxes and b in boxes and not _boxes_touch(boxes[a], boxes[b]):
+                    apart += 1
+                else:
+                    break
+            else:
+                if joined:
+                    self.rep.add("A044", f"{pair.display} changes nothing at the start of the simulation: "
+                                 f"{joined} of its {len(pairs)} body pairs are joined by mates, whose contacts are "
+                                 f"excluded anyway, and the other {apart} are apart",
+                                 obj=pair, help="keep it if those bodies can come to touch as they move; "
+                                 "otherwise it can go")
+
+    def _collision_boxes(self) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+        """World bounding box of each body's colliding geometry at the start, by node id."""
+        boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        for g in self.col.geoms:
+            if g.visual or not g.valid or not g.enable_collisions:
+                continue
+            he = g.half_extents()
+            if he is None:
+                continue
+            w = compose(g.node.world, g.pose)
+            half = np.abs(w[0]) @ he
+            lo, hi = w[1] - half, w[1] + half
+            cur = boxes.get(id(g.node))
+            boxes[id(g.node)] = (lo, hi) if cur is None else (np.minimum(cur[0], lo), np.maximum(cur[1], hi))
+        return boxes
+
+    def _where_kw(self, obj: Obj, attr: str) -> dict:
+        node, unit = self.where(obj, attr)
+        return {"node": node, "unit": unit}
 
     # ------------------------------------------------------------------ overlaps at the origin
 
@@ -483,3 +544,65 @@ def _v(a) -> str:
 
 
 __all__ = ["StaticChecks", "scan_strings", "MateRec", "CtrlRec", "Node"]
+
+
+# A body that ends this far below everything it started near has left the scene (issue 32.4)
+OUT_OF_WORLD_DROP = 5.0  # m
+OUT_OF_WORLD_NEAR = 20.0  # m between starting positions
+
+
+def bodies_out_of_world(sim, sources) -> list:
+    """A102 for a dynamic body that ended far below every body it started near, while one of those
+    stayed (a static ground, the chassis a loose wheel should have been mated to).
+
+    The monitor of the simulation reports a body that sinks through static geometry it started
+    above; a body that never had anything under it (the loose wheel of a mis-mated hinge beside
+    the chassis, a part off the edge of the ground) falls out of the world without crossing any,
+    so the start and end positions decide here. A scene that falls as a whole (a free-fall test
+    with no ground) has nothing that stayed, and is not reported."""
+    from plxtools.check.mj_notes import ERROR, BackendNote
+
+    if sim is None:
+        return []
+    fell = {f["body"] for f in sim.fall_through}
+    bodies = list(sim.bodies.values())
+    out = []
+    for b in bodies:
+        if not b.dynamic or b.path in fell:
+            continue
+        start = np.asarray(b.initial_pos, dtype=float)
+        near = [o for o in bodies if o is not b
+                and float(np.linalg.norm(np.asarray(o.initial_pos, dtype=float) - start)) <= OUT_OF_WORLD_NEAR]
+        stayed = [o for o in near if not o.dynamic or o.final_pos[2] > o.initial_pos[2] - OUT_OF_WORLD_DROP]
+        if not stayed:
+            continue
+        floor = min([b.initial_pos[2]] + [o.initial_pos[2] for o in near])
+        if b.final_pos[2] < floor - OUT_OF_WORLD_DROP:
+            below = floor - b.final_pos[2]
+            sim.fall_through.append({"body": b.path, "time": None, "ground": None, "com": list(b.final_pos),
+                                     "drop": below})
+            out.append(BackendNote(
+                ERROR, "A102",
+                f"{b.path} fell out of the world: it ended at z = {b.final_pos[2]:.1f} m, {below:.1f} m below "
+                f"everything it started near (nothing held it: is it mated, and is there ground under it?)",
+                sources.get(b.path), b.path))
+    return out
+
+
+def tie_mirrored_motors(rep: Reporter) -> None:
+    """A106 on a motor of an A023 pair says why it misses its target: the two motors drive the
+    wheels against each other (issue 32.6); the two findings name each other."""
+    if not rep.mirrored_motors:
+        return
+    partner = {}
+    for a, b, d in rep.mirrored_motors:
+        partner[a], partner[b] = (b, d), (a, d)
+    for e in rep.entries:
+        if e.diag.code == "A106" and e.path in partner:
+            other, a023 = partner[e.path]
+            e.diag.help = (f"it is driven against {other} (A023, line {a023.span.start.line + 1}): give one of "
+                           "the two the opposite target_speed to drive straight")
+
+
+def _boxes_touch(a, b, margin: float = 0.01) -> bool:
+    return bool(np.all(a[0] - margin <= b[1]) and np.all(b[0] - margin <= a[1]))

@@ -166,7 +166,10 @@ def findings(fc: FileCheck) -> list[str]:
                        f"{m.max_separation_time:.2f} s, max axis misalignment {math.degrees(m.max_misalignment):.3g} "
                        f"deg")
     for f in s.fall_through:
-        out.append(f"{f['body']} fell through {f['ground']} at t={f['time']:.2f} s")
+        if f.get("ground") is None:  # nothing under it: see checks.bodies_out_of_world
+            out.append(f"{f['body']} fell out of the world (ended {f['drop']:.3g} m below where it started near)")
+        else:
+            out.append(f"{f['body']} fell through {f['ground']} at t={f['time']:.2f} s")
     for p in s.penetrations:
         out.append(f"{p['geom1']} and {p['geom2']} start {p['depth']:.4g} m deep in each other")
     for j in s.joint_limit_violations:

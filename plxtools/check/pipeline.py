@@ -268,7 +268,13 @@ def run_backend(fc: FileCheck, *, simulate: bool, duration: float, compile_only:
         fc.simulation = mjb.simulate(fc.compiled, duration, record=record, timeout=timeout, deadline=deadline)
         fc.timings["simulate"] = time.perf_counter() - t1
         notes = list(fc.simulation.notes)
+        from plxtools.check.checks import bodies_out_of_world
+
+        notes += bodies_out_of_world(fc.simulation, fc.compiled.names.sources)
     add_backend_notes(fc.rep, fc.tree, notes)
+    from plxtools.check.checks import tie_mirrored_motors
+
+    tie_mirrored_motors(fc.rep)
     refresh(fc)
 
 

@@ -41,6 +41,8 @@ class Reporter:
     root_stmt: Any = None
     entries: list[Entry] = field(default_factory=list)
     skip_codes: frozenset[str] = frozenset()  # codes another owner (lint) already reports for this file
+    # A023's motor pairs (paths) and its diagnostic: a later A106 on one of them refers to it
+    mirrored_motors: list[tuple[str, str, Diagnostic]] = field(default_factory=list)
 
     def anchor(self, obj: Obj | None) -> Span:
         seen = 0

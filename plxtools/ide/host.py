@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import bisect
 import os
+import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -148,6 +149,7 @@ class AnalysisHost:
         self._analyses: dict = {}  # the last analysis of each open buffer, re-used by the next (model/reuse.py)
         self._imports_seen: dict = {}  # path -> (tree, the files its imports name): see imports_of
         self._ws = None
+        self._ws_lock = threading.Lock()
         self._ws_before: tuple | None = None  # (bundle-set key, workspace) while choosing the set again
         self._set_key: tuple | None = None
         self._loaded_once = False
@@ -163,32 +165,37 @@ class AnalysisHost:
         (settings' bundle paths, then plx.toml / pyproject.toml, OPENPLX_BUNDLE_PATH, an
         openplx-version pin, user bundles found nearby, else the installed official bundles)."""
         if self._ws is None and self.workspace_error is None:
-            from plxtools.model.versions import BundleSetError
-            from plxtools.model.workspace import Workspace, WorkspaceError, bundle_set_for_folder
-
-            good = []
-            for p in (Path(p) for p in self.settings.bundle_paths):
-                if p.exists():
-                    good.append(p)
-                else:
-                    self.messages.append(f"bundle path {p} does not exist")
-            root = Path(self.root) if self.root and is_file_path(self.root) else None
-            self._loaded_once = True
-            try:
-                bs = bundle_set_for_folder(root, [str(p) for p in good], self.settings.openplx_version)
-                if self._ws_before is not None and self._ws_before[0] == bs.key():
-                    self._ws = self._ws_before[1]  # the same set: keep the loaded model and its buffers
-                else:
-                    self._ws = Workspace(use_cache=self.use_cache, bundle_set=bs)
-                self._set_key = bs.key()
-            except (BundleSetError, ConfigError, WorkspaceError, OSError) as exc:
-                self.messages.append(str(exc))
-                try:  # the official bundles still work without the user's setup
-                    self._ws = Workspace([], use_cache=self.use_cache)
-                except (WorkspaceError, OSError) as exc2:
-                    self.workspace_error = str(exc2)
-                    self.messages.append(str(exc2))
+            with self._ws_lock:  # the language server loads it in a thread: one load, others wait
+                if self._ws is None and self.workspace_error is None:
+                    self._load_workspace()
         return self._ws
+
+    def _load_workspace(self) -> None:
+        from plxtools.model.versions import BundleSetError
+        from plxtools.model.workspace import Workspace, WorkspaceError, bundle_set_for_folder
+
+        good = []
+        for p in (Path(p) for p in self.settings.bundle_paths):
+            if p.exists():
+                good.append(p)
+            else:
+                self.messages.append(f"bundle path {p} does not exist")
+        root = Path(self.root) if self.root and is_file_path(self.root) else None
+        self._loaded_once = True
+        try:
+            bs = bundle_set_for_folder(root, [str(p) for p in good], self.settings.openplx_version)
+            if self._ws_before is not None and self._ws_before[0] == bs.key():
+                self._ws = self._ws_before[1]  # the same set: keep the loaded model and its buffers
+            else:
+                self._ws = Workspace(use_cache=self.use_cache, bundle_set=bs)
+            self._set_key = bs.key()
+        except (BundleSetError, ConfigError, WorkspaceError, OSError) as exc:
+            self.messages.append(str(exc))
+            try:  # the official bundles still work without the user's setup
+                self._ws = Workspace([], use_cache=self.use_cache)
+            except (WorkspaceError, OSError) as exc2:
+                self.workspace_error = str(exc2)
+                self.messages.append(str(exc2))
 
     def config_changed(self) -> bool:
         """A plx.toml, pyproject.toml or config.openplx changed: choose the bundle set again.

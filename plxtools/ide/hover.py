@@ -33,7 +33,7 @@ def hover(st: FileState, offset: int) -> HoverResult | None:
     text = describe(p, res.target, context, path)
     if isinstance(res.target, MemberSym):
         if line_stmt is not None and path:
-            text = _drop_own_line_value(text, st, line_stmt)
+            text = _own_line_value(text, st, line_stmt)
         for other in res.also:
             if isinstance(other, MemberSym) and other is not res.target and res.target.keyword == "becomes":
                 owner = p.concrete(other.owner) if other.owner.anonymous else other.owner
@@ -45,14 +45,19 @@ def hover(st: FileState, offset: int) -> HoverResult | None:
     return HoverResult(text, res.span)
 
 
-def _drop_own_line_value(text: str, st: FileState, stmt: ast.Stmt) -> str:
-    """`value from X: v` is noise when v is the value written on the hovered line itself."""
+def _own_line_value(text: str, st: FileState, stmt: ast.Stmt) -> str:
+    """On the line that gives the value, say so ("value 1000, set on this line in Chassis"): the
+    default alone would read as the value that applies (issue 32.9)."""
     value = getattr(stmt, "value", None)
     if value is None:
         return text
     own = expr_text(value, st.unit)
     lines = text.split("\n\n")
-    return "\n\n".join(ln for ln in lines if not (ln.startswith("value from ") and ln.endswith(f": `{own}`")))
+    for i, ln in enumerate(lines):
+        if ln.startswith("value from ") and ln.endswith(f": `{own}`"):
+            setter = ln[len("value from "): -len(f": `{own}`")]
+            lines[i] = f"value `{own}`, set on this line in {setter}"
+    return "\n\n".join(lines)
 
 
 def _member_context(st: FileState, offset: int, res):

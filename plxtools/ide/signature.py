@@ -21,7 +21,7 @@ def _open_call(text: str, offset: int, limit: int) -> tuple[int, int] | None:
     commas = 0
     i = offset
     in_str = False
-    while i > limit:
+    while i > max(limit, 0):  # (limit -1: back to the start of the file, never past it)
         i -= 1
         ch = text[i]
         if ch == '"':

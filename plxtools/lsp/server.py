@@ -209,6 +209,10 @@ class PlxServer(LanguageServer):
         self._background: dict[str, BackgroundCheck] = {}  # uri -> the forked check running for it
         self._migration: tuple | None = None  # (path, text, migrate_action.Migration | None) last computed
         self.counters: dict[str, int] = {}  # background checks started, finished, cancelled (plx/stats)
+        # set while `initialized` loads the bundles in a thread (issue 32.12): completion is answered
+        # at once meanwhile (nothing yet, ask again), checks wait for the load, and a request that
+        # needs the model (hover, go-to) waits for it (the host's lock) rather than loading it twice
+        self.warming: asyncio.Future | None = None
 
     def report_server_error(self, error: Exception, source) -> None:
         """Errors outside a request (a failing notification, a bad message) are logged; the editor is
@@ -615,8 +619,8 @@ class PlxServer(LanguageServer):
     def _run_checks(self) -> None:
         """One document per turn of the event loop; messages that arrived meanwhile go first."""
         self._check_pending = False
-        if not self._dirty:
-            return
+        if not self._dirty or self.warming is not None:
+            return  # (the bundles' loader wakes the checks when it is done)
         if self.dispatcher.inbox > 0:
             # edits and requests are waiting: handle them first (a newer version supersedes this)
             self._check_pending = True
@@ -874,6 +878,8 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
             root = params.root_path
         ls.host.root = root
         ls.apply_settings(None)
+        if ls.loop is not None:  # until `initialized` has loaded the bundles, requests do not wait
+            ls.warming = ls.loop.create_future()
         # pull diagnostics when the client can pull them (as ruff's server does), push otherwise;
         # never both, or editors show every diagnostic twice
         ls.pull_diagnostics = ls.cap("text_document.diagnostic") is not None and ls.diagnostic_mode != "push"
@@ -886,9 +892,22 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
             await _pull_configuration(ls)
         if ls.cap("workspace.did_change_watched_files.dynamic_registration"):
             await _watch_files(ls)
-        _ = ls.host.workspace  # load the bundles now, not on the first keystroke
+        # load the bundles now, not on the first keystroke, and in a thread: a request that arrives
+        # meanwhile (Helix asks for completion right after opening a file) is answered at once
+        loop = asyncio.get_running_loop()
+        if ls.warming is None:
+            ls.warming = loop.create_future()
+        try:
+            await loop.run_in_executor(None, lambda: ls.host.workspace)
+        except asyncio.CancelledError:
+            return  # the editor quit while the bundles were loading
+        finally:
+            done, ls.warming = ls.warming, None
+            if not done.done():
+                done.set_result(None)
         freeze_loaded()
         ls.notify_messages()
+        ls._wake()
 
     async def _watch_files(ls: PlxServer) -> None:
         """Ask the editor to report model and config files changed on disk (a changed config may
@@ -914,6 +933,8 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
 
     @server_feature(types.WORKSPACE_DID_CHANGE_CONFIGURATION)
     async def did_change_configuration(ls: PlxServer, params: types.DidChangeConfigurationParams) -> None:
+        if ls.warming is not None and ls.warming.get_loop().is_running():
+            await asyncio.shield(ls.warming)  # new settings after the bundles' loader, never during it
         if ls.cap("workspace.configuration"):
             await _pull_configuration(ls)
         else:
@@ -929,6 +950,9 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
         ls.uris[path] = uri
         ls._published.pop(uri, None)
         ls.cancel_background(uri)
+        if ls.warming is not None:  # the host takes the buffer once the bundles are loaded
+            ls.schedule(uri, cascade=False)
+            return
         doc = ls.documents.get(uri)
         if doc is not None and ls.too_big(doc):
             ls.schedule(uri, cascade=False)  # the size message, nothing parsed
@@ -970,6 +994,8 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
         A large document's are computed in another process; a newer version cancels the request
         with ServerCancelled and `retriggerRequest` (LSP 3.17), so the editor asks again."""
         uri = params.text_document.uri
+        if ls.warming is not None:
+            await asyncio.shield(ls.warming)  # the bundles are loading: these are the first diagnostics
         ls._dirty.pop(uri, None)
         if os.environ.get("PLX_LSP_FAULT") == types.TEXT_DOCUMENT_DIAGNOSTIC:
             raise RuntimeError(f"injected fault in {types.TEXT_DOCUMENT_DIAGNOSTIC} (PLX_LSP_FAULT)")
@@ -1093,6 +1119,8 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
     @server_feature(types.TEXT_DOCUMENT_COMPLETION,
                     types.CompletionOptions(trigger_characters=[".", " "], resolve_provider=True))
     def completion(ls: PlxServer, params: types.CompletionParams):
+        if ls.warming is not None:  # the bundles are loading: nothing to offer yet, ask again
+            return types.CompletionList(is_incomplete=True, items=[])
         t0, c0 = time.perf_counter(), time.process_time()
         ctx = params.context
         trigger = ctx.trigger_character if ctx is not None and ctx.trigger_kind == \
@@ -1281,7 +1309,14 @@ def create_server() -> PlxServer:  # noqa: C901 - one registration per feature
                 diags.append(match or ls.lsp_diagnostic(d, pos))
             out.append(types.CodeAction(title=a.title, kind=a.kind, diagnostics=diags or None,
                                         is_preferred=a.preferred or None, edit=types.WorkspaceEdit(changes=changes)))
-        migrate = ls.migrate_action(st, only)
+        # where the version diagnostic is (VS Code's Ctrl+. shows quick fixes, not source actions),
+        # "migrate this file" is also a quick fix of it; elsewhere it is a source action only
+        version_diags = [x for x in sent if x.code in ("U001", "U002")]
+        as_quickfix = bool(version_diags) and (only is None or any(k in ("quickfix", "") for k in only))
+        migrate = ls.migrate_action(st, None if as_quickfix else only)
+        if migrate is not None and as_quickfix and migrate.edit is not None:
+            migrate = types.CodeAction(title=migrate.title, kind=types.CodeActionKind.QuickFix,
+                                       diagnostics=version_diags, edit=migrate.edit)
         if migrate is not None:
             out.append(migrate)
         return out

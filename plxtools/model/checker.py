@@ -462,11 +462,34 @@ class Checker:
             return
         verdict = self.p.assignable(got, expected)
         if verdict == "no":
+            help_, fix = self._literal_help(expr, expected)
             self.report("T001", f"expected {expected.display()}, found {got.display()}", expr.span,
-                        help=self._mismatch_help(got, expected))
+                        help=help_ or self._mismatch_help(got, expected), fix=fix)
         elif verdict == "warn":
             self.report("T002", "a Real is given where an Int is expected", expr.span, W,
                         help="write a whole number, or use Math.Functions.round/floor/ceil")
+
+    def _literal_help(self, expr: ast.Expr, expected: Ty) -> tuple[str | None, Fix | None]:
+        """How a value of a positional model (a vector, a quaternion) is written, when an array
+        literal stands for it: `[0, -1, 0]` for a Math.Vec3 is the usual slip from other languages.
+        The fix swaps the brackets when the array has as many items as the model has fields."""
+        model = expected.model if not expected.array and not expected.alts else None
+        fields = self.p.positional_fields(model) if model is not None else None
+        if not fields or not isinstance(expr, ast.Array):
+            return None, None
+        kind = next((m.qname for m in self.p.ancestors(model) if not m.anonymous and "." in m.qname
+                     and m.qname.rsplit(".", 1)[1][:1].isupper()), model.qname)
+        names = ", ".join(f.name for f in fields)
+        help_ = (f"a {kind} is written in braces, {{ {names} }}, or as a block with one line per field; "
+                 "[ ] makes an array")
+        fix = None
+        if len(expr.items) == len(fields):
+            text = self.unit.tree.text if self.unit.tree is not None else None
+            if text is not None:
+                inner = text[expr.span.start.offset + 1 : expr.span.end.offset - 1]
+                fix = Fix("write it in braces", (Edit(expr.span.start.offset, expr.span.end.offset,
+                                                      "{ " + inner.strip() + " }"),), safe=True)
+        return help_, fix
 
     def _mismatch_help(self, got: Ty, expected: Ty) -> str | None:
         if expected.primitive == "Bool" and got.primitive in NUMERIC:

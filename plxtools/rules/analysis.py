@@ -22,6 +22,7 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
     from plxtools.model.workspace import FileAnalysis
     from plxtools.rules.completeness import completeness_diagnostics
     from plxtools.rules.literals import literal_diagnostics
+    from plxtools.rules.mates import shared_connector_diagnostics
     from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements
 
     snap = previous.snapshot if previous is not None else None
@@ -40,6 +41,7 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
         extra += style_of_file(workspace.program, fa.unit, None, root, used_names=used)
         checked = [o for i in sorted(plan.dirty) for o in parts[i].occs]
         extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, checked, tree.path, plan.dirty))
+    extra += shared_connector_diagnostics(workspace.program, fa.unit)  # (whole file: cheap, never re-used)
     for d in extra:
         d.file = tree.path
     return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.lazy_occurrences, fa.snapshot, fa.plan)
@@ -134,12 +136,14 @@ def final_diagnostics(tree: ast.File, cfg: Config, analysis) -> list[Diagnostic]
 
 
 def finalize(tree: ast.File, diags: list[Diagnostic], cfg: Config) -> list[Diagnostic]:
-    """Config selection, inline suppressions and ordering: shared by lint, check and the server."""
+    """Config selection, follow-on findings dropped, inline suppressions and ordering (syntax first):
+    shared by lint, check and the server."""
+    from plxtools.rules.consequences import drop_consequences, report_order
     from plxtools.rules.suppress import apply
 
     for d in diags:
         d.file = tree.path
     diags = [d for d in diags if cfg.rule_enabled(d.code, tree.path)]
-    diags = apply(tree, diags, report_unused=cfg.rule_enabled("C002", tree.path))
-    diags.sort(key=Diagnostic.sort_key)
+    diags = apply(tree, drop_consequences(diags), report_unused=cfg.rule_enabled("C002", tree.path))
+    diags.sort(key=report_order)
     return diags

@@ -78,8 +78,17 @@ def style_of_statements(unit, only: set[int] | None = None) -> list[Diagnostic]:
                 if isinstance(m, ast.Declaration) and m.keyword == "is" and len(m.path.parts) == 1:
                     n = m.path.parts[0].name
                     if not m.path.parts[0].backtick and not SNAKE.match(n):
-                        add("C001", f"attribute name '{n}' should be snake_case", m.path.span, Severity.INFO)
+                        add("C001", f"attribute name '{n}' should be snake_case", m.path.span, Severity.INFO,
+                            _attribute_name_help(n))
     return out
+
+
+def _attribute_name_help(name: str) -> str:
+    """The snake_case spelling, and why keeping the name can be right: an attribute's name is the
+    path scripts and scenarios use (`boxTruck.front_left_drive_motor` in the tutorial's step 11)."""
+    snake = re.sub(r"(?<=[a-z0-9])([A-Z])", r"_\1", name).lower()
+    return (f"'{snake}' follows the convention; scripts reach objects by these names, so to keep "
+            "'" + name + "' add 'C001' to `ignore` in plx.toml (it is a convention, not an error)")
 
 
 def _caused(tree) -> set[int]:

@@ -371,7 +371,7 @@ class Lexer:
                             else f"invalid number '{word}'"
                         )
                         span = Span(Pos(start, line, start - line_start), Pos(bad_end, line, bad_end - line_start))
-                        fail(Diagnostic("S005", msg, span, Severity.ERROR))
+                        fail(Diagnostic("S005", msg, span, Severity.ERROR, help=unit_help(word, text[start:end])))
                     elif end - start > MAX_INT_DIGITS and word.isdigit():
                         span = Span(Pos(start, line, start - line_start), Pos(end, line, end - line_start))
                         fail(Diagnostic("S005", f"integer literal too long: {end - start} digits "
@@ -611,3 +611,31 @@ def forget_last() -> None:
     will not format the text they parsed (lint) call this after parsing."""
     global _last
     _last = None
+
+
+# a unit written after a number: SI units need only the number; others say what the number is in SI
+_SI_UNITS = {"m": "metres", "kg": "kilograms", "s": "seconds", "rad": "radians", "n": "newtons",
+             "nm": "newton metres", "w": "watts", "pa": "pascals", "j": "joules", "hz": "hertz"}
+_SCALED_UNITS = {"mm": ("metres", 1e-3), "cm": ("metres", 1e-2), "km": ("metres", 1e3), "g": ("kilograms", 1e-3),
+                 "t": ("kilograms", 1e3), "ms": ("seconds", 1e-3), "min": ("seconds", 60.0), "h": ("seconds", 3600.0)}
+
+
+def unit_help(word: str, number: str) -> str | None:
+    """The help line of a number with a unit after it (`0.32m`): OpenPLX numbers carry no unit and
+    every quantity is in SI units, so the number alone (converted when the unit is not SI) is meant."""
+    unit = word[len(number):]
+    if not unit or not unit.isalpha() or "." in unit:
+        return None
+    low = unit.lower()
+    if low in _SI_UNITS:
+        return f"OpenPLX numbers have no units (SI units are assumed, here {_SI_UNITS[low]}): write {number}"
+    if low in ("deg", "degrees"):
+        return f"OpenPLX numbers have no units and angles are in radians: write {number} * Math.PI / 180"
+    if low in _SCALED_UNITS:
+        what, scale = _SCALED_UNITS[low]
+        try:
+            value = float(number) * scale
+        except ValueError:
+            return None
+        return f"OpenPLX numbers have no units (SI units are assumed, here {what}): write {value:g}"
+    return None  # `2x`: a typo rather than a unit

@@ -864,6 +864,9 @@ def parse_lines(text: str, lines: list[LogicalLine], diags: list[Diagnostic]) ->
     root = _Frame(-1, None, [], None)
     stack = [root]
     pending: tuple[ast.Stmt, int, LogicalLine] | None = None
+    # the last statement, when its line did not open a block: a deeper line after it means a ':'
+    # is missing there (the cause, reported on that line), not a line indented too far
+    prev: tuple[ast.Stmt, int, _Frame, LogicalLine] | None = None
 
     def missing_block(stmt: ast.Stmt, line: LogicalLine) -> None:
         colon = line.tokens[-1]
@@ -910,6 +913,13 @@ def parse_lines(text: str, lines: list[LogicalLine], diags: list[Diagnostic]) ->
                 stack.append(_Frame(h, i, owner.body, owner, i8))  # type: ignore[attr-defined]
             else:
                 missing_block(owner, pline)
+        elif prev is not None and i > prev[1] and prev[2] is stack[-1]:
+            owner = _missing_colon(prev[0], prev[3], text, prev[2] is root, diags)
+            if owner is not None:  # read the indented lines as the block the header meant to open
+                prev[2].body[-1] = owner
+                owner.body = []  # type: ignore[attr-defined]
+                stack.append(_Frame(prev[1], i, owner.body, owner, i8))  # type: ignore[attr-defined]
+        prev = None
         popped = None
         while len(stack) > 1 and i < stack[-1].child_indent:  # type: ignore[operator]
             popped = stack.pop()
@@ -929,10 +939,48 @@ def parse_lines(text: str, lines: list[LogicalLine], diags: list[Diagnostic]) ->
         frame.body.append(stmt)
         if _opens_block(stmt, line):
             pending, pending_h8 = (stmt, i, line), i8
+        elif not line.opens_block:
+            prev = (stmt, i, frame, line)
     if pending is not None:
         missing_block(pending[0], pending[2])
     _close_spans(root.body)
     return root.body
+
+
+def _missing_colon(stmt: ast.Stmt, line: LogicalLine, text: str, top: bool,
+                   diags: list[Diagnostic]) -> ast.Stmt | None:
+    """A header without ':' followed by a more-indented block: report the missing ':' on the header
+    (with the fix) and return the statement that owns the block, so the lines under it keep their
+    meaning and nothing cascades from them (S012 at top level, unknown members, unused models).
+    None when the line cannot own a block (it has a value, it is an import...): the layout rules
+    report the deeper line then."""
+    owner: ast.Stmt
+    if isinstance(stmt, ast.Declaration) and stmt.value is None:
+        owner = stmt
+        if stmt.keyword is None:  # a lone name: `size` + block means `size:` + block
+            for k in range(len(diags) - 1, -1, -1):  # its S013 is what this error explains
+                if diags[k].code == "S013" and diags[k].span.start.offset == stmt.header.start.offset:
+                    del diags[k]
+                    break
+            if top:
+                stmt.colon = True  # `Name:` + block at top level: a model without a base
+            else:
+                owner = ast.Assignment(stmt.span, stmt.header, stmt.path, None)
+    elif isinstance(stmt, ast.TraitDef) or (isinstance(stmt, ast.Assignment) and stmt.value is None):
+        owner = stmt
+    else:
+        return None
+    last = line.tokens[-1]
+    written = text[line.start : line.end]
+    diags.append(Diagnostic(
+        "S016",
+        "missing ':' at the end of this line: the indented lines below it are its block",
+        _sp(last),
+        Severity.ERROR,
+        help=f"write '{written}:' (a line that opens a block ends with ':')",
+        fix=Fix("add ':' at the end of the line", (Edit(last.end_pos, last.end_pos, ":"),)),
+    ))
+    return owner
 
 
 def _width(lead: str, tab: int) -> int:

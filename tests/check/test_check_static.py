@@ -70,6 +70,10 @@ def test_connector_mate_and_controller_mistakes(check_file):
         ("A021", L("connectors: [p.skew, q.skew]", 2)),
         ("A022", L("target_speed: 90")),
         ("A024", L("start: 1")),
+        # lint's: connectors that an earlier mate already holds (m1, m3, m4)
+        ("A043", L("connectors: [q.plain]")),
+        ("A043", L("connectors: [p.skew, q.skew]")),
+        ("A043", L("connectors: [p.skew, q.skew]")),
     ]
     assert sorted(found(fc, "A")) == sorted(expected)
     sev = {d.code: d.severity.value for d in fc.diagnostics}

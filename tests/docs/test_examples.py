@@ -14,7 +14,7 @@ from plxtools.rules.registry import get
 from tests.conftest import REPO, run_plx
 
 EXAMPLES = REPO / "examples"
-TUTORIAL = sorted((EXAMPLES / "tutorial").glob("*.openplx"))
+TUTORIAL = sorted((EXAMPLES / "tutorial").glob("step*/boxtruck.openplx"))
 LINT_ERRORS = sorted((EXAMPLES / "lint_errors").glob("*.openplx"))
 SHOWS = re.compile(r"^# Shows: (.+)$", re.M)
 
@@ -25,8 +25,27 @@ def lint_json(*args: str) -> list[dict]:
     return json.loads(r.stdout)
 
 
-def test_tutorial_has_six_stages():
-    assert [p.name[:3] for p in TUTORIAL] == ["01-", "02-", "03-", "04-", "05-", "06-"]
+def test_tutorial_has_one_folder_per_step_with_the_tutorials_names():
+    """Issue 32.8: the reader compares their boxtruck.openplx with the one of the step they are at."""
+    assert [p.parent.name[:6] for p in TUTORIAL] == [f"step{n:02d}" for n in range(2, 12)]
+    last = TUTORIAL[-1].read_text(encoding="utf-8")
+    for name in ("BoxTruck is", "boxTruck is BoxTruck", "GroundPlane is", "front_left_drive_motor is",
+                 "front_right_hinge_joint is", "chassis_wheels_collision_group is", "WheelGroundFrictionModel is"):
+        assert name in last, name
+
+
+def test_tutorial_steps_format_stable():
+    r = run_plx("fmt", "--check", "examples/tutorial")
+    assert r.returncode == 0, r.stdout + r.stderr
+
+
+def test_tutorial_step11_scenario_and_script_pass():
+    r = run_plx("test", "examples/tutorial/step11-controls")
+    assert r.returncode == 0 and "1 passed" in r.stdout, r.stdout + r.stderr
+    r = subprocess.run([sys.executable, str(EXAMPLES / "tutorial" / "step11-controls" / "drive.py")],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "after up" in r.stdout and "after release" in r.stdout
 
 
 def test_clean_examples_have_no_diagnostic_at_all():
@@ -91,13 +110,18 @@ def test_clean_examples_simulate_and_drive():
     def height(file, body):
         return sim[file]["bodies"][body]["final"]["position"][2]
 
-    assert height("examples/tutorial/01-chassis.openplx", "chassis") < -10  # nothing to land on
-    assert abs(height("examples/tutorial/02-ground.openplx", "chassis") - 0.65) < 0.05  # resting on the ground
-    assert abs(moved_x("examples/tutorial/04-hinges.openplx", "truck.chassis")) < 0.05  # no motors yet
-    for stage in ("05-motors", "06-materials"):
-        # 2 rad/s on 0.4 m wheels for 3 s: 2.4 m if nothing slips
-        assert 2.0 < moved_x(f"examples/tutorial/{stage}.openplx", "truck.chassis") < 2.5, stage
-        assert abs(height(f"examples/tutorial/{stage}.openplx", "truck.chassis") - 0.9) < 0.05, stage
+    step = {p.parent.name[:6]: str(p.relative_to(REPO)) for p in TUTORIAL}
+    assert height(step["step03"], "chassis") < -10  # nothing to land on yet
+    for n in ("step04", "step05", "step06"):
+        assert abs(height(step[n], "chassis") - 0.77) < 0.05, n  # resting on the ground
+    for n in ("step07", "step08"):
+        assert abs(moved_x(step[n], "boxTruck.chassis")) < 0.05, n  # on its wheels, no motors yet
+    for n in ("step09", "step10", "step11"):
+        # equal speeds on mirrored hubs: the front wheels fight (A023), the truck hardly moves
+        assert abs(moved_x(step[n], "boxTruck.chassis")) < 0.2, n
+        assert abs(height(step[n], "boxTruck.chassis") - 1.0) < 0.05, n
+    a023 = [d for d in doc["diagnostics"] if d["code"] == "A023"]
+    assert {d["file"] for d in a023} == {step["step09"], step["step10"], step["step11"]}
     # 3 rad/s on 0.15 m wheels for 3 s: 1.35 m
     assert 1.1 < moved_x("examples/user_bundle/cart_scene.openplx", "cart.deck") < 1.5
     assert abs(height("examples/user_bundle/cart_scene.openplx", "cart.deck") - 0.3) < 0.05

@@ -46,6 +46,9 @@ DRIVE = r"""
   (plx-say "hover" (car (split-string (format "%s" (plist-get (plist-get hover :contents) :value)) "\n"))))
 (call-interactively #'xref-find-definitions)
 (plx-say "definition" (format "%s:%d" (buffer-file-name) (line-number-at-pos)))
+(sit-for 1)
+(plx-say "servers" (format "%d %s" (length (delete-dups (apply #'append (hash-table-values eglot--servers-by-project))))
+                           (if (eglot-current-server) "managed" "unmanaged")))
 (find-file MODEL)
 (goto-char (point-min)) (search-forward "inertia.")
 (plx-say "completion" (mapconcat #'identity (all-completions "" (nth 2 (eglot-completion-at-point))) " "))
@@ -98,5 +101,7 @@ def test_the_documented_emacs_setup_gives_diagnostics_hover_definition_completio
     assert results["diagnostic"] == ["4 plx [N002]: 'raduis' is not an attribute of Physics3D.Geometries.Sphere"], out
     assert results["hover"][0].startswith("Physics3D.Bodies.RigidBody is Physics3D.Bodies.Body"), out
     assert results["definition"][0].replace(os.sep, "/").endswith("Physics3D/Bodies/RigidBody.openplx:1"), out
+    # issue 32.11: the bundle file joined the running server (one server, and it manages the file)
+    assert results["servers"] == ["1 managed"], out
     assert "mass" in results["completion"][0].split(), out
     assert results["formatted"] == ["Extra:|    a is Real: 1||Ball is Physics3D"], out

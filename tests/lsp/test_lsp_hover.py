@@ -44,3 +44,19 @@ async def test_hover_after_non_ascii_text_on_the_line(client):
     h = await hover(client, uri, text, "`😀é` * 2", 2)
     assert h is not None and "`Real`" in h.contents.value
     close(client, uri)
+
+
+async def test_hover_shows_the_value_that_applies_and_who_sets_it(client):
+    """Issue 32.9: on `inertia.mass: 1000` the hover said only `default 0.0`. It shows the value
+    written there and the model that sets it; in a model below it, the value it inherits."""
+    uri = "untitled:hover-value"
+    text = ("Chassis is Physics3D.Bodies.RigidBody:\n    inertia.mass: 1000\n\n"
+            "Heavy is Chassis:\n    is_dynamic: true\n\n"
+            "Scene is Physics3D.System:\n    truck is Heavy:\n        inertia.mass: 1500\n")
+    await open_and_wait(client, uri, text)
+    h = await hover(client, uri, text, "inertia.mass: 1000", len("inertia.") + 1)
+    assert "value `1000`, set on this line in `Chassis`" in h.contents.value
+    assert "default `0.0`" in h.contents.value  # the declared default is still shown, as the default
+    h = await hover(client, uri, text, "inertia.mass: 1500", len("inertia.") + 1)
+    assert "value `1500`, set on this line in `Scene`" in h.contents.value, h.contents.value
+    close(client, uri)

@@ -52,6 +52,16 @@ def test_a_file_written_for_0_17_is_migrated_by_the_source_action(tmp_path, fetc
         assert apply(OLD, edit) == NEW
         # not offered for quick fixes only
         assert not [a for a in actions(s, uri, ["quickfix"]) if a.get("kind") == "source.migrate.plx"]
+        # on the version diagnostic (Ctrl+. in VS Code) it is a quick fix of it, once (issue 32.13)
+        version = [d for d in diags["diagnostics"] if d.get("code") in ("U001", "U002")][:1]
+        for only in (None, ["quickfix"]):
+            ctx = {"diagnostics": version, **({"only": only} if only else {})}
+            got = s.request("textDocument/codeAction", {"textDocument": {"uri": uri}, "context": ctx,
+                                                        "range": version[0]["range"]}, timeout=120)["result"]
+            migrations = [a for a in got if a["title"].startswith("Migrate this file")]
+            assert [a["kind"] for a in migrations] == ["quickfix"], (only, migrations)
+            assert migrations[0]["diagnostics"] == version
+            assert apply(OLD, migrations[0]["edit"]["changes"][uri][0]) == NEW
         # after the migration there is nothing to migrate
         s.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 2},
                                             "contentChanges": [{"text": NEW}]})

@@ -24,3 +24,14 @@ async def test_signature_help(client):
     label = sig.parameters[1].label
     shown = sig.label[label[0]:label[1]] if isinstance(label, (list, tuple)) else label
     assert shown.startswith("axis") or ":" in shown
+
+
+@pytest.mark.parametrize("text", ["", "S is Physics3D.System:\n    v is Math.Vec3: Math.Vec3.from_xyz("])
+async def test_signature_help_at_the_start_of_a_file(client, text):
+    """Issue 32.10: at offset 0 nothing precedes the cursor. An empty buffer crashed with an
+    IndexError, and a file ending in an open call showed that call's signature at its start."""
+    uri = f"untitled:sig-start-{len(text)}"
+    await open_and_wait(client, uri, text)
+    res = await client.text_document_signature_help_async(types.SignatureHelpParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=types.Position(line=0, character=0)))
+    assert res is None

@@ -134,8 +134,11 @@ rule("A023", "mirrored-drive-motors", I,
      "Two velocity motors with the same target speed drive hinges whose axes point in opposite directions "
      "(the left and right hubs of a vehicle).",
      "The BoxTruck trap: left hubs look along -Y and right hubs along +Y, so equal target speeds turn the "
-     "two sides in opposite directions and the vehicle yaws on the spot. Give one side the opposite sign "
-     "to drive straight. This is information only: spinning on the spot may be intended.",
+     "two wheels in opposite directions and the vehicle does not drive straight. Where nothing resists it "
+     "turns on the spot; where other wheels on the ground resist the turn (the tutorial's four-wheeled "
+     "truck) the driven wheels scrub against each other, the truck hardly moves, and with `--simulate` "
+     "both motors miss their target speed (A106, whose help then names the other motor of the pair). Give one side the opposite sign to "
+     "drive straight. This is information only: opposite speeds may be intended.",
      example="front_left_motor ...:\n    target_speed: 1\nfront_right_motor ...:\n    target_speed: 1",
      use_instead="front_left_motor ...:\n    target_speed: 1\nfront_right_motor ...:\n    target_speed: -1",
      stage=C)
@@ -227,6 +230,33 @@ rule("A041", "non-finite-value", E,
 
 # ---------------------------------------------------------------- simulation (MuJoCo backend)
 
+rule("A043", "connector-used-by-two-mates", E,
+     "Two mates in one model name the same connector: the second can only close by moving the body "
+     "the first one places. Reported by `plx lint` at the mate that is most likely wrong: when another "
+     "body of the same type has that connector unused and the mate's name is closer to that body, that "
+     "mate, with the connector it probably meant; otherwise the later mate.",
+     "A connector is one frame on one body, and a mate ties two frames together. Copying a hinge line "
+     "and changing only one side leaves a wheel held by two hinges (at two places) and another wheel "
+     "held by none: `plx check` then reports the consequences elsewhere (A016 on the other hinge, A037 "
+     "for the loose wheel) and the simulation drags the body away. Motors, springs and ranges use a "
+     "mate's connectors on purpose; they are not mates and are not counted.",
+     example="front_left_hinge is Physics3D.Interactions.Hinge:\n"
+             "    connectors: [chassis.front_left_connector, front_right_wheel.connector]\n"
+             "front_right_hinge is Physics3D.Interactions.Hinge:\n"
+             "    connectors: [chassis.front_right_connector, front_right_wheel.connector]",
+     use_instead="front_left_hinge is Physics3D.Interactions.Hinge:\n"
+                 "    connectors: [chassis.front_left_connector, front_left_wheel.connector]\n"
+                 "front_right_hinge is Physics3D.Interactions.Hinge:\n"
+                 "    connectors: [chassis.front_right_connector, front_right_wheel.connector]",
+     fix="unsafe")
+rule("A044", "collision-pair-without-effect", I,
+     "A `DisableCollisionPair` whose body pairs are all either joined by a mate or apart at the start: "
+     "it changes nothing at the start of the simulation.",
+     "Bodies joined by a mate never collide with each other (MuJoCo excludes their contacts, as AGX "
+     "does), so a collision group around a truck's chassis and its wheels, as in the BoxTruck tutorial's "
+     "step 8, has no visible effect: the wheels are mated to the chassis and apart from each other. It "
+     "is information only: the pair still matters if those bodies come to touch as they move.",
+     stage=C)
 rule("A101", "simulation-blowup", E,
      "The simulation became numerically unstable: NaN/Inf, MuJoCo's bad-state warnings, or a velocity "
      "above 1000 (m or rad)/s. The time and the fastest body are named.",
@@ -234,8 +264,12 @@ rule("A101", "simulation-blowup", E,
      "or deep initial penetration.", stage=SIM)
 rule("A102", "fell-through-ground", E,
      "A dynamic body that started above static geometry ended up below it (its centre of mass more than "
-     "1 cm below the top, inside the footprint).",
-     "Collisions are off for that pair (collision groups, `enable_collisions: false`) or the body tunnelled.",
+     "1 cm below the top, inside the footprint), or a body fell out of the world: it ended more than 5 m "
+     "below every body it started near (within 20 m) while one of those stayed.",
+     "Collisions are off for that pair (collision groups, `enable_collisions: false`) or the body tunnelled. "
+     "A body that falls out of the world had nothing under it and nothing holding it: a wheel whose hinge "
+     "names another wheel's connector, a part placed past the edge of the ground. A scene that falls as a "
+     "whole (a free-fall test without ground) is not reported.",
      stage=SIM)
 rule("A103", "mate-came-apart", W,
      "During the simulation a mate's connectors separated by more than 5 mm, or its axes by more than "

@@ -91,3 +91,12 @@ rule("S015", "indentation-between-levels", E,
      use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    geometry is Physics3D.Geometries.Cylinder:\n"
                  "        radius: 0.4\n        height: 0.3",
      stage="syntax")
+rule("S016", "missing-colon", E,
+     "A header line (`x is T`, `x becomes T`, a lone name) has no `:` at its end, but the lines "
+     "after it are indented under it.",
+     "A block opens only with `:`. Without it the indented lines are read as siblings of the header, "
+     "so everything in them seems misplaced (assignments at top level, attributes missing from the "
+     "model). The missing `:` is the cause: it is reported on the header line with the fix, and the "
+     "indented lines are read as the header's block, so nothing else is reported because of it.",
+     example="Wheel is Physics3D.Bodies.RigidBody\n    inertia.mass: 10",
+     use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    inertia.mass: 10", fix="safe", stage="syntax")

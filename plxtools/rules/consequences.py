@@ -1,0 +1,35 @@
+"""What a reader sees first: the cause, not what follows from it (issue 32).
+
+A line indented between two levels (S015) or made ambiguous by a tab (S003) is read into a block
+the author may not have meant, so what the model says about the names on that line (an attribute
+missing from the block it landed in, a declaration that clashes there) follows from the layout,
+not from the names. Those findings are dropped; the layout error on the line says what to fix,
+and once it is fixed the line is checked again in the block it really belongs to.
+
+Syntax and layout errors are listed before everything else, like a compiler's parse errors:
+nothing below them can be trusted until they are fixed, and the first line printed is the cause.
+"""
+
+from __future__ import annotations
+
+from plxtools.diagnostics import Diagnostic, Severity
+
+# layout errors that decide which block a line is read into
+_LAYOUT = frozenset({"S003", "S015"})
+# the model's findings that depend on the block a name stands in (names and structure)
+_BLOCK_DEPENDENT = ("N", "M")
+
+
+def drop_consequences(diags: list[Diagnostic]) -> list[Diagnostic]:
+    """`diags` without the name and structure findings on a line whose block is a layout error."""
+    lines = {(d.file, d.span.start.line) for d in diags
+             if d.code in _LAYOUT and d.severity is Severity.ERROR}
+    if not lines:
+        return diags
+    return [d for d in diags
+            if not (d.code.startswith(_BLOCK_DEPENDENT) and (d.file, d.span.start.line) in lines)]
+
+
+def report_order(d: Diagnostic) -> tuple:
+    """Sort key: per file, syntax and layout findings first, then the rest, each by position."""
+    return (d.file, not d.code.startswith("S"), d.span.start.offset, d.code)

@@ -1,0 +1,108 @@
+"""A043: a connector that two mates use, found from the source alone (issue 32.3).
+
+A mate connector is one frame on one body; a mate ties two of them together. When a second mate
+names a connector that another mate already uses, the body behind it is placed by the first mate,
+and the second can only close by moving that placed body: the assembly check then blames some
+other mate (A016, A037) and the simulation drags the body away. Which of the two mates is the
+mistake is decided by names, as a reader would: when another body of the same type has the same
+connector unused, and one mate's name is closer to that body's name than to the one it uses, that
+mate is blamed, with the connector it most likely meant. Otherwise the later mate is.
+
+The mates are the declarations whose type is a Physics3D.Interactions.Mate (Hinge, Prismatic,
+Lock, ...) with a `connectors: [a, b]` list in their block, compared within one model's block.
+Motors, springs and ranges reuse a mate's connectors on purpose and are not mates.
+"""
+
+from __future__ import annotations
+
+import difflib
+
+from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity
+from plxtools.model.symbols import ModelSym
+from plxtools.syntax import ast
+
+MATE = ("Physics3D", "Interactions", "Mate")
+
+
+def shared_connector_diagnostics(program, unit) -> list[Diagnostic]:
+    mate = program.lookup_outside_visibility(list(MATE))
+    if not isinstance(mate, ModelSym):
+        return []
+    out: list[Diagnostic] = []
+    stack = [s for s in unit.tree.statements if isinstance(s, ast.Declaration) and s.body]
+    while stack:
+        owner = stack.pop()
+        body = owner.body or []
+        _one_block(program, unit, mate, body, out)
+        stack.extend(s for s in body if isinstance(s, ast.Declaration) and s.body)
+    return out
+
+
+def _text(unit, node) -> str:
+    return "".join(unit.tree.text[node.span.start.offset:node.span.end.offset].split())
+
+
+def _connectors(stmt: ast.Declaration) -> list[ast.Expr] | None:
+    for s in stmt.body or []:
+        if (isinstance(s, ast.Assignment) and [p.name for p in s.path.parts] == ["connectors"]
+                and isinstance(s.value, ast.Array)):
+            return s.value.items
+    return None
+
+
+def _one_block(program, unit, mate: ModelSym, body: list, out: list[Diagnostic]) -> None:
+    mates: list[tuple[ast.Declaration, list[ast.Expr]]] = []
+    types: dict[str, str] = {}  # attribute name -> its type as written (to find same-typed siblings)
+    for s in body:
+        if not isinstance(s, ast.Declaration) or s.keyword != "is" or len(s.path.parts) != 1:
+            continue
+        if s.type is not None:
+            types[s.path.parts[0].name] = "".join(unit.tree.text[s.type.span.start.offset:s.type.span.end.offset].split())
+        items = _connectors(s)
+        if not items:
+            continue
+        ty = program.resolve_type_expr(s.type, unit)
+        if ty.model is None or not program.is_subtype(ty.model, mate):
+            continue
+        mates.append((s, items))
+    used: dict[str, list[tuple[ast.Declaration, ast.Expr]]] = {}
+    for s, items in mates:
+        for e in items:
+            used.setdefault(_text(unit, e), []).append((s, e))
+    for conn, uses in used.items():
+        if len({id(s) for s, _e in uses}) < 2 or "." not in conn:
+            continue
+        holder, member = conn.rsplit(".", 1)
+        spare = [n for n, t in types.items() if n != holder and t == types.get(holder)
+                 and f"{n}.{member}" not in used]
+        blamed, meant = _blame(uses, holder, spare)
+        for s, e in blamed:
+            other = next(o for o, _x in uses if o is not s)
+            line = other.header.start.line + 1
+            help_ = (f"did you mean '{meant}.{member}'? ('{meant}' is a {types[holder]} that no mate holds)"
+                     if meant else "each connector joins one mate: give this mate the connector of the body it "
+                                   "should hold")
+            fix = (Fix(f"use '{meant}.{member}'", (Edit(e.span.start.offset, e.span.end.offset,
+                                                          f"{meant}.{member}"),), safe=False) if meant else None)
+            d = Diagnostic("A043", f"'{conn}' is already used by mate '{other.path.text}' (line {line}): this mate "
+                           f"can only close by moving '{holder}', which that mate places",
+                           e.span, Severity.ERROR, file=unit.path, help=help_, fix=fix)
+            d.related.append((unit.path, other.header, f"'{conn}' is also used by '{other.path.text}'"))
+            out.append(d)
+
+
+def _blame(uses, holder: str, spare: list[str]):
+    """The mates to report and the body they most likely meant (None: the later uses, no guess)."""
+    def close(a: str, b: str) -> float:
+        return difflib.SequenceMatcher(None, a, b).ratio()
+
+    best = None
+    for s, e in uses:
+        name = s.path.parts[0].name
+        for n in spare:
+            gain = close(name, n) - close(name, holder)
+            if gain > 0 and (best is None or gain > best[0]):
+                best = (gain, (s, e), n)
+    if best is not None:
+        return [best[1]], best[2]
+    return [(s, e) for s, e in uses if s is not uses[0][0]], None
