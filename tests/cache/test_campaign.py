@@ -1,7 +1,7 @@
 """The differential campaign (tests/cache/campaign.py): a cached run answers what a fresh run on
 an empty cache folder answers, after any sequence of what users and tools do to a project.
 
-A short run here; PLX_CACHE_CAMPAIGN=N runs N steps (CI: 10000)."""
+A short run here; PLX_CACHE_CAMPAIGN=N runs N steps (CI: 3000; 10,000 were run by hand, see docs/caching.md)."""
 
 import os
 

@@ -39,7 +39,7 @@ def _scenes(folder: Path) -> Path:
     return folder
 
 
-WALL = re.compile(r"\(\d+\.\d+ s wall\)")
+WALL = re.compile(r"\d+\.\d+ s wall\)")  # after "(integrator, "
 
 
 def _untimed(x):
