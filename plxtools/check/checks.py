@@ -428,18 +428,7 @@ class StaticChecks:
                 mated.add((id(b), id(a)))
         excluded = {(id(x), id(y)) for x, y, _ in self.col.exclude_pairs()}
         excluded |= {(b, a) for a, b in excluded}
-        boxes: dict[int, tuple[np.ndarray, np.ndarray]] = {}
-        for g in self.col.geoms:
-            if g.visual or not g.valid or not g.enable_collisions:
-                continue
-            he = g.half_extents()
-            if he is None:
-                continue
-            w = compose(g.node.world, g.pose)
-            half = np.abs(w[0]) @ he
-            lo, hi = w[1] - half, w[1] + half
-            cur = boxes.get(id(g.node))
-            boxes[id(g.node)] = (lo, hi) if cur is None else (np.minimum(cur[0], lo), np.maximum(cur[1], hi))
+        boxes = self._collision_boxes()
         nodes = {id(n): n for n in self.asm.nodes}
         unplaced = {id(n) for n in self.asm.bodies  # static geometry at the origin is normal (a ground)
                     if n.placement is Placement.UNPLACED and n.is_dynamic and id(n) in boxes}

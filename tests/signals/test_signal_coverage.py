@@ -99,6 +99,9 @@ Link is Physics3D.Bodies.RigidBody:
     top is Physics3D.Interactions.MateConnector:
         position: {0, 0, 0.5}
         main_axis: {1, 0, 0}
+    bottom is Physics3D.Interactions.MateConnector:
+        position: {0, 0, -0.5}
+        main_axis: {1, 0, 0}
 
 Scene is Physics3D.System:
     a is Link
@@ -109,7 +112,7 @@ Scene is Physics3D.System:
     h1 is Physics3D.Interactions.Hinge:
         connectors: [a.top, world_top]
     h2 is Physics3D.Interactions.Hinge:
-        connectors: [b.top, a.top]
+        connectors: [b.top, a.bottom]
 """
 
 
