@@ -25,12 +25,10 @@ _DEFAULT_CAP_MB = 512
 _REFRESH_NS = 60 * 10**9
 
 
-def _blake2b(*args, **kw):
-    try:
-        from _blake2 import blake2b  # without hashlib's OpenSSL start-up (a replayed run is short)
-    except ImportError:  # pragma: no cover - another Python implementation
-        from hashlib import blake2b
-    return blake2b(*args, **kw)
+try:
+    from _blake2 import blake2b as _blake2b  # without hashlib's OpenSSL start-up (a replayed run is short)
+except ImportError:  # pragma: no cover - another Python implementation
+    from hashlib import blake2b as _blake2b
 
 
 def new_hash(data: bytes = b""):
