@@ -20,7 +20,7 @@ import os
 from plxtools.cache import folder
 
 TAG_SIZE = 32
-KINDS = ("replays", "results", "formatted", "bundle-sets", "programs", "renames", "stamps", "lsp")
+KINDS = ("replays", "results", "formatted", "bundle-sets", "programs", "renames", "stamps", "lsp", "grammars")
 _DEFAULT_CAP_MB = 512
 _REFRESH_NS = 60 * 10**9
 
