@@ -20,17 +20,15 @@ import os
 from plxtools.cache import folder
 
 TAG_SIZE = 32
-KINDS = ("replays", "results", "formatted", "bundle-sets", "programs", "renames", "stamps", "lsp")
+KINDS = ("replays", "results", "formatted", "bundle-sets", "programs", "renames", "stamps", "lsp", "grammars")
 _DEFAULT_CAP_MB = 512
 _REFRESH_NS = 60 * 10**9
 
 
-def _blake2b(*args, **kw):
-    try:
-        from _blake2 import blake2b  # without hashlib's OpenSSL start-up (a replayed run is short)
-    except ImportError:  # pragma: no cover - another Python implementation
-        from hashlib import blake2b
-    return blake2b(*args, **kw)
+try:
+    from _blake2 import blake2b as _blake2b  # without hashlib's OpenSSL start-up (a replayed run is short)
+except ImportError:  # pragma: no cover - another Python implementation
+    from hashlib import blake2b as _blake2b
 
 
 def new_hash(data: bytes = b""):

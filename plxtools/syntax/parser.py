@@ -224,15 +224,11 @@ def _get_parser() -> Lark:
     if _PARSER is None:
         with _parser_lock:
             if _PARSER is None:
-                from lark import Lark
-
                 grammar = Path(__file__).with_name("openplx.lark").read_text(encoding="utf-8")
-                from plxtools.syntax.lalr import LarkBuild, PassThrough
+                from plxtools.syntax.lalr import build_parser
 
-                options = dict(parser="lalr", lexer=PassThrough, transformer=LarkBuild(), maybe_placeholders=True)
-                # built in each process that needs it, never loaded from a file: lark's own grammar
-                # cache is a pickle that anyone able to write to the cache folder could plant
-                _PARSER = Lark(grammar, **options)
+                # an authenticated entry of plx's cache (lalr.py), never lark's own pickle file
+                _PARSER = build_parser(grammar)
     return _PARSER
 
 
