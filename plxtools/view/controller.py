@@ -15,6 +15,8 @@ import runpy
 import traceback
 from typing import Any
 
+from plxtools.view.display_stubs import CameraData, Ignored
+
 
 class ControllerError(Exception):
     """The controller script failed; the message holds its own traceback (the user's code)."""
@@ -39,6 +41,16 @@ class _Application:
 
     def getSimulation(self) -> Any:  # noqa: N802
         return self.simulation
+
+    # camera, shadows and lights: MuJoCo's viewer has its own; see plxtools.view.display_stubs
+    def getCameraData(self) -> CameraData:  # noqa: N802
+        return CameraData()
+
+    def applyCameraData(self, camera_data: Any) -> None:  # noqa: N802
+        """Ignored: the view keeps MuJoCo's camera (and the user's, across reloads)."""
+
+    def getSceneDecorator(self) -> Ignored:  # noqa: N802
+        return Ignored("SceneDecorator")
 
 
 _APP = _Application()
