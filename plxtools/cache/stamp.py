@@ -35,18 +35,8 @@ def _signature(path: str) -> list:
     """The stat index's record of one file: `reads`' signature (stat taken from the open file
     before reading, then the content digest), without a recording around it. A cold run signs
     every source file, so this stays a few system calls and one hash."""
-    fd = os.open(path, os.O_RDONLY)
-    try:
-        st = os.fstat(fd)
-        chunks = []
-        while True:
-            chunk = os.read(fd, max(st.st_size + 1, 65536))
-            if not chunk:
-                break
-            chunks.append(chunk)
-    finally:
-        os.close(fd)
-    return reads._sig(st, b"".join(chunks))
+    st, data = store.read_whole(path)
+    return reads._sig(st, data)
 
 
 def tree_digest(top: str, use_index: bool = True) -> str:

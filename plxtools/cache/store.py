@@ -61,6 +61,23 @@ def entry_path(kind: str, key: str) -> str | None:
     return None if root is None else os.path.join(root, kind, key)
 
 
+def read_whole(path, flags: int = 0) -> tuple[os.stat_result, bytes]:
+    """A file's stat (taken from the open file, before reading) and its bytes, in a few system
+    calls (a cold run reads hundreds of files this way). Raises OSError."""
+    fd = os.open(path, os.O_RDONLY | flags)
+    try:
+        st = os.fstat(fd)
+        chunks = []
+        while True:
+            chunk = os.read(fd, max(st.st_size + 1, 65536))
+            if not chunk:
+                break
+            chunks.append(chunk)
+    finally:
+        os.close(fd)
+    return st, b"".join(chunks)
+
+
 def get(kind: str, key: str) -> bytes | None:
     """The payload stored under (kind, key), or None: no usable cache, no entry, or an entry
     that is not authentic (planted, corrupt, truncated)."""
@@ -71,22 +88,9 @@ def get(kind: str, key: str) -> bytes | None:
     if secret is None:
         return None
     try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+        st, data = read_whole(path, getattr(os, "O_NOFOLLOW", 0))
     except OSError:
         return None
-    try:
-        st = os.fstat(fd)
-        chunks = []
-        while True:
-            chunk = os.read(fd, max(st.st_size + 1, 65536))
-            if not chunk:
-                break
-            chunks.append(chunk)
-        data = b"".join(chunks)
-    except OSError:
-        return None
-    finally:
-        os.close(fd)
     if len(data) < TAG_SIZE or not _equal(data[:TAG_SIZE], _tag(secret, kind, key, memoryview(data)[TAG_SIZE:])):
         return None
     import time
