@@ -6,7 +6,8 @@ from __future__ import annotations
 import io
 import os
 import sys
-from contextlib import contextmanager
+
+from tests.conftest import environment  # noqa: F401 - also imported from here
 
 
 def forget_process_state() -> None:
@@ -18,25 +19,6 @@ def forget_process_state() -> None:
     config._config_for_dir.cache_clear()
     workspace._CLI_WORKSPACES.clear()
     folder.forget()
-
-
-@contextmanager
-def environment(values: dict):
-    """os.environ with `values` set (None: unset), restored afterwards."""
-    old = {k: os.environ.get(k) for k in values}
-    try:
-        for k, v in values.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
-        yield
-    finally:
-        for k, v in old.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
 
 
 def run(argv: list[str], cwd, env: dict) -> tuple[int, str, str]:
