@@ -22,6 +22,12 @@ from plxtools.model.symbols import FileUnit, Namespace
 from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, explicit_bundle_set
 from plxtools.syntax import ast, parse_bytes
 
+# raised here (`_help_for_other_versions`, `_renamed_attributes`): a name of an older OpenPLX version; the editor's
+# "migrate this file" action is offered where they are
+OLDER_NAME = "U001"
+RENAMED_ATTRIBUTE = "U002"
+VERSION_CODES = (OLDER_NAME, RENAMED_ATTRIBUTE)
+
 
 
 
@@ -499,7 +505,7 @@ class Workspace:
             except UnknownVersion:
                 new = None
             if new is not None and self._resolves(new, tree):
-                d.code = "U001"
+                d.code = OLDER_NAME
                 d.message = f"'{written}' was renamed '{new}' (OpenPLX {older[-1]} -> {using})"
                 d.older_version = older[-1]
                 d.help = f"write '{new}'; `plx migrate --to {using}` updates whole files"
@@ -524,7 +530,7 @@ class Workspace:
                 continue
             new, model, since = targets[0]
             owners = ", ".join(sorted({m for _, m, _ in targets})[:3])
-            d.code = "U002"
+            d.code = RENAMED_ATTRIBUTE
             d.message = f"'{written}' was renamed '{new}' in OpenPLX {since} (in {owners})"
             d.older_version = _version_before(since)
             d.help = f"write '{new}' if this is one of those models; `plx migrate --to {using}` updates whole files"
