@@ -22,7 +22,7 @@ from pathlib import Path
 
 from plxtools.model.workspace import VERSION_CODES
 
-log = logging.getLogger("plxtools.lsp")
+log = logging.getLogger("plxtools.lsp")  # the language server's log, where these run
 
 KIND = "source.migrate.plx"
 

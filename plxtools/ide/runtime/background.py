@@ -18,7 +18,7 @@ from typing import Callable
 
 from plxtools.ide.runtime.stats import Stats
 
-log = logging.getLogger("plxtools.lsp")
+log = logging.getLogger("plxtools.lsp")  # the language server's log, where these run
 
 BACKGROUND_SIZE = 200_000  # characters: a loose document this large is checked in a forked process
 
