@@ -3,7 +3,7 @@
 into `plxtools.ide` (or the server's runtime) and the answer back to LSP objects.
 
 To add an editor feature: a plain function in `plxtools/ide/`, then a handler in the module of its
-group here (or a new module, added to `GROUPS`).
+group here (or a new module, added to the groups `register_all` registers).
 """
 
 from __future__ import annotations
