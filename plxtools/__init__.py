@@ -5,8 +5,3 @@ __version__ = "0.1.0"
 # Where the documentation site (built from docs/ with mkdocs) is published; the one place rule
 # links come from. pyproject.toml's [project.urls] Documentation is the same (a test checks).
 DOCS_BASE_URL = "https://plxtools.github.io/plxtools/"
-
-# Set by the console entry (`cli.entry`) for every command but the language server: the process
-# ends right after its output, so a slow cache write may be left to a forked child
-# (model/workspace.py). Library callers and in-process runs (tests) write in the foreground.
-ONE_SHOT = False

@@ -423,10 +423,9 @@ def entry() -> None:
     Every file plxtools writes is written atomically and fsynced before this point, so leaving
     without freeing objects loses nothing; it saves ~0.2 s per run.
     """
-    import plxtools
-    from plxtools import runmemo
+    from plxtools import runmemo, runmode
 
-    plxtools.ONE_SHOT = sys.argv[1:2] != ["lsp"]
+    runmode.one_shot(sys.argv[1:2] != ["lsp"])  # the process ends after the command (the server lives on)
     code = runmemo.replay(sys.argv[1:])  # an unchanged one-file run: its output, nothing imported
     if code is None:
         token = runmemo.start(sys.argv[1:])

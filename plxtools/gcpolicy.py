@@ -10,6 +10,9 @@ and nothing that lives on (the bundle program, the diagnostics) is scanned twice
 
 Reference counting still frees every acyclic object at once, so memory follows the files being
 worked on, not the whole run. Library callers (the language server, tests) are not affected.
+
+Whether the process ends right after the command is `runmode.is_one_shot()` (only the console
+entry says so).
 """
 
 from __future__ import annotations
@@ -17,6 +20,8 @@ from __future__ import annotations
 import gc
 from contextlib import contextmanager
 from typing import Iterator
+
+from plxtools.runmode import is_one_shot
 
 # below this many young container objects a collection is not worth its fixed cost
 _MIN_YOUNG = 20_000
@@ -29,17 +34,11 @@ def command_collector() -> Iterator[None]:
     try:
         yield
     finally:
-        # a one-shot CLI process (plxtools.ONE_SHOT) ends right after the command: enabling the
+        # a one-shot CLI process (`runmode.is_one_shot`) ends right after the command: enabling the
         # collector again would only have its next allocation scan every object the run made (on a
         # cold run, the whole bundle program: about 0.1 s) just before the process leaves
-        if enabled and not _process_ends():
+        if enabled and not is_one_shot():
             gc.enable()
-
-
-def _process_ends() -> bool:
-    import plxtools
-
-    return getattr(plxtools, "ONE_SHOT", False)
 
 
 def file_done() -> None:

@@ -25,8 +25,8 @@ LITERAL = re.compile(r"""["']([A-Z]\d{3})["']""")
 # need to recognise it import that module's name for it, or ask the registry (`Rule.stage`).
 NOT_ONE_HOME_YET = set("""
 A001 A002 A003 A004 A005 A006 A010 A013 A015 A016 A017 A018 A020 A021 A023 A024 A030 A031 A032
-A033 A034 A035 A036 A037 A038 A040 A041 A102 A103 A104 A106 A111 A124 A129 A131 A134 C002 C004
-C006 E001 M006 M007 M008 N001 N002 N003 S001 S003 S004 S007 S009 S015 T001 U001 U002
+A033 A034 A035 A036 A037 A038 A040 A041 A102 A103 A104 A106 A111 A124 A129 A131 A134
+C006 E001 M006 M007 M008 N001 N002 N003 S001 S003 S004 S007 S009 S015 T001
 """.split())
 
 
@@ -80,8 +80,6 @@ plxtools/ide/line_context.py:classify
 plxtools/ide/outline.py:_symbol
 plxtools/ide/tokens.py:semantic_tokens
 plxtools/lint/cli.py:_run_lint
-plxtools/lsp/server.py:PlxServer.apply_settings
-plxtools/lsp/server.py:code_action
 plxtools/migrate/command.py:run_migrate
 plxtools/model/apichanges.py:changes
 plxtools/model/checker.py:Checker._declaration
@@ -125,7 +123,7 @@ def test_no_function_above_complexity_limit():
 
 # ---------------------------------------------------------------- a thin server
 LSP_LINES = 500
-LSP_TOO_LONG_YET = {"plxtools/lsp/server.py"}
+LSP_TOO_LONG_YET: set[str] = set()
 
 
 def test_no_lsp_module_above_500_lines():

@@ -72,7 +72,7 @@ def fix_all(st: FileState) -> CodeAction | None:
 
 def suppress_edit(st: FileState, d: Diagnostic) -> TextEdit | None:
     """`# plx: ignore[CODE]` at the end of the diagnostic's line (or the code added to one already there)."""
-    if d.code.startswith("S") or d.code == "C002":
+    if d.code.startswith("S") or d.code == suppress.UNUSED_SUPPRESSION:
         return None  # syntax errors cannot be suppressed; an unused suppression is removed, not suppressed
     idx = st.tree.index
     line = d.span.start.line

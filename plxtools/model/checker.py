@@ -30,6 +30,9 @@ from plxtools.model.symbols import (
 from plxtools.model.values import MethodRef, NsRef, TypeObj
 from plxtools.syntax import ast
 
+# raised here (`_deprecated_check`); the language server marks it with LSP's Deprecated tag
+DEPRECATED_MEMBER = "C004"
+
 E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
 
 
@@ -440,7 +443,7 @@ class Checker:
         for owner in (mem.owner,):
             note = owner.deprecated.get(mem.name)
             if note and owner.unit is not self.unit:
-                self.report("C004", f"'{mem.name}' is deprecated: {note}", span, W)
+                self.report(DEPRECATED_MEMBER, f"'{mem.name}' is deprecated: {note}", span, W)
 
     # ------------------------------------------------------------------ annotations
 

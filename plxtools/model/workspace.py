@@ -20,7 +20,14 @@ from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
 from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, explicit_bundle_set
+from plxtools.runmode import is_one_shot
 from plxtools.syntax import ast, parse_bytes
+
+# raised here (`_help_for_other_versions`, `_renamed_attributes`): a name of an older OpenPLX version; the editor's
+# "migrate this file" action is offered where they are
+OLDER_NAME = "U001"
+RENAMED_ATTRIBUTE = "U002"
+VERSION_CODES = (OLDER_NAME, RENAMED_ATTRIBUTE)
 
 
 
@@ -94,20 +101,19 @@ def _load_cached(kind: str, key: str):
 
 def _store_cached(writes: list) -> None:
     """Write cache entries [(kind, key, value, as_json)]. In a one-shot CLI process
-    (`plxtools.ONE_SHOT`, set by `cli.entry`) a forked child writes them: pickling the bundle
+    (`runmode.is_one_shot()`: only the console entry says so) a forked child writes them: pickling the bundle
     program is about a third of a cold run, and the child does it on a snapshot of the program as
     it is now (copy-on-write, so the file is what the parent would have written) while the parent
     checks and reports. The child holds none of the parent's standard streams (a caller waiting
     for their end is not kept waiting), runs in its own session (a Ctrl-C of the command does not
     cut it off) and at a lower priority, and leaves with os._exit. Entries are replaced
     atomically, in order (the program before the record that names it)."""
-    import plxtools
     from plxtools.cache import folder
 
     if folder.root() is None or folder.secret() is None:
         return
     pid = -1
-    if getattr(plxtools, "ONE_SHOT", False) and hasattr(os, "fork"):
+    if is_one_shot() and hasattr(os, "fork"):
         try:
             pid = os.fork()
         except OSError:
@@ -361,11 +367,9 @@ class Workspace:
             root = str(b.root)  # below the root: the root's path and a separator start the file's
             if rp.startswith(root) and len(rp) > len(root) and (rp[len(root)] == os.sep or root.endswith(os.sep)):
                 return b
-        import plxtools
-
         # a one-shot command's files do not move into a bundle while it runs: a folder found to be in
         # none is not walked up again for each of its files (the language server always asks)
-        one_shot = getattr(plxtools, "ONE_SHOT", False)
+        one_shot = is_one_shot()
         folder = os.path.dirname(rp)
         if one_shot and folder in self._plain_folders:
             return None
@@ -499,7 +503,7 @@ class Workspace:
             except UnknownVersion:
                 new = None
             if new is not None and self._resolves(new, tree):
-                d.code = "U001"
+                d.code = OLDER_NAME
                 d.message = f"'{written}' was renamed '{new}' (OpenPLX {older[-1]} -> {using})"
                 d.older_version = older[-1]
                 d.help = f"write '{new}'; `plx migrate --to {using}` updates whole files"
@@ -524,7 +528,7 @@ class Workspace:
                 continue
             new, model, since = targets[0]
             owners = ", ".join(sorted({m for _, m, _ in targets})[:3])
-            d.code = "U002"
+            d.code = RENAMED_ATTRIBUTE
             d.message = f"'{written}' was renamed '{new}' in OpenPLX {since} (in {owners})"
             d.older_version = _version_before(since)
             d.help = f"write '{new}' if this is one of those models; `plx migrate --to {using}` updates whole files"

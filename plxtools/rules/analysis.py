@@ -139,11 +139,11 @@ def finalize(tree: ast.File, diags: list[Diagnostic], cfg: Config) -> list[Diagn
     """Config selection, follow-on findings dropped, inline suppressions and ordering (syntax first):
     shared by lint, check and the server."""
     from plxtools.rules.consequences import drop_consequences, report_order
-    from plxtools.rules.suppress import apply
+    from plxtools.rules.suppress import UNUSED_SUPPRESSION, apply
 
     for d in diags:
         d.file = tree.path
     diags = [d for d in diags if cfg.rule_enabled(d.code, tree.path)]
-    diags = apply(tree, drop_consequences(diags), report_unused=cfg.rule_enabled("C002", tree.path))
+    diags = apply(tree, drop_consequences(diags), report_unused=cfg.rule_enabled(UNUSED_SUPPRESSION, tree.path))
     diags.sort(key=report_order)
     return diags

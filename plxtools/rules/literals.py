@@ -87,7 +87,7 @@ def literal_diagnostics(tree: ast.File, occurrences, path: str, only: set[int] |
 
     # an explicit stack, not a self-calling closure: such a closure is a reference cycle that would
     # keep `target` (and through it the file's symbols and tree) alive until a collector pass, and
-    # the language server freezes what a check leaves (plxtools/lsp/server.py: no_gc)
+    # the language server freezes what a check leaves (plxtools/ide/runtime/collector.py: no_gc)
     stack = [tree.statements if only is None else [s for i, s in enumerate(tree.statements) if i in only]]
     while stack:
         for s in stack.pop() or ():

@@ -23,11 +23,10 @@ def forget_process_state() -> None:
 
 def run(argv: list[str], cwd, env: dict) -> tuple[int, str, str]:
     """(exit code, stdout, stderr) of `plx ARGV` run in `cwd` with `env` added to the environment."""
-    import plxtools
-    from plxtools import cli, runmemo
+    from plxtools import cli, runmemo, runmode
 
     forget_process_state()
-    plxtools.ONE_SHOT = False  # no forked cache writer: the entry is written before this returns
+    runmode.one_shot(False)  # no forked cache writer: the entry is written before this returns
     out, err = io.StringIO(), io.StringIO()
     saved = sys.stdout, sys.stderr, os.getcwd()
     os.chdir(cwd)

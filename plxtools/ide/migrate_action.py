@@ -8,13 +8,21 @@ version before the rename). Its bundles must be on this machine (installed or in
 bundles install VERSION`); the server never fetches them. The rewrite and its safety checks are
 `plxtools.migrate.rewrite.migrate_text`, exactly as on the command line; the models of both versions
 are separate from the server's own (its open buffers are never touched).
+
+`Migrations.offer` is what an editor asks: the action for a file state, computed once per version of
+the text; `plxtools.lsp` only turns it into an LSP code action.
 """
 
 from __future__ import annotations
 
+import logging
 import os
 from dataclasses import dataclass
 from pathlib import Path
+
+from plxtools.model.workspace import VERSION_CODES
+
+log = logging.getLogger("plxtools.lsp")  # the language server's log, where these run
 
 KIND = "source.migrate.plx"
 
@@ -29,6 +37,11 @@ class Migration:
 
 def wanted(only: list[str] | None) -> bool:
     return only is None or any(KIND == k or KIND.startswith(k + ".") for k in only)
+
+
+def has_version_diagnostics(diagnostics) -> bool:
+    """Whether any diagnostic names something of an older OpenPLX version (U001/U002)."""
+    return any(d.code in VERSION_CODES for d in diagnostics)
 
 
 def _available(version: str) -> bool:
@@ -51,7 +64,7 @@ def source_version(path: str, diagnostics, to_v: str) -> str | None:
             pinned = None
         if pinned and version_key(pinned) < version_key(to_v):
             return pinned
-    found = [d.older_version for d in diagnostics if d.code in ("U001", "U002") and d.older_version]
+    found = [d.older_version for d in diagnostics if d.code in VERSION_CODES and d.older_version]
     found = [v for v in found if version_key(v) < version_key(to_v)]
     return min(found, key=version_key) if found else None
 
@@ -63,7 +76,7 @@ def migration(host, st) -> Migration | None:
     to_v = getattr(bs, "official_version", None)
     if not to_v or not st.checked:
         return None
-    if not any(d.code in ("U001", "U002") for d in st.diagnostics) and not os.path.isabs(st.path):
+    if not has_version_diagnostics(st.diagnostics) and not os.path.isabs(st.path):
         return None
     from_v = source_version(st.path, st.diagnostics, to_v)
     if from_v is None:
@@ -103,3 +116,28 @@ def migration(host, st) -> Migration | None:
         return None
     n = fm.edits
     return Migration(f"{title} ({n} change{'' if n == 1 else 's'})", fm.new_text, None, n)
+
+
+class Migrations:
+    """The last action computed (one per document path and text), so that asking for code actions
+    again on an unchanged buffer does not load two bundle versions again."""
+
+    def __init__(self) -> None:
+        self._last: tuple | None = None  # (path, text, Migration | None)
+
+    def offer(self, host, st, only: list[str] | None) -> Migration | None:
+        """The action when `only` asks for it (None: when the file has U001/U002 diagnostics)."""
+        if not wanted(only):
+            return None
+        if only is None and not has_version_diagnostics(st.diagnostics):
+            return None
+        last = self._last
+        if last is not None and last[0] == st.path and last[1] is st.text:
+            return last[2]
+        try:
+            m = migration(host, st)
+        except Exception:  # noqa: BLE001 - the other actions are still answered
+            log.exception("migrating %s failed", st.path)
+            m = None
+        self._last = (st.path, st.text, m)
+        return m

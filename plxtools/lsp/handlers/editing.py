@@ -1,0 +1,218 @@
+"""Completion (with lazily resolved documentation), signature help, formatting, and code
+actions (quick fixes, "fix all", suppressions and "migrate this file")."""
+
+from __future__ import annotations
+
+import os
+import time
+from typing import TYPE_CHECKING
+
+from lsprotocol import types
+
+from plxtools import ide
+from plxtools.ide import migrate_action
+from plxtools.ide.runtime.collector import no_gc
+from plxtools.lsp.convert import Positions
+from plxtools.lsp.protocol import RequestFailed
+from plxtools.model.workspace import VERSION_CODES
+
+if TYPE_CHECKING:
+    from plxtools.lsp.server import PlxServer
+
+
+def register(server, server_feature) -> None:
+    @server_feature(types.TEXT_DOCUMENT_COMPLETION,
+                    types.CompletionOptions(trigger_characters=[".", " "], resolve_provider=True))
+    def completion(ls: PlxServer, params: types.CompletionParams):
+        if ls.warming is not None:  # the bundles are loading: nothing to offer yet, ask again
+            return types.CompletionList(is_incomplete=True, items=[])
+        t0, c0 = time.perf_counter(), time.process_time()
+        ctx = params.context
+        trigger = ctx.trigger_character if ctx is not None and ctx.trigger_kind == \
+            types.CompletionTriggerKind.TriggerCharacter else None
+        view = ls.line_view(params.text_document.uri, params.position.line)
+        if view is not None:
+            # typing on one line since the last analysis: answer from it and the line's text, at once
+            st = view.state
+            lp = Positions(view.text, ls.encoding)
+            col = lp.offset_at(0, params.position.character)
+            res = ide.complete_line(st, view.line, view.text, col, view.start, trigger, view.own_line,
+                                    min(view.start + col, view.old_end))
+
+            def at(offset: int) -> types.Position:
+                return types.Position(line=view.line, character=lp.offset_position(offset - view.start).character)
+            rng = types.Range(start=at(res.replace_start), end=at(view.start + col))
+        else:
+            with no_gc():
+                st = ls.state(params.text_document.uri, quick=True)
+            if st is None:
+                return None
+            pos = ls.positions(st.path, st)
+            offset = pos.offset(params.position)
+            res = ide.complete(st, offset, trigger)
+            rng = pos.offsets_range(res.replace_start, offset)
+        lazy_doc = "documentation" in (ls.cap("text_document.completion.completion_item.resolve_support.properties")
+                                       or [])
+        label_details = ls.cap("text_document.completion.completion_item.label_details_support")
+        tag_support = ls.cap("text_document.completion.completion_item.tag_support")
+        ls._completion_keys = []
+        items = []
+        for i, it in enumerate(res.items):
+            item = types.CompletionItem(label=it.label, kind=KIND.get(it.kind), detail=it.detail or None,
+                                        sort_text=it.sort_text, filter_text=it.filter_text,
+                                        text_edit=types.TextEdit(range=rng, new_text=it.insert_text or it.label))
+            if label_details and (it.label_detail or it.label_description):
+                item.label_details = types.CompletionItemLabelDetails(detail=it.label_detail,
+                                                                      description=it.label_description)
+            if it.deprecated and tag_support:
+                item.tags = [types.CompletionItemTag.Deprecated]
+            if it.key is not None:
+                ls._completion_keys.append(it.key)
+                item.data = {"k": len(ls._completion_keys) - 1}
+                if not lazy_doc:
+                    doc = ide.completion_documentation(st.program, it.key)
+                    if doc:
+                        item.documentation = ls.doc_markup(doc)
+            items.append(item)
+            del i
+        ls.stats.record("completion" if st.checked and view is None else "completion-while-typing", t0, c0)
+        return types.CompletionList(is_incomplete=res.is_incomplete, items=items)
+
+    @server_feature(types.COMPLETION_ITEM_RESOLVE)
+    def completion_resolve(ls: PlxServer, item: types.CompletionItem):
+        data = item.data if isinstance(item.data, dict) else {}
+        k = data.get("k")
+        if isinstance(k, int) and 0 <= k < len(ls._completion_keys) and ls.host.program is not None:
+            doc = ide.completion_documentation(ls.host.program, ls._completion_keys[k])
+            if doc:
+                item.documentation = ls.doc_markup(doc)
+        return item
+
+    @server_feature(types.TEXT_DOCUMENT_SIGNATURE_HELP,
+                    types.SignatureHelpOptions(trigger_characters=["(", ","], retrigger_characters=[","]))
+    def signature_help(ls: PlxServer, params: types.SignatureHelpParams):
+        st = ls.state(params.text_document.uri, quick=True)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        res = ide.signature_help(st, pos.offset(params.position))
+        if res is None:
+            return None
+        offsets = ls.cap("text_document.signature_help.signature_information.parameter_information."
+                         "label_offset_support")
+        from plxtools.ide.signature import param_label_offsets
+
+        sigs = []
+        for s in res.signatures:
+            labels = param_label_offsets(s) if offsets else [p.label for p in s.parameters]
+            params_ = [types.ParameterInformation(label=lab) for lab in labels]
+            # the active parameter inside each signature too: LSP 3.18 reads a null there as "none"
+            active = min(res.active_parameter or 0, max(len(params_) - 1, 0))
+            sigs.append(types.SignatureInformation(label=s.label, parameters=params_,
+                                                   documentation=ls.doc_markup(s.documentation)
+                                                   if s.documentation else None,
+                                                   active_parameter=active))
+        return types.SignatureHelp(signatures=sigs, active_signature=res.active_signature,
+                                   active_parameter=res.active_parameter)
+
+
+    @server_feature(types.TEXT_DOCUMENT_FORMATTING)
+    def formatting(ls: PlxServer, params: types.DocumentFormattingParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        try:
+            edits = ide.format_document(st.text, st.path if os.path.isabs(st.path) else "")
+        except ide.FormattingRefused as exc:
+            if exc.syntax:
+                ls.window_log_message(types.LogMessageParams(type=types.MessageType.Info, message=f"plx: {exc}"))
+                return []
+            raise RequestFailed(str(exc)) from None
+        pos = ls.positions(st.path, st)
+        return [types.TextEdit(range=pos.offsets_range(e.start, e.end), new_text=e.text) for e in edits]
+
+    @server_feature(types.TEXT_DOCUMENT_RANGE_FORMATTING)
+    def range_formatting(ls: PlxServer, params: types.DocumentRangeFormattingParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        r = params.range
+        end_line = r.end.line - 1 if r.end.character == 0 and r.end.line > r.start.line else r.end.line
+        try:
+            edits = ide.format_lines(st.text, r.start.line, end_line)
+        except ide.FormattingRefused as exc:
+            raise RequestFailed(str(exc)) from None
+        pos = ls.positions(st.path, st)
+        return [types.TextEdit(range=pos.offsets_range(e.start, e.end), new_text=e.text) for e in edits]
+
+    # -------------------------------------------------------------- code actions
+
+    @server_feature(types.TEXT_DOCUMENT_CODE_ACTION,
+                    types.CodeActionOptions(code_action_kinds=[types.CodeActionKind.QuickFix,
+                                                               types.CodeActionKind.SourceFixAll,
+                                                               migrate_action.KIND]))
+    def code_action(ls: PlxServer, params: types.CodeActionParams):
+        st = ls.state(params.text_document.uri)
+        if st is None:
+            return None
+        pos = ls.positions(st.path, st)
+        start, end = pos.offset(params.range.start), pos.offset(params.range.end)
+        only = [str(k.value if hasattr(k, "value") else k) for k in params.context.only] \
+            if params.context.only else None
+        sent = list(params.context.diagnostics or [])
+        out = [_code_action(ls, st, pos, a, sent) for a in ide.code_actions(st, start, end, only)]
+        migrate = _migrate_action(ls, st, only, sent)
+        if migrate is not None:
+            out.append(migrate)
+        return out
+
+
+def _code_action(ls: PlxServer, st, pos, a, sent: list[types.Diagnostic]) -> types.CodeAction:
+    """An ide.CodeAction in LSP terms; its diagnostics are the client's own objects where it sent them."""
+    changes = {}
+    for path, edits in a.edits.items():
+        fp = ls.positions(path, st if path == st.path else None)
+        changes[ls.uri_of(path)] = [types.TextEdit(range=fp.offsets_range(e.start, e.end), new_text=e.text)
+                                    for e in edits]
+    diags = []
+    for d in a.diagnostics[:20]:
+        rng = pos.range(d.span)
+        match = next((x for x in sent if x.code == d.code and x.range == rng), None)
+        diags.append(match or ls.lsp_diagnostic(d, pos))
+    return types.CodeAction(title=a.title, kind=a.kind, diagnostics=diags or None,
+                            is_preferred=a.preferred or None, edit=types.WorkspaceEdit(changes=changes))
+
+
+def _migrate_action(ls: PlxServer, st, only, sent: list[types.Diagnostic]) -> types.CodeAction | None:
+    """ "Migrate this file" (ide/migrate_action.py). Where the version diagnostic is (VS Code's Ctrl+.
+    shows quick fixes, not source actions) it is also a quick fix of it; elsewhere a source action only."""
+    version_diags = [x for x in sent if x.code in VERSION_CODES]
+    as_quickfix = bool(version_diags) and (only is None or any(k in ("quickfix", "") for k in only))
+    m = ls.migrations.offer(ls.host, st, None if as_quickfix else only)
+    if m is None:
+        return None
+    if m.new_text is None:
+        if not ls.cap("text_document.code_action.disabled_support"):
+            return None
+        return types.CodeAction(title=m.title, kind=migrate_action.KIND,
+                                disabled=types.CodeActionDisabled(reason=m.reason or "refused"))
+    pos = ls.positions(st.path, st)
+    edit = types.WorkspaceEdit(changes={ls.uri_of(st.path): [
+        types.TextEdit(range=pos.offsets_range(0, len(st.text)), new_text=m.new_text)]})
+    if as_quickfix:
+        return types.CodeAction(title=m.title, kind=types.CodeActionKind.QuickFix, diagnostics=version_diags,
+                                edit=edit)
+    return types.CodeAction(title=m.title, kind=migrate_action.KIND, edit=edit)
+
+
+KIND = {
+    "model": types.CompletionItemKind.Class,
+    "trait": types.CompletionItemKind.Interface,
+    "constant": types.CompletionItemKind.Constant,
+    "namespace": types.CompletionItemKind.Module,
+    "attribute": types.CompletionItemKind.Field,
+    "method": types.CompletionItemKind.Method,
+    "keyword": types.CompletionItemKind.Keyword,
+    "value": types.CompletionItemKind.Value,
+    "type": types.CompletionItemKind.TypeParameter,
+}
