@@ -32,6 +32,14 @@ from plxtools.syntax import ast
 
 E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
 
+# The codes other modules recognise (lint's result cache, the workspace's help, completeness and
+# check's de-duplication): this module raises them, the others import these names.
+UNRESOLVED_TYPE = "N001"
+UNKNOWN_ATTRIBUTE = "N002"
+UNRESOLVED_NAME = "N003"
+DEFAULT_CYCLE = "M006"
+TYPE_MISMATCH = "T001"
+
 
 @dataclass(slots=True)
 class Occurrence:
@@ -239,7 +247,7 @@ class Checker:
                 defined = [n for n, sym in self.unit.locals.items() if not isinstance(sym, ImportSym)]
                 close = self._closest(parts[0], defined + list(self.unit.namespace.symbols))
                 if close:
-                    self.report("N001", f"unknown type '{ref.name.text}'", ref.name.span, suggest=close)
+                    self.report(UNRESOLVED_TYPE, f"unknown type '{ref.name.text}'", ref.name.span, suggest=close)
                     return UNKNOWN
                 self.occ(ref.name.span, archived, "type")
                 self.report("N008", f"'{ref.name.text}' is defined in no file plx reads; it can only come from "
@@ -248,15 +256,15 @@ class Checker:
                             help="its attributes are not checked; `plx check` does not analyse what is built on it")
                 return Ty(archived, ref.array)
             help_, word = self._type_suggestion(parts)
-            self.report("N001", f"unknown type '{ref.name.text}'", ref.name.span, help=help_, suggest=word)
+            self.report(UNRESOLVED_TYPE, f"unknown type '{ref.name.text}'", ref.name.span, help=help_, suggest=word)
             return UNKNOWN
         if isinstance(found, Namespace):
             self.occ(ref.name.span, found, "type")
-            self.report("N001", f"'{ref.name.text}' is a namespace, not a type", ref.name.span,
+            self.report(UNRESOLVED_TYPE, f"'{ref.name.text}' is a namespace, not a type", ref.name.span,
                         help=self._type_suggestion(parts + [""])[0])
             return UNKNOWN
         if isinstance(found, GlobalSym):
-            self.report("N001", f"'{ref.name.text}' is a global value, not a type", ref.name.span)
+            self.report(UNRESOLVED_TYPE, f"'{ref.name.text}' is a global value, not a type", ref.name.span)
             return UNKNOWN
         if isinstance(found, ModelSym):
             self.occ(ref.name.span, found, "type")
@@ -414,7 +422,7 @@ class Checker:
             if cur.unknown or self._opaque(cur):
                 return UNKNOWN, None
             if cur.array or cur.alts or cur.primitive is not None:
-                self.report("N002", f"'{part.name}' cannot be set on a value of type {cur.display()}", part.span)
+                self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' cannot be set on a value of type {cur.display()}", part.span)
                 return UNKNOWN, None
             mems = resolve.attributes(self.p, cur, self.outer, path)
             found = mems.get(part.name)
@@ -423,10 +431,10 @@ class Checker:
                     return UNKNOWN, None  # a host attribute the trait does not declare
                 where = self.p.concrete(cur.model).qname if cur.model is not None else cur.display()
                 if i == 0 and not prefix:
-                    self._unknown("N002", f"'{part.name}' is not an attribute of {where}", part.span, part.name,
+                    self._unknown(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span, part.name,
                                   list(mems))
                 else:
-                    self.report("N002", f"'{part.name}' is not an attribute of {where}", part.span,
+                    self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span,
                                 suggest=self._closest(part.name, list(mems)))
                 return UNKNOWN, None
             mem = found
@@ -458,12 +466,12 @@ class Checker:
             return
         got = self._expr(expr, expected)
         if not isinstance(got, Ty):
-            self._not_a_value("T001", got, expr.span)
+            self._not_a_value(TYPE_MISMATCH, got, expr.span)
             return
         verdict = self.p.assignable(got, expected)
         if verdict == "no":
             help_, fix = self._literal_help(expr, expected)
-            self.report("T001", f"expected {expected.display()}, found {got.display()}", expr.span,
+            self.report(TYPE_MISMATCH, f"expected {expected.display()}, found {got.display()}", expr.span,
                         help=help_ or self._mismatch_help(got, expected), fix=fix)
         elif verdict == "warn":
             self.report("T002", "a Real is given where an Int is expected", expr.span, W,
@@ -527,7 +535,7 @@ class Checker:
     def _as_ty(self, v, span: Span) -> Ty:
         if isinstance(v, Ty):
             return v
-        self._not_a_value("T001", v, span)
+        self._not_a_value(TYPE_MISMATCH, v, span)
         return UNKNOWN
 
     def _expr(self, e, expected: Ty = UNKNOWN):  # noqa: C901 - one dispatch over the expression kinds
@@ -600,7 +608,7 @@ class Checker:
                 return target
             for item in e.items:
                 self._expr(item)
-            self.report("T001", f"a {{...}} literal cannot be a {target.primitive}", e.span)
+            self.report(TYPE_MISMATCH, f"a {{...}} literal cannot be a {target.primitive}", e.span)
             return UNKNOWN
         fields = self.p.positional_fields(target.model)
         if fields is None:
@@ -628,7 +636,7 @@ class Checker:
             return UNKNOWN
         options = list(self.p.members_of(Ty(self.outer))) if self.outer is not None else []
         options += list(self.unit.locals) + list(self.unit.namespace.symbols)
-        self._unknown("N003", f"unknown name '{name}'", ident.span, name, options)
+        self._unknown(UNRESOLVED_NAME, f"unknown name '{name}'", ident.span, name, options)
         return UNKNOWN
 
     def _global_value(self, found, ident: ast.Ident):
@@ -653,7 +661,7 @@ class Checker:
         if isinstance(base, NsRef):
             v = self._global_value(found, e.name)
             if v is None:
-                self.report("N003", f"'{name}' is not in namespace {base.ns.dotted}", e.name.span,
+                self.report(UNRESOLVED_NAME, f"'{name}' is not in namespace {base.ns.dotted}", e.name.span,
                             suggest=self._closest(name, list(base.ns.symbols) + list(base.ns.children)))
                 return UNKNOWN
             return v
@@ -795,7 +803,7 @@ class Checker:
                     ring = trail[trail.index(nxt):] + [nxt]
                     if nxt not in reported:
                         reported.update(ring)
-                        self.report("M006", "these values depend on each other in a cycle: " + " -> ".join(ring),
+                        self.report(DEFAULT_CYCLE, "these values depend on each other in a cycle: " + " -> ".join(ring),
                                     spans.get(nxt, m.stmt.header),
                                     help="give one of them a value that does not depend on the others")
                 elif not color.get(nxt):
