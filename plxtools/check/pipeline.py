@@ -21,8 +21,10 @@ from plxtools.check.frames import mat_to_quat_wxyz
 from plxtools.check.instance import Builder
 from plxtools.check.report import Reporter
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Pos, Severity, Span
+from plxtools.model.checker import DEFAULT_CYCLE, TYPE_MISMATCH, UNKNOWN_ATTRIBUTE
 from plxtools.model.symbols import ModelSym
 from plxtools.rules.analysis import analyse_file
+from plxtools.rules.completeness import MISSING_ASSIGNMENT, UNBOUND_REFERENCE
 from plxtools.syntax import ast, parse_bytes
 
 
@@ -309,7 +311,8 @@ def _span_of_source(tree: ast.File, src) -> Span:
 # reports of the same kinds (A004, A005, A006, A003) are consequences of it and are not made.
 # an evaluation problem lint already owns; a missing value that follows from a misspelt attribute or a
 # block that did not parse is lint's too (its M007 is dropped as a consequence, see rules/completeness.py)
-_LINT_OWNED = {"A004": ("M007", "N002", "S"), "A005": ("M008", "T001"), "A006": ("M006",), "A003": ("T", "N")}
+_LINT_OWNED = {"A004": (MISSING_ASSIGNMENT, UNKNOWN_ATTRIBUTE, "S"), "A005": (UNBOUND_REFERENCE, TYPE_MISMATCH),
+               "A006": (DEFAULT_CYCLE,), "A003": ("T", "N")}
 
 
 def _owned_by_lint(lint: list[Diagnostic]) -> frozenset[str]:

@@ -65,8 +65,32 @@ def _type_list_before(toks, end: int, sep: str) -> int:
         return j
 
 
-def classify(head: str) -> LineContext | None:
-    """The context of the end of ``head`` (the line up to the word being typed), or None."""
+@dataclass(slots=True)
+class _Head:
+    """A half-typed line cut into the tokens before the qualifier (`rest`) and the qualifier itself."""
+
+    head: str
+    toks: list
+    indent: str
+    qual: str
+    rest: list
+
+    @property
+    def n(self) -> int:
+        return len(self.rest)
+
+    @property
+    def last(self) -> str | None:
+        return self.rest[-1].type if self.rest else None
+
+    def context(self, kind: str, **fields) -> LineContext:
+        return LineContext(kind, self.indent, self.qual, **fields)
+
+
+_UNDECIDED = object()  # a handler below that did not recognise the line: the later checks decide
+
+
+def _cut(head: str) -> _Head | None:
     toks = fragment_tokens(head)
     indent = head[: len(head) - len(head.lstrip())]
     # the qualifier being typed: `A.B.` right before the cursor
@@ -77,69 +101,116 @@ def classify(head: str) -> LineContext | None:
     qual = head[toks[j].start_pos:].strip() if j < len(toks) else ""
     if qual and not qual.endswith("."):
         qual = ""
-    rest = toks[:j] if qual else toks
     if qual and head.rstrip() != head:  # `A. ` is not a qualifier any more
         return None
-    n = len(rest)
-    last = rest[-1].type if rest else None
-    if last == "IS":
-        if n == 3 and rest[0].type == "TRAIT" and rest[1].type in _NAME:
-            return LineContext("trait_base", indent, qual)
-        k = _skip_modifiers(rest)
-        if _path_end(rest, k) == n - 1 and n - 1 > k:
-            return LineContext("is", indent, qual)
-        return None
-    if last == "WITH" or (last == "COMMA" and any(t.type == "WITH" for t in rest)):
-        w = max(i for i, t in enumerate(rest) if t.type == "WITH")
-        if last == "WITH" or _type_list_before(rest, n - 1, "COMMA") == w + 1:
-            return LineContext("with", indent, qual)
-    if last == "BECOMES":
-        k = _skip_modifiers(rest)
-        if _path_end(rest, k) == n - 1 and n - 1 > k:
-            return LineContext("becomes", indent, qual, target=head[rest[k].start_pos:rest[n - 2].end_pos])
-        return None
-    if last == "OR":
-        start = _type_list_before(rest, n - 1, "OR")
-        if start >= 1 and rest[start - 1].type == "IS":
-            return LineContext("or", indent, qual)
-        return None
-    if last == "ARROW" and n >= 2 and rest[-2].type == "RPAR":
-        return LineContext("returns", indent, qual)
-    if last == "COLON" and n >= 3 and rest[-2].type in _NAME:
-        depth, opener = 0, None
-        for i in range(n - 1, -1, -1):
-            t = rest[i].type
-            if t == "RPAR":
-                depth += 1
-            elif t == "LPAR":
-                if depth == 0:
-                    opener = i
-                    break
-                depth -= 1
-        if opener is not None:
-            k = _skip_modifiers(rest)
-            if k < n and rest[k].type == "FN":
-                return LineContext("param", indent, qual)
-            if rest[0].type == "OPERATOR":
-                return LineContext("operator_param", indent, qual)
-    if not rest:
-        return LineContext("statement", indent, qual)
-    if n == 1 and last == "DOT" and not qual and head.endswith("."):
-        return LineContext("annotation", indent)
-    # a value: [modifiers] path [is|becomes T ...] ':' value
+    return _Head(head, toks, indent, qual, toks[:j] if qual else toks)
+
+
+def _after_is(h: _Head):
+    rest, n = h.rest, h.n
+    if n == 3 and rest[0].type == "TRAIT" and rest[1].type in _NAME:
+        return h.context("trait_base")
+    k = _skip_modifiers(rest)
+    if _path_end(rest, k) == n - 1 and n - 1 > k:
+        return h.context("is")
+    return None
+
+
+def _after_with(h: _Head):
+    """`with T`, `with T1, T2, `: another trait starts."""
+    rest = h.rest
+    if not any(t.type == "WITH" for t in rest):
+        return _UNDECIDED
+    w = max(i for i, t in enumerate(rest) if t.type == "WITH")
+    if h.last == "WITH" or _type_list_before(rest, h.n - 1, "COMMA") == w + 1:
+        return h.context("with")
+    return _UNDECIDED
+
+
+def _after_becomes(h: _Head):
+    rest, n = h.rest, h.n
+    k = _skip_modifiers(rest)
+    if _path_end(rest, k) == n - 1 and n - 1 > k:
+        return h.context("becomes", target=h.head[rest[k].start_pos:rest[n - 2].end_pos])
+    return None
+
+
+def _after_or(h: _Head):
+    start = _type_list_before(h.rest, h.n - 1, "OR")
+    if start >= 1 and h.rest[start - 1].type == "IS":
+        return h.context("or")
+    return None
+
+
+def _after_arrow(h: _Head):
+    return h.context("returns") if h.n >= 2 and h.rest[-2].type == "RPAR" else _UNDECIDED
+
+
+def _open_paren(rest: list) -> int | None:
+    """Index of the `(` that is still open at the end of `rest`, if any."""
+    depth = 0
+    for i in range(len(rest) - 1, -1, -1):
+        t = rest[i].type
+        if t == "RPAR":
+            depth += 1
+        elif t == "LPAR":
+            if depth == 0:
+                return i
+            depth -= 1
+    return None
+
+
+def _after_colon(h: _Head):
+    """`fn f(name: ` or `operator +(name: `: a parameter's type starts (a value is decided later)."""
+    rest, n = h.rest, h.n
+    if n < 3 or rest[-2].type not in _NAME or _open_paren(rest) is None:
+        return _UNDECIDED
+    k = _skip_modifiers(rest)
+    if k < n and rest[k].type == "FN":
+        return h.context("param")
+    if rest[0].type == "OPERATOR":
+        return h.context("operator_param")
+    return _UNDECIDED
+
+
+_BY_LAST = {"IS": _after_is, "WITH": _after_with, "COMMA": _after_with, "BECOMES": _after_becomes,
+            "OR": _after_or, "ARROW": _after_arrow, "COLON": _after_colon}
+
+
+def _value(h: _Head) -> LineContext | None:
+    """A value: [modifiers] path [is|becomes T ...] ':' value."""
+    toks, head = h.toks, h.head
     k = _skip_modifiers(toks)
     p = _path_end(toks, k)
-    if p > k:
-        c = p
-        if c < len(toks) and toks[c].type in ("IS", "BECOMES"):
+    if p <= k:
+        return None
+    c = p
+    if c < len(toks) and toks[c].type in ("IS", "BECOMES"):
+        c += 1
+        while c < len(toks) and toks[c].type != "COLON" and toks[c].type not in ("STRING",):
             c += 1
-            while c < len(toks) and toks[c].type != "COLON" and toks[c].type not in ("STRING",):
-                c += 1
-        if c < len(toks) and toks[c].type == "COLON":
-            return LineContext("value", indent, qual, target=head[toks[k].start_pos:toks[p - 1].end_pos],
-                               decl=head[toks[p - 1].end_pos:toks[c].start_pos],
-                               value=head[toks[c].end_pos:])
+    if c < len(toks) and toks[c].type == "COLON":
+        return h.context("value", target=head[toks[k].start_pos:toks[p - 1].end_pos],
+                         decl=head[toks[p - 1].end_pos:toks[c].start_pos], value=head[toks[c].end_pos:])
     return None
+
+
+def classify(head: str) -> LineContext | None:
+    """The context of the end of ``head`` (the line up to the word being typed), or None: first by
+    the last token before the qualifier (`_BY_LAST`), then a new statement, an annotation, a value."""
+    h = _cut(head)
+    if h is None:
+        return None
+    after = _BY_LAST.get(h.last)
+    if after is not None:
+        found = after(h)
+        if found is not _UNDECIDED:
+            return found
+    if not h.rest:
+        return h.context("statement")
+    if h.n == 1 and h.last == "DOT" and not h.qual and head.endswith("."):
+        return LineContext("annotation", h.indent)
+    return _value(h)
 
 
 def word_before(text: str) -> str:

@@ -23,44 +23,71 @@ def document_symbols(tree: ast.File) -> list[SymbolInfo]:
     return [s for s in (_symbol(stmt, top=True) for stmt in tree.statements) if s is not None]
 
 
-def _symbol(stmt: ast.Stmt, top: bool) -> SymbolInfo | None:  # noqa: C901 - one case per statement kind
+def _symbol(stmt: ast.Stmt, top: bool) -> SymbolInfo | None:
+    """The outline entry of a statement and its block, by statement kind (`_SYMBOL_KINDS`)."""
     children = []
     for child in ast.body_of(stmt) or ():
         sym = _symbol(child, top=False)
         if sym is not None:
             children.append(sym)
-    if isinstance(stmt, ast.TraitDef):
-        return SymbolInfo(stmt.name.name, "trait", stmt.span, stmt.name.span,
-                          f"is {stmt.base.text}" if stmt.base else "", children)
-    if isinstance(stmt, ast.Declaration):
-        name = stmt.path.text
-        detail = _type_text(stmt.type)
-        if stmt.keyword == "becomes":
-            detail = "becomes " + detail
-        if top:
-            if stmt.keyword == "is" and stmt.value is not None and stmt.body is None:
-                kind = "global"
-            else:
-                kind = "const" if stmt.const else "model"
-        else:
-            kind = "attribute"
-        return SymbolInfo(name, kind, stmt.span, stmt.path.span, detail, children)
-    if isinstance(stmt, ast.Method):
-        params = ", ".join(f"{p.name.name}: {p.type.name.text}" for p in stmt.params)
-        ret = f" -> {stmt.returns.name.text}" if stmt.returns else ""
-        return SymbolInfo(stmt.name.name, "method", stmt.span, stmt.name.span,
-                          f"{'static ' if stmt.static else ''}fn ({params}){ret}")
-    if isinstance(stmt, ast.OperatorDecl):
-        params = ", ".join(p.type.name.text for p in stmt.params)
-        return SymbolInfo(f"operator {stmt.op}", "operator", stmt.span, stmt.header, f"({params})")
-    if isinstance(stmt, ast.Assignment) and stmt.body:
-        return SymbolInfo(stmt.path.text, "block", stmt.span, stmt.path.span, "", children)
-    if isinstance(stmt, ast.Import):
-        name = stmt.alias.text if stmt.alias is not None else stmt.source.value
-        return SymbolInfo(name, "import", stmt.span, stmt.header, stmt.source.raw)
-    if isinstance(stmt, ast.ErrorStmt) and children:
-        return SymbolInfo(stmt.text.strip().split("\n")[0][:40] or "?", "block", stmt.span, stmt.header, "", children)
-    return None
+    make = _SYMBOL_KINDS.get(type(stmt))
+    return make(stmt, top, children) if make is not None else None
+
+
+def _trait_symbol(stmt: ast.TraitDef, top: bool, children: list) -> SymbolInfo:
+    return SymbolInfo(stmt.name.name, "trait", stmt.span, stmt.name.span,
+                      f"is {stmt.base.text}" if stmt.base else "", children)
+
+
+def _declaration_kind(stmt: ast.Declaration, top: bool) -> str:
+    if not top:
+        return "attribute"
+    if stmt.keyword == "is" and stmt.value is not None and stmt.body is None:
+        return "global"
+    return "const" if stmt.const else "model"
+
+
+def _declaration_symbol(stmt: ast.Declaration, top: bool, children: list) -> SymbolInfo:
+    detail = _type_text(stmt.type)
+    if stmt.keyword == "becomes":
+        detail = "becomes " + detail
+    return SymbolInfo(stmt.path.text, _declaration_kind(stmt, top), stmt.span, stmt.path.span, detail, children)
+
+
+def _method_symbol(stmt: ast.Method, top: bool, children: list) -> SymbolInfo:
+    params = ", ".join(f"{p.name.name}: {p.type.name.text}" for p in stmt.params)
+    ret = f" -> {stmt.returns.name.text}" if stmt.returns else ""
+    return SymbolInfo(stmt.name.name, "method", stmt.span, stmt.name.span,
+                      f"{'static ' if stmt.static else ''}fn ({params}){ret}")
+
+
+def _operator_symbol(stmt: ast.OperatorDecl, top: bool, children: list) -> SymbolInfo:
+    params = ", ".join(p.type.name.text for p in stmt.params)
+    return SymbolInfo(f"operator {stmt.op}", "operator", stmt.span, stmt.header, f"({params})")
+
+
+def _assignment_symbol(stmt: ast.Assignment, top: bool, children: list) -> SymbolInfo | None:
+    if not stmt.body:
+        return None
+    return SymbolInfo(stmt.path.text, "block", stmt.span, stmt.path.span, "", children)
+
+
+def _import_symbol(stmt: ast.Import, top: bool, children: list) -> SymbolInfo:
+    name = stmt.alias.text if stmt.alias is not None else stmt.source.value
+    return SymbolInfo(name, "import", stmt.span, stmt.header, stmt.source.raw)
+
+
+def _error_symbol(stmt: ast.ErrorStmt, top: bool, children: list) -> SymbolInfo | None:
+    if not children:
+        return None
+    return SymbolInfo(stmt.text.strip().split("\n")[0][:40] or "?", "block", stmt.span, stmt.header, "", children)
+
+
+_SYMBOL_KINDS = {
+    ast.TraitDef: _trait_symbol, ast.Declaration: _declaration_symbol, ast.Method: _method_symbol,
+    ast.OperatorDecl: _operator_symbol, ast.Assignment: _assignment_symbol, ast.Import: _import_symbol,
+    ast.ErrorStmt: _error_symbol,
+}
 
 
 def _matches(query: str, name: str) -> bool:

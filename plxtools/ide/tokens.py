@@ -50,27 +50,44 @@ def _classify(sym) -> tuple[str, tuple[str, ...]] | None:
     return None
 
 
-def semantic_tokens(st: FileState) -> list[SemanticToken]:
-    text = st.text
-    idx = st.tree.index
-    out: list[SemanticToken] = []
+class _Tokens:
+    """Semantic tokens being collected: a span that crosses lines becomes one token per line (for
+    clients without multiline tokens)."""
 
-    def add(start: int, end: int, typ: str, mods: tuple[str, ...] = ()) -> None:
+    def __init__(self, idx) -> None:
+        self.idx = idx
+        self.out: list[SemanticToken] = []
+
+    def add(self, start: int, end: int, typ: str, mods: tuple[str, ...] = ()) -> None:
         if end <= start:
             return
+        idx = self.idx
         a = idx.pos(start)
         b = idx.pos(end)
         if a.line == b.line:
-            out.append(SemanticToken(a.line, a.column, b.column - a.column, typ, mods))
+            self.out.append(SemanticToken(a.line, a.column, b.column - a.column, typ, mods))
             return
-        for line in range(a.line, b.line + 1):  # clients without multiline tokens: one per line
+        for line in range(a.line, b.line + 1):
             lt = idx.line_text(line)
             c0 = a.column if line == a.line else 0
             c1 = b.column if line == b.line else len(lt)
             if c1 > c0:
-                out.append(SemanticToken(line, c0, c1 - c0, typ, mods))
+                self.out.append(SemanticToken(line, c0, c1 - c0, typ, mods))
 
-    # names, from what the checker resolved
+
+def semantic_tokens(st: FileState) -> list[SemanticToken]:
+    """Names as the checker resolved them, then what only the syntax tree knows (primitive types,
+    parameters, annotations), then keywords, literals and comments from the lexer; where two
+    overlap the longest at a column wins."""
+    tokens = _Tokens(st.tree.index)
+    _name_tokens(tokens, st)
+    _syntax_tokens(tokens, st.tree)
+    _lexer_tokens(tokens, st.text)
+    return _without_overlaps(tokens.out)
+
+
+def _name_tokens(tokens: _Tokens, st: FileState) -> None:
+    text = st.text
     for o in st.occurrences:
         cls = _classify(o.target)
         if cls is None:
@@ -81,34 +98,41 @@ def semantic_tokens(st: FileState) -> list[SemanticToken]:
         parts = qname_parts(text, o.span) if "." in text[o.span.start.offset:o.span.end.offset] else None
         if parts and len(parts) > 1:
             for _name, a, b in parts[:-1]:
-                add(a, b, "namespace", ())
+                tokens.add(a, b, "namespace", ())
             _name, a, b = parts[-1]
-            add(a, b, typ, mods)
+            tokens.add(a, b, typ, mods)
         else:
-            add(o.span.start.offset, o.span.end.offset, typ, mods)
-    # primitive type names, parameters, annotation names
-    for s in ast.walk_statements(st.tree.statements):
+            tokens.add(o.span.start.offset, o.span.end.offset, typ, mods)
+
+
+def _syntax_tokens(tokens: _Tokens, tree: ast.File) -> None:
+    for s in ast.walk_statements(tree.statements):
         for ref in _type_refs(s):
             if len(ref.name.parts) == 1 and ref.name.parts[0].name in PRIMITIVES:
                 sp = ref.name.span
-                add(sp.start.offset, sp.end.offset, "type", ("defaultLibrary",))
+                tokens.add(sp.start.offset, sp.end.offset, "type", ("defaultLibrary",))
         if isinstance(s, (ast.Method, ast.OperatorDecl)):
             for prm in s.params:
-                add(prm.name.span.start.offset, prm.name.span.end.offset, "parameter", ("declaration",))
+                tokens.add(prm.name.span.start.offset, prm.name.span.end.offset, "parameter", ("declaration",))
         if isinstance(s, ast.Annotation):
-            add(s.name.span.start.offset - 1, s.name.span.end.offset, "decorator", ())
-    # keywords, literals and comments, from the lexer
+            tokens.add(s.name.span.start.offset - 1, s.name.span.end.offset, "decorator", ())
+
+
+def _lexer_tokens(tokens: _Tokens, text: str) -> None:
     lexed = lex(text)
     for ln in lexed.lines:
         for tok in ln.tokens:
             if tok.type in _KEYWORD_TYPES or tok.type in _LITERAL_KEYWORDS:
-                add(tok.start_pos, tok.end_pos, "keyword", ())
+                tokens.add(tok.start_pos, tok.end_pos, "keyword", ())
             elif tok.type == "NUMBER":
-                add(tok.start_pos, tok.end_pos, "number", ())
+                tokens.add(tok.start_pos, tok.end_pos, "number", ())
             elif tok.type == "STRING":
-                add(tok.start_pos, tok.end_pos, "string", ())
+                tokens.add(tok.start_pos, tok.end_pos, "string", ())
     for (start, _line, _col, end, _body, _own) in lexed.comments:
-        add(start, end, "comment", ())
+        tokens.add(start, end, "comment", ())
+
+
+def _without_overlaps(out: list[SemanticToken]) -> list[SemanticToken]:
     out.sort(key=lambda t: (t.line, t.column, -t.length))
     clean: list[SemanticToken] = []
     for t in out:

@@ -28,8 +28,6 @@ from pathlib import Path
 from plxtools.cache import reads, store
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Severity, Span
 
-_NOT_STORED = frozenset({"N001", "N003"})
-
 
 def _span(s: Span) -> list:
     return [*s.start, *s.end]
@@ -103,7 +101,12 @@ class ResultCache:
     @staticmethod
     def stores(diagnostics: list) -> bool:
         """Whether a result with these diagnostics is kept (see the module's notes)."""
-        return not any(d.code in _NOT_STORED for d in diagnostics)
+        if not diagnostics:
+            return True
+        # (imported here: a replay must not load the model; a result to store was just computed with it)
+        from plxtools.model.checker import UNRESOLVED_NAME, UNRESOLVED_TYPE
+
+        return not any(d.code in (UNRESOLVED_TYPE, UNRESOLVED_NAME) for d in diagnostics)
 
     def put(self, key: str | None, deps: list, diagnostics: list) -> None:
         if key is None or not self.stores(diagnostics):

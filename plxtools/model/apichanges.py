@@ -327,85 +327,110 @@ def steps(from_v: str, to_v: str) -> list[tuple[str, str, tuple[Change, ...]]]:
     return [(a, b, step(a, b)) for a, b in zip(chain, chain[1:])]
 
 
+def _joined(e: Change, c: Change, **kw) -> Change:
+    """`e` then `c` as one change: from e's first place to c's last, a table's answer if either needs one."""
+    return replace(e, new=c.new, where=[e.where[0], c.where[-1]],
+                   handling=TABLE if TABLE in (e.handling, c.handling) else AUTO, **kw)
+
+
+class _Composer:
+    """Changes of consecutive steps composed into one list (see `changes`); `None` marks one that
+    cancelled out. Each step names models as its older version does (`before`)."""
+
+    def __init__(self) -> None:
+        self.out: list[Change | None] = []
+        self.model_at: dict[str, int] = {}  # current model name -> composed move/rename
+        self.added_at: dict[str, int] = {}  # current name of a model added in the range
+        self.orig: dict[str, str] = {}  # current model name -> its name in from_v
+        self.attr_at: dict[tuple[str, str], int] = {}  # (orig model, current attr) -> composed attribute change
+        self.type_at: dict[tuple[str, str], int] = {}
+
+    def push(self, c: Change) -> int:
+        self.out.append(c)
+        return len(self.out) - 1
+
+    def step(self, cs) -> None:
+        before = dict(self.orig)
+        for c in cs:
+            m = before.get(c.model, c.model)
+            handler = _COMPOSE.get(c.kind)
+            if handler is None:
+                self.push(replace(c, model=m))
+            else:
+                handler(self, c, m)
+
+    def model_moved(self, c: Change, m: str) -> None:
+        if c.old in self.model_at:
+            i = self.model_at.pop(c.old)
+            e = self.out[i]
+            assert e is not None
+            simple = e.old.rsplit(".", 1)[-1] == c.new.rsplit(".", 1)[-1]
+            self.out[i] = _joined(e, c, kind="model-moved" if simple else "model-renamed")
+            self.model_at[c.new] = i
+        elif c.old in self.added_at:
+            i = self.added_at.pop(c.old)
+            self.out[i] = replace(self.out[i], model=c.new)
+            self.added_at[c.new] = i
+        else:
+            self.model_at[c.new] = self.push(c)
+        self.orig[c.new] = self.orig.pop(c.old, c.old)
+
+    def model_removed(self, c: Change, m: str) -> None:
+        if c.model in self.model_at:
+            i = self.model_at.pop(c.model)
+            self.out[i] = replace(c, model=self.out[i].old, where=self.out[i].where[:1])
+        elif c.model in self.added_at:
+            self.out[self.added_at.pop(c.model)] = None
+        else:
+            self.push(c)
+
+    def model_added(self, c: Change, m: str) -> None:
+        self.added_at[c.model] = self.push(c)
+
+    def attribute(self, c: Change, m: str) -> None:
+        key = (m, c.attr or "")
+        if c.kind == "attr-renamed" and key in self.attr_at:
+            i = self.attr_at.pop(key)
+            e = self.out[i]
+            self.out[i] = _joined(e, c) if e.kind == "attr-renamed" else replace(e, attr=c.new)
+            self.attr_at[(m, c.new or "")] = i
+        elif c.kind == "attr-removed" and key in self.attr_at:
+            i = self.attr_at.pop(key)
+            e = self.out[i]
+            self.out[i] = None if e.kind != "attr-renamed" else replace(c, model=m, attr=e.old, where=e.where[:1])
+        else:
+            i = self.push(replace(c, model=m))
+            self.attr_at[(m, c.new if c.kind == "attr-renamed" else c.attr or "")] = i
+
+    def attr_type(self, c: Change, m: str) -> None:
+        key = (m, c.attr or "")
+        if key in self.type_at and self.out[self.type_at[key]] is not None:
+            i = self.type_at[key]
+            e = self.out[i]
+            self.out[i] = None if e.old == c.new else replace(e, new=c.new, where=[e.where[0], c.where[-1]])
+        else:
+            self.type_at[key] = self.push(replace(c, model=m))
+
+
+_COMPOSE = {
+    "model-moved": _Composer.model_moved, "model-renamed": _Composer.model_moved,
+    "model-removed": _Composer.model_removed, "model-added": _Composer.model_added,
+    "attr-renamed": _Composer.attribute, "attr-added": _Composer.attribute,
+    "attr-added-required": _Composer.attribute, "attr-removed": _Composer.attribute,
+    "attr-type-changed": _Composer.attr_type,
+}
+
+
 def changes(from_v: str, to_v: str) -> list[Change]:
     """The changes from `from_v` to `to_v`, composed over the consecutive steps between them.
 
     A chain of renames and moves becomes one change from the first name to the last; something
     added and later removed in the range disappears; a type changed twice shows first and last.
     """
-    out: list[Change | None] = []
-    model_at: dict[str, int] = {}  # current model name -> composed move/rename
-    added_at: dict[str, int] = {}  # current name of a model added in the range
-    orig: dict[str, str] = {}  # current model name -> its name in from_v
-    attr_at: dict[tuple[str, str], int] = {}  # (orig model, current attr) -> composed attribute change
-    type_at: dict[tuple[str, str], int] = {}
-
-    def push(c: Change) -> int:
-        out.append(c)
-        return len(out) - 1
-
+    composer = _Composer()
     for _a, _b, cs in steps(from_v, to_v):
-        before = dict(orig)  # a step names models as its older version does
-        for c in cs:
-            m = before.get(c.model, c.model)
-            if c.kind in ("model-moved", "model-renamed"):
-                if c.old in model_at:
-                    i = model_at.pop(c.old)
-                    e = out[i]
-                    assert e is not None
-                    simple = e.old.rsplit(".", 1)[-1] == c.new.rsplit(".", 1)[-1]
-                    out[i] = replace(e, kind="model-moved" if simple else "model-renamed", new=c.new,
-                                     handling=TABLE if TABLE in (e.handling, c.handling) else AUTO,
-                                     where=[e.where[0], c.where[-1]])
-                    model_at[c.new] = i
-                elif c.old in added_at:
-                    i = added_at.pop(c.old)
-                    out[i] = replace(out[i], model=c.new)
-                    added_at[c.new] = i
-                else:
-                    model_at[c.new] = push(c)
-                orig[c.new] = orig.pop(c.old, c.old)
-            elif c.kind == "model-removed":
-                if c.model in model_at:
-                    i = model_at.pop(c.model)
-                    e = out[i]
-                    out[i] = replace(c, model=e.old, where=e.where[:1])
-                elif c.model in added_at:
-                    out[added_at.pop(c.model)] = None
-                else:
-                    push(c)
-            elif c.kind == "model-added":
-                added_at[c.model] = push(c)
-            elif c.kind in ("attr-renamed", "attr-added", "attr-added-required", "attr-removed"):
-                key = (m, c.attr or "")
-                if c.kind == "attr-renamed" and key in attr_at:
-                    i = attr_at.pop(key)
-                    e = out[i]
-                    if e.kind == "attr-renamed":
-                        out[i] = replace(e, new=c.new, where=[e.where[0], c.where[-1]],
-                                         handling=TABLE if TABLE in (e.handling, c.handling) else AUTO)
-                    else:
-                        out[i] = replace(e, attr=c.new)
-                    attr_at[(m, c.new or "")] = i
-                elif c.kind == "attr-removed" and key in attr_at:
-                    i = attr_at.pop(key)
-                    e = out[i]
-                    out[i] = None if e.kind != "attr-renamed" else replace(c, model=m, attr=e.old,
-                                                                           where=e.where[:1])
-                else:
-                    i = push(replace(c, model=m))
-                    attr_at[(m, c.new if c.kind == "attr-renamed" else c.attr or "")] = i
-            elif c.kind == "attr-type-changed":
-                key = (m, c.attr or "")
-                if key in type_at and out[type_at[key]] is not None:
-                    i = type_at[key]
-                    e = out[i]
-                    out[i] = None if e.old == c.new else replace(e, new=c.new, where=[e.where[0], c.where[-1]])
-                else:
-                    type_at[key] = push(replace(c, model=m))
-            else:
-                push(replace(c, model=m))
-    return [c for c in out if c is not None]
+        composer.step(cs)
+    return [c for c in composer.out if c is not None]
 
 
 def summary(cs: list[Change]) -> dict[str, int]:

@@ -35,6 +35,14 @@ DEPRECATED_MEMBER = "C004"
 
 E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
 
+# The codes other modules recognise (lint's result cache, the workspace's help, completeness and
+# check's de-duplication): this module raises them, the others import these names.
+UNRESOLVED_TYPE = "N001"
+UNKNOWN_ATTRIBUTE = "N002"
+UNRESOLVED_NAME = "N003"
+DEFAULT_CYCLE = "M006"
+TYPE_MISMATCH = "T001"
+
 
 @dataclass(slots=True)
 class Occurrence:
@@ -242,7 +250,7 @@ class Checker:
                 defined = [n for n, sym in self.unit.locals.items() if not isinstance(sym, ImportSym)]
                 close = self._closest(parts[0], defined + list(self.unit.namespace.symbols))
                 if close:
-                    self.report("N001", f"unknown type '{ref.name.text}'", ref.name.span, suggest=close)
+                    self.report(UNRESOLVED_TYPE, f"unknown type '{ref.name.text}'", ref.name.span, suggest=close)
                     return UNKNOWN
                 self.occ(ref.name.span, archived, "type")
                 self.report("N008", f"'{ref.name.text}' is defined in no file plx reads; it can only come from "
@@ -251,15 +259,15 @@ class Checker:
                             help="its attributes are not checked; `plx check` does not analyse what is built on it")
                 return Ty(archived, ref.array)
             help_, word = self._type_suggestion(parts)
-            self.report("N001", f"unknown type '{ref.name.text}'", ref.name.span, help=help_, suggest=word)
+            self.report(UNRESOLVED_TYPE, f"unknown type '{ref.name.text}'", ref.name.span, help=help_, suggest=word)
             return UNKNOWN
         if isinstance(found, Namespace):
             self.occ(ref.name.span, found, "type")
-            self.report("N001", f"'{ref.name.text}' is a namespace, not a type", ref.name.span,
+            self.report(UNRESOLVED_TYPE, f"'{ref.name.text}' is a namespace, not a type", ref.name.span,
                         help=self._type_suggestion(parts + [""])[0])
             return UNKNOWN
         if isinstance(found, GlobalSym):
-            self.report("N001", f"'{ref.name.text}' is a global value, not a type", ref.name.span)
+            self.report(UNRESOLVED_TYPE, f"'{ref.name.text}' is a global value, not a type", ref.name.span)
             return UNKNOWN
         if isinstance(found, ModelSym):
             self.occ(ref.name.span, found, "type")
@@ -346,63 +354,75 @@ class Checker:
                 self._block(s.body, UNKNOWN, prefix, None)
 
     def _declaration(self, s: ast.Declaration, target: Ty, prefix: tuple[str, ...], model_def: ModelSym | None) -> None:
+        """`path is T` or `path becomes T`, with its value and its block."""
         parts = s.path.parts
-        name = parts[-1].name
         mem = self._member_for(model_def, s)
         owner_ty = target
         if len(parts) > 1:
             owner_ty, _ = self._path(parts[:-1], target, prefix, model_def)
         if mem is not None:
             self.occ(parts[-1].span, mem, "definition")
+        ty = self._type_expr(s.type)
         if s.keyword == "is":
-            ty = self._type_expr(s.type)
-            if len(parts) == 1 and model_def is not None:
-                inherited = self._inherited(model_def)
-                # a trait may `becomes` an attribute its host declares (spec C.3/C.4): not a redeclaration
-                if name in inherited and inherited[name].stmt is not s and not (
-                        inherited[name].keyword == "becomes" and inherited[name].owner.is_trait):
-                    old = inherited[name]
-                    self.report("M001", f"'{name}' is already declared in {old.owner.qname}; use 'becomes' to "
-                                f"specialise it or ':' to give it a value", parts[-1].span,
-                                help=f"'{name} becomes {s.type.alternatives[0].name.text}'" if s.type else None)
-            elif len(parts) == 1 and model_def is None and not target.unknown:
-                existing = self.p.members_of(target)
-                if name in existing:
-                    self.report("M001", f"'{name}' already exists in {target.display()}; use ':' to give it "
-                                f"a value or 'becomes' to specialise it", parts[-1].span)
-        else:  # becomes
-            ty = self._type_expr(s.type)
-            if model_def is not None and len(parts) == 1:
-                candidates = self._inherited(model_def)
-            else:
-                candidates = self.p.members_of(owner_ty) if not owner_ty.unknown else None
-            old = candidates.get(name) if candidates is not None else None
-            if old is not None and old.stmt is s:
-                old = None
-            if old is None:
-                if candidates is not None and not self.in_trait and not self._opaque(owner_ty):
-                    where = model_def.qname if model_def is not None else owner_ty.display()
-                    self.report("M002", f"'{name}' is not inherited by {where}, so it cannot 'become' "
-                                f"another type", parts[-1].span,
-                                help=self._suggest(name, candidates) or f"declare it with '{name} is ...'")
-            else:
-                self.occ(parts[-1].span, old, "attribute")
-                old_ty = self.p.member_type(old)
-                if not ty.unknown and not old_ty.unknown and self.p.assignable(ty, old_ty) != "ok":
-                    self.report("M003", f"'{name}' cannot become {ty.display()}: it is declared as "
-                                f"{old_ty.display()} in {old.owner.qname}", s.type.span,
-                                help="the new type must be a subtype of the declared type or one of its alternatives")
+            if len(parts) == 1:
+                self._not_redeclared(s, target, model_def)
+        else:
+            self._becomes(s, ty, owner_ty, model_def)
         if s.value is not None:
             self._value(s.value, ty)
         if s.body is not None:
-            if s.reference:
-                self.report("M009", f"'{name}' is a reference; a block would create a new object",
-                            s.header, help="give it an existing object with ':' instead")
-            block_ty = Ty(mem.anon) if mem is not None and mem.anon is not None else ty
-            self._block(s.body, block_ty, prefix + tuple(p.name for p in parts),
-                        mem.anon if mem is not None else None)
+            self._declaration_block(s, ty, mem, prefix)
         if mem is not None:
             self._deprecated_check(mem, parts[-1].span)
+
+    def _not_redeclared(self, s: ast.Declaration, target: Ty, model_def: ModelSym | None) -> None:
+        """`name is T` for a name the model (or the object being configured) already has: M001."""
+        ident = s.path.parts[-1]
+        name = ident.name
+        if model_def is not None:
+            inherited = self._inherited(model_def)
+            old = inherited.get(name)
+            # a trait may `becomes` an attribute its host declares (spec C.3/C.4): not a redeclaration
+            if old is not None and old.stmt is not s and not (old.keyword == "becomes" and old.owner.is_trait):
+                self.report("M001", f"'{name}' is already declared in {old.owner.qname}; use 'becomes' to "
+                            f"specialise it or ':' to give it a value", ident.span,
+                            help=f"'{name} becomes {s.type.alternatives[0].name.text}'" if s.type else None)
+        elif not target.unknown and name in self.p.members_of(target):
+            self.report("M001", f"'{name}' already exists in {target.display()}; use ':' to give it "
+                        f"a value or 'becomes' to specialise it", ident.span)
+
+    def _becomes(self, s: ast.Declaration, ty: Ty, owner_ty: Ty, model_def: ModelSym | None) -> None:
+        """`path becomes T`: the attribute must be inherited (M002) and T fit its declared type (M003)."""
+        ident = s.path.parts[-1]
+        name = ident.name
+        if model_def is not None and len(s.path.parts) == 1:
+            candidates = self._inherited(model_def)
+        else:
+            candidates = self.p.members_of(owner_ty) if not owner_ty.unknown else None
+        old = candidates.get(name) if candidates is not None else None
+        if old is not None and old.stmt is s:
+            old = None
+        if old is None:
+            if candidates is not None and not self.in_trait and not self._opaque(owner_ty):
+                where = model_def.qname if model_def is not None else owner_ty.display()
+                self.report("M002", f"'{name}' is not inherited by {where}, so it cannot 'become' "
+                            f"another type", ident.span,
+                            help=self._suggest(name, candidates) or f"declare it with '{name} is ...'")
+            return
+        self.occ(ident.span, old, "attribute")
+        old_ty = self.p.member_type(old)
+        if not ty.unknown and not old_ty.unknown and self.p.assignable(ty, old_ty) != "ok":
+            self.report("M003", f"'{name}' cannot become {ty.display()}: it is declared as "
+                        f"{old_ty.display()} in {old.owner.qname}", s.type.span,
+                        help="the new type must be a subtype of the declared type or one of its alternatives")
+
+    def _declaration_block(self, s: ast.Declaration, ty: Ty, mem: MemberSym | None, prefix: tuple[str, ...]) -> None:
+        parts = s.path.parts
+        if s.reference:
+            self.report("M009", f"'{parts[-1].name}' is a reference; a block would create a new object",
+                        s.header, help="give it an existing object with ':' instead")
+        block_ty = Ty(mem.anon) if mem is not None and mem.anon is not None else ty
+        self._block(s.body, block_ty, prefix + tuple(p.name for p in parts), mem.anon if mem is not None else None)
 
     def _opaque(self, ty: Ty) -> bool:
         return ty.model is not None and self.p.is_open(ty.model)
@@ -417,7 +437,7 @@ class Checker:
             if cur.unknown or self._opaque(cur):
                 return UNKNOWN, None
             if cur.array or cur.alts or cur.primitive is not None:
-                self.report("N002", f"'{part.name}' cannot be set on a value of type {cur.display()}", part.span)
+                self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' cannot be set on a value of type {cur.display()}", part.span)
                 return UNKNOWN, None
             mems = resolve.attributes(self.p, cur, self.outer, path)
             found = mems.get(part.name)
@@ -426,10 +446,10 @@ class Checker:
                     return UNKNOWN, None  # a host attribute the trait does not declare
                 where = self.p.concrete(cur.model).qname if cur.model is not None else cur.display()
                 if i == 0 and not prefix:
-                    self._unknown("N002", f"'{part.name}' is not an attribute of {where}", part.span, part.name,
+                    self._unknown(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span, part.name,
                                   list(mems))
                 else:
-                    self.report("N002", f"'{part.name}' is not an attribute of {where}", part.span,
+                    self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span,
                                 suggest=self._closest(part.name, list(mems)))
                 return UNKNOWN, None
             mem = found
@@ -461,12 +481,12 @@ class Checker:
             return
         got = self._expr(expr, expected)
         if not isinstance(got, Ty):
-            self._not_a_value("T001", got, expr.span)
+            self._not_a_value(TYPE_MISMATCH, got, expr.span)
             return
         verdict = self.p.assignable(got, expected)
         if verdict == "no":
             help_, fix = self._literal_help(expr, expected)
-            self.report("T001", f"expected {expected.display()}, found {got.display()}", expr.span,
+            self.report(TYPE_MISMATCH, f"expected {expected.display()}, found {got.display()}", expr.span,
                         help=help_ or self._mismatch_help(got, expected), fix=fix)
         elif verdict == "warn":
             self.report("T002", "a Real is given where an Int is expected", expr.span, W,
@@ -530,63 +550,76 @@ class Checker:
     def _as_ty(self, v, span: Span) -> Ty:
         if isinstance(v, Ty):
             return v
-        self._not_a_value("T001", v, span)
+        self._not_a_value(TYPE_MISMATCH, v, span)
         return UNKNOWN
 
-    def _expr(self, e, expected: Ty = UNKNOWN):  # noqa: C901 - one dispatch over the expression kinds
-        if isinstance(e, ast.Number):
-            return INT if e.is_int else REAL
-        if isinstance(e, ast.String):
-            return STRING
-        if isinstance(e, ast.Bool):
-            return BOOL
-        if isinstance(e, ast.This):
-            # inside a trait, `this` is whatever host the trait is applied to
-            return Ty(self.outer) if self.outer is not None and not self.in_trait else UNKNOWN
-        if isinstance(e, ast.Paren):
-            return self._expr(e.inner, expected)
-        if isinstance(e, ast.Name):
-            return self._name(e.ident)
-        if isinstance(e, ast.Member):
-            return self._member(e)
-        if isinstance(e, ast.Call):
-            return self._call(e)
-        if isinstance(e, ast.Index):
-            obj = self._as_ty(self._expr(e.obj), e.obj.span)
-            idx = self._as_ty(self._expr(e.index), e.index.span)
-            if idx.primitive is not None and idx.primitive != "Int":
-                self.report("T009", f"an index must be an Int, not {idx.display()}", e.index.span)
-            if obj.unknown:
-                return UNKNOWN
-            if not obj.array:
-                self.report("T009", f"a value of type {obj.display()} cannot be indexed", e.span)
-                return UNKNOWN
-            return obj.element()
-        if isinstance(e, ast.Unary):
-            operand = self._as_ty(self._expr(e.operand, expected), e.operand.span)
-            return self._operator("-", [operand], e)
-        if isinstance(e, ast.Binary):
-            left = self._as_ty(self._expr(e.left), e.left.span)
-            right = self._as_ty(self._expr(e.right), e.right.span)
-            return self._operator(e.op, [left, right], e)
-        if isinstance(e, ast.Brace):
-            return self._brace(e, expected)
-        if isinstance(e, ast.Array):
-            elem = expected.element() if expected.array else UNKNOWN
-            if not expected.unknown and not expected.array and not expected.alts:
-                for item in e.items:
-                    self._expr(item)
-                return Ty("Array", True)  # reported by the caller as a mismatch
-            got_elem = UNKNOWN
+    def _expr(self, e, expected: Ty = UNKNOWN):
+        """What expression `e` is (a Ty, or the type, namespace or method it names), checking it on
+        the way: one handler per expression kind (`_EXPR_KINDS`, after the class)."""
+        handler = _EXPR_KINDS.get(type(e))
+        return handler(self, e, expected) if handler is not None else UNKNOWN
+
+    def _number(self, e: ast.Number, expected: Ty) -> Ty:
+        return INT if e.is_int else REAL
+
+    def _string(self, e: ast.String, expected: Ty) -> Ty:
+        return STRING
+
+    def _bool(self, e: ast.Bool, expected: Ty) -> Ty:
+        return BOOL
+
+    def _this(self, e: ast.This, expected: Ty) -> Ty:
+        # inside a trait, `this` is whatever host the trait is applied to
+        return Ty(self.outer) if self.outer is not None and not self.in_trait else UNKNOWN
+
+    def _paren(self, e: ast.Paren, expected: Ty):
+        return self._expr(e.inner, expected)
+
+    def _name_expr(self, e: ast.Name, expected: Ty):
+        return self._name(e.ident)
+
+    def _member_expr(self, e: ast.Member, expected: Ty):
+        return self._member(e)
+
+    def _call_expr(self, e: ast.Call, expected: Ty):
+        return self._call(e)
+
+    def _index(self, e: ast.Index, expected: Ty) -> Ty:
+        obj = self._as_ty(self._expr(e.obj), e.obj.span)
+        idx = self._as_ty(self._expr(e.index), e.index.span)
+        if idx.primitive is not None and idx.primitive != "Int":
+            self.report("T009", f"an index must be an Int, not {idx.display()}", e.index.span)
+        if obj.unknown:
+            return UNKNOWN
+        if not obj.array:
+            self.report("T009", f"a value of type {obj.display()} cannot be indexed", e.span)
+            return UNKNOWN
+        return obj.element()
+
+    def _unary(self, e: ast.Unary, expected: Ty) -> Ty:
+        operand = self._as_ty(self._expr(e.operand, expected), e.operand.span)
+        return self._operator("-", [operand], e)
+
+    def _binary(self, e: ast.Binary, expected: Ty) -> Ty:
+        left = self._as_ty(self._expr(e.left), e.left.span)
+        right = self._as_ty(self._expr(e.right), e.right.span)
+        return self._operator(e.op, [left, right], e)
+
+    def _array(self, e: ast.Array, expected: Ty) -> Ty:
+        elem = expected.element() if expected.array else UNKNOWN
+        if not expected.unknown and not expected.array and not expected.alts:
             for item in e.items:
-                if elem.unknown:
-                    t = self._expr(item)
-                    if isinstance(t, Ty) and got_elem.unknown:
-                        got_elem = t
-                else:
-                    self._value(item, elem)
-            return expected if expected.array else (Ty(got_elem.sym, True, got_elem.traits) if not got_elem.unknown else UNKNOWN)
-        return UNKNOWN
+                self._expr(item)
+            return Ty("Array", True)  # reported by the caller as a mismatch
+        got_elem = UNKNOWN
+        for item in e.items:
+            if elem.unknown:
+                t = self._expr(item)
+                if isinstance(t, Ty) and got_elem.unknown:
+                    got_elem = t
+            else:
+                self._value(item, elem)
+        return expected if expected.array else (Ty(got_elem.sym, True, got_elem.traits) if not got_elem.unknown else UNKNOWN)
 
     def _brace(self, e: ast.Brace, expected: Ty):
         target = expected
@@ -603,7 +636,7 @@ class Checker:
                 return target
             for item in e.items:
                 self._expr(item)
-            self.report("T001", f"a {{...}} literal cannot be a {target.primitive}", e.span)
+            self.report(TYPE_MISMATCH, f"a {{...}} literal cannot be a {target.primitive}", e.span)
             return UNKNOWN
         fields = self.p.positional_fields(target.model)
         if fields is None:
@@ -631,7 +664,7 @@ class Checker:
             return UNKNOWN
         options = list(self.p.members_of(Ty(self.outer))) if self.outer is not None else []
         options += list(self.unit.locals) + list(self.unit.namespace.symbols)
-        self._unknown("N003", f"unknown name '{name}'", ident.span, name, options)
+        self._unknown(UNRESOLVED_NAME, f"unknown name '{name}'", ident.span, name, options)
         return UNKNOWN
 
     def _global_value(self, found, ident: ast.Ident):
@@ -656,7 +689,7 @@ class Checker:
         if isinstance(base, NsRef):
             v = self._global_value(found, e.name)
             if v is None:
-                self.report("N003", f"'{name}' is not in namespace {base.ns.dotted}", e.name.span,
+                self.report(UNRESOLVED_NAME, f"'{name}' is not in namespace {base.ns.dotted}", e.name.span,
                             suggest=self._closest(name, list(base.ns.symbols) + list(base.ns.children)))
                 return UNKNOWN
             return v
@@ -798,13 +831,21 @@ class Checker:
                     ring = trail[trail.index(nxt):] + [nxt]
                     if nxt not in reported:
                         reported.update(ring)
-                        self.report("M006", "these values depend on each other in a cycle: " + " -> ".join(ring),
+                        self.report(DEFAULT_CYCLE, "these values depend on each other in a cycle: " + " -> ".join(ring),
                                     spans.get(nxt, m.stmt.header),
                                     help="give one of them a value that does not depend on the others")
                 elif not color.get(nxt):
                     color[nxt] = 1
                     trail.append(nxt)
                     stack.append((nxt, iter(deps(nxt))))
+
+
+_EXPR_KINDS = {
+    ast.Number: Checker._number, ast.String: Checker._string, ast.Bool: Checker._bool, ast.This: Checker._this,
+    ast.Paren: Checker._paren, ast.Name: Checker._name_expr, ast.Member: Checker._member_expr,
+    ast.Call: Checker._call_expr, ast.Index: Checker._index, ast.Unary: Checker._unary,
+    ast.Binary: Checker._binary, ast.Brace: Checker._brace, ast.Array: Checker._array,
+}
 
 
 def _signature(meth: MethodSym) -> str:

@@ -201,6 +201,21 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
         out = Plan(keys, regs, fkey, {}, set(range(n)), [], True, words=words, names=names)
         out.number(None)
         return out
+    matched = _matched(previous, keys)
+    moves = sorted((p.start, p.end, regs[i][0] - p.start, regs[i][2] - p.line) for i, p in matched.items())
+    reused: dict[int, Part] = {}
+    for i, p in matched.items():
+        part = _moved_part(p, regs[i], moves, names, unit.path)
+        if part is not None:
+            reused[i] = part
+    out = Plan(keys, regs, fkey, reused, set(range(n)) - set(reused), moves, True, True, words=words, names=names)
+    out.number(previous)
+    return out
+
+
+def _matched(previous: Snapshot, keys: list) -> dict[int, Part]:
+    """Each statement of this version whose key an earlier statement had: that statement's part
+    (equal keys are paired in order)."""
     by_key: dict[tuple, list[int]] = {}
     for j, k in enumerate(previous.keys):
         by_key.setdefault(k, []).append(j)
@@ -209,28 +224,31 @@ def plan(previous: Snapshot | None, program, unit: FileUnit, others: int, known_
         olds = by_key.get(k)
         if olds:
             matched[i] = previous.parts[olds.pop(0)]
-    moves = sorted((p.start, p.end, regs[i][0] - p.start, regs[i][2] - p.line) for i, p in matched.items())
-    reused: dict[int, Part] = {}
-    for i, p in matched.items():
-        start, end, line = regs[i]
-        if p.positional and line != p.line or p.names is not None and p.names != names:
-            continue
-        diags = [_move_diag(moves, d, unit.path) for d in p.diags]
-        if any(d is None for d in diags) or p.records is None:
-            continue
-        extra = {}
-        for rule, found in p.extra.items():
-            moved = [_move_diag(moves, d, unit.path) for d in found]
-            if any(d is None for d in moved):
-                extra = None
-                break
-            extra[rule] = moved
-        if extra is None:
-            continue
-        reused[i] = Part(start, end, line, diags, None, p.positional, extra, p.records, p.uses, p.names)
-    out = Plan(keys, regs, fkey, reused, set(range(n)) - set(reused), moves, True, True, words=words, names=names)
-    out.number(previous)
-    return out
+    return matched
+
+
+def _moved_part(p: Part, region: tuple, moves: list, names: frozenset, path) -> Part | None:
+    """An unchanged statement's earlier results at its new place, or None when they cannot be kept:
+    a finding that names its line moved lines, the file's names changed under a suggestion, or a
+    diagnostic points into text that changed."""
+    start, end, line = region
+    if p.positional and line != p.line or p.names is not None and p.names != names:
+        return None
+    diags = _moved_diags(p.diags, moves, path)
+    if diags is None or p.records is None:
+        return None
+    extra = {}
+    for rule, found in p.extra.items():
+        moved = _moved_diags(found, moves, path)
+        if moved is None:
+            return None
+        extra[rule] = moved
+    return Part(start, end, line, diags, None, p.positional, extra, p.records, p.uses, p.names)
+
+
+def _moved_diags(diags: list, moves: list, path) -> list | None:
+    moved = [_move_diag(moves, d, path) for d in diags]
+    return None if any(d is None for d in moved) else moved
 
 
 def record(part: Part, occs: list, unit: FileUnit, regs: list, serials: list) -> None:

@@ -418,6 +418,139 @@ def dependency_pins(roots: list[Path], official_names: set[str]) -> list[tuple[s
     return out
 
 
+class _Folders:
+    """The bundle folders of a set in the order they were given, each checked once (step 1 above)."""
+
+    def __init__(self) -> None:
+        self.sources: list[BundleSource] = []
+        self.seen: set[Path] = set()
+
+    def add(self, p: Path, why: str, must_exist: bool = True) -> None:
+        found = reads.kind(p)
+        if found is None:
+            if must_exist:
+                raise BundleSetError(f"bundle path {p} does not exist ({why})")
+            return
+        if found != "dir":
+            raise BundleSetError(f"bundle path {p} is not a folder ({why})")
+        rp = Path(reads.realpath(p))
+        if rp in self.seen:
+            return
+        if not bundle_roots_in(rp):
+            raise BundleSetError(f"bundle path {p} holds no bundle: no config.openplx in it or in its "
+                                 f"subfolders ({why})")
+        check_unique_names(rp)
+        self.seen.add(rp)
+        self.sources.append(BundleSource(rp, why))
+
+    def add_configured(self, anchors: list[Path]) -> tuple[tuple[str, str] | None, str | None]:
+        """`bundle-path` of each anchor's config; also the first `openplx-version` (with where it is
+        written) and the first `agx-dir` found on the way."""
+        from plxtools.config import config_for
+
+        cfg_version: tuple[str, str] | None = None
+        cfg_agx: str | None = None
+        for a in anchors:
+            cfg = config_for(a / "x.openplx")
+            if cfg.agx_dir is not None and cfg_agx is None:
+                cfg_agx = cfg.agx_dir
+            for p in cfg.bundle_paths:
+                self.add(p, f"bundle-path in {cfg.source}")
+            if cfg.openplx_version and cfg_version is None:
+                cfg_version = (cfg.openplx_version, f"openplx-version in {cfg.source}")
+        return cfg_version, cfg_agx
+
+    def add_environment(self) -> None:
+        for part in (os.environ.get("OPENPLX_BUNDLE_PATH") or "").split(os.pathsep):
+            if part:
+                self.add(Path(part), "OPENPLX_BUNDLE_PATH")
+
+    def add_found(self, found: list[Path], official_root: Path | None, workspace_root: Path | None) -> None:
+        """Bundles found in the linted tree or the workspace, after the configured folders."""
+        for r in found:
+            if r.parent.resolve() in self.seen or r in self.seen:
+                continue
+            if official_root is not None and official_root.resolve() in r.parents:
+                continue  # linting the very bundles in use: they are already the official set
+            self.sources.append(BundleSource(r, "found in the linted tree" if workspace_root is None or
+                                             workspace_root.resolve() not in (r, *r.parents)
+                                             else "found in the workspace"))
+            self.seen.add(r)
+
+
+@dataclass(slots=True)
+class _Choice:
+    """Where the official bundles come from (steps 2-5 above), as it is being decided."""
+
+    version: str | None = None
+    why: str = ""
+    agx_official: tuple[Path, str | None, str] | None = None
+    installed_why: str = f"the installed {PACKAGE} package: no dependency selects a version"
+    notes: list[str] = field(default_factory=list)
+
+
+def _official_names(inst: tuple[Path, str] | None) -> set[str]:
+    names = {d.name for d in bundle_roots_in(inst[0])} if inst else set()
+    return names | {"Math", "Physics", "Physics1D", "Physics3D", "DriveTrain", "Robotics", "Sensors",
+                    "Simulation", "Terrain", "Urdf", "Vehicles", "Visuals"}
+
+
+def _follow_pin(c: _Choice, pins: list[tuple[str, str]], agx, inst) -> None:
+    """The first dependency pin chooses the version; an AGX installation or the installed package of
+    that very version serves it."""
+    c.version, where = pins[0]
+    c.why = f"pinned by {where}"
+    others = sorted({v for v, _w in pins if v != c.version})
+    if others:
+        c.notes.append(f"other pins ignored: {', '.join(others)} (the first pin, {where}, wins)")
+    if agx is not None and agx.openplx_version == c.version:
+        c.agx_official = (agx.bundles, c.version, f"{c.why}; {agx.describe()}")
+        c.version = None
+    elif inst is not None and inst[1] == c.version:  # what is installed anyway: nothing to announce
+        c.version = None
+        c.installed_why = f"the installed {PACKAGE} package, the version {where.split(': ', 1)[0]} asks for"
+
+
+def _choose(cli_version: str | None, cfg_version: tuple[str, str] | None, pins: list[tuple[str, str]],
+            replacing: list[BundleSource], agx, inst) -> _Choice:
+    c = _Choice()
+    if cli_version:
+        c.version, c.why = cli_version, "--openplx-version"
+    elif cfg_version:
+        c.version, c.why = cfg_version
+    elif pins and replacing:
+        c.notes.append(f"the dependency version {pins[0][1]} is not used: the official bundles come from "
+                       f"{replacing[0].path} ({replacing[0].why})")
+    elif pins:
+        _follow_pin(c, pins, agx, inst)
+    elif agx is not None and not replacing:
+        c.agx_official = (agx.bundles, agx.openplx_version, agx.describe())
+    if agx is not None and c.agx_official is None:
+        c.notes.append(f"{agx.describe()}: not used ({c.why or 'bundle folders are configured'}); "
+                       f"'agx-dir' in the config chooses another installation, \"\" turns the search off")
+    return c
+
+
+def _official(c: _Choice, inst) -> tuple[Path | None, str | None, str]:
+    """The official base folder, its version and why, for the choice made."""
+    if c.agx_official is not None:
+        return c.agx_official
+    if c.version is not None:
+        try:
+            root = version_root(c.version)
+        except BundleSetError as exc:
+            raise BundleSetError(f"{exc} (the version comes from {c.why})") from None
+        return (root, c.version, c.why)
+    if inst is not None:
+        return (inst[0], inst[1], c.installed_why)
+    return (None, None, f"{PACKAGE} is not installed")
+
+
+def _has_math(sources: list[BundleSource]) -> bool:
+    return any((s.path / "Math" / "config.openplx").is_file() or
+               (s.path / "config.openplx").is_file() and _config_name(s.path) == "Math" for s in sources)
+
+
 def resolve_bundle_set(
     targets: list[Path],
     cli_paths: list[str | Path] = (),
@@ -427,65 +560,27 @@ def resolve_bundle_set(
     discover: bool = True,
     use_config: bool = True,
 ) -> BundleSet:
-    """The bundle set for files/folders `targets` (and an editor's workspace root), in the documented order."""
-    from plxtools.config import config_for
-
-    sources: list[BundleSource] = []
-    seen: set[Path] = set()
-
-    from plxtools.cache import reads
-
-    def add(p: Path, why: str, must_exist: bool = True) -> None:
-        found = reads.kind(p)
-        if found is None:
-            if must_exist:
-                raise BundleSetError(f"bundle path {p} does not exist ({why})")
-            return
-        if found != "dir":
-            raise BundleSetError(f"bundle path {p} is not a folder ({why})")
-        rp = Path(reads.realpath(p))
-        if rp in seen:
-            return
-        if not bundle_roots_in(rp):
-            raise BundleSetError(f"bundle path {p} holds no bundle: no config.openplx in it or in its "
-                                 f"subfolders ({why})")
-        check_unique_names(rp)
-        seen.add(rp)
-        sources.append(BundleSource(rp, why))
-
+    """The bundle set for files/folders `targets` (and an editor's workspace root), in the documented
+    order: the bundle folders given, then the official base they choose, then the bundles found."""
+    folders = _Folders()
     for p in cli_paths:
-        add(Path(p), "--bundle-path")
+        folders.add(Path(p), "--bundle-path")
     anchors = [workspace_root] if workspace_root is not None else []
     anchors += sorted({(t if t.is_dir() else t.parent) for t in targets}) or [Path(".")]
-    cfg_version: tuple[str, str] | None = None
-    cfg_agx: str | None = None
-    for a in anchors if use_config else []:
-        cfg = config_for(a / "x.openplx")
-        if cfg.agx_dir is not None and cfg_agx is None:
-            cfg_agx = cfg.agx_dir
-        for p in cfg.bundle_paths:
-            add(p, f"bundle-path in {cfg.source}")
-        if cfg.openplx_version and cfg_version is None:
-            cfg_version = (cfg.openplx_version, f"openplx-version in {cfg.source}")
+    cfg_version, cfg_agx = folders.add_configured(anchors) if use_config else (None, None)
     if use_env:
-        for part in (os.environ.get("OPENPLX_BUNDLE_PATH") or "").split(os.pathsep):
-            if part:
-                add(Path(part), "OPENPLX_BUNDLE_PATH")
+        folders.add_environment()
     inst = installed()
-    official_names = {d.name for d in bundle_roots_in(inst[0])} if inst else set()
-    official_names |= {"Math", "Physics", "Physics1D", "Physics3D", "DriveTrain", "Robotics", "Sensors",
-                       "Simulation", "Terrain", "Urdf", "Vehicles", "Visuals"}
+    official_names = _official_names(inst)
     found: list[Path] = []
     if discover:
-        stop = {s.path for s in sources}
+        stop = {s.path for s in folders.sources}
         if inst is not None:
             stop.add(inst[0].resolve())
         found = discover_bundles(([workspace_root] if workspace_root else []) + list(targets), stop)
 
-    version: str | None = None
-    why = ""
-    notes: list[str] = []
     # every user bundle counts the same, however it was found (flag, config, environment, the tree)
+    sources = folders.sources
     user_roots = [r for s in sources for r in bundle_roots_in(s.path)] + list(found)
     replacing = [s for s in sources if any(_config_name(r) in official_names for r in bundle_roots_in(s.path))]
     pins = dependency_pins(user_roots, official_names)
@@ -494,57 +589,12 @@ def resolve_bundle_set(
         from plxtools.model.agx import find_agx
 
         agx = find_agx(cfg_agx)
-    agx_official: tuple[Path, str | None, str] | None = None
-    installed_why = f"the installed {PACKAGE} package: no dependency selects a version"
-    if cli_version:
-        version, why = cli_version, "--openplx-version"
-    elif cfg_version:
-        version, why = cfg_version
-    elif pins and replacing:
-        notes.append(f"the dependency version {pins[0][1]} is not used: the official bundles come from "
-                     f"{replacing[0].path} ({replacing[0].why})")
-    elif pins:
-        version, where = pins[0]
-        why = f"pinned by {where}"
-        others = sorted({v for v, _w in pins if v != version})
-        if others:
-            notes.append(f"other pins ignored: {', '.join(others)} (the first pin, {where}, wins)")
-        if agx is not None and agx.openplx_version == version:
-            agx_official = (agx.bundles, version, f"{why}; {agx.describe()}")
-            version = None
-        elif inst is not None and inst[1] == version:  # what is installed anyway: nothing to announce
-            version = None
-            installed_why = f"the installed {PACKAGE} package, the version {where.split(': ', 1)[0]} asks for"
-    elif agx is not None and not replacing:
-        agx_official = (agx.bundles, agx.openplx_version, agx.describe())
-    if agx is not None and agx_official is None:
-        notes.append(f"{agx.describe()}: not used ({why or 'bundle folders are configured'}); "
-                     f"'agx-dir' in the config chooses another installation, \"\" turns the search off")
-    if agx_official is not None:
-        official = agx_official
-    elif version is not None:
-        try:
-            root = version_root(version)
-        except BundleSetError as exc:
-            raise BundleSetError(f"{exc} (the version comes from {why})") from None
-        official = (root, version, why)
-    elif inst is not None:
-        official = (inst[0], inst[1], installed_why)
-    else:
-        official = (None, None, f"{PACKAGE} is not installed")
-    for r in found:
-        if r.parent.resolve() in seen or r in seen:
-            continue
-        if official[0] is not None and official[0].resolve() in r.parents:
-            continue  # linting the very bundles in use: they are already the official set
-        sources.append(BundleSource(r, "found in the linted tree" if workspace_root is None or
-                                    workspace_root.resolve() not in (r, *r.parents) else "found in the workspace"))
-        seen.add(r)
-    bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources, notes,
-                   agx, agx_official is not None)
-    if bs.official_root is None and not any((s.path / "Math" / "config.openplx").is_file() or
-                                            (s.path / "config.openplx").is_file() and _config_name(s.path) == "Math"
-                                            for s in sources):
+    choice = _choose(cli_version, cfg_version, pins, replacing, agx, inst)
+    official = _official(choice, inst)
+    folders.add_found(found, official[0], workspace_root)
+    bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources,
+                   choice.notes, agx, choice.agx_official is not None)
+    if bs.official_root is None and not _has_math(sources):
         raise BundleSetError("cannot find the OpenPLX bundles: install openplx-bundles, set openplx-version, "
                              "OPENPLX_BUNDLE_PATH, or pass --bundle-path")
     return bs

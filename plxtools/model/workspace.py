@@ -15,7 +15,7 @@ from pathlib import Path
 
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix, Severity
 from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
-from plxtools.model.checker import Checker, Occurrence
+from plxtools.model.checker import UNKNOWN_ATTRIBUTE, UNRESOLVED_NAME, UNRESOLVED_TYPE, Checker, Occurrence
 from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
@@ -450,7 +450,7 @@ class Workspace:
 
     def _help_for_unloaded_bundles(self, tree: ast.File, diags: list[Diagnostic]) -> None:
         """`Name.X` unknown and a bundle called Name sits nearby but is not loaded: say how to load it."""
-        unknown = [d for d in diags if d.code in ("N001", "N003") and not d.help]
+        unknown = [d for d in diags if d.code in (UNRESOLVED_TYPE, UNRESOLVED_NAME) and not d.help]
         if not unknown or not tree.path or is_editor_buffer(tree.path):
             return
         nearby = self.nearby_bundles(Path(tree.path).resolve().parent)
@@ -473,12 +473,12 @@ class Workspace:
         moved or was renamed one to one by the version in use, it is U001 with a safe fix to the new
         name; otherwise the help says which versions have it, so the user migrates (or chooses that
         version) instead of hunting for a typo."""
-        unknown = [d for d in diags if d.code == "N001"]
+        unknown = [d for d in diags if d.code == UNRESOLVED_TYPE]
         bs = getattr(self, "bundle_set", None)
         using = getattr(bs, "official_version", None)
         if not using:
             return
-        self._renamed_attributes(tree, [d for d in diags if d.code == "N002"], using)
+        self._renamed_attributes(tree, [d for d in diags if d.code == UNKNOWN_ATTRIBUTE], using)
         if not unknown:
             return
         from plxtools.model.apiindex import UnknownVersion, spans, version_key, where_defined

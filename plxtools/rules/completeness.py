@@ -7,9 +7,14 @@ outside any bundle) actually creates must have every non-optional value.
 from __future__ import annotations
 
 from plxtools.diagnostics import Diagnostic, Severity, Span
+from plxtools.model.checker import UNKNOWN_ATTRIBUTE
 from plxtools.model.program import Program
 from plxtools.model.symbols import ModelSym, Ty
 from plxtools.syntax import ast
+
+# raised here; check/pipeline.py imports these names to recognise them
+MISSING_ASSIGNMENT = "M007"
+UNBOUND_REFERENCE = "M008"
 
 REQUIRED_PRIMITIVES = {"Real", "Int", "Bool", "String"}
 MAX_DEPTH = 40
@@ -272,10 +277,10 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
             continue
         seen.add((full, kind))
         if kind == "ref":
-            d = Diagnostic("M008", _message("M008", full, shown), local_anchor, Severity.ERROR, file=unit.path,
+            d = Diagnostic(UNBOUND_REFERENCE, _message(UNBOUND_REFERENCE, full, shown), local_anchor, Severity.ERROR, file=unit.path,
                            help=f"give it an existing object: '{name}: ...' (declared in {owner})")
         else:
-            d = Diagnostic("M007", _message("M007", full, shown), local_anchor, Severity.ERROR, file=unit.path,
+            d = Diagnostic(MISSING_ASSIGNMENT, _message(MISSING_ASSIGNMENT, full, shown), local_anchor, Severity.ERROR, file=unit.path,
                            help=f"give it a value, e.g. '{name}: ...' (declared without a default in {owner})")
         found.append((d, name, full, shown))
     return _one_per_location(found)
@@ -283,7 +288,7 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
 
 def _message(code: str, path: str, ty: str, instances: str = "") -> str:
     where = f" in {instances}" if instances else ""
-    if code == "M008":
+    if code == UNBOUND_REFERENCE:
         return f"reference '{path}' ({ty}){where} is never bound"
     return f"missing assignment {path} ({ty}){where}: the model is not complete"
 
@@ -316,7 +321,7 @@ class _Causes:
 
     def __init__(self, tree: ast.File, causes: list[Diagnostic]):
         self.text = tree.text
-        self.errors = [d for d in causes if d.severity is Severity.ERROR and (d.code[0] == "S" or d.code == "N002")]
+        self.errors = [d for d in causes if d.severity is Severity.ERROR and (d.code[0] == "S" or d.code == UNKNOWN_ATTRIBUTE)]
         self.extent: dict[int, tuple[int, int]] = {}
         if self.errors:
             for st in ast.walk_statements(tree.statements):
