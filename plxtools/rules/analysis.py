@@ -11,6 +11,7 @@ import bisect
 from plxtools.config import Config
 from plxtools.diagnostics import Diagnostic
 from plxtools.syntax import ast
+from plxtools.syntax.source import BINARY_FILE
 
 
 def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previous=None, keep: bool = False):
@@ -124,7 +125,7 @@ def analyse_tree(tree: ast.File, cfg: Config, workspace=None) -> list[Diagnostic
 
 def is_binary(tree: ast.File) -> bool:
     """S001: the file is not text, so there is nothing to analyse beyond saying so."""
-    return any(d.code == "S001" for d in tree.diagnostics)
+    return any(d.code == BINARY_FILE for d in tree.diagnostics)
 
 
 def final_diagnostics(tree: ast.File, cfg: Config, analysis) -> list[Diagnostic]:

@@ -9,10 +9,13 @@ from plxtools.rules.completeness import root_model
 from plxtools.model.program import Program
 from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast
+from plxtools.syntax.lexer import TAB_INDENTATION
+from plxtools.syntax.parser import INDENTATION_BETWEEN_LEVELS
 
 PASCAL = re.compile(r"^[A-Z][A-Za-z0-9]*$")
 SNAKE = re.compile(r"^[a-z_][a-z0-9_]*$")
 UPPER = re.compile(r"^[A-Z][A-Z0-9_]*$")
+MISALIGNED_INDENTATION = "C006"  # raised here; fmt leaves it out of its before/after comparison
 
 
 def _block_column(body: list, parent_col: int) -> int:
@@ -93,7 +96,7 @@ def _attribute_name_help(name: str) -> str:
 
 def _caused(tree) -> set[int]:
     """Lines where the parser already reported the cause of an odd indentation (S015, a tab)."""
-    return {d.span.start.line for d in tree.diagnostics if d.code in ("S003", "S015") and d.severity is Severity.ERROR}
+    return {d.span.start.line for d in tree.diagnostics if d.code in (TAB_INDENTATION, INDENTATION_BETWEEN_LEVELS) and d.severity is Severity.ERROR}
 
 
 def _misaligned(body: list, parent_col: int, caused: set[int], add) -> None:
@@ -102,7 +105,7 @@ def _misaligned(body: list, parent_col: int, caused: set[int], add) -> None:
     col = _block_column(body, parent_col)
     for s in body:
         if s.header.start.column != col and s.header.start.line not in caused:
-            add("C006", f"this line is indented {s.header.start.column} spaces but the other lines of its "
+            add(MISALIGNED_INDENTATION, f"this line is indented {s.header.start.column} spaces but the other lines of its "
                 f"block are indented {col}", s.header, Severity.INFO,
                 f"indent it {col} spaces; a missing ':' on the line above would also cause this "
                 "(`plx fmt` aligns siblings)")

@@ -98,6 +98,12 @@ OPENERS = {"(": ")", "[": "]", "{": "}"}
 CLOSERS = {")", "]", "}"}
 MAX_BRACKET_DEPTH = 200
 
+# the layout codes this module raises; the parser, incremental parsing, style and fmt recognise them by these names
+TAB_INDENTATION = "S003"
+UNBALANCED_BRACKET = "S004"
+NESTING_TOO_DEEP = "S007"
+UNTERMINATED_STRING = "S009"
+
 _TOKEN_RE = re.compile(
     r"""
     (?P<ws>[ \t\f]+)
@@ -257,16 +263,7 @@ class Lexer:
                             line += 1
                         continue
                     if tab_at >= 0:
-                        p = Pos(tab_at, line, tab_at - line_start)
-                        diagnostics.append(
-                            Diagnostic(
-                                "S003",
-                                "tab character in indentation; OpenPLX indents with spaces",
-                                Span(p, Pos(tab_at + 1, p.line, p.column + 1)),
-                                Severity.WARNING,
-                                help="indent with 4 spaces per level (`plx fmt` does this)",
-                            )
-                        )
+                        diagnostics.append(_tab_in_indentation(tab_at, line, tab_at - line_start))
                     indent = col
                     pos = i
                     at_line_start = False
@@ -304,22 +301,16 @@ class Lexer:
                     if ch in OPENERS:
                         brackets.append(tok)
                         if len(brackets) > MAX_BRACKET_DEPTH:
-                            fail(
-                                Diagnostic(
-                                    "S007",
-                                    f"brackets nested more than {MAX_BRACKET_DEPTH} levels deep",
-                                    _tok_span(tok),
-                                    Severity.ERROR,
-                                )
-                            )
+                            fail(too_deep(f"brackets nested more than {MAX_BRACKET_DEPTH} levels deep",
+                                          _tok_span(tok)))
                     elif ch in CLOSERS:
                         if not brackets:
-                            fail(Diagnostic("S004", f"unmatched '{ch}'", _tok_span(tok), Severity.ERROR))
+                            fail(Diagnostic(UNBALANCED_BRACKET, f"unmatched '{ch}'", _tok_span(tok), Severity.ERROR))
                         elif OPENERS[brackets[-1].value] != ch:
                             opener = brackets.pop()
                             fail(
                                 Diagnostic(
-                                    "S004",
+                                    UNBALANCED_BRACKET,
                                     f"'{ch}' does not match '{opener.value}' opened at line {opener.line + 1}",
                                     _tok_span(tok),
                                     Severity.ERROR,
@@ -507,7 +498,7 @@ class Lexer:
                 end = len(text)
                 fail(
                     Diagnostic(
-                        "S009",
+                        UNTERMINATED_STRING,
                         'unterminated """ string: it runs to the end of the file',
                         Span(p0, Pos(start + 3, p0.line, p0.column + 3)),
                         Severity.ERROR,
@@ -541,7 +532,7 @@ class Lexer:
             end = i
             fail(
                 Diagnostic(
-                    "S009",
+                    UNTERMINATED_STRING,
                     "unterminated string: a \"...\" string must close on the same line",
                     Span(p0, self._p(end)),
                     Severity.ERROR,
@@ -578,8 +569,33 @@ def _bad_char_help(ch: str) -> str | None:
 
 
 def _never_closed(opener: Token) -> Diagnostic:
-    return Diagnostic("S004", f"'{opener.value}' was never closed", _tok_span(opener), Severity.ERROR,
+    return Diagnostic(UNBALANCED_BRACKET, f"'{opener.value}' was never closed", _tok_span(opener), Severity.ERROR,
                       help=f"add the closing '{OPENERS[opener.value]}'")
+
+
+def _tab_in_indentation(offset: int, line: int, column: int) -> Diagnostic:
+    """S003 as a warning: a tab in the indentation whose block is clear either way."""
+    return Diagnostic(TAB_INDENTATION, "tab character in indentation; OpenPLX indents with spaces",
+                      Span(Pos(offset, line, column), Pos(offset + 1, line, column + 1)), Severity.WARNING,
+                      help="indent with 4 spaces per level (`plx fmt` does this)")
+
+
+def ambiguous_tab(span: Span, narrow: int, wide: int) -> Diagnostic:
+    """S003 as an error (the parser finds it, knowing the blocks): the tab's width decides the block."""
+    return Diagnostic(
+        TAB_INDENTATION,
+        f"a tab in this line's indentation makes its block ambiguous: {narrow} columns with 4-wide tabs, "
+        f"{wide} with 8-wide tabs, and the two belong to different blocks",
+        span,
+        Severity.ERROR,
+        help="indent with spaces only (4 per level); it is read as part of the deeper block",
+    )
+
+
+def too_deep(message: str, span: Span) -> Diagnostic:
+    """S007: nesting deeper than the later (recursive) stages can walk: brackets on one line (here)
+    or an expression's tree (the parser)."""
+    return Diagnostic(NESTING_TOO_DEEP, message, span, Severity.ERROR)
 
 
 def _tok_span(tok: Token) -> Span:

@@ -11,12 +11,15 @@ from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Severity, Span
 from plxtools.syntax import ast
 from plxtools.syntax.depth import MAX_EXPR_DEPTH, too_deep
 from plxtools.syntax.keywords import closest_keyword
-from plxtools.syntax.lexer import LogicalLine, Token, lex
+from plxtools.syntax.lexer import TAB_INDENTATION, LogicalLine, Token, ambiguous_tab, lex
+from plxtools.syntax.lexer import too_deep as nesting_too_deep
 
 if TYPE_CHECKING:  # lark is imported when the LALR fallback is first needed (_get_parser)
     from lark import Lark
     from lark.exceptions import UnexpectedInput
 from plxtools.syntax.source import LineIndex, decode, decode_text, line_start
+
+INDENTATION_BETWEEN_LEVELS = "S015"  # raised here; style and the consequence filter recognise it by this name
 
 # ------------------------------------------------------------------ building nodes
 
@@ -767,8 +770,8 @@ def _parse_line(parser: Lark | None, line: LogicalLine, text: str, diags: list[D
 
 
 def _too_deep(line: LogicalLine) -> Diagnostic:
-    return Diagnostic("S007", f"expression nested more than {MAX_EXPR_DEPTH} levels deep (operators, signs and "
-                      "brackets): split it into named parts", _line_span(line), Severity.ERROR)
+    return nesting_too_deep(f"expression nested more than {MAX_EXPR_DEPTH} levels deep (operators, signs and "
+                            "brackets): split it into named parts", _line_span(line))
 
 
 def _unexpected_input():
@@ -989,7 +992,7 @@ def _width(lead: str, tab: int) -> int:
 def _between_levels(diags: list[Diagnostic], line: LogicalLine, lead: str, outer: int, inner: int) -> None:
     how = f"{line.indent} columns" if "\t" not in lead else f"{line.indent} columns (a tab counted as 4)"
     diags.append(Diagnostic(
-        "S015",
+        INDENTATION_BETWEEN_LEVELS,
         f"this line is indented {how}: between the block at column {outer} and the one at column {inner}",
         _sp(line.tokens[0]),
         Severity.ERROR,
@@ -999,14 +1002,7 @@ def _between_levels(diags: list[Diagnostic], line: LogicalLine, lead: str, outer
 
 
 def _tab_is_ambiguous(diags: list[Diagnostic], line: LogicalLine, narrow: int, wide: int) -> None:
-    diags.append(Diagnostic(
-        "S003",
-        f"a tab in this line's indentation makes its block ambiguous: {narrow} columns with 4-wide tabs, "
-        f"{wide} with 8-wide tabs, and the two belong to different blocks",
-        _sp(line.tokens[0]),
-        Severity.ERROR,
-        help="indent with spaces only (4 per level); it is read as part of the deeper block",
-    ))
+    diags.append(ambiguous_tab(_sp(line.tokens[0]), narrow, wide))
 
 
 def parse_text(text: str, path: str = "") -> ast.File:
@@ -1047,9 +1043,9 @@ def _parse_decoded_inner(text: str, path: str, diags: list[Diagnostic], had_bom:
         ast.Comment(Span(Pos(s, ln, col), Pos(e, ln, col + (e - s))), body, own)
         for (s, ln, col, e, body, own) in lexed.comments
     ]
-    ambiguous_tabs = {d.span.start.line for d in diags if d.code == "S003" and d.severity is Severity.ERROR}
+    ambiguous_tabs = {d.span.start.line for d in diags if d.code == TAB_INDENTATION and d.severity is Severity.ERROR}
     if ambiguous_tabs:  # the error replaces the lexer's warning on the same line
-        diags = [d for d in diags if not (d.code == "S003" and d.severity is Severity.WARNING
+        diags = [d for d in diags if not (d.code == TAB_INDENTATION and d.severity is Severity.WARNING
                                           and d.span.start.line in ambiguous_tabs)]
     for d in diags:
         d.file = path
