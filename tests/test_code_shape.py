@@ -79,7 +79,6 @@ plxtools/check/testrun.py:_run
 plxtools/ide/line_context.py:classify
 plxtools/ide/outline.py:_symbol
 plxtools/ide/tokens.py:semantic_tokens
-plxtools/lint/cli.py:_run_lint
 plxtools/lsp/server.py:PlxServer.apply_settings
 plxtools/lsp/server.py:code_action
 plxtools/migrate/command.py:run_migrate
