@@ -39,7 +39,7 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
         extra += _per_statement(fa, plan, "style", style_of_statements(fa.unit, plan.dirty))
         parts = fa.snapshot.parts
         used = set().union(*(p.uses for p in parts)) if fa.unit.bundle is None else set()
-        extra += style_of_file(workspace.program, fa.unit, None, root, used_names=used)
+        extra += style_of_file(workspace.program, fa.unit, used, root)
         checked = [o for i in sorted(plan.dirty) for o in parts[i].occs]
         extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, checked, tree.path, plan.dirty))
     extra += shared_connector_diagnostics(workspace.program, fa.unit)  # (whole file: cheap, never re-used)
