@@ -87,7 +87,6 @@ plxtools/model/checker.py:Checker._declaration
 plxtools/model/checker.py:Checker._expr
 plxtools/model/reuse.py:plan
 plxtools/model/versions.py:resolve_bundle_set
-plxtools/rules/completeness.py:walk
 plxtools/syntax/lexer.py:Lexer._next_line_kind
 plxtools/syntax/lexer.py:Lexer.run
 plxtools/syntax/parser.py:_fast_stmt
