@@ -81,7 +81,6 @@ plxtools/ide/outline.py:_symbol
 plxtools/ide/tokens.py:semantic_tokens
 plxtools/lsp/server.py:PlxServer.apply_settings
 plxtools/lsp/server.py:code_action
-plxtools/migrate/command.py:run_migrate
 plxtools/model/apichanges.py:changes
 plxtools/model/checker.py:Checker._declaration
 plxtools/model/checker.py:Checker._expr
