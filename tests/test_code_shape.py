@@ -88,8 +88,6 @@ plxtools/model/reuse.py:plan
 plxtools/model/versions.py:resolve_bundle_set
 plxtools/syntax/lexer.py:Lexer._next_line_kind
 plxtools/syntax/lexer.py:Lexer.run
-plxtools/syntax/parser.py:_fast_stmt
-plxtools/syntax/parser.py:_syntax_error
 """.split())
 
 
