@@ -86,8 +86,6 @@ plxtools/model/checker.py:Checker._declaration
 plxtools/model/checker.py:Checker._expr
 plxtools/model/reuse.py:plan
 plxtools/model/versions.py:resolve_bundle_set
-plxtools/syntax/lexer.py:Lexer._next_line_kind
-plxtools/syntax/lexer.py:Lexer.run
 """.split())
 
 
