@@ -26,6 +26,7 @@ from plxtools.model.symbols import ModelSym
 from plxtools.rules.analysis import analyse_file
 from plxtools.rules.completeness import MISSING_ASSIGNMENT, UNBOUND_REFERENCE
 from plxtools.syntax import ast, parse_bytes
+from plxtools.syntax.source import BINARY_FILE, unreadable
 
 
 class Skip(enum.Enum):
@@ -159,14 +160,13 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     try:
         data = path.read_bytes()
     except OSError as exc:
-        fc.diagnostics = [Diagnostic("E001", f"cannot read file: {exc.strerror}", EMPTY_SPAN, Severity.ERROR,
-                                     file=str(path))]
+        fc.diagnostics = [unreadable(str(path), exc)]
         fc.skip = Skip.UNREADABLE
         return fc
     tree = parse_bytes(data, str(path))
     fc.tree = tree
     raw: list[Diagnostic] = list(tree.diagnostics)
-    if any(d.code == "S001" for d in tree.diagnostics):
+    if any(d.code == BINARY_FILE for d in tree.diagnostics):
         fc.skip = Skip.NOT_TEXT
         fc.diagnostics = _finish(tree, raw, cfg)
         return fc

@@ -36,22 +36,22 @@ def same_meaning(before: ast.File, after: ast.File) -> str | None:
     return None
 
 
-# what the formatter fixes by design (indentation, tabs): left out on both sides of the comparison
-LAYOUT_CODES = ("C006", "S003")
-
-
 def _lint_signature(tree: ast.File) -> list[tuple[str, str, str, str]]:
     """What `plx lint` reports for a tree (suppressions applied), without positions."""
     from pathlib import Path
 
     from plxtools.config import Config, config_for
     from plxtools.rules.analysis import analyse_tree
+    from plxtools.rules.style import MISALIGNED_INDENTATION
+    from plxtools.syntax.lexer import TAB_INDENTATION
 
+    # what the formatter fixes by design (indentation, tabs): left out on both sides of the comparison
+    layout_codes = (MISALIGNED_INDENTATION, TAB_INDENTATION)
     cfg = config_for(Path(tree.path)) if tree.path else Config()
-    cfg = replace(cfg, ignore=list(cfg.ignore) + list(LAYOUT_CODES))
+    cfg = replace(cfg, ignore=list(cfg.ignore) + list(layout_codes))
     # messages may quote line numbers ("first defined at line 3"), which blank lines shift
     return sorted((d.code, d.severity.value, _DIGITS.sub("#", d.message), d.message) for d in analyse_tree(tree, cfg)
-                  if d.code not in LAYOUT_CODES)  # (syntax codes are never configured away)
+                  if d.code not in layout_codes)  # (syntax codes are never configured away)
 
 
 def same_lint_results(before: ast.File, after: ast.File) -> str | None:

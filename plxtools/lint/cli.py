@@ -40,168 +40,215 @@ def run_lint(args) -> int:
         return _run_lint(args)
 
 
+class _Failed(Exception):
+    """A user-facing failure (bad option, config or file system): `plx lint: <message>`, exit 2."""
+
+
+_USER_ERRORS = (UsageError, ConfigError, ValueError)
+
+
 def _run_lint(args) -> int:
-    from plxtools.gcpolicy import file_done
-    from plxtools.rules.registry import check_selectors
-    from plxtools.rules.reporters import render
-
-    paths = list(args.paths or ["."])
-    stdin = "-" in paths
     try:
-        check_selectors(_codes(args.select), "--select")
-        check_selectors(_codes(args.ignore), "--ignore")
-        if stdin and len(paths) > 1:
-            raise UsageError("'-' (stdin) cannot be combined with other paths")
-        if stdin and args.diff:
-            raise UsageError("--diff cannot be used with '-' (stdin); use --fix to print the fixed text")
-        name = getattr(args, "stdin_filename", None) or "-"
-        files = [Path(name)] if stdin else discover(paths)
-    except (UsageError, ConfigError, ValueError) as exc:
+        run = _LintRun(args)
+        if getattr(args, "show_settings", False):
+            from plxtools.bundles_cli import print_settings
+
+            return _guarded(lambda: print_settings(run.workspace()))
+        return run.run()
+    except _Failed as exc:
         print(f"plx lint: {exc}", file=sys.stderr)
         return 2
-    from plxtools.model.versions import resolve_bundle_set
 
-    use_cache = not args.no_cache
-    try:
-        targets = [f for f in files if f.exists()] if stdin else files
-        bundle_set = resolve_bundle_set(list(targets), args.bundle_path, getattr(args, "openplx_version", None))
-    except (UsageError, ConfigError, ValueError) as exc:
-        print(f"plx lint: {exc}", file=sys.stderr)
-        return 2
-    loaded: list = []
 
-    def workspace():
+class _LintRun:
+    """One `plx lint` run: options checked and files found (constructor), then each file linted
+    (from the result cache, a worker, or here), fixed when asked, and everything reported."""
+
+    def __init__(self, args):
+        from plxtools.model.versions import resolve_bundle_set
+
+        self.args = args
+        paths = list(args.paths or ["."])
+        self.stdin = "-" in paths
+        self.files = _guarded(lambda: _files(args, paths, self.stdin))
+        self.use_cache = not args.no_cache
+        self.bundle_set = _guarded(lambda: resolve_bundle_set(self._targets(), args.bundle_path,
+                                                              getattr(args, "openplx_version", None)))
+        self._loaded: list = []
+        self.results = None
+        self.all_diags: list = []
+        # the run may be replayed (plxtools.runmemo) when every file's result is in the result cache
+        self.replayable = False
+        self.fixed_files = 0
+        self.fixes_applied = 0
+
+    def _targets(self) -> list[Path]:
+        """The files that choose the bundle set (with stdin: its --stdin-filename, when it exists)."""
+        return [f for f in self.files if f.exists()] if self.stdin else list(self.files)
+
+    def workspace(self):
         """The bundle program, loaded on first need: not at all when every file's result is cached."""
-        if not loaded:
+        if not self._loaded:
             from plxtools.model.workspace import workspace_for_set
 
-            loaded.append(workspace_for_set(bundle_set, use_cache))
-        return loaded[0]
+            self._loaded.append(_guarded(lambda: workspace_for_set(self.bundle_set, self.use_cache)))
+        return self._loaded[0]
 
-    if getattr(args, "show_settings", False):
-        from plxtools.bundles_cli import print_settings
+    def run(self) -> int:
+        args = self.args
+        note = self.bundle_set.announcement()
+        if note and not args.quiet and args.output_format == "text":
+            print(f"plx lint: {note}", file=sys.stderr)
+        self.results = self._result_cache()
+        self.replayable = self.results is not None
+        seen_configs: set = set()
+        parallel: dict = {}
+        if not self.stdin and not args.fix and not args.diff and len(self.files) >= PARALLEL_MIN_FILES \
+                and _two_cores():
+            parallel = _lint_in_parallel(self.files, args, self.results, self.workspace, self.bundle_set)
+        for f in self.files:
+            try:
+                cfg = _config(f, self.stdin, args)
+                _check_config_codes(cfg, seen_configs)
+            except (ConfigError, ValueError) as exc:
+                raise _Failed(exc) from exc
+            if f in parallel:
+                self.all_diags.extend(parallel[f])
+                self.replayable = False
+                continue
+            self._lint_here(f, cfg)
+        if args.diff:
+            return 0
+        return self._report()
 
-        try:
-            return print_settings(workspace())
-        except (UsageError, ConfigError, ValueError) as exc:
-            print(f"plx lint: {exc}", file=sys.stderr)
-            return 2
-    note = bundle_set.announcement()
-    if note and not args.quiet and args.output_format == "text":
-        print(f"plx lint: {note}", file=sys.stderr)
-    results = None
-    if use_cache and not stdin and not args.fix and not args.diff:
+    def _result_cache(self):
+        """The result cache of this bundle set, or None when results are not kept for this run."""
+        args = self.args
+        if not self.use_cache or self.stdin or args.fix or args.diff:
+            return None
         from plxtools.cache import records
         from plxtools.cache.stamp import code_stamp
         from plxtools.lint.resultcache import ResultCache
 
+        bundle_set = self.bundle_set
         stamp = records.recorded_digest(records.set_key(code_stamp(), bundle_set.key(), bundle_set.official_version))
         if stamp is None:  # the set changed, or was never loaded with the cache on: load it to know
-            try:
-                stamp = workspace().read_digest
-            except (UsageError, ConfigError, ValueError) as exc:
-                print(f"plx lint: {exc}", file=sys.stderr)
-                return 2
-        results = ResultCache(bundle_set, stamp)
-    all_diags = []
-    # the run may be replayed (plxtools.runmemo) when every file's result is in the result cache
-    replayable = results is not None
-    fixed_files = 0
-    fixes_applied = 0
-    seen_configs: set = set()
-    parallel: dict = {}
-    if not stdin and not args.fix and not args.diff and len(files) >= PARALLEL_MIN_FILES and _two_cores():
-        parallel = _lint_in_parallel(files, args, results, workspace, bundle_set)
-    for f in files:
-        try:
-            cfg = _config(f, stdin, args)
-            _check_config_codes(cfg, seen_configs)
-        except (ConfigError, ValueError) as exc:
-            print(f"plx lint: {exc}", file=sys.stderr)
-            return 2
-        if f in parallel:
-            all_diags.extend(parallel[f])
-            replayable = False
-            continue
-        data = None
-        if not stdin:  # read once: the bytes keyed are the bytes linted
-            from plxtools.cache import reads
+            stamp = self.workspace().read_digest
+        return ResultCache(bundle_set, stamp)
 
+    def _lint_here(self, f: Path, cfg: Config) -> None:
+        """Lint one file in this process (or take its cached result), fixing it when asked."""
+        from plxtools.cache import reads
+
+        results = self.results
+        data = None
+        if not self.stdin:  # read once: the bytes keyed are the bytes linted
             try:
                 data = reads.read_bytes(f)
             except OSError:
                 pass  # lint_file reads again and reports why it cannot
         key = results.key(f, data, cfg) if results is not None and data is not None else None
         cached = results.get(key) if key is not None else None
-        replayable = replayable and key is not None
+        self.replayable = self.replayable and key is not None
         if cached is not None:
-            all_diags.extend(cached)
-            continue
-        try:
-            ws = workspace()
-        except (UsageError, ConfigError, ValueError) as exc:
-            print(f"plx lint: {exc}", file=sys.stderr)
-            return 2
-        from plxtools.cache import reads
-        from plxtools.lint.runner import fixed_text, lint_file
+            self.all_diags.extend(cached)
+            return
+        from plxtools.gcpolicy import file_done
+        from plxtools.lint.runner import lint_file
 
+        ws = self.workspace()
         with reads.recording() as deps:  # what checking this file read besides its bytes
-            result = _lint_stdin(f, cfg, ws) if stdin else lint_file(f, cfg, ws, data=data)
+            result = _lint_stdin(f, cfg, ws) if self.stdin else lint_file(f, cfg, ws, data=data)
         diags = result.diagnostics
         if key is not None:
             results.put(key, deps, diags)
-            replayable = replayable and results.stores(diags)
-        fixable = (args.fix or args.diff) and result.tree is not None and not result.tree.has_errors_of_syntax()
-        new_text, n = fixed_text(result.tree, diags, args.unsafe_fixes) if fixable else (None, 0)
-        if stdin and args.fix:
-            # like `plx fmt -`: the (fixed) text goes to stdout, the remaining diagnostics to stderr
-            text = new_text if n else (result.tree.text if result.tree is not None else "")
-            sys.stdout.write(text)
-            if n:
-                fixes_applied += n
-                fixed_files += 1
-                diags = _lint_text(str(f), text, cfg, ws).diagnostics
-        elif n:
-            if args.diff:
-                sys.stdout.write(unified_diff(str(f), result.tree.text, new_text))
-            else:
-                from plxtools.fileio import write_atomic
-
-                try:
-                    write_atomic(f, new_text, result.tree.had_bom, expected=result.data)
-                except OSError as exc:  # the user's file system, not a bug: say what happened
-                    print(f"plx lint: {exc.strerror}", file=sys.stderr)
-                    return 2
-                fixed_files += 1
-                fixes_applied += n
-                diags = lint_file(f, cfg, ws).diagnostics
-        all_diags.extend(diags)
-        if len(files) > 1:  # the last file's tree and symbols simply live until exit
+            self.replayable = self.replayable and results.stores(diags)
+        if self.args.fix or self.args.diff:
+            diags = self._fix(f, cfg, ws, result, diags)
+        self.all_diags.extend(diags)
+        if len(self.files) > 1:  # the last file's tree and symbols simply live until exit
             if result.tree is not None and result.tree.path:
                 ws.forget_loose(result.tree.path)
             del result
             file_done()
-    if args.diff:
-        return 0
-    out = sys.stderr if stdin and args.fix else sys.stdout
-    if args.statistics:
-        counts = Counter((d.code, d.severity.value) for d in all_diags)
-        for (code, sev), n in sorted(counts.items(), key=lambda kv: (-kv[1], kv[0])):
-            print(f"{n:6}  {code:6} {sev}", file=out)
-    elif args.output_format == "text" and args.quiet:
-        from plxtools.rules.reporters import render_text
 
-        render_text(all_diags, out, summary=False)
-    else:
-        render(all_diags, args.output_format, out, files_checked=len(files))
-    if args.fix and fixes_applied and args.output_format == "text":
-        print(f"Fixed {_plural(fixes_applied, 'problem')} in {_plural(fixed_files, 'file')}.", file=out)
-    has_error = any(d.severity == Severity.ERROR for d in all_diags)
-    if replayable:  # every read was recorded (plxtools.runmemo records the run if it may replay it)
-        from plxtools import runmemo
+    def _fix(self, f: Path, cfg: Config, ws, result, diags: list) -> list:
+        """--fix or --diff on one linted file: the diagnostics that remain after it."""
+        from plxtools.lint.runner import fixed_text, lint_file
 
-        runmemo.allow()
-    return 0 if (args.exit_zero or not has_error) else 1
+        args = self.args
+        fixable = result.tree is not None and not result.tree.has_errors_of_syntax()
+        new_text, n = fixed_text(result.tree, diags, args.unsafe_fixes) if fixable else (None, 0)
+        if self.stdin and args.fix:
+            # like `plx fmt -`: the (fixed) text goes to stdout, the remaining diagnostics to stderr
+            text = new_text if n else (result.tree.text if result.tree is not None else "")
+            sys.stdout.write(text)
+            if n:
+                self._count_fixed(n)
+                diags = _lint_text(str(f), text, cfg, ws).diagnostics
+        elif n and args.diff:
+            sys.stdout.write(unified_diff(str(f), result.tree.text, new_text))
+        elif n:
+            from plxtools.fileio import write_atomic
+
+            try:
+                write_atomic(f, new_text, result.tree.had_bom, expected=result.data)
+            except OSError as exc:  # the user's file system, not a bug: say what happened
+                raise _Failed(exc.strerror) from exc
+            self._count_fixed(n)
+            diags = lint_file(f, cfg, ws).diagnostics
+        return diags
+
+    def _count_fixed(self, n: int) -> None:
+        self.fixes_applied += n
+        self.fixed_files += 1
+
+    def _report(self) -> int:
+        """Print the diagnostics in the asked format; the exit code."""
+        from plxtools.rules.reporters import render
+
+        args, all_diags = self.args, self.all_diags
+        out = sys.stderr if self.stdin and args.fix else sys.stdout
+        if args.statistics:
+            counts = Counter((d.code, d.severity.value) for d in all_diags)
+            for (code, sev), n in sorted(counts.items(), key=lambda kv: (-kv[1], kv[0])):
+                print(f"{n:6}  {code:6} {sev}", file=out)
+        elif args.output_format == "text" and args.quiet:
+            from plxtools.rules.reporters import render_text
+
+            render_text(all_diags, out, summary=False)
+        else:
+            render(all_diags, args.output_format, out, files_checked=len(self.files))
+        if args.fix and self.fixes_applied and args.output_format == "text":
+            print(f"Fixed {_plural(self.fixes_applied, 'problem')} in {_plural(self.fixed_files, 'file')}.", file=out)
+        has_error = any(d.severity == Severity.ERROR for d in all_diags)
+        if self.replayable:  # every read was recorded (plxtools.runmemo records the run if it may replay it)
+            from plxtools import runmemo
+
+            runmemo.allow()
+        return 0 if (args.exit_zero or not has_error) else 1
+
+
+def _guarded(compute):
+    """`compute()`, its user errors (bad option, config, bundle set) turned into `_Failed`."""
+    try:
+        return compute()
+    except _USER_ERRORS as exc:
+        raise _Failed(exc) from exc
+
+
+def _files(args, paths: list[str], stdin: bool) -> list[Path]:
+    """The files a run lints, after checking the options that need no bundles (raises a user error)."""
+    from plxtools.rules.registry import check_selectors
+
+    check_selectors(_codes(args.select), "--select")
+    check_selectors(_codes(args.ignore), "--ignore")
+    if stdin and len(paths) > 1:
+        raise UsageError("'-' (stdin) cannot be combined with other paths")
+    if stdin and args.diff:
+        raise UsageError("--diff cannot be used with '-' (stdin); use --fix to print the fixed text")
+    name = getattr(args, "stdin_filename", None) or "-"
+    return [Path(name)] if stdin else discover(paths)
 
 
 def _config(f: Path, stdin: bool, args) -> Config:

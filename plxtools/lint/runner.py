@@ -12,6 +12,7 @@ from plxtools.fileio import unified_diff  # noqa: F401
 from plxtools.rules.analysis import analyse_tree
 from plxtools.syntax import ast, parse_bytes
 from plxtools.syntax.lexer import forget_last
+from plxtools.syntax.source import unreadable
 
 
 @dataclass(slots=True)
@@ -30,10 +31,7 @@ def lint_file(path: Path, cfg: Config | None = None, workspace=None, data: bytes
         if data is None:
             data = path.read_bytes()
     except OSError as exc:
-        from plxtools.diagnostics import EMPTY_SPAN
-
-        d = Diagnostic("E001", f"cannot read file: {exc.strerror}", EMPTY_SPAN, Severity.ERROR, file=str(path))
-        return FileResult(path, None, [d])
+        return FileResult(path, None, [unreadable(str(path), exc)])
     tree = None
     if workspace is not None:  # a bundle file the workspace already parsed: reuse its tree
         unit = workspace.program.units.get(str(path))

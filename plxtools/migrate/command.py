@@ -27,12 +27,19 @@ def _left_for_a_person(path, fm, to_v: str) -> None:
         _say(f"  ... and {len(fm.left) - len(shown)} more (plx lint --openplx-version {to_v} {path})")
 
 
+class _Failed(Exception):
+    """A user-facing failure (bad version, config, unreadable file): `plx migrate: <message>`, exit 2."""
+
+
+class _Tally:
+    """What the run did, for the closing line and the exit code."""
+
+    def __init__(self):
+        self.changed = self.refused = self.edits = self.partial = 0
+
+
 def run_migrate(args) -> int:
-    from plxtools.fileio import unified_diff, write_atomic
-    from plxtools.model.apiindex import UnknownVersion, check_version, version_key
-    from plxtools.model.versions import BundleSetError, resolve_bundle_set
-    from plxtools.model.workspace import workspace_for_set
-    from plxtools.migrate.rewrite import migrate_text, plan
+    from plxtools.model.apiindex import UnknownVersion, check_version
 
     try:
         to_v = check_version(args.to)
@@ -41,69 +48,114 @@ def run_migrate(args) -> int:
     except (UnknownVersion, UsageError, ConfigError, ValueError) as exc:
         _say(f"plx migrate: {exc}")
         return 2
-    changed = refused = edits = partial = 0
+    tally = _Tally()
     plans: dict[str, object] = {}
-    for f in files:
-        try:
-            cfg = config_for(f)
-            if from_flag is not None:
-                from_v = from_flag
-            else:  # the version the file is linted with today: config, a bundle's pin, else the installed one
-                from_v = resolve_bundle_set([f], [], None).official_version
-                if from_v is None:
-                    raise BundleSetError(f"{f}: cannot tell which OpenPLX version it was written for; pass --from")
-            if version_key(from_v) > version_key(to_v):
-                raise UsageError(f"{f}: written for {from_v}, which is newer than --to {to_v} "
-                                 "(plx migrate only moves forward)")
-            data = f.read_bytes()
-            had_bom = data.startswith(b"\xef\xbb\xbf")
-            text = data.decode("utf-8-sig")
-            from_ws = workspace_for_set(resolve_bundle_set([f], [], from_v))
-            to_ws = workspace_for_set(resolve_bundle_set([f], [], to_v))
-        except (UsageError, ConfigError, BundleSetError, UnknownVersion, ValueError) as exc:
-            _say(f"plx migrate: {exc}")
-            return 2
-        except (OSError, UnicodeDecodeError) as exc:
-            _say(f"plx migrate: {f}: cannot read it: {getattr(exc, 'strerror', None) or exc}")
-            return 2
-        key = f"{from_v}->{to_v}"
-        if key not in plans:
-            plans[key] = plan(from_v, to_v)
-        fm = migrate_text(f, text, plans[key], cfg, from_ws, to_ws)
-        if fm.refused:
-            refused += 1
-            _say(f"{f}: not migrated from {from_v} to {to_v}: {fm.refused}")
-            _left_for_a_person(f, fm, to_v)
-            continue
-        for note in fm.notes:
-            _say(f"{f}: {note}")
-        if fm.errors_after > fm.errors_before:
-            partial += 1  # the safe rewrites (if any) are applied; the rest is listed below
-        if not fm.changed:
-            _left_for_a_person(f, fm, to_v)
-            continue
-        changed += 1
-        edits += fm.edits
-        remain = ""
-        if fm.errors_after:
-            remain = f"; {_plural(fm.errors_after, 'error')} left for a person"
-            if fm.errors_after > fm.errors_before:
-                remain += f" (under {from_v}: {fm.errors_before})"
-        if args.diff:
-            sys.stdout.write(unified_diff(str(f), fm.old_text, fm.new_text))
-        elif args.check:
-            _say(f"would migrate {f} ({_plural(fm.edits, 'change')}, {from_v} -> {to_v}){remain}")
-        else:
-            try:
-                write_atomic(f, fm.new_text, had_bom, expected=data)
-            except OSError as exc:
-                _say(f"plx migrate: {f}: {exc.strerror}")
-                return 2
-            _say(f"migrated {f} ({_plural(fm.edits, 'change')}, {from_v} -> {to_v}){remain}")
+    try:
+        for f in files:
+            _migrate_file(f, args, from_flag, to_v, plans, tally)
+    except _Failed as exc:
+        _say(f"plx migrate: {exc}")
+        return 2
+    return _summary(args, tally, len(files))
+
+
+def _inputs(f, from_flag: str | None, to_v: str):
+    """A file's config, the version it was written for, its bytes and text, and the workspaces of
+    both versions (raises `_Failed`)."""
+    from plxtools.model.apiindex import UnknownVersion
+    from plxtools.model.versions import BundleSetError, resolve_bundle_set
+    from plxtools.model.workspace import workspace_for_set
+
+    try:
+        cfg = config_for(f)
+        from_v = from_flag if from_flag is not None else _written_for(f)
+        _forward_only(f, from_v, to_v)
+        data = f.read_bytes()
+        text = data.decode("utf-8-sig")
+        from_ws = workspace_for_set(resolve_bundle_set([f], [], from_v))
+        to_ws = workspace_for_set(resolve_bundle_set([f], [], to_v))
+    except (UsageError, ConfigError, BundleSetError, UnknownVersion, ValueError) as exc:
+        raise _Failed(exc) from exc
+    except (OSError, UnicodeDecodeError) as exc:
+        raise _Failed(f"{f}: cannot read it: {getattr(exc, 'strerror', None) or exc}") from exc
+    return cfg, from_v, data, text, from_ws, to_ws
+
+
+def _written_for(f) -> str:
+    """The version the file is linted with today: config, a bundle's pin, else the installed one."""
+    from plxtools.model.versions import BundleSetError, resolve_bundle_set
+
+    from_v = resolve_bundle_set([f], [], None).official_version
+    if from_v is None:
+        raise BundleSetError(f"{f}: cannot tell which OpenPLX version it was written for; pass --from")
+    return from_v
+
+
+def _forward_only(f, from_v: str, to_v: str) -> None:
+    from plxtools.model.apiindex import version_key
+
+    if version_key(from_v) > version_key(to_v):
+        raise UsageError(f"{f}: written for {from_v}, which is newer than --to {to_v} "
+                         "(plx migrate only moves forward)")
+
+
+def _migrate_file(f, args, from_flag: str | None, to_v: str, plans: dict, tally: _Tally) -> None:
+    """Migrate one file (or show or check what would change) and say what happened."""
+    from plxtools.migrate.rewrite import migrate_text, plan
+
+    cfg, from_v, data, text, from_ws, to_ws = _inputs(f, from_flag, to_v)
+    key = f"{from_v}->{to_v}"
+    if key not in plans:
+        plans[key] = plan(from_v, to_v)
+    fm = migrate_text(f, text, plans[key], cfg, from_ws, to_ws)
+    if fm.refused:
+        tally.refused += 1
+        _say(f"{f}: not migrated from {from_v} to {to_v}: {fm.refused}")
         _left_for_a_person(f, fm, to_v)
+        return
+    for note in fm.notes:
+        _say(f"{f}: {note}")
+    if fm.errors_after > fm.errors_before:
+        tally.partial += 1  # the safe rewrites (if any) are applied; the rest is listed below
+    if fm.changed:
+        tally.changed += 1
+        tally.edits += fm.edits
+        _write(f, args, fm, data, f"{from_v} -> {to_v}", _remaining(fm, from_v))
+    _left_for_a_person(f, fm, to_v)
+
+
+def _remaining(fm, from_v: str) -> str:
+    """`; N errors left for a person` (and how many the file had before) or nothing."""
+    if not fm.errors_after:
+        return ""
+    remain = f"; {_plural(fm.errors_after, 'error')} left for a person"
+    if fm.errors_after > fm.errors_before:
+        remain += f" (under {from_v}: {fm.errors_before})"
+    return remain
+
+
+def _write(f, args, fm, data: bytes, step: str, remain: str) -> None:
+    """The migrated text: as a diff (--diff), announced (--check), or written in place."""
+    from plxtools.fileio import unified_diff, write_atomic
+
+    if args.diff:
+        sys.stdout.write(unified_diff(str(f), fm.old_text, fm.new_text))
+    elif args.check:
+        _say(f"would migrate {f} ({_plural(fm.edits, 'change')}, {step}){remain}")
+    else:
+        try:
+            write_atomic(f, fm.new_text, data.startswith(b"\xef\xbb\xbf"), expected=data)
+        except OSError as exc:
+            raise _Failed(f"{f}: {exc.strerror}") from exc
+        _say(f"migrated {f} ({_plural(fm.edits, 'change')}, {step}){remain}")
+
+
+def _summary(args, tally: _Tally, n_files: int) -> int:
+    """The closing line; the exit code."""
+    changed, refused, partial = tally.changed, tally.refused, tally.partial
     verb = "would migrate" if (args.check or args.diff) else "migrated"
-    _say(f"{verb.capitalize()} {_plural(changed, 'file')} ({_plural(edits, 'change')}); "
-         f"{_plural(len(files) - changed - refused, 'file')} unchanged"
+    _say(f"{verb.capitalize()} {_plural(changed, 'file')} ({_plural(tally.edits, 'change')}); "
+         f"{_plural(n_files - changed - refused, 'file')} unchanged"
          + (f"; {_plural(partial, 'file')} with errors left for a person" if partial else "")
          + (f"; {_plural(refused, 'file')} refused" if refused else "") + ".")
     if refused:

@@ -11,6 +11,7 @@ import bisect
 from plxtools.config import Config
 from plxtools.diagnostics import Diagnostic
 from plxtools.syntax import ast
+from plxtools.syntax.source import BINARY_FILE
 
 
 def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previous=None, keep: bool = False):
@@ -38,7 +39,7 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
         extra += _per_statement(fa, plan, "style", style_of_statements(fa.unit, plan.dirty))
         parts = fa.snapshot.parts
         used = set().union(*(p.uses for p in parts)) if fa.unit.bundle is None else set()
-        extra += style_of_file(workspace.program, fa.unit, None, root, used_names=used)
+        extra += style_of_file(workspace.program, fa.unit, used, root)
         checked = [o for i in sorted(plan.dirty) for o in parts[i].occs]
         extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, checked, tree.path, plan.dirty))
     extra += shared_connector_diagnostics(workspace.program, fa.unit)  # (whole file: cheap, never re-used)
@@ -124,7 +125,7 @@ def analyse_tree(tree: ast.File, cfg: Config, workspace=None) -> list[Diagnostic
 
 def is_binary(tree: ast.File) -> bool:
     """S001: the file is not text, so there is nothing to analyse beyond saying so."""
-    return any(d.code == "S001" for d in tree.diagnostics)
+    return any(d.code == BINARY_FILE for d in tree.diagnostics)
 
 
 def final_diagnostics(tree: ast.File, cfg: Config, analysis) -> list[Diagnostic]:

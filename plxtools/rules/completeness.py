@@ -177,6 +177,29 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
     kept = versions.kept if versions is not None else None
     fast = versions is None  # models are keyed by identity: a kept walk can be looked up inline
 
+    def known(model: ModelSym, me, traits: tuple, outer, depth: int, chain: tuple):
+        """(key, shared, hit): the walk's key, whether it is kept on the model (a bundle model), and
+        a walk already made that re-using cannot tell from walking again (or None)."""
+        key = (me, tuple(map(mkey, traits)) if traits else (), frozenset(outer))
+        shared = _shared(model, traits)
+        if shared:
+            hit = model._walks.get(key) if model._walks is not None else None
+        else:
+            hit = walked.get(key)
+            if hit is None and kept is not None:
+                hit = kept(key)
+        if hit is not None and (depth + hit[2] > MAX_DEPTH or not hit[1].isdisjoint(chain)):
+            hit = None
+        return key, shared, hit
+
+    def keep(model: ModelSym, key, shared: bool, got: tuple) -> None:
+        if not shared:
+            walked[key] = got
+            return
+        if model._walks is None or len(model._walks) >= MAX_SHARED_WALKS:
+            model._walks = {}  # (bounded: a long editing session meets many value sets)
+        model._walks[key] = got
+
     def walk(ty: Ty, outer: set[tuple[str, ...]], depth: int, chain: tuple) -> tuple[list, frozenset, int, bool]:
         """What is missing below `ty`, relative to it: (findings, models met, height, cut short).
 
@@ -192,15 +215,8 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
         if depth > MAX_DEPTH or me in chain:
             return [], frozenset(), 0, True
         traits = ty.traits
-        key = (me, tuple(map(mkey, traits)) if traits else (), frozenset(outer))
-        shared = _shared(model, traits)
-        if shared:
-            hit = model._walks.get(key) if model._walks is not None else None
-        else:
-            hit = walked.get(key)
-            if hit is None and kept is not None:
-                hit = kept(key)
-        if hit is not None and depth + hit[2] <= MAX_DEPTH and hit[1].isdisjoint(chain):
+        key, shared, hit = known(model, me, traits, outer, depth, chain)
+        if hit is not None:
             return hit[0], hit[1], hit[2], False
         assigned = assigned_in(model) | outer
         for t in traits:
@@ -215,52 +231,32 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
         for name, mem in program.members_of(ty).items():
             mty = mem.ty if mem.ty is not None else member_type(mem)
             if mem.reference:
-                if not mem.optional and mem.value is None and (name,) not in assigned:
+                if _required(mem, name, assigned):
                     finds.append(("ref", (name,), mty.display(), name, mem.owner.qname, _anchor(mem, unit)))
                 continue
             sym = mty.sym
             if sym is None or mty.alts or mty.array:
                 continue
             if isinstance(sym, str):
-                if sym in REQUIRED_PRIMITIVES and not mem.optional and mem.value is None and (name,) not in assigned:
+                if sym in REQUIRED_PRIMITIVES and _required(mem, name, assigned):
                     finds.append(("val", (name,), sym, name, mem.owner.qname, _anchor(mem, unit)))
                 continue
             if mem.value is not None or (name,) in assigned:
                 continue  # given an existing object or a computed value (checked where it is made)
             if below_of is None:
-                below_of = {}
-                for p in assigned:
-                    if len(p) > 1:
-                        below_of.setdefault(p[0], set()).add(p[1:])
+                below_of = _below(assigned)
             sub = below_of.get(name, _NONE)
-            hit = None
-            if fast and not mty.traits and isinstance(sym, ModelSym) and sym._walks is not None and id(sym) not in inner:
-                # a bundle model's kept walk, looked up here rather than by a call (most members)
-                u = sym.unit
-                if u is not None and u.bundle is not None and depth + 1 <= MAX_DEPTH:
-                    hit = sym._walks.get((id(sym), (), frozenset(sub)))
-                    if hit is not None and (depth + 1 + hit[2] > MAX_DEPTH or not hit[1].isdisjoint(inner)):
-                        hit = None
-            if hit is not None:
-                below, met, h, c = hit[0], hit[1], hit[2], False
-            else:
-                below, met, h, c = walk(mty, sub, depth + 1, inner)
+            hit = _bundle_walk(mty, sym, sub, depth + 1, inner) if fast else None
+            below, met, h, c = (hit[0], hit[1], hit[2], False) if hit is not None else walk(mty, sub, depth + 1, inner)
             if below:
-                local = _anchor(mem, unit)
-                for kind, rel, shown, n, owner, a in below:
-                    finds.append((kind, (name,) + rel, shown, n, owner, a if a is not None else local))
+                _prefixed(finds, name, below, _anchor(mem, unit))
             models.update(met)
             if h + 1 > height:
                 height = h + 1
             cut = cut or c
         got = (finds, frozenset(models), height)
         if not cut:
-            if shared:
-                if model._walks is None or len(model._walks) >= MAX_SHARED_WALKS:
-                    model._walks = {}  # (bounded: a long editing session meets many value sets)
-                model._walks[key] = got
-            else:
-                walked[key] = got
+            keep(model, key, shared, got)
         return got[0], got[1], got[2], cut
 
     anchor = root.stmt.path.span if isinstance(root.stmt, ast.Declaration) else root.stmt.header
@@ -284,6 +280,40 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
                            help=f"give it a value, e.g. '{name}: ...' (declared without a default in {owner})")
         found.append((d, name, full, shown))
     return _one_per_location(found)
+
+
+def _required(mem, name: str, assigned) -> bool:
+    """A member that must be given here: not optional, no default, not assigned on the way."""
+    return not mem.optional and mem.value is None and (name,) not in assigned
+
+
+def _below(assigned) -> dict[str, set[tuple[str, ...]]]:
+    """Member name -> the paths below it that are given a value (`a.b.c: 1` -> a: {(b, c)})."""
+    below_of: dict[str, set[tuple[str, ...]]] = {}
+    for p in assigned:
+        if len(p) > 1:
+            below_of.setdefault(p[0], set()).add(p[1:])
+    return below_of
+
+
+def _bundle_walk(mty: Ty, sym, sub, depth: int, inner: tuple):
+    """A bundle model's kept walk for a member (most members), looked up without walking; None
+    when there is none or re-using it could differ (depth limit, a model on the current chain)."""
+    if mty.traits or not isinstance(sym, ModelSym) or sym._walks is None or id(sym) in inner:
+        return None
+    u = sym.unit
+    if u is None or u.bundle is None or depth > MAX_DEPTH:
+        return None
+    hit = sym._walks.get((id(sym), (), frozenset(sub)))
+    if hit is not None and (depth + hit[2] > MAX_DEPTH or not hit[1].isdisjoint(inner)):
+        return None
+    return hit
+
+
+def _prefixed(finds: list, name: str, below: list, local) -> None:
+    """The findings below a member, as paths from its owner (anchored at the member when they have no anchor)."""
+    for kind, rel, shown, n, owner, a in below:
+        finds.append((kind, (name,) + rel, shown, n, owner, a if a is not None else local))
 
 
 def _message(code: str, path: str, ty: str, instances: str = "") -> str:

@@ -9,10 +9,13 @@ from plxtools.rules.completeness import root_model
 from plxtools.model.program import Program
 from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast
+from plxtools.syntax.lexer import TAB_INDENTATION
+from plxtools.syntax.parser import INDENTATION_BETWEEN_LEVELS
 
 PASCAL = re.compile(r"^[A-Z][A-Za-z0-9]*$")
 SNAKE = re.compile(r"^[a-z_][a-z0-9_]*$")
 UPPER = re.compile(r"^[A-Z][A-Z0-9_]*$")
+MISALIGNED_INDENTATION = "C006"  # raised here; fmt leaves it out of its before/after comparison
 
 
 def _block_column(body: list, parent_col: int) -> int:
@@ -33,54 +36,78 @@ def _block_column(body: list, parent_col: int) -> int:
 
 
 def style_diagnostics(program: Program, unit, occurrences, root: ModelSym | None = None) -> list[Diagnostic]:
-    return style_of_statements(unit) + style_of_file(program, unit, occurrences, root)
+    """Every style rule on a freshly analysed file (the language server re-runs the two halves
+    separately: `style_of_statements` on the statements that changed, `style_of_file` always)."""
+    return style_of_statements(unit) + style_of_file(program, unit, used_names(unit, occurrences), root)
+
+
+def used_names(unit, occurrences) -> set[str]:
+    """The file's top-level names that something in it names (what C003 needs of the occurrences;
+    the server keeps the same set per statement)."""
+    used = {id(o.target) for o in occurrences if o.kind != "definition"}
+    return {name for name, sym in unit.locals.items() if id(sym) in used}
+
+
+def _adder(out: list[Diagnostic], unit):
+    def add(code, msg, span, sev, help_=None):
+        out.append(Diagnostic(code, msg, span, sev, file=unit.path, help=help_))
+
+    return add
 
 
 def style_of_statements(unit, only: set[int] | None = None) -> list[Diagnostic]:
     """C006 inside each top-level statement and C001 of what it defines (`only`: these statements):
     what one statement's text alone decides, so the language server keeps it per statement."""
     out: list[Diagnostic] = []
-    tree = unit.tree
-
-    def add(code, msg, span, sev, help_=None):
-        out.append(Diagnostic(code, msg, span, sev, file=unit.path, help=help_))
-
-    caused = _caused(tree)
-    tops = [s for i, s in enumerate(tree.statements) if only is None or i in only]
-    for top in tops:
-        # C006: siblings whose indentation differs (official files do it; fmt aligns them).
-        stack: list[tuple[list, int]] = []
-        b = ast.body_of(top)
-        if b:
-            stack.append((b, top.header.start.column))
-        while stack:
-            body, parent_col = stack.pop()
-            _misaligned(body, parent_col, caused, add)
-            for s in body:
-                b = ast.body_of(s)
-                if b:
-                    stack.append((b, s.header.start.column))
-        # C001: naming conventions of definitions made in this file
-        s = top
-        if isinstance(s, ast.TraitDef) and not PASCAL.match(s.name.name):
-            add("C001", f"trait name '{s.name.name}' should be PascalCase", s.name.span, Severity.INFO)
-        elif isinstance(s, ast.Declaration) and len(s.path.parts) == 1:
-            name = s.path.parts[0].name
-            if name == "config" and unit.path.endswith("config.openplx"):
-                continue  # the language fixes this name
-            is_global = s.keyword == "is" and s.value is not None and s.body is None
-            if is_global:
-                if not (SNAKE.match(name) or UPPER.match(name)):
-                    add("C001", f"global '{name}' should be snake_case or UPPER_CASE", s.path.span, Severity.INFO)
-            elif not s.const and not PASCAL.match(name):
-                add("C001", f"model name '{name}' should be PascalCase", s.path.span, Severity.INFO)
-            for m in s.body or []:
-                if isinstance(m, ast.Declaration) and m.keyword == "is" and len(m.path.parts) == 1:
-                    n = m.path.parts[0].name
-                    if not m.path.parts[0].backtick and not SNAKE.match(n):
-                        add("C001", f"attribute name '{n}' should be snake_case", m.path.span, Severity.INFO,
-                            _attribute_name_help(n))
+    add = _adder(out, unit)
+    caused = _caused(unit.tree)
+    for i, top in enumerate(unit.tree.statements):
+        if only is None or i in only:
+            _misaligned_inside(top, caused, add)
+            _naming(top, unit, add)
     return out
+
+
+def _misaligned_inside(top, caused: set[int], add) -> None:
+    """C006 in every block of one top-level statement: siblings whose indentation differs
+    (official files do it; fmt aligns them)."""
+    stack: list[tuple[list, int]] = []
+    b = ast.body_of(top)
+    if b:
+        stack.append((b, top.header.start.column))
+    while stack:
+        body, parent_col = stack.pop()
+        _misaligned(body, parent_col, caused, add)
+        for s in body:
+            b = ast.body_of(s)
+            if b:
+                stack.append((b, s.header.start.column))
+
+
+def _naming(s, unit, add) -> None:
+    """C001: naming conventions of the definitions one top-level statement makes."""
+    if isinstance(s, ast.TraitDef) and not PASCAL.match(s.name.name):
+        add("C001", f"trait name '{s.name.name}' should be PascalCase", s.name.span, Severity.INFO)
+    elif isinstance(s, ast.Declaration) and len(s.path.parts) == 1:
+        name = s.path.parts[0].name
+        if name == "config" and unit.path.endswith("config.openplx"):
+            return  # the language fixes this name
+        is_global = s.keyword == "is" and s.value is not None and s.body is None
+        if is_global:
+            if not (SNAKE.match(name) or UPPER.match(name)):
+                add("C001", f"global '{name}' should be snake_case or UPPER_CASE", s.path.span, Severity.INFO)
+        elif not s.const and not PASCAL.match(name):
+            add("C001", f"model name '{name}' should be PascalCase", s.path.span, Severity.INFO)
+        for m in s.body or []:
+            _attribute_naming(m, add)
+
+
+def _attribute_naming(m, add) -> None:
+    if isinstance(m, ast.Declaration) and m.keyword == "is" and len(m.path.parts) == 1:
+        n = m.path.parts[0].name
+        if not m.path.parts[0].backtick and not SNAKE.match(n):
+            add("C001", f"attribute name '{n}' should be snake_case", m.path.span, Severity.INFO,
+                _attribute_name_help(n))
 
 
 def _attribute_name_help(name: str) -> str:
@@ -93,7 +120,8 @@ def _attribute_name_help(name: str) -> str:
 
 def _caused(tree) -> set[int]:
     """Lines where the parser already reported the cause of an odd indentation (S015, a tab)."""
-    return {d.span.start.line for d in tree.diagnostics if d.code in ("S003", "S015") and d.severity is Severity.ERROR}
+    return {d.span.start.line for d in tree.diagnostics
+            if d.code in (TAB_INDENTATION, INDENTATION_BETWEEN_LEVELS) and d.severity is Severity.ERROR}
 
 
 def _misaligned(body: list, parent_col: int, caused: set[int], add) -> None:
@@ -102,62 +130,64 @@ def _misaligned(body: list, parent_col: int, caused: set[int], add) -> None:
     col = _block_column(body, parent_col)
     for s in body:
         if s.header.start.column != col and s.header.start.line not in caused:
-            add("C006", f"this line is indented {s.header.start.column} spaces but the other lines of its "
-                f"block are indented {col}", s.header, Severity.INFO,
+            add(MISALIGNED_INDENTATION, f"this line is indented {s.header.start.column} spaces but the other lines "
+                f"of its block are indented {col}", s.header, Severity.INFO,
                 f"indent it {col} spaces; a missing ':' on the line above would also cause this "
                 "(`plx fmt` aligns siblings)")
 
 
-def style_of_file(program: Program, unit, occurrences, root: ModelSym | None = None,
-                  used_names: set[str] | None = None) -> list[Diagnostic]:
+def style_of_file(program: Program, unit, used_names: set[str], root: ModelSym | None = None) -> list[Diagnostic]:
     """C006 among the top-level statements, C003 and C007: what depends on the whole file.
-    `used_names` (instead of the occurrences): the file's top-level names that something names."""
+    `used_names`: the file's top-level names that something names (`used_names()`)."""
     out: list[Diagnostic] = []
+    add = _adder(out, unit)
     tree = unit.tree
-
-    def add(code, msg, span, sev, help_=None):
-        out.append(Diagnostic(code, msg, span, sev, file=unit.path, help=help_))
-
     _misaligned(tree.statements, 0, _caused(tree), add)
     if unit.bundle is not None:
         return out
-
     # C003: models defined in a loose file that nothing uses; C007: root that is not a System
     chosen = root is not None  # --model NAME: that model is the root, wherever it is in the file
     root = root or root_model(program, unit)
-    if used_names is not None:
-        used = {id(sym) for name, sym in unit.locals.items() if name in used_names}
-    else:
-        used = {id(o.target) for o in occurrences if o.kind != "definition"}
+    used = {id(sym) for name, sym in unit.locals.items() if name in used_names}
     for name, sym in unit.locals.items():
         if isinstance(sym, ModelSym) and sym is not root and id(sym) not in used:
-            span = sym.stmt.name.span if isinstance(sym.stmt, ast.TraitDef) else sym.stmt.path.span
-            if sym.kind == "import":
-                if getattr(sym, "opaque", False) and any(getattr(a, "import_stmt", None) is sym.import_stmt
-                                                         for a in (getattr(unit, "archive", None) or {}).values()):
-                    continue  # names from the archive are used (model/program.py archive_name)
-                add("C003", f"imported name '{name}' is never used in this file", span, Severity.WARNING,
-                    "use it or remove the import")
-                continue
-            add("C003", f"{'trait' if sym.is_trait else 'model'} '{name}' is defined but never used in this file",
-                span, Severity.WARNING, "use it, move it into a bundle, or remove it")
+            _unused(name, sym, unit, add)
     if root is not None and not chosen:  # a root chosen by name is not "the last model"
-        system = program.lookup(["Physics3D", "System"], unit)
-        is_system = isinstance(system, ModelSym) and program.is_subtype(root, system)
-        # a scene above the root that nothing uses: the scene was meant to be last
-        stray = [sym for sym in unit.locals.values() if isinstance(sym, ModelSym) and sym is not root
-                 and id(sym) not in used and isinstance(system, ModelSym) and program.is_subtype(sym, system)]
-        if not is_system and stray:
-            add("C007", f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
-                f"and the System '{stray[0].name}' above it is used by nothing",
-                root.stmt.path.span, Severity.WARNING,
-                f"a scene is loaded from the last model; move '{stray[0].name}' to the end of the file")
-        elif not _loadable_root(program, unit, root):
-            add("C007", f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
-                f"a rigid body or a material",
-                root.stmt.path.span, Severity.WARNING,
-                "a scene is loaded from the last model; make it a Physics3D.System or move the scene last")
+        _root_kind(program, unit, root, used, add)
     return out
+
+
+def _unused(name: str, sym: ModelSym, unit, add) -> None:
+    """C003 for one top-level model, trait or imported name that nothing in the file names."""
+    span = sym.stmt.name.span if isinstance(sym.stmt, ast.TraitDef) else sym.stmt.path.span
+    if sym.kind != "import":
+        add("C003", f"{'trait' if sym.is_trait else 'model'} '{name}' is defined but never used in this file",
+            span, Severity.WARNING, "use it, move it into a bundle, or remove it")
+        return
+    if getattr(sym, "opaque", False) and any(getattr(a, "import_stmt", None) is sym.import_stmt
+                                             for a in (getattr(unit, "archive", None) or {}).values()):
+        return  # names from the archive are used (model/program.py archive_name)
+    add("C003", f"imported name '{name}' is never used in this file", span, Severity.WARNING,
+        "use it or remove the import")
+
+
+def _root_kind(program: Program, unit, root: ModelSym, used: set[int], add) -> None:
+    """C007: the file's last model is not what importers load (a System, a body, a material)."""
+    system = program.lookup(["Physics3D", "System"], unit)
+    is_system = isinstance(system, ModelSym) and program.is_subtype(root, system)
+    # a scene above the root that nothing uses: the scene was meant to be last
+    stray = [sym for sym in unit.locals.values() if isinstance(sym, ModelSym) and sym is not root
+             and id(sym) not in used and isinstance(system, ModelSym) and program.is_subtype(sym, system)]
+    if not is_system and stray:
+        add("C007", f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
+            f"and the System '{stray[0].name}' above it is used by nothing",
+            root.stmt.path.span, Severity.WARNING,
+            f"a scene is loaded from the last model; move '{stray[0].name}' to the end of the file")
+    elif not _loadable_root(program, unit, root):
+        add("C007", f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
+            f"a rigid body or a material",
+            root.stmt.path.span, Severity.WARNING,
+            "a scene is loaded from the last model; make it a Physics3D.System or move the scene last")
 
 
 def _loadable_root(program: Program, unit, root: ModelSym) -> bool:

@@ -21,11 +21,12 @@ from dataclasses import fields, is_dataclass, replace
 
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Span
 from plxtools.syntax import ast
+from plxtools.syntax.lexer import UNBALANCED_BRACKET, UNTERMINATED_STRING
 from plxtools.syntax.parser import parse_text
 from plxtools.syntax.source import BOM, LineIndex, detect_newline
 
 # codes that mean a chunk may not be self-contained: re-parse the whole file instead
-_CROSSING = {"S004", "S009"}
+_CROSSING = {UNBALANCED_BRACKET, UNTERMINATED_STRING}
 _CODE_LINE = re.compile(r'(?:[^"#]|"[^"\n]*")*')
 
 

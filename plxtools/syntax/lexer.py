@@ -98,6 +98,12 @@ OPENERS = {"(": ")", "[": "]", "{": "}"}
 CLOSERS = {")", "]", "}"}
 MAX_BRACKET_DEPTH = 200
 
+# the layout codes this module raises; the parser, incremental parsing, style and fmt recognise them by these names
+TAB_INDENTATION = "S003"
+UNBALANCED_BRACKET = "S004"
+NESTING_TOO_DEEP = "S007"
+UNTERMINATED_STRING = "S009"
+
 _TOKEN_RE = re.compile(
     r"""
     (?P<ws>[ \t\f]+)
@@ -189,7 +195,10 @@ class Lexer:
         self.line += 1
         self.line_start = end
 
-    def run(self) -> LexResult:  # noqa: C901 - one pass over the text, kept in one place
+    def run(self) -> LexResult:
+        """One pass over the text: the common tokens (names, punctuation) are built inline, in
+        locals; line starts, brackets, line breaks inside brackets and the rarer tokens are handled
+        by the helpers below."""
         text = self.text
         n = len(text)
         lines: list[LogicalLine] = []
@@ -201,7 +210,6 @@ class Lexer:
         indent = 0
         at_line_start = True
         brackets: list[Token] = []
-        match = _TOKEN_RE.match
         scan = _SCAN_RE.match
         spaces = _SPACES_RE.match
         keyword = KEYWORDS.get
@@ -226,50 +234,77 @@ class Lexer:
                 line_error = diag
 
         snapshot = None  # where to resume if an open bracket turns out never to close
+
+        def bracket(tok: Token, ch: str) -> bool:
+            """An opening or closing bracket: checked and tracked; whether one is still open."""
+            if ch in OPENERS:
+                brackets.append(tok)
+                if len(brackets) > MAX_BRACKET_DEPTH:
+                    fail(too_deep(f"brackets nested more than {MAX_BRACKET_DEPTH} levels deep", _tok_span(tok)))
+            elif not brackets:
+                fail(Diagnostic(UNBALANCED_BRACKET, f"unmatched '{ch}'", _tok_span(tok), Severity.ERROR))
+            elif OPENERS[brackets[-1].value] != ch:
+                opener = brackets.pop()
+                fail(Diagnostic(UNBALANCED_BRACKET,
+                                f"'{ch}' does not match '{opener.value}' opened at line {opener.line + 1}",
+                                _tok_span(tok), Severity.ERROR))
+            else:
+                brackets.pop()
+            return bool(brackets)
+
+        def line_break(pos: int, line: int, line_start: int) -> bool:
+            """At a line break inside brackets (its end at `pos`): does the statement end here? Only
+            when the next line cannot continue it (a never-closed bracket)."""
+            nonlocal snapshot
+            self.pos, self.line, self.line_start = pos, line, line_start
+            kind = self._next_line_kind(indent)
+            if kind == _STRONG or (kind == _PARAM_LIKE and not _in_params(tokens, brackets)):
+                fail(_never_closed(brackets[-1]))
+                finish()
+                snapshot = None
+                return True
+            if kind == _PARAM_LIKE and snapshot is None:
+                # `b: Real` continues a parameter list, unless the list is never closed:
+                # remember where to resume if the end of the file proves it was not
+                snapshot = (pos, line, line_start, len(tokens), len(comments),
+                            len(diagnostics), list(brackets), line_error)
+            return False
+
+        def rare(kind: int, start: int, end: int, line: int, line_start: int) -> tuple[int, int, int]:
+            """The less common tokens (comments, strings, backtick names, arrows, bad characters,
+            blanks at the end): the position after them."""
+            text = self.text  # (not the enclosing `text`: a closure reading it would slow the loop's reads)
+            if kind == _COMMENT:
+                own = not (tokens and tokens[-1].end_line == line)
+                comments.append((start, line, start - line_start, end, text[start:end], own))
+            elif kind == _STR:
+                self.pos, self.line, self.line_start = start, line, line_start
+                tokens.append(self._string(text[start:end], start, fail, diagnostics))
+                return self.pos, self.line, self.line_start
+            elif kind == _TICK:
+                tokens.append(_tick(text[start:end], start, end, line, line_start, fail))
+            elif kind == _ARROW:
+                tokens.append(Token("ARROW", "->", start, line, start - line_start, line, end - line_start, end))
+            elif kind != _EOF:  # (_EOF: blanks at the end of the text)
+                ch = text[start:end]
+                fail(Diagnostic("S008", f"unexpected {_describe(ch)}",
+                                Span(Pos(start, line, start - line_start), Pos(end, line, end - line_start)),
+                                Severity.ERROR, help=_bad_char_help(ch)))
+            return end, line, line_start
+
         while True:
             while pos < n:
                 if at_line_start:
-                    # measure indentation of the next non-blank line (spaces: one regex match)
                     i = spaces(text, pos).end()
-                    col = i - pos
-                    tab_at = -1
-                    if i < n and text[i] in "\t\f":
-                        i = pos
-                        col = 0
-                        while i < n and text[i] in " \t\f":
-                            if text[i] == "\t":
-                                if tab_at < 0:
-                                    tab_at = i
-                                col = (col // 4 + 1) * 4
-                            else:
-                                col += 1
-                            i += 1
-                    if i >= n or text[i] in "\r\n#":
+                    if i < n and text[i] not in _NOT_CODE:  # code indented with spaces (most lines)
+                        indent = i - pos
                         pos = i
-                        if i < n and text[i] == "#":
-                            m = match(text, i)
-                            end = m.end()
-                            comments.append((i, line, i - line_start, end, m.group(), True))
-                            pos = end
-                        if pos < n:
-                            m = match(text, pos)
-                            pos = line_start = m.end()
-                            line += 1
+                        at_line_start = False
                         continue
-                    if tab_at >= 0:
-                        p = Pos(tab_at, line, tab_at - line_start)
-                        diagnostics.append(
-                            Diagnostic(
-                                "S003",
-                                "tab character in indentation; OpenPLX indents with spaces",
-                                Span(p, Pos(tab_at + 1, p.line, p.column + 1)),
-                                Severity.WARNING,
-                                help="indent with 4 spaces per level (`plx fmt` does this)",
-                            )
-                        )
-                    indent = col
-                    pos = i
-                    at_line_start = False
+                    pos, line, line_start, col = _line_start(text, pos, line, line_start, comments, diagnostics)
+                    if col >= 0:
+                        indent = col
+                        at_line_start = False
                     continue
 
                 m = scan(text, pos)
@@ -301,54 +336,17 @@ class Lexer:
                     tok.end_column = end - line_start
                     tokens.append(tok)
                     pos = end
-                    if ch in OPENERS:
-                        brackets.append(tok)
-                        if len(brackets) > MAX_BRACKET_DEPTH:
-                            fail(
-                                Diagnostic(
-                                    "S007",
-                                    f"brackets nested more than {MAX_BRACKET_DEPTH} levels deep",
-                                    _tok_span(tok),
-                                    Severity.ERROR,
-                                )
-                            )
-                    elif ch in CLOSERS:
-                        if not brackets:
-                            fail(Diagnostic("S004", f"unmatched '{ch}'", _tok_span(tok), Severity.ERROR))
-                        elif OPENERS[brackets[-1].value] != ch:
-                            opener = brackets.pop()
-                            fail(
-                                Diagnostic(
-                                    "S004",
-                                    f"'{ch}' does not match '{opener.value}' opened at line {opener.line + 1}",
-                                    _tok_span(tok),
-                                    Severity.ERROR,
-                                )
-                            )
-                        else:
-                            brackets.pop()
-                        if not brackets:
-                            snapshot = None
+                    if ch in _BRACKETS and not bracket(tok, ch):
+                        snapshot = None
                     continue
                 if kind == _NL:
                     pos = line_start = end
                     line += 1
                     if brackets:
-                        self.pos, self.line, self.line_start = pos, line, line_start
-                        kind = self._next_line_kind(indent)
-                        if kind == _STRONG or (kind == _PARAM_LIKE and not _in_params(tokens, brackets)):
-                            fail(_never_closed(brackets[-1]))
-                            finish()
-                            snapshot = None
-                            at_line_start = True
-                        elif kind == _PARAM_LIKE and snapshot is None:
-                            # `b: Real` continues a parameter list, unless the list is never closed:
-                            # remember where to resume if the end of the file proves it was not
-                            snapshot = (pos, line, line_start, len(tokens), len(comments),
-                                        len(diagnostics), list(brackets), line_error)
-                        continue
-                    finish()
-                    at_line_start = True
+                        at_line_start = line_break(pos, line, line_start)
+                    else:
+                        finish()
+                        at_line_start = True
                     continue
                 if kind == _NUMBER:
                     word = text[start:end]
@@ -360,64 +358,14 @@ class Lexer:
                     tok.line = tok.end_line = line
                     tok.column = start - line_start
                     tok.end_column = end - line_start
-                    if end < n and _IDENT_CHAR.match(text, end):
-                        bad_end = end + 1
-                        while bad_end < n and _IDENT_CHAR.match(text, bad_end):
-                            bad_end += 1
-                        word = text[start:bad_end]
-                        msg = (
-                            f"invalid number '{word}': a number needs digits after the '.'"
-                            if text[end] == "."
-                            else f"invalid number '{word}'"
-                        )
-                        span = Span(Pos(start, line, start - line_start), Pos(bad_end, line, bad_end - line_start))
-                        fail(Diagnostic("S005", msg, span, Severity.ERROR, help=unit_help(word, text[start:end])))
-                    elif end - start > MAX_INT_DIGITS and word.isdigit():
-                        span = Span(Pos(start, line, start - line_start), Pos(end, line, end - line_start))
-                        fail(Diagnostic("S005", f"integer literal too long: {end - start} digits "
-                                        f"(at most {MAX_INT_DIGITS})", span, Severity.ERROR,
-                                        help="write it with an exponent, e.g. 1e4300"))
+                    if (end < n and _IDENT_CHAR.match(text, end)) or end - start > MAX_INT_DIGITS:
+                        bad = _bad_number(text, start, end, line, line_start)
+                        if bad is not None:
+                            fail(bad)
                     tokens.append(tok)
                     pos = end
                     continue
-                if kind == _COMMENT:
-                    own = not (tokens and tokens[-1].end_line == line)
-                    comments.append((start, line, start - line_start, end, text[start:end], own))
-                    pos = end
-                    continue
-                if kind == _STR:
-                    self.pos, self.line, self.line_start = pos, line, line_start
-                    tokens.append(self._string(text[start:end], start, fail, diagnostics))
-                    pos, line, line_start = self.pos, self.line, self.line_start
-                    continue
-                if kind == _TICK:
-                    word = text[start:end]
-                    tok = Token("TICKNAME", word[1:-1], start, line, start - line_start, line, end - line_start, end)
-                    if len(word) == 2:
-                        span = Span(Pos(start, line, start - line_start), Pos(end, line, end - line_start))
-                        fail(Diagnostic("S006", "empty backtick name", span, Severity.ERROR))
-                    tokens.append(tok)
-                    pos = end
-                    continue
-                if kind == _ARROW:
-                    tokens.append(Token("ARROW", "->", start, line, start - line_start, line, end - line_start, end))
-                    pos = end
-                    continue
-                if kind == _EOF:  # blanks at the end of the text
-                    pos = end
-                    continue
-                # a bad character
-                ch = text[start:end]
-                fail(
-                    Diagnostic(
-                        "S008",
-                        f"unexpected {_describe(ch)}",
-                        Span(Pos(start, line, start - line_start), Pos(end, line, end - line_start)),
-                        Severity.ERROR,
-                        help=_bad_char_help(ch),
-                    )
-                )
-                pos = end
+                pos, line, line_start = rare(kind, start, end, line, line_start)
 
             if brackets and snapshot is not None:
                 # never closed: resume at the first line that could have been a statement
@@ -443,60 +391,10 @@ class Lexer:
         `const` or `fn`) is `_STRONG`; `x:` is `_PARAM_LIKE` (a parameter of a continued `fn`
         list); anything else continues.
         """
-        text = self.text
-        n = len(text)
-        i = self.pos
-        match = _TOKEN_RE.match
-        while True:  # skip blank and comment-only lines
-            col = 0
-            while i < n and text[i] in " \t\f":
-                col = (col // 4 + 1) * 4 if text[i] == "\t" else col + 1
-                i += 1
-            if i >= n:
-                return _CONTINUES
-            if text[i] == "#":
-                i = match(text, i).end()
-            if i < n and text[i] in "\r\n":
-                i = match(text, i).end()
-                continue
-            if i >= n:
-                return _CONTINUES
-            break
-        if col > indent:
+        i, col = _next_code_line(self.text, self.pos)
+        if i < 0 or col > indent:
             return _CONTINUES
-
-        def token(i: int) -> tuple[str | None, str, int]:
-            while True:
-                m = match(text, i)
-                if m is None:
-                    return None, "", i
-                if m.lastgroup != "ws":
-                    return m.lastgroup, m.group(), m.end()
-                i = m.end()
-
-        kind, word, i = token(i)
-        if kind == "name" and word in _STATEMENT_KEYWORDS:
-            return _STRONG
-        if kind == "punct" and word == ".":
-            kind, word, i = token(i)
-            if kind not in ("name", "tick") or word in KEYWORDS:
-                return _CONTINUES
-            kind, word, i = token(i)
-            return _STRONG if word == ":" else _CONTINUES
-        if kind not in ("name", "tick") or (kind == "name" and word in KEYWORDS):
-            return _CONTINUES
-        while True:  # a dotted name
-            kind, word, i = token(i)
-            if word != ".":
-                break
-            kind, word, i = token(i)
-            if kind not in ("name", "tick"):
-                return _CONTINUES
-        if kind == "name" and word in ("is", "becomes"):
-            return _STRONG
-        if word == ":":
-            return _PARAM_LIKE
-        return _CONTINUES
+        return _statement_start(self.text, i)
 
     def _string(self, opener: str, start: int, fail, diagnostics) -> Token:
         text = self.text
@@ -507,7 +405,7 @@ class Lexer:
                 end = len(text)
                 fail(
                     Diagnostic(
-                        "S009",
+                        UNTERMINATED_STRING,
                         'unterminated """ string: it runs to the end of the file',
                         Span(p0, Pos(start + 3, p0.line, p0.column + 3)),
                         Severity.ERROR,
@@ -541,7 +439,7 @@ class Lexer:
             end = i
             fail(
                 Diagnostic(
-                    "S009",
+                    UNTERMINATED_STRING,
                     "unterminated string: a \"...\" string must close on the same line",
                     Span(p0, self._p(end)),
                     Severity.ERROR,
@@ -555,6 +453,144 @@ class Lexer:
 
 _CONTINUES, _PARAM_LIKE, _STRONG = 0, 1, 2
 _STATEMENT_KEYWORDS = {"const", "optional", "static", "trait", "fn", "operator", "with", "import", "becomes"}
+_BRACKETS = frozenset("()[]{}")
+_NOT_CODE = frozenset(" \t\f\r\n#")  # what can follow leading spaces on a line without code or with tabs
+
+
+def _line_start(text: str, pos: int, line: int, line_start: int, comments: list, diagnostics: list):
+    """At the start of a line: (the position after its indentation, line, line start, indentation
+    width); for a blank or comment-only line, the position after it and width -1."""
+    n = len(text)
+    i = _SPACES_RE.match(text, pos).end()  # (spaces only: one regex match)
+    col = i - pos
+    tab_at = -1
+    if i < n and text[i] in "\t\f":
+        i, col, tab_at = _tabbed_indentation(text, pos)
+    if i >= n or text[i] in "\r\n#":
+        pos = i
+        if i < n and text[i] == "#":
+            m = _TOKEN_RE.match(text, i)
+            end = m.end()
+            comments.append((i, line, i - line_start, end, m.group(), True))
+            pos = end
+        if pos < n:
+            pos = line_start = _TOKEN_RE.match(text, pos).end()
+            line += 1
+        return pos, line, line_start, -1
+    if tab_at >= 0:
+        diagnostics.append(_tab_in_indentation(tab_at, line, tab_at - line_start))
+    return i, line, line_start, col
+
+
+def _tabbed_indentation(text: str, pos: int) -> tuple[int, int, int]:
+    """Indentation with tabs (4 columns wide) or form feeds: (its end, its width, the first tab or -1)."""
+    n = len(text)
+    i = pos
+    col = 0
+    tab_at = -1
+    while i < n and text[i] in " \t\f":
+        if text[i] == "\t":
+            if tab_at < 0:
+                tab_at = i
+            col = (col // 4 + 1) * 4
+        else:
+            col += 1
+        i += 1
+    return i, col, tab_at
+
+
+def _bad_number(text: str, start: int, end: int, line: int, line_start: int) -> Diagnostic | None:
+    """S005 for a number run into letters (`0.32m`, `1.x`) or too long for Python's int, else None."""
+    n = len(text)
+    if end < n and _IDENT_CHAR.match(text, end):
+        bad_end = end + 1
+        while bad_end < n and _IDENT_CHAR.match(text, bad_end):
+            bad_end += 1
+        word = text[start:bad_end]
+        msg = (
+            f"invalid number '{word}': a number needs digits after the '.'"
+            if text[end] == "."
+            else f"invalid number '{word}'"
+        )
+        span = Span(Pos(start, line, start - line_start), Pos(bad_end, line, bad_end - line_start))
+        return Diagnostic("S005", msg, span, Severity.ERROR, help=unit_help(word, text[start:end]))
+    if end - start > MAX_INT_DIGITS and text[start:end].isdigit():
+        span = Span(Pos(start, line, start - line_start), Pos(end, line, end - line_start))
+        return Diagnostic("S005", f"integer literal too long: {end - start} digits "
+                          f"(at most {MAX_INT_DIGITS})", span, Severity.ERROR,
+                          help="write it with an exponent, e.g. 1e4300")
+    return None
+
+
+def _tick(word: str, start: int, end: int, line: int, line_start: int, fail) -> Token:
+    """A `backtick name` token (S006 when it is empty)."""
+    tok = Token("TICKNAME", word[1:-1], start, line, start - line_start, line, end - line_start, end)
+    if len(word) == 2:
+        span = Span(Pos(start, line, start - line_start), Pos(end, line, end - line_start))
+        fail(Diagnostic("S006", "empty backtick name", span, Severity.ERROR))
+    return tok
+
+
+def _next_code_line(text: str, i: int) -> tuple[int, int]:
+    """From a line start: (where the next line with code starts its tokens, its indentation),
+    blank and comment-only lines skipped; (-1, 0) at the end of the text."""
+    n = len(text)
+    match = _TOKEN_RE.match
+    while True:
+        col = 0
+        while i < n and text[i] in " \t\f":
+            col = (col // 4 + 1) * 4 if text[i] == "\t" else col + 1
+            i += 1
+        if i >= n:
+            return -1, 0
+        if text[i] == "#":
+            i = match(text, i).end()
+        if i < n and text[i] in "\r\n":
+            i = match(text, i).end()
+            continue
+        if i >= n:
+            return -1, 0
+        return i, col
+
+
+def _token_at(text: str, i: int) -> tuple[str | None, str, int]:
+    """The next token from `i`, blanks skipped: (its group name or None, its text, its end)."""
+    match = _TOKEN_RE.match
+    while True:
+        m = match(text, i)
+        if m is None:
+            return None, "", i
+        if m.lastgroup != "ws":
+            return m.lastgroup, m.group(), m.end()
+        i = m.end()
+
+
+def _statement_start(text: str, i: int) -> int:
+    """How a code line inside brackets begins: `_STRONG` (as only a statement can), `_PARAM_LIKE`
+    (`x:`) or `_CONTINUES`."""
+    kind, word, i = _token_at(text, i)
+    if kind == "name" and word in _STATEMENT_KEYWORDS:
+        return _STRONG
+    if kind == "punct" and word == ".":
+        kind, word, i = _token_at(text, i)
+        if kind not in ("name", "tick") or word in KEYWORDS:
+            return _CONTINUES
+        kind, word, i = _token_at(text, i)
+        return _STRONG if word == ":" else _CONTINUES
+    if kind not in ("name", "tick") or (kind == "name" and word in KEYWORDS):
+        return _CONTINUES
+    while True:  # a dotted name
+        kind, word, i = _token_at(text, i)
+        if word != ".":
+            break
+        kind, word, i = _token_at(text, i)
+        if kind not in ("name", "tick"):
+            return _CONTINUES
+    if kind == "name" and word in ("is", "becomes"):
+        return _STRONG
+    if word == ":":
+        return _PARAM_LIKE
+    return _CONTINUES
 
 
 def _in_params(tokens: list[Token], brackets: list[Token]) -> bool:
@@ -578,8 +614,33 @@ def _bad_char_help(ch: str) -> str | None:
 
 
 def _never_closed(opener: Token) -> Diagnostic:
-    return Diagnostic("S004", f"'{opener.value}' was never closed", _tok_span(opener), Severity.ERROR,
+    return Diagnostic(UNBALANCED_BRACKET, f"'{opener.value}' was never closed", _tok_span(opener), Severity.ERROR,
                       help=f"add the closing '{OPENERS[opener.value]}'")
+
+
+def _tab_in_indentation(offset: int, line: int, column: int) -> Diagnostic:
+    """S003 as a warning: a tab in the indentation whose block is clear either way."""
+    return Diagnostic(TAB_INDENTATION, "tab character in indentation; OpenPLX indents with spaces",
+                      Span(Pos(offset, line, column), Pos(offset + 1, line, column + 1)), Severity.WARNING,
+                      help="indent with 4 spaces per level (`plx fmt` does this)")
+
+
+def ambiguous_tab(span: Span, narrow: int, wide: int) -> Diagnostic:
+    """S003 as an error (the parser finds it, knowing the blocks): the tab's width decides the block."""
+    return Diagnostic(
+        TAB_INDENTATION,
+        f"a tab in this line's indentation makes its block ambiguous: {narrow} columns with 4-wide tabs, "
+        f"{wide} with 8-wide tabs, and the two belong to different blocks",
+        span,
+        Severity.ERROR,
+        help="indent with spaces only (4 per level); it is read as part of the deeper block",
+    )
+
+
+def too_deep(message: str, span: Span) -> Diagnostic:
+    """S007: nesting deeper than the later (recursive) stages can walk: brackets on one line (here)
+    or an expression's tree (the parser)."""
+    return Diagnostic(NESTING_TOO_DEEP, message, span, Severity.ERROR)
 
 
 def _tok_span(tok: Token) -> Span:

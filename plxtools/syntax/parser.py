@@ -11,12 +11,15 @@ from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Severity, Span
 from plxtools.syntax import ast
 from plxtools.syntax.depth import MAX_EXPR_DEPTH, too_deep
 from plxtools.syntax.keywords import closest_keyword
-from plxtools.syntax.lexer import LogicalLine, Token, lex
+from plxtools.syntax.lexer import TAB_INDENTATION, LogicalLine, Token, ambiguous_tab, lex
+from plxtools.syntax.lexer import too_deep as nesting_too_deep
 
 if TYPE_CHECKING:  # lark is imported when the LALR fallback is first needed (_get_parser)
     from lark import Lark
     from lark.exceptions import UnexpectedInput
 from plxtools.syntax.source import LineIndex, decode, decode_text, line_start
+
+INDENTATION_BETWEEN_LEVELS = "S015"  # raised here; style and the consequence filter recognise it by this name
 
 # ------------------------------------------------------------------ building nodes
 
@@ -289,53 +292,56 @@ _CLOSER_OF = {"LPAR": "RPAR", "LSQB": "RSQB", "LBRACE": "RBRACE"}
 
 
 def _syntax_error(exc: "UnexpectedInput", line: LogicalLine) -> Diagnostic:
+    """S011 from the grammar's failure: what it met, what could have come, and a keyword fix."""
     from lark.exceptions import UnexpectedEOF, UnexpectedToken
 
     tok = getattr(exc, "token", None)
-    expected = getattr(exc, "expected", None) or set()
-    if isinstance(exc, UnexpectedEOF) or tok is None or tok.type == "$END":
+    at_end = isinstance(exc, UnexpectedEOF) or tok is None or tok.type == "$END"
+    if at_end:
         last = line.tokens[-1]
-        at = Pos(last.end_pos, last.end_line, last.end_column)
         span = _sp(last)
-        found = "end of line"
         msg = f"unexpected end of line after '{last}'"
     else:
         span = _sp(tok)
-        found = "a string" if tok.type == "STRING" else f"'{tok}'"
-        msg = f"unexpected {found}"
-        at = span.start
-    expected = set(expected)
+        msg = "unexpected " + ("a string" if tok.type == "STRING" else f"'{tok}'")
+    expected = set(getattr(exc, "expected", None) or set())
     if tok is not None and tok.type != "$END":
-        open_: list[str] = []
-        for t in line.tokens:
-            if t is tok:
-                break
-            if t.type in _CLOSER_OF:
-                open_.append(_CLOSER_OF[t.type])
-            elif t.type in ("RPAR", "RSQB", "RBRACE") and open_:
-                open_.pop()
-        expected -= {"RPAR", "RSQB", "RBRACE"} - set(open_[-1:])
-        if not open_:
-            expected.discard("COMMA")
-        if "$END" in expected and expected & {"PLUS", "STAR"}:
-            expected -= {"PLUS", "MINUS", "STAR", "SLASH", "DOT", "LPAR", "LSQB"}
-            expected.add("an operator")
+        expected = _expected_here(expected, line, tok)
     exp = _expected_text(expected)
     if exp:
         msg += f"; expected {exp}"
     help_ = None
     first = line.tokens[0]
-    if first.type in ("NAME", "TICKNAME") and isinstance(exc, UnexpectedToken) and tok is not None:
-        if tok.type == "NAME" and len(line.tokens) > 1 and line.tokens[1] is tok:
-            help_ = "declare with 'name is Type', or give a value with 'name: value'"
+    if first.type in ("NAME", "TICKNAME") and isinstance(exc, UnexpectedToken) and tok is not None \
+            and tok.type == "NAME" and len(line.tokens) > 1 and line.tokens[1] is tok:
+        help_ = "declare with 'name is Type', or give a value with 'name: value'"
     fix = None
     if tok is not None and tok.type == "NAME":
         kw = closest_keyword(str(tok), set(getattr(exc, "expected", None) or ()))
         if kw is not None:
             help_ = f"did you mean '{kw}'?"
             fix = Fix(f"replace with '{kw}'", (Edit(span.start.offset, span.end.offset, kw),), safe=False)
-    del at
     return Diagnostic("S011", msg, span, Severity.ERROR, help=help_, fix=fix)
+
+
+def _expected_here(expected: set[str], line: LogicalLine, tok: Token) -> set[str]:
+    """What the grammar expected at `tok`, narrowed to what fits there: only the closer of the
+    innermost open bracket, no comma outside brackets, and "an operator" for the operators."""
+    open_: list[str] = []
+    for t in line.tokens:
+        if t is tok:
+            break
+        if t.type in _CLOSER_OF:
+            open_.append(_CLOSER_OF[t.type])
+        elif t.type in ("RPAR", "RSQB", "RBRACE") and open_:
+            open_.pop()
+    expected -= {"RPAR", "RSQB", "RBRACE"} - set(open_[-1:])
+    if not open_:
+        expected.discard("COMMA")
+    if "$END" in expected and expected & {"PLUS", "STAR"}:
+        expected -= {"PLUS", "MINUS", "STAR", "SLASH", "DOT", "LPAR", "LSQB"}
+        expected.add("an operator")
+    return expected
 
 
 # ------------------------------------------------------------------ the driver
@@ -565,29 +571,44 @@ def _fast(tokens: list[Token]) -> ast.Stmt | None:
         return None
 
 
-def _fast_stmt(tokens: list[Token]) -> ast.Stmt | None:  # noqa: C901 - one line's shapes, in order
-    n = len(tokens)
+def _fast_stmt(tokens: list[Token]) -> ast.Stmt | None:
+    """One line's shapes, by its first token (None or _NotFast: the grammar decides)."""
     first = tokens[0].type
     if first == "DOT":  # `.doc: "..."`
-        if n >= 4 and tokens[1].type in _NAMEISH and tokens[2].type == "COLON":
-            return _B.annotation([tokens[0], _ident(tokens[1]), tokens[2], _value(tokens, 3)])
-        return None
+        return _fast_annotation(tokens)
     if first == "WITH":  # `with A.B, C`
-        items: list = [tokens[0]]
-        i = 1
-        while True:
-            q, i = _qname(tokens, i)
-            if q is None:
-                return None
-            items.append(q)
-            if i == n:
-                return _B.with_stmt(items)
-            if tokens[i].type != "COMMA":
-                return None
-            items.append(tokens[i])
-            i += 1
+        return _fast_with(tokens)
     if first in _HEADER_KEYWORDS:
         return _fast_header(tokens, first)
+    return _fast_declaration(tokens, first)
+
+
+def _fast_annotation(tokens: list[Token]) -> ast.Stmt | None:
+    if len(tokens) >= 4 and tokens[1].type in _NAMEISH and tokens[2].type == "COLON":
+        return _B.annotation([tokens[0], _ident(tokens[1]), tokens[2], _value(tokens, 3)])
+    return None
+
+
+def _fast_with(tokens: list[Token]) -> ast.Stmt | None:
+    n = len(tokens)
+    items: list = [tokens[0]]
+    i = 1
+    while True:
+        q, i = _qname(tokens, i)
+        if q is None:
+            return None
+        items.append(q)
+        if i == n:
+            return _B.with_stmt(items)
+        if tokens[i].type != "COMMA":
+            return None
+        items.append(tokens[i])
+        i += 1
+
+
+def _fast_declaration(tokens: list[Token], first: str) -> ast.Stmt | None:
+    """`[const] [optional] a.b ...`: a bare name, an assignment, a declaration or a `becomes`."""
+    n = len(tokens)
     const = optional = None
     i = 0
     if first == "CONST":
@@ -617,19 +638,26 @@ def _fast_stmt(tokens: list[Token]) -> ast.Stmt | None:  # noqa: C901 - one line
     elif kind != "IS":
         return None
     texpr, j = _type_expr(tokens, i + 1)
+    reference, colon, value = _typed_tail(tokens, j)
+    if kind == "IS":
+        return _B.declaration([const, optional, path, kw, texpr, reference, colon, value])
+    return _B.becomes_stmt([path, kw, texpr, reference, colon, value])
+
+
+def _typed_tail(tokens: list[Token], j: int) -> tuple:
+    """`[reference] [: [expr]]` after a type: (REFERENCE, COLON, value), each or None."""
+    n = len(tokens)
     reference = colon = value = None
     if j < n and tokens[j].type == "REFERENCE":
         reference = tokens[j]
         j += 1
     if j < n:
         if tokens[j].type != "COLON":
-            return None
+            raise _NotFast
         colon = tokens[j]
         if j + 1 < n:
             value = _value(tokens, j + 1)
-    if kind == "IS":
-        return _B.declaration([const, optional, path, kw, texpr, reference, colon, value])
-    return _B.becomes_stmt([path, kw, texpr, reference, colon, value])
+    return reference, colon, value
 
 
 _HEADER_KEYWORDS = frozenset(("TRAIT", "FN", "STATIC", "OPERATOR", "IMPORT"))
@@ -767,8 +795,8 @@ def _parse_line(parser: Lark | None, line: LogicalLine, text: str, diags: list[D
 
 
 def _too_deep(line: LogicalLine) -> Diagnostic:
-    return Diagnostic("S007", f"expression nested more than {MAX_EXPR_DEPTH} levels deep (operators, signs and "
-                      "brackets): split it into named parts", _line_span(line), Severity.ERROR)
+    return nesting_too_deep(f"expression nested more than {MAX_EXPR_DEPTH} levels deep (operators, signs and "
+                            "brackets): split it into named parts", _line_span(line))
 
 
 def _unexpected_input():
@@ -989,7 +1017,7 @@ def _width(lead: str, tab: int) -> int:
 def _between_levels(diags: list[Diagnostic], line: LogicalLine, lead: str, outer: int, inner: int) -> None:
     how = f"{line.indent} columns" if "\t" not in lead else f"{line.indent} columns (a tab counted as 4)"
     diags.append(Diagnostic(
-        "S015",
+        INDENTATION_BETWEEN_LEVELS,
         f"this line is indented {how}: between the block at column {outer} and the one at column {inner}",
         _sp(line.tokens[0]),
         Severity.ERROR,
@@ -999,14 +1027,7 @@ def _between_levels(diags: list[Diagnostic], line: LogicalLine, lead: str, outer
 
 
 def _tab_is_ambiguous(diags: list[Diagnostic], line: LogicalLine, narrow: int, wide: int) -> None:
-    diags.append(Diagnostic(
-        "S003",
-        f"a tab in this line's indentation makes its block ambiguous: {narrow} columns with 4-wide tabs, "
-        f"{wide} with 8-wide tabs, and the two belong to different blocks",
-        _sp(line.tokens[0]),
-        Severity.ERROR,
-        help="indent with spaces only (4 per level); it is read as part of the deeper block",
-    ))
+    diags.append(ambiguous_tab(_sp(line.tokens[0]), narrow, wide))
 
 
 def parse_text(text: str, path: str = "") -> ast.File:
@@ -1047,9 +1068,9 @@ def _parse_decoded_inner(text: str, path: str, diags: list[Diagnostic], had_bom:
         ast.Comment(Span(Pos(s, ln, col), Pos(e, ln, col + (e - s))), body, own)
         for (s, ln, col, e, body, own) in lexed.comments
     ]
-    ambiguous_tabs = {d.span.start.line for d in diags if d.code == "S003" and d.severity is Severity.ERROR}
+    ambiguous_tabs = {d.span.start.line for d in diags if d.code == TAB_INDENTATION and d.severity is Severity.ERROR}
     if ambiguous_tabs:  # the error replaces the lexer's warning on the same line
-        diags = [d for d in diags if not (d.code == "S003" and d.severity is Severity.WARNING
+        diags = [d for d in diags if not (d.code == TAB_INDENTATION and d.severity is Severity.WARNING
                                           and d.span.start.line in ambiguous_tabs)]
     for d in diags:
         d.file = path

@@ -7,7 +7,10 @@ import re
 from bisect import bisect_right
 from dataclasses import dataclass, field
 
-from plxtools.diagnostics import Diagnostic, Pos, Severity, Span
+from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Pos, Severity, Span
+
+BINARY_FILE = "S001"  # the bytes are not text: nothing else is checked
+UNREADABLE_FILE = "E001"
 
 BOM = "\ufeff"
 
@@ -87,11 +90,16 @@ def line_start(text: str, offset: int) -> int:
     return max(text.rfind("\n", 0, offset), text.rfind("\r", 0, offset)) + 1
 
 
+def unreadable(path: str, exc: OSError) -> Diagnostic:
+    """E001 for a file that cannot be read: the one message lint and check both give."""
+    return Diagnostic(UNREADABLE_FILE, f"cannot read file: {exc.strerror}", EMPTY_SPAN, Severity.ERROR, file=path)
+
+
 def decode(data: bytes) -> DecodedSource:
     """Decode file bytes as UTF-8; binary files and invalid bytes become located diagnostics."""
     if b"\x00" in data[:8192]:
         d = Diagnostic(
-            "S001",
+            BINARY_FILE,
             "this looks like a binary file (it contains NUL bytes), not OpenPLX source",
             Span(Pos(0, 0, 0), Pos(0, 0, 0)),
             Severity.ERROR,
