@@ -13,16 +13,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from plxtools.check.assemble import Assembler, Assembly, Kinds, Placement
+from plxtools.check.assemble import MATE_NOT_COINCIDENT, Assembler, Assembly, Kinds, Placement
 from plxtools.check.checks import StaticChecks, scan_strings
 from plxtools.check.convert import Collector, to_scene
-from plxtools.check.evaluate import Evaluator
+from plxtools.check.evaluate import EVALUATION_ERROR, MISSING_VALUE, UNBOUND_REFERENCE, VALUE_CYCLE, Evaluator
 from plxtools.check.frames import mat_to_quat_wxyz
 from plxtools.check.instance import Builder
 from plxtools.check.report import Reporter
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Pos, Severity, Span
 from plxtools.model.symbols import ModelSym
-from plxtools.rules.analysis import analyse_file
+from plxtools.rules import registry
+from plxtools.rules.analysis import analyse_file, is_binary
 from plxtools.syntax import ast, parse_bytes
 
 
@@ -39,7 +40,7 @@ class Skip(enum.Enum):
 
 
 # errors whose scene is exactly what the file says; they do not stop simulation, export or render
-SCENE_AS_WRITTEN = frozenset({"A016"})
+SCENE_AS_WRITTEN = frozenset({MATE_NOT_COINCIDENT})
 
 
 @dataclass
@@ -164,7 +165,7 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     tree = parse_bytes(data, str(path))
     fc.tree = tree
     raw: list[Diagnostic] = list(tree.diagnostics)
-    if any(d.code == "S001" for d in tree.diagnostics):
+    if is_binary(tree):
         fc.skip = Skip.NOT_TEXT
         fc.diagnostics = _finish(tree, raw, cfg)
         return fc
@@ -305,18 +306,31 @@ def _span_of_source(tree: ast.File, src) -> Span:
 
 
 # What lint's model checks own: a missing value (M007), an unbound reference (M008) or one given a
-# value of the wrong kind (T001), a value cycle (M006), a type or name error.  When lint has found one of these in the file, the evaluator's own
-# reports of the same kinds (A004, A005, A006, A003) are consequences of it and are not made.
-# an evaluation problem lint already owns; a missing value that follows from a misspelt attribute or a
-# block that did not parse is lint's too (its M007 is dropped as a consequence, see rules/completeness.py)
-_LINT_OWNED = {"A004": ("M007", "N002", "S"), "A005": ("M008", "T001"), "A006": ("M006",), "A003": ("T", "N")}
+# value of the wrong kind (T001), a value cycle (M006), a type or name error.  When lint has found one
+# of these in the file, the evaluator's own reports of the same kinds (A004, A005, A006, A003) are
+# consequences of it and are not made.  A missing value that follows from a misspelt attribute (N002)
+# or a block that did not parse is lint's too (its M007 is dropped as a consequence, see
+# rules/completeness.py).  Lint's rules are named here by their registered names (stage "lint"), whole
+# families by their letter (T: types, N: names) and syntax errors by their stage.
+_LINT_OWNED = {
+    MISSING_VALUE: (("missing-assignment", "unknown-attribute"), (), ("syntax",)),
+    UNBOUND_REFERENCE: (("unbound-reference", "type-mismatch"), (), ()),
+    VALUE_CYCLE: (("default-cycle",), (), ()),
+    EVALUATION_ERROR: ((), ("T", "N"), ()),
+}
+
+
+def _owns(code: str, names: tuple[str, ...], families: tuple[str, ...], stages: tuple[str, ...]) -> bool:
+    rule = registry.get(code)
+    if code.startswith(families):
+        return True
+    return rule is not None and ((rule.stage == "lint" and rule.name in names) or rule.stage in stages)
 
 
 def _owned_by_lint(lint: list[Diagnostic]) -> frozenset[str]:
     """The evaluation codes that lint's errors in this file already own."""
     errors = [d.code for d in lint if d.severity == Severity.ERROR]
-    return frozenset(code for code, owners in _LINT_OWNED.items()
-                     if any(c.startswith(owners) for c in errors))
+    return frozenset(code for code, owners in _LINT_OWNED.items() if any(_owns(c, *owners) for c in errors))
 
 
 def _merge(lint: list[Diagnostic], check: list[Diagnostic]) -> list[Diagnostic]:
