@@ -36,6 +36,7 @@ import numpy as np
 from plxtools.check.evaluate import Evaluator, Unavailable, report_non_finite
 from plxtools.check.frames import IDENTITY, Pose, angle_between, compose, from_transform, inverse, rot_z, rotation_angle
 from plxtools.check.instance import Obj, walk_owned
+from plxtools.check.mapped_types import CONTROLLERS, FREE_DOFS, MATES
 from plxtools.check.report import Reporter
 from plxtools.model.program import Program
 
@@ -56,33 +57,10 @@ ADAPTIVE = "Physics3D.Interactions.AdaptiveMateConnector"
 I1DOF = "Physics.Interactions.Interaction1DOF"
 INTERACTION = "Physics.Interactions.Interaction"
 
-MATE_KINDS = {
-    "Physics3D.Interactions.Hinge": "hinge",
-    "Physics3D.Interactions.Prismatic": "prismatic",
-    "Physics3D.Interactions.Cylindrical": "cylindrical",
-    "Physics3D.Interactions.Ball": "ball",
-    "Physics3D.Interactions.Lock": "lock",
-    "Physics3D.Interactions.Distance": "distance",
-}
-# type -> (scene kind, dof)
-CONTROLLER_KINDS = {
-    "Physics3D.Interactions.RotationalVelocityMotor": ("velocity_motor", "rotational"),
-    "Physics3D.Interactions.LinearVelocityMotor": ("velocity_motor", "linear"),
-    "Physics3D.Interactions.TorqueMotor": ("torque_motor", "rotational"),
-    "Physics3D.Interactions.ForceMotor": ("force_motor", "linear"),
-    "Physics3D.Interactions.RotationalRange": ("range", "rotational"),
-    "Physics3D.Interactions.LinearRange": ("range", "linear"),
-    "Physics3D.Interactions.TorsionSpring": ("spring", "rotational"),
-    "Physics3D.Interactions.LinearSpring": ("spring", "linear"),
-}
-DOF_OF_MATE = {
-    "hinge": {"rotational"},
-    "prismatic": {"linear"},
-    "cylindrical": {"rotational", "linear"},
-    "ball": set(),
-    "lock": set(),
-    "distance": set(),
-}
+# the mapped types (check/mapped_types.py), as the assembler reads them
+MATE_KINDS = MATES
+CONTROLLER_KINDS = {qn: (kind, dof) for qn, (kind, dof, _name) in CONTROLLERS.items()}  # type -> (kind, dof)
+DOF_OF_MATE = {kind: set(dofs) for kind, dofs in FREE_DOFS.items()}
 # attributes where an infinity means "no limit" (Math.INF, Math.NEG_INF in the bundles); NaN is never allowed
 MAY_BE_INFINITE = frozenset({"min_effort", "max_effort", "start", "end"})
 POS_TOL = 1e-4  # m

@@ -19,6 +19,7 @@ from plxtools.check.coverage import not_simulated
 from plxtools.check.evaluate import Unavailable
 from plxtools.check.frames import IDENTITY, Pose, compose, from_transform, inverse, mat_to_quat_wxyz
 from plxtools.check.instance import Obj
+from plxtools.check.mapped_types import GEOMS, scene_geom_kind
 from plxtools.check.report import Reporter, span_of
 from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NON_POSITIVE_SIZE
 
@@ -36,20 +37,7 @@ CONTACT_GEOM = "Physics3D.Geometries.ContactGeometry"
 # computed from the belt's routing, so its Box has no size.x in the file (the track is A040)
 RUNTIME_SIZED = ("Vehicles.Tracks.DefaultLinkDescription",)
 VISUAL_GEOM = "Visuals.Geometries.Geometry"
-GEOM_KINDS = {
-    "Physics3D.Geometries.Box": "box",
-    "Physics3D.Geometries.Sphere": "sphere",
-    "Physics3D.Geometries.Cylinder": "cylinder",
-    "Physics3D.Geometries.Capsule": "capsule",
-    "Physics3D.Geometries.ConvexMesh": "convex_mesh",
-    "Physics3D.Geometries.TriMesh": "trimesh",
-    "Physics3D.Geometries.ExternalTriMeshGeometry": "external_mesh",
-    "Visuals.Geometries.Box": "box",
-    "Visuals.Geometries.Sphere": "sphere",
-    "Visuals.Geometries.Cylinder": "cylinder",
-    "Visuals.Geometries.ConvexMesh": "convex_mesh",
-    "Visuals.Geometries.ExternalTriMeshGeometry": "external_mesh",
-}
+GEOM_KINDS = GEOMS  # type -> shape (check/mapped_types.py)
 SURFACE_MODEL = "Physics.Interactions.SurfaceContact.Model"
 FRICTION_MODELS = {
     "Physics.Interactions.Dissipation.DryDepthScaledConstantNormalForceFriction":
@@ -446,7 +434,7 @@ def _geoms(recs: list[GeomRec], rep: Reporter) -> list[S.Geom]:
     for g in recs:
         if not g.valid:
             continue
-        sg = S.Geom(g.path, "mesh" if g.kind.endswith("mesh") else g.kind, pos=_t3(g.pose[1]),
+        sg = S.Geom(g.path, scene_geom_kind(g.kind), pos=_t3(g.pose[1]),
                     quat=mat_to_quat_wxyz(g.pose[0]), visual_only=g.visual, source=_source(rep, g.obj))
         if g.kind == "box":
             sg.size = _t3(g.size)

@@ -18,6 +18,7 @@ import numpy as np
 from plxtools.check.assemble import CONNECTOR_COUNT
 from plxtools.check.checks import CONTROLLER_DOF_MISMATCH, CONTROLLER_WITHOUT_MATE, INVERTED_LIMITS
 from plxtools.check.coverage import NOT_SIMULATED
+from plxtools.check.mapped_types import FREE_DOFS
 from plxtools.check.mj_context import BuildContext
 from plxtools.check.mj_math import quat_to_mat
 from plxtools.check.mj_notes import ERROR, INFO, WARNING
@@ -123,11 +124,7 @@ def controller_joint(ctx: BuildContext, ctl: Controller, mate: Mate) -> str | No
         )
         return None
     joints = ctx.out.joints.get(mate.path)
-    fits = {
-        "hinge": ("rotational",),
-        "prismatic": ("linear",),
-        "cylindrical": ("rotational", "linear"),
-    }.get(mate.kind, ())
+    fits = FREE_DOFS.get(mate.kind, ())
     if ctl.dof not in fits:
         ctx.invariant(CONTROLLER_DOF_MISMATCH,
             f"{ctl.path}: a {ctl.dof} controller cannot drive the {mate.kind} mate {mate.path}",

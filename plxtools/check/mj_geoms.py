@@ -15,7 +15,7 @@ from plxtools.check.mj_math import Z_TO_Y_QUAT, quat_mul, quat_normalize
 from plxtools.check.mj_notes import INFO, WARNING
 from plxtools.check.mj_restitution import restitution_solref
 from plxtools.check.mj_types import VISUAL_GROUP
-from plxtools.check.scene import Body, Geom
+from plxtools.check.scene import GEOM_KINDS, Body, Geom
 from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NON_POSITIVE_SIZE
 
 MESH_EXTENSIONS = (".stl", ".obj", ".msh")
@@ -56,7 +56,7 @@ def geom_size_ok(ctx: BuildContext, g: Geom) -> bool:
 
 
 def add_geom(ctx: BuildContext, mb: Any, body: Body, g: Geom) -> None:
-    if g.kind not in ("box", "sphere", "cylinder", "capsule", "mesh", "plane"):
+    if g.kind not in GEOM_KINDS:
         ctx.invariant(NOT_SIMULATED,
             f"{g.path}: geometry kind {g.kind!r} is not supported; skipped",
             g,
