@@ -33,11 +33,19 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.evaluate import Evaluator, Unavailable
+from plxtools.check.evaluate import Evaluator, Unavailable, report_non_finite
 from plxtools.check.frames import IDENTITY, Pose, angle_between, compose, from_transform, inverse, rot_z, rotation_angle
 from plxtools.check.instance import Obj, walk_owned
+from plxtools.check.mapped_types import CONTROLLERS, FREE_DOFS, MATES
 from plxtools.check.report import Reporter
 from plxtools.model.program import Program
+
+# The codes this module raises (their home); the MuJoCo build names them when a hand-built scene
+# breaks what the assembler guarantees, the pipeline knows A016's scene is as written.
+ZERO_MAIN_AXIS = "A010"
+CONNECTOR_COUNT = "A013"
+MATE_SAME_BODY = "A015"
+MATE_NOT_COINCIDENT = "A016"
 
 SYSTEM = "Physics3D.System"
 RIGID_BODY = "Physics3D.Bodies.RigidBody"
@@ -49,33 +57,10 @@ ADAPTIVE = "Physics3D.Interactions.AdaptiveMateConnector"
 I1DOF = "Physics.Interactions.Interaction1DOF"
 INTERACTION = "Physics.Interactions.Interaction"
 
-MATE_KINDS = {
-    "Physics3D.Interactions.Hinge": "hinge",
-    "Physics3D.Interactions.Prismatic": "prismatic",
-    "Physics3D.Interactions.Cylindrical": "cylindrical",
-    "Physics3D.Interactions.Ball": "ball",
-    "Physics3D.Interactions.Lock": "lock",
-    "Physics3D.Interactions.Distance": "distance",
-}
-# type -> (scene kind, dof)
-CONTROLLER_KINDS = {
-    "Physics3D.Interactions.RotationalVelocityMotor": ("velocity_motor", "rotational"),
-    "Physics3D.Interactions.LinearVelocityMotor": ("velocity_motor", "linear"),
-    "Physics3D.Interactions.TorqueMotor": ("torque_motor", "rotational"),
-    "Physics3D.Interactions.ForceMotor": ("force_motor", "linear"),
-    "Physics3D.Interactions.RotationalRange": ("range", "rotational"),
-    "Physics3D.Interactions.LinearRange": ("range", "linear"),
-    "Physics3D.Interactions.TorsionSpring": ("spring", "rotational"),
-    "Physics3D.Interactions.LinearSpring": ("spring", "linear"),
-}
-DOF_OF_MATE = {
-    "hinge": {"rotational"},
-    "prismatic": {"linear"},
-    "cylindrical": {"rotational", "linear"},
-    "ball": set(),
-    "lock": set(),
-    "distance": set(),
-}
+# the mapped types (check/mapped_types.py), as the assembler reads them
+MATE_KINDS = MATES
+CONTROLLER_KINDS = {qn: (kind, dof) for qn, (kind, dof, _name) in CONTROLLERS.items()}  # type -> (kind, dof)
+DOF_OF_MATE = {kind: set(dofs) for kind, dofs in FREE_DOFS.items()}
 # attributes where an infinity means "no limit" (Math.INF, Math.NEG_INF in the bundles); NaN is never allowed
 MAY_BE_INFINITE = frozenset({"min_effort", "max_effort", "start", "end"})
 POS_TOL = 1e-4  # m
@@ -290,9 +275,9 @@ class Assembler:
             if key not in self._non_finite_seen:
                 self._non_finite_seen.add(key)
                 node, unit = self.ev.where(obj, path)
-                self.rep.add("A041", f"{obj.display}.{path} is {bad}; a value must be a finite number",
-                             node=node, unit=unit, obj=obj,
-                             help="check the expression for an overflow (a result beyond 1.8e308) or inf - inf")
+                report_non_finite(self.rep, f"{obj.display}.{path} is {bad}; a value must be a finite number",
+                                  node=node, unit=unit, obj=obj,
+                                  help="check the expression for an overflow (a result beyond 1.8e308) or inf - inf")
             raise Unavailable(f"{obj.display}.{path} is {bad}")
         return v
 
@@ -408,7 +393,7 @@ class Assembler:
         if c is not None:
             return c
         if not self.k.isa(obj, CONNECTOR):
-            self.rep.add("A013", f"{obj.display} is not a Physics3D.Interactions.MateConnector", obj=obj)
+            self.rep.add(CONNECTOR_COUNT, f"{obj.display} is not a Physics3D.Interactions.MateConnector", obj=obj)
             return None
         node = self._parent_node(asm, obj) if obj.owner is not None else asm.root_node
         if node is None:
@@ -420,7 +405,7 @@ class Assembler:
         n_axis = float(np.linalg.norm(axis))
         if n_axis < 1e-9:
             node_, unit_ = self.ev.where(obj, "main_axis")
-            self.rep.add("A010", f"connector {obj.display} has a zero main_axis", node=node_, unit=unit_, obj=obj,
+            self.rep.add(ZERO_MAIN_AXIS, f"connector {obj.display} has a zero main_axis", node=node_, unit=unit_, obj=obj,
                          help="give the axis the joint turns about or slides along, e.g. main_axis: {0, 0, 1}")
             z = np.array([0.0, 0.0, 1.0])
             ok = False
@@ -486,7 +471,7 @@ class Assembler:
             return None
         if len(lst) != 2:
             node_, unit_ = self.ev.where(obj, "connectors")
-            self.rep.add("A013", f"{what} {obj.display} has {len(lst)} connector{'s' if len(lst) != 1 else ''}; "
+            self.rep.add(CONNECTOR_COUNT, f"{what} {obj.display} has {len(lst)} connector{'s' if len(lst) != 1 else ''}; "
                          f"it needs exactly 2", node=node_, unit=unit_, obj=obj,
                          help="connectors: [a.connector, b.connector]")
             return None
@@ -494,7 +479,7 @@ class Assembler:
         for item in lst:
             if not isinstance(item, Obj):
                 node_, unit_ = self.ev.where(obj, "connectors")
-                self.rep.add("A013", f"{what} {obj.display}: a connector is not an object", node=node_, unit=unit_,
+                self.rep.add(CONNECTOR_COUNT, f"{what} {obj.display}: a connector is not an object", node=node_, unit=unit_,
                              obj=obj)
                 return None
             out.append(self.connector(asm, item))
@@ -526,7 +511,7 @@ class Assembler:
         elif asm.mover(c0) is asm.mover(c1) and (asm.mover(c0).kind == "body" or asm.mover(c0) is asm.root_node or
                                                  (c0.redirected_parent is None and c1.redirected_parent is None)):
             where = asm.mover(c0).path if asm.mover(c0).kind == "body" else "the world (no body)"
-            self.rep.add("A015", f"mate {obj.display}: both connectors belong to {where}, so it joins nothing",
+            self.rep.add(MATE_SAME_BODY, f"mate {obj.display}: both connectors belong to {where}, so it joins nothing",
                          node=node_, unit=unit_, obj=obj,
                          help="one connector must belong to each of the two bodies the mate joins")
             rec.usable = False
@@ -603,30 +588,7 @@ class Assembler:
         guard = 0
         while guard < 10 * (len(todo) + len(asm.nodes)) + 10:
             guard += 1
-            fired = False
-            for strict in (True, False):
-                for m in todo:
-                    if id(m) in done or id(m) not in info:
-                        continue
-                    top, ch0, ch1 = info[id(m)]
-                    r0, r1 = self._rel(ch0), self._rel(ch1)
-                    if r0 is not None and r1 is not None:
-                        done.add(id(m))
-                        continue
-                    if r0 is None and r1 is None:
-                        continue
-                    k = 0 if r0 is not None else 1
-                    u_chain = ch1 if k == 0 else ch0
-                    free = [n for n in u_chain if n.local is None]
-                    if strict and len(free) > 1:
-                        continue
-                    self._place(m, k, top, ch0, ch1, free)
-                    done.add(id(m))
-                    fired = True
-                    break
-                if fired:
-                    break
-            if fired:
+            if self._snap_one(todo, done, info):
                 continue
             forced = self._force(asm, todo, done, info)
             if not forced:
@@ -635,6 +597,34 @@ class Assembler:
             if n.local is None:
                 n.local = IDENTITY
                 n.place(Placement.UNPLACED)
+
+    def _snap_one(self, todo: list[MateRec], done: set[int], info: dict[int, tuple]) -> bool:
+        """Place the free side of one mate whose other side is placed: first a mate whose free
+        chain has one unplaced node (strict), then any.  False when no mate could be placed."""
+        for strict in (True, False):
+            for m in todo:
+                if self._snap_mate(m, strict, done, info):
+                    return True
+        return False
+
+    def _snap_mate(self, m: MateRec, strict: bool, done: set[int], info: dict[int, tuple]) -> bool:
+        if id(m) in done or id(m) not in info:
+            return False
+        top, ch0, ch1 = info[id(m)]
+        r0, r1 = self._rel(ch0), self._rel(ch1)
+        if r0 is not None and r1 is not None:
+            done.add(id(m))
+            return False
+        if r0 is None and r1 is None:
+            return False
+        k = 0 if r0 is not None else 1
+        u_chain = ch1 if k == 0 else ch0
+        free = [n for n in u_chain if n.local is None]
+        if strict and len(free) > 1:
+            return False
+        self._place(m, k, top, ch0, ch1, free)
+        done.add(id(m))
+        return True
 
     def _place(self, m: MateRec, k: int, top: Node, ch0: list, ch1: list, free: list) -> None:
         c_known, c_unknown = m.conns[k], m.conns[1 - k]
@@ -728,7 +718,7 @@ class Assembler:
                 else:
                     sides.append(f"{n.path}: {n.placed_by}")
             why = "; ".join(sides)
-            self.rep.add("A016", f"mate {m.path}: its connectors do not coincide after assembly ({', '.join(parts)}); "
+            self.rep.add(MATE_NOT_COINCIDENT, f"mate {m.path}: its connectors do not coincide after assembly ({', '.join(parts)}); "
                          f"{why}", obj=m.obj,
                          help="SNAP moves only bodies and systems without a declared transform; remove the "
                          "explicit local_transform of one side, or fix the connector positions and axes")

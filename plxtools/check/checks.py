@@ -16,12 +16,30 @@ import numpy as np
 from plxtools import envpath
 from plxtools.check.broadphase import first_overlaps
 from plxtools.check import coverage, drivetrain
+from plxtools.check.coverage import not_simulated
 from plxtools.check.assemble import DOF_OF_MATE, Assembler, Assembly, CtrlRec, Kinds, MateRec, Node, Placement
-from plxtools.check.convert import Collector, GeomRec
+from plxtools.check.convert import Collector, GeomRec, report_missing_file
 from plxtools.check.frames import angle_between, compose
 from plxtools.check.instance import Obj
 from plxtools.check.report import Reporter
+from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NEGATIVE_MASS, NON_POSITIVE_DENSITY
 from plxtools.syntax import ast
+
+# The codes this module raises (their home).  The MuJoCo build names them when it meets a scene these
+# checks should have rejected (BuildContext.invariant); `plx check`'s summary lists the motion ones.
+MATE_WITHOUT_DYNAMIC_BODY = "A017"
+HINGE_AXIS_OFF_CYLINDER_AXIS = "A018"
+CONTROLLER_WITHOUT_MATE = "A020"
+CONTROLLER_DOF_MISMATCH = "A021"
+MIRRORED_DRIVE_MOTORS = "A023"
+INVERTED_LIMITS = "A024"
+ZERO_MASS_DYNAMIC_BODY = "A033"
+INVALID_INERTIA = "A034"
+DUPLICATE_CONTACT_MODEL = "A035"
+UNPLACED_BODY_OVERLAPS = "A037"
+# found by these checks, not by the simulation: what they say about how the scene moves (or fails to)
+STATIC_MOTION_CODES = frozenset({MATE_WITHOUT_DYNAMIC_BODY, HINGE_AXIS_OFF_CYLINDER_AXIS, MIRRORED_DRIVE_MOTORS,
+                                 UNPLACED_BODY_OVERLAPS})
 
 TWO_PI = 2.0 * math.pi
 UNSUPPORTED_BUNDLES = {
@@ -81,11 +99,28 @@ class StaticChecks:
             seen.add(id(obj))
             for attr, msg, where in coverage.settings_not_simulated(self.k, self.ev, self.a.get, obj):
                 node, unit = where if where else (None, None)
-                self.rep.add("A040", msg, node=node, unit=unit, obj=obj, severity="warning")
+                not_simulated(self.rep, msg, node=node, unit=unit, obj=obj, severity="warning")
                 self.col.unsupported.append((attr, obj, msg))
 
     def unsupported(self) -> None:
-        p = self.a.p
+        """A040 for each element the MuJoCo backend does not simulate, once per element (not again
+        for what it owns)."""
+        reported = self._unsupported_owned()
+        self._unmapped_interactions(reported)
+        for m in self.asm.mates:
+            if m.kind == "unknown":
+                qn = self.a.p.concrete(m.obj.model).qname
+                self._refuse(qn, m.obj, f"{m.path} ({qn}): this mate type has no MuJoCo mapping and is not simulated")
+        self._contact_settings()
+        self._point_gravity()
+
+    def _refuse(self, what: str, obj: Obj, msg: str) -> None:
+        not_simulated(self.rep, msg, obj=obj)
+        self.col.unsupported.append((what, obj, msg))
+
+    def _unsupported_owned(self) -> set[int]:
+        """The objects of unsupported bundles, signals and types; returns the ids of those reported
+        (and of the drive-train objects that are simulated with their parts)."""
         reported: set[int] = set()
         for obj in self.asm.owned[1:]:
             if any(id(o) in reported for o in _owners(obj)):
@@ -93,56 +128,57 @@ class StaticChecks:
             if drivetrain.mapped(self.k, obj):  # simulated, with its parts (connectors, inertia, signals)
                 reported.add(id(obj))
                 continue
-            qn = p.concrete(obj.model).qname
-            ns = qn.split(".")[0]
-            msg = None
-            if ns in UNSUPPORTED_BUNDLES:
-                msg = f"{obj.display} ({qn}): {UNSUPPORTED_BUNDLES[ns]} is not supported by the MuJoCo backend; " \
-                      f"it is not simulated"
-            elif qn.startswith(SIGNAL_NAMESPACES) and obj.decl is not None and obj.decl[0].unit is self.rep.unit:
-                msg = self._unmapped_signal(obj, qn)
-            elif qn == "Physics.KinematicLock":
-                msg = f"{obj.display}: Physics.KinematicLock is not supported by the MuJoCo backend (the bodies " \
-                      f"move independently)"
-            elif self.k.isa(obj, "Physics3D.Interactions.AdaptiveMateConnector"):
-                msg = f"{obj.display}: AdaptiveMateConnector is treated as a plain MateConnector"
-            elif qn == "Physics3D.Interactions.StructuralPlanarConnector" or qn.startswith("Physics3D.Structural"):
-                msg = None
+            qn = self.a.p.concrete(obj.model).qname
+            msg = self._unsupported_text(obj, qn)
             if msg is not None:
                 reported.add(id(obj))
-                self.rep.add("A040", msg, obj=obj)
-                self.col.unsupported.append((qn, obj, msg))
+                self._refuse(qn, obj, msg)
+        return reported
+
+    def _unsupported_text(self, obj: Obj, qn: str) -> str | None:
+        ns = qn.split(".")[0]
+        if ns in UNSUPPORTED_BUNDLES:
+            return f"{obj.display} ({qn}): {UNSUPPORTED_BUNDLES[ns]} is not supported by the MuJoCo backend; " \
+                   f"it is not simulated"
+        if qn.startswith(SIGNAL_NAMESPACES) and obj.decl is not None and obj.decl[0].unit is self.rep.unit:
+            return self._unmapped_signal(obj, qn)
+        if qn == "Physics.KinematicLock":
+            return f"{obj.display}: Physics.KinematicLock is not supported by the MuJoCo backend (the bodies " \
+                   f"move independently)"
+        if self.k.isa(obj, "Physics3D.Interactions.AdaptiveMateConnector"):
+            return f"{obj.display}: AdaptiveMateConnector is treated as a plain MateConnector"
+        return None
+
+    def _unmapped_interactions(self, reported: set[int]) -> None:
         for obj in self.asm.other_interactions:
             if id(obj) in reported or any(id(o) in reported for o in _owners(obj)) or drivetrain.mapped(self.k, obj):
                 continue
-            qn = p.concrete(obj.model).qname
+            qn = self.a.p.concrete(obj.model).qname
             if qn.split(".")[0] in UNSUPPORTED_BUNDLES:
                 continue
-            msg = f"{obj.display} ({qn}): this interaction has no MuJoCo mapping and is not simulated"
-            self.rep.add("A040", msg, obj=obj)
-            self.col.unsupported.append((qn, obj, msg))
-        for m in self.asm.mates:
-            if m.kind == "unknown":
-                qn = p.concrete(m.obj.model).qname
-                msg = f"{m.path} ({qn}): this mate type has no MuJoCo mapping and is not simulated"
-                self.rep.add("A040", msg, obj=m.obj)
-                self.col.unsupported.append((qn, m.obj, msg))
+            self._refuse(qn, obj, f"{obj.display} ({qn}): this interaction has no MuJoCo mapping and is not simulated")
+
+    def _contact_settings(self) -> None:
+        """Contact model settings MuJoCo has no counterpart for (placed where they are set)."""
         for c in self.col.contacts:
             if c.enabled and c.tangential_restitution is not None and 0 < c.tangential_restitution <= 1:
-                self.add_at("A040", f"{c.obj.display}: tangential_restitution {c.tangential_restitution:g} is not "
-                            f"simulated by the MuJoCo backend (its contacts resist sliding by friction only); it is "
-                            f"ignored", c.obj, "tangential_restitution", path=c.obj.display)
+                not_simulated(self.rep, f"{c.obj.display}: tangential_restitution {c.tangential_restitution:g} is "
+                              f"not simulated by the MuJoCo backend (its contacts resist sliding by friction only); "
+                              f"it is ignored", **self._where_kw(c.obj, "tangential_restitution"), obj=c.obj,
+                              path=c.obj.display)
             if c.enabled and c.friction_model not in DRY_MODELS:
-                self.add_at("A040", f"{c.obj.display}: friction model {c.friction_model} is not dry friction; "
-                            f"MuJoCo uses its default friction for this pair", c.obj, "friction", path=c.obj.display)
+                not_simulated(self.rep, f"{c.obj.display}: friction model {c.friction_model} is not dry friction; "
+                              f"MuJoCo uses its default friction for this pair", **self._where_kw(c.obj, "friction"),
+                              obj=c.obj, path=c.obj.display)
+
+    def _point_gravity(self) -> None:
         root = self.asm.root
         if self.k.isa(root, "Simulation.Environment"):
             g = self.ev.child(root, "gravity")
             if isinstance(g, Obj) and self.k.isa(g, "Simulation.PointGravitationalField"):
-                msg = f"{g.display}: PointGravitationalField is not supported by MuJoCo; uniform gravity " \
-                      f"{{0, 0, -9.80665}} is used"
-                self.rep.add("A040", msg, obj=g)
-                self.col.unsupported.append(("Simulation.PointGravitationalField", g, msg))
+                self._refuse("Simulation.PointGravitationalField", g,
+                             f"{g.display}: PointGravitationalField is not supported by MuJoCo; uniform gravity "
+                             f"{{0, 0, -9.80665}} is used")
 
     def _unmapped_signal(self, obj: Obj, qn: str) -> str | None:
         """The A040 text for a signal declared in the file that the MuJoCo run cannot map (None when
@@ -162,32 +198,40 @@ class StaticChecks:
         for g in self.col.geoms:
             geoms.setdefault(id(g.node), []).append(g)
             if not g.visual and g.include_in_mass and g.valid and g.density <= 0 and g.material_obj is not None:
-                self.add_at("A038", f"material {g.material_obj.display} of {g.path} has density {g.density:g}; "
-                            f"it must be > 0 for the geometry to give mass", g.material_obj, "density",
-                            path=g.path)
+                self.add_at(NON_POSITIVE_DENSITY, f"material {g.material_obj.display} of {g.path} has density "
+                            f"{g.density:g}; it must be > 0 for the geometry to give mass", g.material_obj,
+                            "density", path=g.path)
         for n in self.asm.bodies:
-            obj = n.obj
-            mass = self.a.real(obj, "inertia.mass", 0.0)
-            if mass < 0:
-                self.add_at("A032", f"{n.path} has negative mass {mass:g}", obj, "inertia.mass",
-                            help="a mass of 0 means: compute it from the geometries")
-            elif mass == 0 and n.is_dynamic:
-                contributing = [g for g in geoms.get(id(n), []) if not g.visual and g.valid and g.include_in_mass
-                                and g.density > 0 and g.volume() > 0]
-                # a geometry that failed to evaluate or was rejected (A030, A031) is reported already
-                failed = any(g.failed or not g.valid for g in geoms.get(id(n), []) if not g.visual)
-                if not contributing and not failed:
-                    self.add_at("A033", f"dynamic body {n.path} has mass 0 and no geometry that gives it mass",
-                                obj, "inertia.mass",
-                                help="give inertia.mass a value, or a contact geometry with a size and a material "
-                                "density")
-            t = self.a.get(obj, "inertia.tensor", None)
-            if isinstance(t, np.ndarray) and t.shape == (3, 3) and np.any(np.diag(t) != 0):
-                problem = _tensor_problem(t)
-                if problem:
-                    self.add_at("A034", f"{n.path}: inertia tensor {problem}", obj, "inertia.tensor",
-                                help="use Physics3D.Bodies.Inertia.symmetric_tensor(diag, e01, e02, e12) with "
-                                "positive principal moments")
+            self._body_mass(n, geoms.get(id(n), []))
+            self._inertia_tensor(n)
+
+    def _body_mass(self, n: Node, geoms: list[GeomRec]) -> None:
+        """A negative mass, or a dynamic body of mass 0 that no geometry gives mass to."""
+        obj = n.obj
+        mass = self.a.real(obj, "inertia.mass", 0.0)
+        if mass < 0:
+            self.add_at(NEGATIVE_MASS, f"{n.path} has negative mass {mass:g}", obj, "inertia.mass",
+                        help="a mass of 0 means: compute it from the geometries")
+            return
+        if mass != 0 or not n.is_dynamic:
+            return
+        contributing = [g for g in geoms if not g.visual and g.valid and g.include_in_mass
+                        and g.density > 0 and g.volume() > 0]
+        # a geometry that failed to evaluate or was rejected (A030, A031) is reported already
+        failed = any(g.failed or not g.valid for g in geoms if not g.visual)
+        if not contributing and not failed:
+            self.add_at(ZERO_MASS_DYNAMIC_BODY, f"dynamic body {n.path} has mass 0 and no geometry that gives it "
+                        f"mass", obj, "inertia.mass",
+                        help="give inertia.mass a value, or a contact geometry with a size and a material density")
+
+    def _inertia_tensor(self, n: Node) -> None:
+        t = self.a.get(n.obj, "inertia.tensor", None)
+        if isinstance(t, np.ndarray) and t.shape == (3, 3) and np.any(np.diag(t) != 0):
+            problem = _tensor_problem(t)
+            if problem:
+                self.add_at(INVALID_INERTIA, f"{n.path}: inertia tensor {problem}", n.obj, "inertia.tensor",
+                            help="use Physics3D.Bodies.Inertia.symmetric_tensor(diag, e01, e02, e12) with "
+                            "positive principal moments")
 
     # ------------------------------------------------------------------ contact models
 
@@ -200,20 +244,20 @@ class StaticChecks:
             first = seen.get(key)
             if first is not None:
                 line = self.rep.anchor(first.obj).start.line + 1
-                self.rep.add("A035", f"{c.obj.display} is a second SurfaceContact.Model for the material pair "
+                self.rep.add(DUPLICATE_CONTACT_MODEL, f"{c.obj.display} is a second SurfaceContact.Model for the material pair "
                              f"{key[0]} / {key[1]} (the first is {first.obj.display}, line {line})", obj=c.obj,
                              help="keep one contact model per pair of materials")
             else:
                 seen[key] = c
             if c.friction is not None and c.friction < 0:
                 fr = self.ev.child(c.obj, "friction")
-                self.add_at("A036", f"{c.obj.display}: friction coefficient {c.friction:g} is negative",
+                self.add_at(INVALID_CONTACT_PARAMETER, f"{c.obj.display}: friction coefficient {c.friction:g} is negative",
                             fr if isinstance(fr, Obj) else c.obj, "coefficient" if isinstance(fr, Obj) else None,
                             path=c.obj.display)
             pairs = (("normal_restitution", c.restitution), ("tangential_restitution", c.tangential_restitution))
             for attr, v in pairs:
                 if v is not None and not 0.0 <= v <= 1.0:
-                    self.add_at("A036", f"{c.obj.display}: {attr} {v:g} is outside [0, 1]", c.obj, attr,
+                    self.add_at(INVALID_CONTACT_PARAMETER, f"{c.obj.display}: {attr} {v:g} is outside [0, 1]", c.obj, attr,
                                 path=c.obj.display)
 
     # ------------------------------------------------------------------ mates
@@ -229,7 +273,7 @@ class StaticChecks:
             movers = [self.asm.mover(c) for c in m.conns]
             dyn = [n.kind == "body" and n.is_dynamic for n in movers]
             if not any(dyn):
-                self.rep.add("A017", f"mate {m.path} joins two parts that do not move (static bodies or the "
+                self.rep.add(MATE_WITHOUT_DYNAMIC_BODY, f"mate {m.path} joins two parts that do not move (static bodies or the "
                              f"world); it has no effect", obj=m.obj)
 
     # ------------------------------------------------------------------ controllers
@@ -241,14 +285,14 @@ class StaticChecks:
                 continue
             if c.mate is None:
                 names = ", ".join(x.obj.display for x in c.conns)
-                self.add_at("A020", f"{c.path}: its connectors [{names}] are not the connectors of any mate, so "
+                self.add_at(CONTROLLER_WITHOUT_MATE, f"{c.path}: its connectors [{names}] are not the connectors of any mate, so "
                             f"it drives nothing", obj, "connectors",
                             help="use the connectors of the mate it drives, e.g. connectors: hinge.connectors")
             else:
                 free = DOF_OF_MATE.get(c.mate.kind, set())
                 if c.dof not in free:
                     what = "rotation" if c.dof == "rotational" else "translation"
-                    self.add_at("A021", f"{c.path} ({self.a.p.concrete(obj.model).name}) drives a {what}, but its "
+                    self.add_at(CONTROLLER_DOF_MISMATCH, f"{c.path} ({self.a.p.concrete(obj.model).name}) drives a {what}, but its "
                                 f"mate {c.mate.path} is a {c.mate.kind.capitalize()}, which has no free {what}",
                                 obj, "connectors")
             if c.kind == "velocity_motor" and c.dof == "rotational":
@@ -261,7 +305,7 @@ class StaticChecks:
                 start = self.a.real(obj, "start", math.nan)
                 end = self.a.real(obj, "end", math.nan)
                 if math.isfinite(start) and math.isfinite(end) and start > end:
-                    self.add_at("A024", f"{c.path}: range start {start:g} is greater than end {end:g}", obj, "start")
+                    self.add_at(INVERTED_LIMITS, f"{c.path}: range start {start:g} is greater than end {end:g}", obj, "start")
                 elif math.isfinite(start) and math.isfinite(end) and c.mate is not None and c.mate.enabled:
                     self._range_start(c, start, end)
                 if c.dof == "rotational" and any(math.isfinite(x) and abs(x) > TWO_PI for x in (start, end)):
@@ -270,7 +314,7 @@ class StaticChecks:
             lo = self.a.real(obj, "min_effort", -math.inf)
             hi = self.a.real(obj, "max_effort", math.inf)
             if lo > hi:
-                self.add_at("A024", f"{c.path}: min_effort {lo:g} is greater than max_effort {hi:g}", obj,
+                self.add_at(INVERTED_LIMITS, f"{c.path}: min_effort {lo:g} is greater than max_effort {hi:g}", obj,
                             "min_effort")
 
     def _range_start(self, c, start: float, end: float) -> None:
@@ -323,7 +367,7 @@ class StaticChecks:
                     if ang > math.radians(1.0):
                         node, unit = self.where(c.obj, "main_axis")
                         local_axis = c.main_axis
-                        self.rep.add("A018", f"{m.path} turns {n.path} about an axis {math.degrees(ang):.3g} deg "
+                        self.rep.add(HINGE_AXIS_OFF_CYLINDER_AXIS, f"{m.path} turns {n.path} about an axis {math.degrees(ang):.3g} deg "
                                      f"away from the axis of its {g.kind} {g.path} (the {g.kind}'s local Y): the "
                                      f"{g.kind} would tumble instead of rolling", node=node, unit=unit, obj=c.obj,
                                      path=m.path,
@@ -353,7 +397,7 @@ class StaticChecks:
             if float(np.dot(d, ay)) <= 0:
                 continue
             d = self.rep.add(
-                "A023", f"{x.path} and {y.path} have the same target_speed ({vx:g}) on hinges whose axes "
+                MIRRORED_DRIVE_MOTORS, f"{x.path} and {y.path} have the same target_speed ({vx:g}) on hinges whose axes "
                 f"point opposite ways ({_v(ax)} and {_v(ay)}): the two wheels are driven in opposite directions, "
                 f"so the vehicle does not drive straight: it turns on the spot where nothing resists, and where "
                 f"other wheels on the ground resist (a four-wheeled truck) the driven wheels scrub against each "
@@ -452,7 +496,7 @@ class StaticChecks:
                         f"may be the mate that places {n.path}")
             else:
                 help = "give it kinematics.local_transform.position, or join it to the scene with a mate"
-            self.rep.add("A037", f"{n.path} has no declared transform and no mate places it, so it stays "
+            self.rep.add(UNPLACED_BODY_OVERLAPS, f"{n.path} has no declared transform and no mate places it, so it stays "
                          f"at {_v(n.world[1])}, where it overlaps {other.path} "
                          f"(by {depth:.3g} m)", obj=n.obj, help=help)
 
@@ -489,8 +533,8 @@ def _check_string(s: ast.String, base: str, rep: Reporter, variables_only: bool 
         p = s.value
         full = p if os.path.isabs(p) else os.path.normpath(os.path.join(base, p))
         if p and not os.path.exists(full):
-            rep.add("A031", f"file {p!r} does not exist (looked for {full})", span=s.span,
-                    help="paths in @\"...\" are relative to the folder of the .openplx file")
+            report_missing_file(rep, f"file {p!r} does not exist (looked for {full})", span=s.span,
+                            help="paths in @\"...\" are relative to the folder of the .openplx file")
     elif s.kind == "interp":
         val, unset = envpath.expand(s.value)
         for v in unset:
@@ -500,8 +544,8 @@ def _check_string(s: ast.String, base: str, rep: Reporter, variables_only: bool 
             looks_like_file = "/" in val or os.sep in val or re.search(r"\.[A-Za-z0-9]{2,4}$", val)
             if looks_like_file and not os.path.exists(val if os.path.isabs(val) else os.path.join(base, val)):
                 named = envpath.shown(s.raw, val)
-                rep.add("A031", f"file {named} does not exist", span=s.span, severity="warning",
-                        help="plx check --show-env shows the path the variables give" if named == s.raw else None)
+                report_missing_file(rep, f"file {named} does not exist", span=s.span, severity="warning",
+                                    help="plx check --show-env shows the path the variables give" if named == s.raw else None)
 
 
 def _owners(obj: Obj):

@@ -15,30 +15,29 @@ import numpy as np
 
 from plxtools.check import scene as S
 from plxtools.check.assemble import Assembler, Assembly, Conn, CtrlRec, Kinds, MateRec, Node
+from plxtools.check.coverage import not_simulated
 from plxtools.check.evaluate import Unavailable
 from plxtools.check.frames import IDENTITY, Pose, compose, from_transform, inverse, mat_to_quat_wxyz
 from plxtools.check.instance import Obj
+from plxtools.check.mapped_types import GEOMS, scene_geom_kind
 from plxtools.check.report import Reporter, span_of
+from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NON_POSITIVE_SIZE
+
+# The one home of A031 (missing-file): a mesh file here, a path string in check's scan_strings.
+MISSING_FILE = "A031"
+
+
+def report_missing_file(rep: Reporter, message: str, **where: Any) -> Any:
+    """A031: a file the model names does not exist, placed as ``Reporter.add`` places it."""
+    return rep.add(MISSING_FILE, message, **where)
+
 
 CONTACT_GEOM = "Physics3D.Geometries.ContactGeometry"
 # descriptions the runtime turns into many objects, sizing them itself: a track link's length is
 # computed from the belt's routing, so its Box has no size.x in the file (the track is A040)
 RUNTIME_SIZED = ("Vehicles.Tracks.DefaultLinkDescription",)
 VISUAL_GEOM = "Visuals.Geometries.Geometry"
-GEOM_KINDS = {
-    "Physics3D.Geometries.Box": "box",
-    "Physics3D.Geometries.Sphere": "sphere",
-    "Physics3D.Geometries.Cylinder": "cylinder",
-    "Physics3D.Geometries.Capsule": "capsule",
-    "Physics3D.Geometries.ConvexMesh": "convex_mesh",
-    "Physics3D.Geometries.TriMesh": "trimesh",
-    "Physics3D.Geometries.ExternalTriMeshGeometry": "external_mesh",
-    "Visuals.Geometries.Box": "box",
-    "Visuals.Geometries.Sphere": "sphere",
-    "Visuals.Geometries.Cylinder": "cylinder",
-    "Visuals.Geometries.ConvexMesh": "convex_mesh",
-    "Visuals.Geometries.ExternalTriMeshGeometry": "external_mesh",
-}
+GEOM_KINDS = GEOMS  # type -> shape (check/mapped_types.py)
 SURFACE_MODEL = "Physics.Interactions.SurfaceContact.Model"
 FRICTION_MODELS = {
     "Physics.Interactions.Dissipation.DryDepthScaledConstantNormalForceFriction":
@@ -205,79 +204,102 @@ class Collector:
         if t is not None and hasattr(t, "rotation"):
             g.pose = from_transform(t)
         if kind == "box":
-            size = self.a._vec(obj, "size", None)
-            if size is None:
-                g.valid, g.failed = False, True
-            else:
-                g.size = size
-                bad = [f"{a}={v:g}" for a, v in zip("xyz", size) if v <= 0]
-                if bad:
-                    self._bad_size(g, "size", f"box {obj.display} has size {{{', '.join(f'{v:g}' for v in size)}}}: "
-                                   f"{', '.join(bad)} must be > 0",
-                                   "a Box's size has no default and is 0, 0, 0 unless assigned; "
-                                   "give the full edge lengths, e.g. size: {1, 1, 1}")
+            self._box_size(g, obj)
         elif kind in ("sphere", "cylinder", "capsule"):
-            r = self._num(obj, "radius")
-            if r is None:
-                g.valid, g.failed = False, True
-            else:
-                g.radius = r
-                if r <= 0:
-                    self._bad_size(g, "radius", f"{kind} {obj.display} has radius {r:g}; it must be > 0")
-            if kind != "sphere":
-                h = self._num(obj, "height")
-                if h is None:
-                    g.valid, g.failed = False, True
-                else:
-                    g.height = h
-                    if (kind == "cylinder" and h <= 0) or (kind == "capsule" and h < 0):
-                        need = "> 0" if kind == "cylinder" else ">= 0"
-                        self._bad_size(g, "height", f"{kind} {obj.display} has height {h:g}; it must be {need}")
+            self._round_size(g, obj, kind)
+        elif kind == "external_mesh":
+            self._mesh_file(g, obj, visual)
+            self._mesh_scale(g, obj)
         else:
-            if kind == "external_mesh":
-                p = self.get(obj, "path", None)
-                if isinstance(p, str) and p:
-                    stmt, unit = self.ev.where(obj, "path")
-                    base = os.path.dirname(os.path.abspath(unit.path)) if unit is not None else os.getcwd()
-                    full = p if os.path.isabs(p) else os.path.normpath(os.path.join(base, p))
-                    g.mesh_file = full
-                    if full.lower().endswith(".obj") and os.path.isfile(full):
-                        self._obj_bounds(g, obj, p, visual)
-                    if not os.path.isfile(full) and unit is not self.rep.unit:
-                        self.rep.add("A031", f"mesh file {p!r} of {obj.display} does not exist ({full})", obj=obj,
-                                     severity="warning" if visual else None)
-                    if not os.path.isfile(full):
-                        g.valid = False
-                else:
-                    g.valid = False
-            else:
-                verts = self.get(obj, "vertices", None)
-                if isinstance(verts, list) and verts:
-                    try:
-                        g.vertices = [tuple(float(c) for c in np.asarray(v, dtype=float)) for v in verts]
-                    except (TypeError, ValueError):
-                        g.valid = False
-                else:
-                    g.valid = False
-                    self.rep.add("A030", f"mesh {obj.display} has no vertices", obj=obj)
-                if kind == "trimesh":
-                    idx = self.get(obj, "indices", None)
-                    g.indices = [int(i) for i in idx] if isinstance(idx, list) else None
-            scale = self.a._vec(obj, "scale", None) if kind == "external_mesh" else None
-            if scale is not None:
-                g.mesh_scale = scale
-                if np.any(scale <= 0):
-                    self._bad_size(g, "scale", f"mesh {obj.display} has scale {{{', '.join(f'{v:g}' for v in scale)}}};"
-                                   f" every component must be > 0")
+            self._mesh_vertices(g, obj, kind)
         if not visual:
-            g.enable_collisions = bool(self.get(obj, "enable_collisions", True))
-            g.include_in_mass = bool(self.get(obj, "include_in_mass_properties", True))
-            mat = self.get(obj, "material", None)
-            if isinstance(mat, Obj):
-                g.material_obj = mat
-                g.material_key = material_key(self.get, mat)
-                g.density = self.real(mat, "density", 1000.0)
+            self._contact_properties(g, obj)
         self.geoms.append(g)
+
+    def _box_size(self, g: "GeomRec", obj: Obj) -> None:
+        size = self.a._vec(obj, "size", None)
+        if size is None:
+            g.valid, g.failed = False, True
+            return
+        g.size = size
+        bad = [f"{a}={v:g}" for a, v in zip("xyz", size) if v <= 0]
+        if bad:
+            self._bad_size(g, "size", f"box {obj.display} has size {{{', '.join(f'{v:g}' for v in size)}}}: "
+                           f"{', '.join(bad)} must be > 0",
+                           "a Box's size has no default and is 0, 0, 0 unless assigned; "
+                           "give the full edge lengths, e.g. size: {1, 1, 1}")
+
+    def _round_size(self, g: "GeomRec", obj: Obj, kind: str) -> None:
+        """A sphere's radius; a cylinder's or capsule's radius and height."""
+        r = self._num(obj, "radius")
+        if r is None:
+            g.valid, g.failed = False, True
+        else:
+            g.radius = r
+            if r <= 0:
+                self._bad_size(g, "radius", f"{kind} {obj.display} has radius {r:g}; it must be > 0")
+        if kind == "sphere":
+            return
+        h = self._num(obj, "height")
+        if h is None:
+            g.valid, g.failed = False, True
+            return
+        g.height = h
+        if (kind == "cylinder" and h <= 0) or (kind == "capsule" and h < 0):
+            need = "> 0" if kind == "cylinder" else ">= 0"
+            self._bad_size(g, "height", f"{kind} {obj.display} has height {h:g}; it must be {need}")
+
+    def _mesh_file(self, g: "GeomRec", obj: Obj, visual: bool) -> None:
+        """An external mesh's file, relative to the file that names it (A031 when it is missing)."""
+        p = self.get(obj, "path", None)
+        if not (isinstance(p, str) and p):
+            g.valid = False
+            return
+        stmt, unit = self.ev.where(obj, "path")
+        base = os.path.dirname(os.path.abspath(unit.path)) if unit is not None else os.getcwd()
+        full = p if os.path.isabs(p) else os.path.normpath(os.path.join(base, p))
+        g.mesh_file = full
+        if full.lower().endswith(".obj") and os.path.isfile(full):
+            self._obj_bounds(g, obj, p, visual)
+        if not os.path.isfile(full) and unit is not self.rep.unit:
+            report_missing_file(self.rep, f"mesh file {p!r} of {obj.display} does not exist ({full})",
+                                obj=obj, severity="warning" if visual else None)
+        if not os.path.isfile(full):
+            g.valid = False
+
+    def _mesh_scale(self, g: "GeomRec", obj: Obj) -> None:
+        scale = self.a._vec(obj, "scale", None)
+        if scale is None:
+            return
+        g.mesh_scale = scale
+        if np.any(scale <= 0):
+            self._bad_size(g, "scale", f"mesh {obj.display} has scale {{{', '.join(f'{v:g}' for v in scale)}}};"
+                           f" every component must be > 0")
+
+    def _mesh_vertices(self, g: "GeomRec", obj: Obj, kind: str) -> None:
+        """A convex or triangle mesh given by its vertices (and a trimesh's indices)."""
+        verts = self.get(obj, "vertices", None)
+        if isinstance(verts, list) and verts:
+            try:
+                g.vertices = [tuple(float(c) for c in np.asarray(v, dtype=float)) for v in verts]
+            except (TypeError, ValueError):
+                g.valid = False
+        else:
+            g.valid = False
+            self.rep.add(NON_POSITIVE_SIZE, f"mesh {obj.display} has no vertices", obj=obj)
+        if kind == "trimesh":
+            idx = self.get(obj, "indices", None)
+            g.indices = [int(i) for i in idx] if isinstance(idx, list) else None
+
+    def _contact_properties(self, g: "GeomRec", obj: Obj) -> None:
+        """What a contact geometry adds: collisions, mass and its material."""
+        g.enable_collisions = bool(self.get(obj, "enable_collisions", True))
+        g.include_in_mass = bool(self.get(obj, "include_in_mass_properties", True))
+        mat = self.get(obj, "material", None)
+        if isinstance(mat, Obj):
+            g.material_obj = mat
+            g.material_key = material_key(self.get, mat)
+            g.density = self.real(mat, "density", 1000.0)
 
     def _obj_bounds(self, g: "GeomRec", obj: Obj, written: str, visual: bool) -> None:
         """An OBJ file's bounds (model/imports.py reads it), so the geometry has extents."""
@@ -288,8 +310,8 @@ class Collector:
             g.bounds = np.array([info.lo, info.hi], dtype=float)
         elif info.problem:
             g.valid = False
-            self.rep.add("A030", f"mesh {obj.display}: {written!r} cannot be used: {info.problem}", obj=obj,
-                         severity="warning" if visual else None)
+            self.rep.add(NON_POSITIVE_SIZE, f"mesh {obj.display}: {written!r} cannot be used: {info.problem}",
+                         obj=obj, severity="warning" if visual else None)
 
     def _num(self, obj: Obj, path: str) -> float | None:
         try:
@@ -305,7 +327,7 @@ class Collector:
     def _bad_size(self, g: GeomRec, attr: str, message: str, help: str | None = None) -> None:
         g.valid = False
         node, unit = self.ev.where(g.obj, attr)
-        self.rep.add("A030", message, node=node, unit=unit, obj=g.obj, help=help)
+        self.rep.add(NON_POSITIVE_SIZE, message, node=node, unit=unit, obj=g.obj, help=help)
 
     # ------------------------------------------------------------------ contacts
 
@@ -412,7 +434,7 @@ def _geoms(recs: list[GeomRec], rep: Reporter) -> list[S.Geom]:
     for g in recs:
         if not g.valid:
             continue
-        sg = S.Geom(g.path, "mesh" if g.kind.endswith("mesh") else g.kind, pos=_t3(g.pose[1]),
+        sg = S.Geom(g.path, scene_geom_kind(g.kind), pos=_t3(g.pose[1]),
                     quat=mat_to_quat_wxyz(g.pose[0]), visual_only=g.visual, source=_source(rep, g.obj))
         if g.kind == "box":
             sg.size = _t3(g.size)
@@ -520,13 +542,13 @@ def _mate(col: Collector, m: MateRec, conns: _Connectors, rep: Reporter) -> S.Ma
             viscous[k] = col.a.real(fr, "viscosity", 0.0)
         elif fr.model.qname.rsplit(".", 1)[-1] != "DefaultFriction":
             node, unit = (fr.decl[0].stmt, fr.decl[0].unit) if fr.decl else (None, None)
-            rep.add("A040", f"{m.path}.{attr} is {fr.model.qname}, which the MuJoCo backend does not simulate on a "
-                    "joint (ConstantLimitFriction and ConstantViscousSurfaceFriction are); the joint turns freely",
-                    node=node, unit=unit, obj=m.obj, severity="warning")
+            not_simulated(rep, f"{m.path}.{attr} is {fr.model.qname}, which the MuJoCo backend does not simulate on "
+                          "a joint (ConstantLimitFriction and ConstantViscousSurfaceFriction are); the joint turns "
+                          "freely", node=node, unit=unit, obj=m.obj, severity="warning")
     for k in (0, 1):
         if not (math.isfinite(limit[k]) and limit[k] >= 0) or not (math.isfinite(viscous[k]) and viscous[k] >= 0):
             node, unit = col.ev.where(m.obj, MATE_FRICTION[m.kind][0][0])
-            rep.add("A036", f"{m.path}: joint friction must be a finite number >= 0 (limit {limit[k]:g}, viscosity "
+            rep.add(INVALID_CONTACT_PARAMETER, f"{m.path}: joint friction must be a finite number >= 0 (limit {limit[k]:g}, viscosity "
                     f"{viscous[k]:g}); it is left out", node=node, unit=unit, obj=m.obj)
             limit[k] = viscous[k] = 0.0
     sm.friction_limit, sm.viscous_friction = (limit[0], limit[1]), (viscous[0], viscous[1])
@@ -583,8 +605,8 @@ def _spring_damping(col: Collector, obj: Obj, sc: S.Controller, rep: Reporter) -
         sc.damping_from = f"relaxation time {tau:g} s x stiffness {k:g}"
     elif col.k.isa(ds, "Physics.Interactions.Dissipation.DefaultFriction"):
         sc.damping, sc.damping_from = 0.0, "none (friction on a spring is not simulated)"
-        rep.add("A040", f"{obj.display}: {ds.model.qname} on a spring is not simulated by the MuJoCo "
-                "backend (no damping used)", obj=ds, severity="warning")
+        not_simulated(rep, f"{obj.display}: {ds.model.qname} on a spring is not simulated by the MuJoCo "
+                      "backend (no damping used)", obj=ds, severity="warning")
     else:  # DefaultDissipation: the runtime's choice
         sc.damping = k * DEFAULT_RELAXATION_TIME
         sc.damping_from = (f"default dissipation: AGX's relaxation time {DEFAULT_RELAXATION_TIME:.4g} s x "

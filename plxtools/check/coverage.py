@@ -19,6 +19,17 @@ SIGNAL = "signal"
 NOTED = "noted"  # approximated or refused with a note by the static checks (A113 / A040), not here
 REFUSED = "refused"  # never simulated: A040 wherever the object has it (a trait's attributes, mostly)
 
+# The one home of A040 (unsupported-feature): every static check that finds something the MuJoCo
+# backend does not simulate reports it through not_simulated(); the backend names the code when it
+# meets such an element anyway (an invariant) through NOT_SIMULATED.
+NOT_SIMULATED = "A040"
+
+
+def not_simulated(rep: Any, message: str, **where: Any) -> Any:
+    """Report (A040) that ``message``'s element or setting is not simulated by the MuJoCo backend;
+    ``where`` places it as ``Reporter.add`` does (obj, node, unit, severity, path, ...)."""
+    return rep.add(NOT_SIMULATED, message, **where)
+
 _MATE_COMMON = {"connectors": MAPPED, "enabled": MAPPED, "enable_snap": MAPPED, "flexibility": CHOICE,
                 "dissipation": CHOICE, "toughness": CHOICE, "clearance": CHOICE}
 _CTRL_COMMON = {"connectors": MAPPED, "enabled": MAPPED, "min_effort": MAPPED, "max_effort": MAPPED}
@@ -184,51 +195,76 @@ def settings_not_simulated(kinds: Any, ev: Any, get: Any, obj: Any, _depth: int 
     there; the statement is the one that chose it, when known.  An attribute that a bundle trait
     or bundle subtype adds and the tables do not map is refused too (it would otherwise be ignored),
     and so are those of the objects a mapped attribute holds (a contact model's friction model)."""
+    hits = _most_specific(kinds, obj)
+    if not hits:
+        return []
+    qn, attrs = hits[0]  # the most specific table type decides (the table has no type and its subtype both)
+    out = _table_settings(kinds, ev, get, obj, attrs)
+    refused = _refused_traits(kinds.p, ev, obj, qn, attrs)
+    if refused is not None:
+        out.append(refused)
+    if _depth < 2:
+        out.extend(_held_settings(kinds, ev, get, obj, attrs, _depth))
+    return out
+
+
+def _table_settings(kinds: Any, ev: Any, get: Any, obj: Any, attrs: dict[str, Any]) -> list[tuple[str, str, Any]]:
+    """The CHOICE attributes holding another than the runtime's choice and the VALUE attributes
+    holding another than their neutral value."""
     out = []
-    program = kinds.p
-    for qn, attrs in _most_specific(kinds, obj):
-        for name, status in attrs.items():
-            if status == CHOICE:
-                child = ev.child(obj, name)
-                cq = kinds.p.concrete(child.model).qname if hasattr(child, "model") else None
-                if cq is not None and not neutral_choice(cq):
-                    decl = getattr(child, "decl", None)
-                    where = (decl[0].stmt, decl[0].unit) if decl else None
-                    out.append((name, f"{obj.display}.{name} is {cq}, which the MuJoCo backend does not simulate; "
-                                      f"{INSTEAD.get(name, 'left out')}", where))
-            elif isinstance(status, tuple) and status[0] == VALUE:
-                v = get(obj, name, status[1])
-                if v != status[1]:
-                    out.append((name, f"{obj.display}.{name}: {v!r} is not simulated by the MuJoCo backend; "
-                                      f"{INSTEAD.get(name, 'the default is used')}", ev.where(obj, name)))
-        refused_traits: dict[str, list[str]] = {}
-        for name, mem in _members(program, obj).items():
-            if name in attrs or is_signal(name):
-                continue
-            unit = getattr(mem.owner, "unit", None)
-            if unit is None or not unit.official:
-                continue  # the user's own attributes on their subtype: not the runtime's business
-            status, trait = _trait_status(program, mem)
-            if status == REFUSED:
-                refused_traits.setdefault(trait or qn, []).append(name)
-        if refused_traits:
-            # one finding per object: the traits (most derived first) and the attributes they add
-            owners = sorted(refused_traits, key=lambda q: -len(q.split(".")[-1]))
-            names = [n for q in owners for n in refused_traits[q]]
-            shorts = [q.rsplit(".", 1)[-1] for q in owners]
-            instead = next((TRAIT_INSTEAD[x] for x in shorts if x in TRAIT_INSTEAD), "left out")
-            out.append((names[0], f"{obj.display} has {' / '.join(shorts)} ({', '.join(names)}), which the MuJoCo "
-                                  f"backend does not simulate; {instead}",
-                        _declared_where(obj) or _set_where(ev, obj, names)))
-        if _depth < 2:
-            for name, status in attrs.items():
-                if status != MAPPED:
-                    continue
-                child = ev.child(obj, name)
-                if child is not None and hasattr(child, "model") and _most_specific(kinds, child):
-                    for attr, msg, where in settings_not_simulated(kinds, ev, get, child, _depth + 1):
-                        out.append((f"{name}.{attr}", msg, where if where is not None else _set_where(ev, obj, [name])))
-        break  # the most specific table type decides (the table has no type and its subtype both)
+    for name, status in attrs.items():
+        if status == CHOICE:
+            child = ev.child(obj, name)
+            cq = kinds.p.concrete(child.model).qname if hasattr(child, "model") else None
+            if cq is not None and not neutral_choice(cq):
+                decl = getattr(child, "decl", None)
+                where = (decl[0].stmt, decl[0].unit) if decl else None
+                out.append((name, f"{obj.display}.{name} is {cq}, which the MuJoCo backend does not simulate; "
+                                  f"{INSTEAD.get(name, 'left out')}", where))
+        elif isinstance(status, tuple) and status[0] == VALUE:
+            v = get(obj, name, status[1])
+            if v != status[1]:
+                out.append((name, f"{obj.display}.{name}: {v!r} is not simulated by the MuJoCo backend; "
+                                  f"{INSTEAD.get(name, 'the default is used')}", ev.where(obj, name)))
+    return out
+
+
+def _refused_traits(program: Any, ev: Any, obj: Any, qn: str, attrs: dict[str, Any]) -> tuple[str, str, Any] | None:
+    """One finding per object for the bundle attributes the table does not map that its traits
+    (or a bundle subtype) add: the traits (most derived first) and the attributes they add."""
+    refused: dict[str, list[str]] = {}
+    for name, mem in _members(program, obj).items():
+        if name in attrs or is_signal(name):
+            continue
+        unit = getattr(mem.owner, "unit", None)
+        if unit is None or not unit.official:
+            continue  # the user's own attributes on their subtype: not the runtime's business
+        status, trait = _trait_status(program, mem)
+        if status == REFUSED:
+            refused.setdefault(trait or qn, []).append(name)
+    if not refused:
+        return None
+    owners = sorted(refused, key=lambda q: -len(q.split(".")[-1]))
+    names = [n for q in owners for n in refused[q]]
+    shorts = [q.rsplit(".", 1)[-1] for q in owners]
+    instead = next((TRAIT_INSTEAD[x] for x in shorts if x in TRAIT_INSTEAD), "left out")
+    return (names[0], f"{obj.display} has {' / '.join(shorts)} ({', '.join(names)}), which the MuJoCo "
+                      f"backend does not simulate; {instead}",
+            _declared_where(obj) or _set_where(ev, obj, names))
+
+
+def _held_settings(kinds: Any, ev: Any, get: Any, obj: Any, attrs: dict[str, Any],
+                   depth: int) -> list[tuple[str, str, Any]]:
+    """The settings not simulated of the objects that ``obj``'s MAPPED attributes hold (a contact
+    model's friction model), named by their path from ``obj``."""
+    out = []
+    for name, status in attrs.items():
+        if status != MAPPED:
+            continue
+        child = ev.child(obj, name)
+        if child is not None and hasattr(child, "model") and _most_specific(kinds, child):
+            for attr, msg, where in settings_not_simulated(kinds, ev, get, child, depth + 1):
+                out.append((f"{name}.{attr}", msg, where if where is not None else _set_where(ev, obj, [name])))
     return out
 
 

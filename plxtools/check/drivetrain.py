@@ -12,6 +12,7 @@ import math
 from typing import Any
 
 from plxtools.check import scene as S
+from plxtools.check.coverage import not_simulated
 from plxtools.check.instance import Obj
 
 SHAFT = "Physics1D.Bodies.RotationalBody"
@@ -40,70 +41,91 @@ def mapped(kinds: Any, obj: Obj) -> bool:
 def collect(asm: Any, col: Any, rep: Any, source: Any, mate_paths: set[str]) -> tuple[list, list, list]:
     """(shafts, couplings, motors) of the assembled tree, with A040 for drive-train objects this
     mapping cannot take (a gear on something that is not a shaft, a motor between two shafts)."""
-    k, a = col.k, col.a
-    shafts: dict[int, S.Shaft] = {}
+    d = _DriveTrain(col.k, col.a, rep, source)
+    objs = [o for o in asm.owned if isinstance(o, Obj) and mapped(col.k, o)]
+    for o in objs:
+        if col.k.isa(o, SHAFT):
+            d.shaft(o)
     couplings: list[S.ShaftCoupling] = []
     motors: list[S.ShaftMotor] = []
-    objs = [o for o in asm.owned if isinstance(o, Obj) and mapped(k, o)]
     for o in objs:
-        if k.isa(o, SHAFT):
-            inertia = a.real(o, "inertia.inertia", math.nan)
-            if not math.isfinite(inertia) or inertia <= 0:
-                rep.add("A040", f"{o.display}: a shaft needs a positive, finite inertia.inertia (got {inertia:g}); "
-                        "it is not simulated", obj=o, severity="warning")
-                continue
-            shafts[id(o)] = S.Shaft(o.display, inertia, a.real(o, "kinematics.angle", 0.0),
-                                    a.real(o, "kinematics.velocity", 0.0), source(rep, o))
+        if col.k.isa(o, SHAFT) or not col.a.get(o, "enabled", True):
+            continue
+        if col.k.isa(o, GEAR):
+            couplings.extend(d.gear(o))
+        elif col.k.isa(o, HINGE_ACTUATOR):
+            couplings.extend(d.hinge_actuator(o, mate_paths))
+        else:
+            motors.extend(d.motor(o))
+    return list(d.shafts.values()), couplings, motors
 
-    def shaft_of(conn: Any) -> S.Shaft | None:
+
+class _DriveTrain:
+    """The drive-train elements found so far (the shafts, by object id) and how to map the others:
+    each mapping returns the scene element, or nothing after saying why (A040)."""
+
+    def __init__(self, kinds: Any, asmb: Any, rep: Any, source: Any):
+        self.k, self.a, self.rep, self.source = kinds, asmb, rep, source
+        self.shafts: dict[int, S.Shaft] = {}
+
+    def unsupported(self, o: Obj, why: str) -> list:
+        not_simulated(self.rep, f"{o.display}: {why}; it is not simulated", obj=o, severity="warning")
+        return []
+
+    def shaft(self, o: Obj) -> None:
+        inertia = self.a.real(o, "inertia.inertia", math.nan)
+        if not math.isfinite(inertia) or inertia <= 0:
+            not_simulated(self.rep, f"{o.display}: a shaft needs a positive, finite inertia.inertia (got "
+                          f"{inertia:g}); it is not simulated", obj=o, severity="warning")
+            return
+        self.shafts[id(o)] = S.Shaft(o.display, inertia, self.a.real(o, "kinematics.angle", 0.0),
+                                     self.a.real(o, "kinematics.velocity", 0.0), self.source(self.rep, o))
+
+    def shaft_of(self, conn: Any) -> S.Shaft | None:
         cur = conn.owner if isinstance(conn, Obj) else None
         while cur is not None:
-            if id(cur) in shafts:
-                return shafts[id(cur)]
+            if id(cur) in self.shafts:
+                return self.shafts[id(cur)]
             cur = cur.owner
         return None
 
-    def unsupported(o: Obj, why: str) -> None:
-        rep.add("A040", f"{o.display}: {why}; it is not simulated", obj=o, severity="warning")
+    def connectors(self, o: Obj) -> list[Obj]:
+        conns = self.a.get(o, "connectors", [])
+        return [c for c in conns if isinstance(c, Obj)] if isinstance(conns, (list, tuple)) else []
 
-    for o in objs:
-        if k.isa(o, SHAFT) or not a.get(o, "enabled", True):
-            continue
-        conns = a.get(o, "connectors", []) if not k.isa(o, HINGE_ACTUATOR) else []
-        conns = [c for c in conns if isinstance(c, Obj)] if isinstance(conns, (list, tuple)) else []
-        if k.isa(o, GEAR):
-            ends = [shaft_of(c) for c in conns]
-            if len(ends) != 2 or None in ends or ends[0] is ends[1]:
-                unsupported(o, "a gear needs two connectors on two different shafts")
-                continue
-            ratio = a.real(o, "ratio", 1.0)
-            if not math.isfinite(ratio) or ratio == 0:
-                unsupported(o, f"gear ratio {ratio:g} must be finite and not zero")
-                continue
-            couplings.append(S.ShaftCoupling(o.display, "gear", ends[0].path, ends[1].path, ratio, source(rep, o)))
-        elif k.isa(o, HINGE_ACTUATOR):
-            sh = shaft_of(a.get(o, "connector_1d", None))
-            mate = a.get(o, "mate_3d", None)
-            mate_path = mate.display if isinstance(mate, Obj) else None
-            if sh is None or mate_path not in mate_paths:
-                unsupported(o, "a hinge actuator needs connector_1d on a shaft and mate_3d bound to a hinge of the scene")
-                continue
-            couplings.append(S.ShaftCoupling(o.display, "actuator", sh.path, mate_path, 1.0, source(rep, o)))
+    def gear(self, o: Obj) -> list[S.ShaftCoupling]:
+        ends = [self.shaft_of(c) for c in self.connectors(o)]
+        if len(ends) != 2 or None in ends or ends[0] is ends[1]:
+            return self.unsupported(o, "a gear needs two connectors on two different shafts")
+        ratio = self.a.real(o, "ratio", 1.0)
+        if not math.isfinite(ratio) or ratio == 0:
+            return self.unsupported(o, f"gear ratio {ratio:g} must be finite and not zero")
+        return [S.ShaftCoupling(o.display, "gear", ends[0].path, ends[1].path, ratio, self.source(self.rep, o))]
+
+    def hinge_actuator(self, o: Obj, mate_paths: set[str]) -> list[S.ShaftCoupling]:
+        sh = self.shaft_of(self.a.get(o, "connector_1d", None))
+        mate = self.a.get(o, "mate_3d", None)
+        mate_path = mate.display if isinstance(mate, Obj) else None
+        if sh is None or mate_path not in mate_paths:
+            return self.unsupported(o, "a hinge actuator needs connector_1d on a shaft and mate_3d bound to a hinge "
+                                    "of the scene")
+        return [S.ShaftCoupling(o.display, "actuator", sh.path, mate_path, 1.0, self.source(self.rep, o))]
+
+    def motor(self, o: Obj) -> list[S.ShaftMotor]:
+        """A 1D velocity or torque motor, mapped when it acts between one shaft and the ground."""
+        ends = [self.shaft_of(c) for c in self.connectors(o)]
+        on = {id(e): e for e in ends if e is not None}
+        if len(on) != 1:
+            return self.unsupported(o, "a 1D motor is mapped when its connectors are on exactly one shaft (it acts "
+                                    "against the ground)")
+        sh = next(iter(on.values()))
+        velocity = self.k.isa(o, VELOCITY_MOTOR_1D)
+        m = S.ShaftMotor(o.display, "velocity_motor" if velocity else "torque_motor", sh.path,
+                         source=self.source(self.rep, o))
+        m.min_effort = self.a.real(o, "min_effort", -math.inf)
+        m.max_effort = self.a.real(o, "max_effort", math.inf)
+        if velocity:
+            m.target_speed = self.a.real(o, "target_speed", 1.0)
         else:
-            ends = [shaft_of(c) for c in conns]
-            on = {id(e): e for e in ends if e is not None}
-            if len(on) != 1:
-                unsupported(o, "a 1D motor is mapped when its connectors are on exactly one shaft (it acts against "
-                            "the ground)")
-                continue
-            sh = next(iter(on.values()))
-            m = S.ShaftMotor(o.display, "velocity_motor" if k.isa(o, VELOCITY_MOTOR_1D) else "torque_motor", sh.path,
-                             source=source(rep, o))
-            m.min_effort = a.real(o, "min_effort", -math.inf)
-            m.max_effort = a.real(o, "max_effort", math.inf)
-            if m.kind == "velocity_motor":
-                m.target_speed = a.real(o, "target_speed", 1.0)
-            else:
-                m.effort = a.real(o, "default_torque", 0.0)
-            motors.append(m)
-    return list(shafts.values()), couplings, motors
+            m.effort = self.a.real(o, "default_torque", 0.0)
+        return [m]

@@ -30,15 +30,18 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mj_drivetrain import add_couplings, add_shaft_motors, add_shafts
+from plxtools.check.assemble import CONNECTOR_COUNT, MATE_SAME_BODY, ZERO_MAIN_AXIS
+from plxtools.check.coverage import NOT_SIMULATED
 from plxtools.check.mj_context import BuildContext, CompileFailed
 from plxtools.check.mj_controllers import add_controllers, add_keyframe
 from plxtools.check.mj_geoms import add_contact_pairs, add_excludes, add_geoms, set_inertials, set_restitution
 from plxtools.check.mj_integrator import choose as choose_integrator
 from plxtools.check.frames import mat_to_quat_wxyz
 from plxtools.check.mj_math import angle_between, quat_normalize, quat_to_mat, relative_pose, unit
-from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
+from plxtools.check.mj_notes import INFO, WARNING, BackendNote
 from plxtools.check.mj_types import VISUAL_GROUP, ActuatorInfo, CompiledScene, MateMonitor
 from plxtools.check.scene import Connector, Mate, Scene, default_normal, orthogonalize
+from plxtools.rules.literals import NEGATIVE_MASS
 
 __all__ = ["VISUAL_GROUP", "ActuatorInfo", "BackendNote", "CompiledScene", "MateMonitor", "compile_scene"]
 
@@ -120,18 +123,13 @@ def build(ctx: BuildContext) -> None:
     # scene.unsupported: reported by the static checks (A040), which own it; nothing to build
     for i, body in enumerate(scene.bodies):
         if body.path in ctx.bodies:
-            ctx.note(
-                ERROR,
-                "A131",
-                f"duplicate body path {body.path}; the second one is ignored",
-                body,
-            )
+            ctx.inconsistent(f"duplicate body path {body.path}; the second one is ignored", body)
             continue
         ctx.bodies[body.path] = body
         ctx.body_index[body.path] = i
         ctx.names.add("body", body.path, body.source)
         if body.mass < 0:
-            ctx.invariant("A032",
+            ctx.invariant(NEGATIVE_MASS,
                 f"{body.path}: negative mass {body.mass}; using the geometry mass",
                 body,
             )
@@ -168,6 +166,8 @@ def build(ctx: BuildContext) -> None:
 
 # -- mates -> tree ---------------------------------------------------------------------------
 def classify_mates(ctx: BuildContext) -> tuple[list[Mate], list[Mate], list[Mate]]:
+    """(tree, loops, distances): the mates that become joints of the kinematic tree, those that
+    close a loop or start apart (equality constraints), and the distance mates."""
     usable: list[tuple[int, int, Mate]] = []
     distances: list[Mate] = []
     pulled: list[Mate] = []
@@ -175,36 +175,10 @@ def classify_mates(ctx: BuildContext) -> tuple[list[Mate], list[Mate], list[Mate
     driven = {_pair(c) for c in ctx.scene.controllers if len(c.connectors) == 2}
     for idx, m in enumerate(ctx.scene.mates):
         ctx.names.add("mate", m.path, m.source)
-        if not m.enabled:
-            ctx.note(INFO, "A129", f"{m.path} is disabled and not simulated", m)
+        if not _buildable(ctx, m):
             continue
-        if m.kind not in TREE_PRIORITY and m.kind != "distance":
-            ctx.invariant("A040", f"{m.path}: unknown mate kind {m.kind!r}; ignored", m)
-            continue
-        if len(m.connectors) != 2:
-            ctx.invariant("A013", f"{m.path}: a mate needs exactly 2 connectors", m)
-            continue
-        c0, c1 = m.connectors
-        n0, n1 = node(ctx, c0), node(ctx, c1)
-        bad = [c for c, n in ((c0, n0), (c1, n1)) if n is None]
-        if bad:
-            ctx.note(
-                ERROR,
-                "A131",
-                f"{m.path}: connector {bad[0].path} belongs to unknown body {bad[0].body}",
-                m,
-            )
-            continue
-        if c0.body is not None and c0.body == c1.body:
-            ctx.invariant("A015", f"{m.path}: both connectors belong to {c0.body}; ignored", m
-            )
-            continue
-        if n0 == WORLD and n1 == WORLD:
-            continue  # no effect; the static checks own this finding (A017)
-        for c in (c0, c1):
-            if float(np.linalg.norm(c.main_axis)) == 0.0:
-                ctx.invariant("A010", f"connector {c.path} has a zero main_axis", c)
         violated = check_alignment(ctx, m)
+        c0, c1 = m.connectors
         if c0.body and c1.body:
             ctx.mated.add(frozenset((c0.body, c1.body)))
         if m.kind == "distance":
@@ -216,7 +190,46 @@ def classify_mates(ctx: BuildContext) -> tuple[list[Mate], list[Mate], list[Mate
             pulled.append(m)
         else:
             usable.append((TREE_PRIORITY[m.kind], idx, m))
-    usable.sort(key=lambda t: (t[0], t[1]))
+    tree, loops = _spanning_tree(ctx, usable, pulled)
+    ctx.out.tree_mates = [m.path for m in tree]
+    ctx.out.loop_mates = [m.path for m in loops]
+    return tree, loops, distances
+
+
+def _buildable(ctx: BuildContext, m: Mate) -> bool:
+    """Whether the mate joins two different bodies (or a body and the world) of the scene; a note
+    for one that does not (the static checks own those findings)."""
+    if not m.enabled:
+        ctx.disabled(f"{m.path} is disabled and not simulated", m)
+        return False
+    if m.kind not in TREE_PRIORITY and m.kind != "distance":
+        ctx.invariant(NOT_SIMULATED, f"{m.path}: unknown mate kind {m.kind!r}; ignored", m)
+        return False
+    if len(m.connectors) != 2:
+        ctx.invariant(CONNECTOR_COUNT, f"{m.path}: a mate needs exactly 2 connectors", m)
+        return False
+    c0, c1 = m.connectors
+    n0, n1 = node(ctx, c0), node(ctx, c1)
+    bad = [c for c, n in ((c0, n0), (c1, n1)) if n is None]
+    if bad:
+        ctx.inconsistent(f"{m.path}: connector {bad[0].path} belongs to unknown body {bad[0].body}", m)
+        return False
+    if c0.body is not None and c0.body == c1.body:
+        ctx.invariant(MATE_SAME_BODY, f"{m.path}: both connectors belong to {c0.body}; ignored", m)
+        return False
+    if n0 == WORLD and n1 == WORLD:
+        return False  # no effect; the static checks own this finding (A017)
+    for c in (c0, c1):
+        if float(np.linalg.norm(c.main_axis)) == 0.0:
+            ctx.invariant(ZERO_MAIN_AXIS, f"connector {c.path} has a zero main_axis", c)
+    return True
+
+
+def _spanning_tree(ctx: BuildContext, usable: list[tuple[int, int, Mate]],
+                   pulled: list[Mate]) -> tuple[list[Mate], list[Mate]]:
+    """(tree, loops): the usable mates in priority order join body groups (union-find) while they
+    can; the rest, and the mates pulled together, close loops.  Both in the scene's order."""
+    usable = sorted(usable, key=lambda t: (t[0], t[1]))
     parent: dict[str, str] = {}
 
     def find(x: str) -> str:
@@ -237,9 +250,7 @@ def classify_mates(ctx: BuildContext) -> tuple[list[Mate], list[Mate], list[Mate
     order = {m.path: i for i, m in enumerate(ctx.scene.mates)}
     tree.sort(key=lambda m: order[m.path])
     loops.sort(key=lambda m: order[m.path])
-    ctx.out.tree_mates = [m.path for m in tree]
-    ctx.out.loop_mates = [m.path for m in loops]
-    return tree, loops, distances
+    return tree, loops
 
 
 def _pair(item) -> frozenset[str]:

@@ -1,14 +1,22 @@
 """The state shared by the steps that build a MuJoCo model from a scene (:mod:`mj_compile`,
-:mod:`mj_geoms`, :mod:`mj_controllers`): one object with named fields, passed to plain functions."""
+:mod:`mj_geoms`, :mod:`mj_controllers`): one object with named fields, passed to plain functions.
+
+It is the one home of the two notes every step may make: A129 (an element is disabled,
+:meth:`BuildContext.disabled`) and A131 (the scene breaks what the static checks guarantee,
+:meth:`BuildContext.inconsistent` and :meth:`BuildContext.invariant`)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from typing import Any
 
-from plxtools.check.mj_notes import ERROR, BackendNote, NameMap, note_from_compile_error
+from plxtools.check.mj_notes import ERROR, INFO, BackendNote, NameMap, note_from_compile_error
 from plxtools.check.mj_types import CompiledScene
 from plxtools.check.scene import Body, Scene
+
+
+DISABLED_ELEMENT = "A129"
+SCENE_INCONSISTENT = "A131"
 
 
 class CompileFailed(Exception):
@@ -63,7 +71,15 @@ class BuildContext:
         """A condition the static checks own (rule ``owner``) met in the scene: the checks reject such
         a scene before it reaches the backend, so meeting it here is an inconsistency (A131).  The
         backend still copes (skips or replaces the element) so that a hand-built scene compiles."""
-        self.note(ERROR, "A131", f"{message} (the static check {owner} should have rejected this scene)", item)
+        self.inconsistent(f"{message} (the static check {owner} should have rejected this scene)", item)
+
+    def inconsistent(self, message: str, item: Any = None, path: str | None = None) -> None:
+        """A131: the scene contradicts itself (a duplicate path, a reference to an unknown body)."""
+        self.note(ERROR, SCENE_INCONSISTENT, message, item, path)
+
+    def disabled(self, message: str, item: Any) -> None:
+        """A129: an element the model disables (``enabled: false``) is left out of the MuJoCo model."""
+        self.note(INFO, DISABLED_ELEMENT, message, item)
 
     def compile(self, stage: str) -> Any:
         try:

@@ -15,6 +15,10 @@ from typing import Any
 
 import numpy as np
 
+from plxtools.check.assemble import CONNECTOR_COUNT
+from plxtools.check.checks import CONTROLLER_DOF_MISMATCH, CONTROLLER_WITHOUT_MATE, INVERTED_LIMITS
+from plxtools.check.coverage import NOT_SIMULATED
+from plxtools.check.mapped_types import FREE_DOFS
 from plxtools.check.mj_context import BuildContext
 from plxtools.check.mj_math import quat_to_mat
 from plxtools.check.mj_notes import ERROR, INFO, WARNING
@@ -42,7 +46,7 @@ def add_controllers(ctx: BuildContext, model: Any) -> None:
         elif ctl.kind == "spring":
             add_spring(ctx, ctl, joint, sign, ieff)
         else:
-            ctx.invariant("A040",
+            ctx.invariant(NOT_SIMULATED,
                 f"{ctl.path}: controller kind {ctl.kind!r} unsupported; ignored",
                 ctl,
             )
@@ -61,17 +65,17 @@ def bind_controllers(ctx: BuildContext, model: Any) -> list[Binding]:
     for ctl in ctx.scene.controllers:
         ctx.names.add("controller", ctl.path, ctl.source)
         if not ctl.enabled:
-            ctx.note(INFO, "A129", f"{ctl.path} is disabled", ctl)
+            ctx.disabled(f"{ctl.path} is disabled", ctl)
             continue
         if len(ctl.connectors) != 2:
-            ctx.invariant("A013", f"{ctl.path}: needs exactly 2 connectors", ctl)
+            ctx.invariant(CONNECTOR_COUNT, f"{ctl.path}: needs exactly 2 connectors", ctl)
             continue
         a, b = ctl.connectors[0].path, ctl.connectors[1].path
         mate, reversed_ = mates.get((a, b)), False
         if mate is None and (b, a) in mates:
             mate, reversed_ = mates[(b, a)], True
         if mate is None:
-            ctx.invariant("A020",
+            ctx.invariant(CONTROLLER_WITHOUT_MATE,
                 f"{ctl.path}: no mate uses the connector pair ({a}, {b}); controller ignored",
                 ctl,
             )
@@ -120,13 +124,9 @@ def controller_joint(ctx: BuildContext, ctl: Controller, mate: Mate) -> str | No
         )
         return None
     joints = ctx.out.joints.get(mate.path)
-    fits = {
-        "hinge": ("rotational",),
-        "prismatic": ("linear",),
-        "cylindrical": ("rotational", "linear"),
-    }.get(mate.kind, ())
+    fits = FREE_DOFS.get(mate.kind, ())
     if ctl.dof not in fits:
-        ctx.invariant("A021",
+        ctx.invariant(CONTROLLER_DOF_MISMATCH,
             f"{ctl.path}: a {ctl.dof} controller cannot drive the {mate.kind} mate {mate.path}",
             ctl,
         )
@@ -147,7 +147,7 @@ def controller_joint(ctx: BuildContext, ctl: Controller, mate: Mate) -> str | No
 def effort_range(ctx: BuildContext, ctl: Controller, act: Any) -> None:
     lo, hi = float(ctl.min_effort), float(ctl.max_effort)
     if lo > hi:
-        ctx.invariant("A024",
+        ctx.invariant(INVERTED_LIMITS,
             f"{ctl.path}: min_effort {lo:g} > max_effort {hi:g}; effort left unlimited",
             ctl,
         )
@@ -224,7 +224,7 @@ def add_range(ctx: BuildContext, ctl: Controller, joint: str, sign: int) -> None
         ctx.note(ERROR, "A130", f"{ctl.path}: range needs start and end", ctl)
         return
     if ctl.start > ctl.end:
-        ctx.invariant("A024",
+        ctx.invariant(INVERTED_LIMITS,
             f"{ctl.path}: start {ctl.start:g} > end {ctl.end:g}; range ignored",
             ctl,
         )

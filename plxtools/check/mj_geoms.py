@@ -7,12 +7,16 @@ from typing import Any
 
 import numpy as np
 
+from plxtools.check.checks import DUPLICATE_CONTACT_MODEL, INVALID_INERTIA, ZERO_MASS_DYNAMIC_BODY
+from plxtools.check.convert import MISSING_FILE
+from plxtools.check.coverage import NOT_SIMULATED
 from plxtools.check.mj_context import BuildContext
 from plxtools.check.mj_math import Z_TO_Y_QUAT, quat_mul, quat_normalize
-from plxtools.check.mj_notes import ERROR, INFO, WARNING
+from plxtools.check.mj_notes import INFO, WARNING
 from plxtools.check.mj_restitution import restitution_solref
 from plxtools.check.mj_types import VISUAL_GROUP
-from plxtools.check.scene import Body, Geom
+from plxtools.check.scene import GEOM_KINDS, Body, Geom
+from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NON_POSITIVE_SIZE
 
 MESH_EXTENSIONS = (".stl", ".obj", ".msh")
 PALETTE = [
@@ -46,15 +50,14 @@ def geom_size_ok(ctx: BuildContext, g: Geom) -> bool:
     elif k == "mesh" and min(g.mesh_scale) <= 0:
         bad = f"mesh scale {tuple(g.mesh_scale)} must be positive"
     if bad:
-        ctx.invariant("A030", f"{g.path}: {bad}; geometry skipped", g)
+        ctx.invariant(NON_POSITIVE_SIZE, f"{g.path}: {bad}; geometry skipped", g)
         return False
     return True
 
 
 def add_geom(ctx: BuildContext, mb: Any, body: Body, g: Geom) -> None:
-    mj = ctx.mj
-    if g.kind not in ("box", "sphere", "cylinder", "capsule", "mesh", "plane"):
-        ctx.invariant("A040",
+    if g.kind not in GEOM_KINDS:
+        ctx.invariant(NOT_SIMULATED,
             f"{g.path}: geometry kind {g.kind!r} is not supported; skipped",
             g,
         )
@@ -62,38 +65,46 @@ def add_geom(ctx: BuildContext, mb: Any, body: Body, g: Geom) -> None:
     if not geom_size_ok(ctx, g):
         return
     name = ctx.names.add("geom", g.path, g.source)
-    quat = quat_normalize(g.quat)
     kw: dict[str, Any] = {"name": name, "pos": list(g.pos)}
+    quat = _shape(ctx, body, g, kw)
+    if quat is None:
+        return
+    kw["quat"] = list(quat_normalize(quat))
+    collide = g.enable_collisions and not g.visual_only
+    _surface(ctx, body, g, kw, collide)
+    mb.add_geom(**kw)
+    if collide and g.material:
+        ctx.geoms_by_material.setdefault(g.material, []).append((name, body.path))
+
+
+def _shape(ctx: BuildContext, body: Body, g: Geom, kw: dict[str, Any]) -> Any:
+    """The MuJoCo geom type and size of ``g`` into ``kw``; returns its orientation (MuJoCo's
+    cylinders and capsules lie along Z, OpenPLX's along Y), or None when the geometry is skipped."""
+    mj = ctx.mj
+    quat = quat_normalize(g.quat)
     if g.kind == "box":
         kw.update(type=mj.mjtGeom.mjGEOM_BOX, size=[s / 2.0 for s in g.size])
-    elif g.kind == "sphere":
+    elif g.kind == "sphere" or (g.kind == "capsule" and g.height == 0):
         kw.update(type=mj.mjtGeom.mjGEOM_SPHERE, size=[g.radius, 0, 0])
-    elif g.kind == "cylinder":
-        kw.update(type=mj.mjtGeom.mjGEOM_CYLINDER, size=[g.radius, g.height / 2.0, 0])
+    elif g.kind in ("cylinder", "capsule"):
+        kind = mj.mjtGeom.mjGEOM_CYLINDER if g.kind == "cylinder" else mj.mjtGeom.mjGEOM_CAPSULE
+        kw.update(type=kind, size=[g.radius, g.height / 2.0, 0])
         quat = quat_mul(quat, Z_TO_Y_QUAT)
-    elif g.kind == "capsule":
-        if g.height == 0:
-            kw.update(type=mj.mjtGeom.mjGEOM_SPHERE, size=[g.radius, 0, 0])
-        else:
-            kw.update(type=mj.mjtGeom.mjGEOM_CAPSULE, size=[g.radius, g.height / 2.0, 0])
-            quat = quat_mul(quat, Z_TO_Y_QUAT)
     elif g.kind == "plane":
         if body.is_dynamic:
-            ctx.note(
-                WARNING,
-                "A127",
-                f"{g.path}: planes can only be static in MuJoCo; skipped",
-                g,
-            )
-            return
+            ctx.note(WARNING, "A127", f"{g.path}: planes can only be static in MuJoCo; skipped", g)
+            return None
         kw.update(type=mj.mjtGeom.mjGEOM_PLANE, size=[g.size[0] / 2.0, g.size[1] / 2.0, 1.0])
     elif g.kind == "mesh":
         mesh = add_mesh(ctx, g)
         if mesh is None:
-            return
+            return None
         kw.update(type=mj.mjtGeom.mjGEOM_MESH, meshname=mesh)
-    kw["quat"] = list(quat_normalize(quat))
-    collide = g.enable_collisions and not g.visual_only
+    return quat
+
+
+def _surface(ctx: BuildContext, body: Body, g: Geom, kw: dict[str, Any], collide: bool) -> None:
+    """Whether ``g`` collides and gives mass, its colour and its friction, into ``kw``."""
     kw["contype"] = 1 if collide else 0
     kw["conaffinity"] = 1 if collide else 0
     in_mass = g.include_in_mass and not g.visual_only
@@ -110,9 +121,6 @@ def add_geom(ctx: BuildContext, mb: Any, body: Body, g: Geom) -> None:
         kw["rgba"] = list(PALETTE[ctx.body_index[body.path] % len(PALETTE)])
     if ctx.scene.default_friction is not None:
         kw["friction"] = [float(ctx.scene.default_friction), 0.005, 0.0001]
-    mb.add_geom(**kw)
-    if collide and g.material:
-        ctx.geoms_by_material.setdefault(g.material, []).append((name, body.path))
 
 
 def add_mesh(ctx: BuildContext, g: Geom) -> str | None:
@@ -123,7 +131,7 @@ def add_mesh(ctx: BuildContext, g: Geom) -> str | None:
         if not os.path.isabs(f) and ctx.scene.base_dir:
             f = os.path.join(ctx.scene.base_dir, f)
         if not os.path.isfile(f):
-            ctx.invariant("A031", f"{g.path}: mesh file not found: {f}; geometry skipped", g
+            ctx.invariant(MISSING_FILE, f"{g.path}: mesh file not found: {f}; geometry skipped", g
             )
             return None
         if not f.lower().endswith(MESH_EXTENSIONS):
@@ -140,7 +148,7 @@ def add_mesh(ctx: BuildContext, g: Geom) -> str | None:
         if g.mesh_indices:
             kw["userface"] = [int(i) for i in g.mesh_indices]
     else:
-        ctx.invariant("A030", f"{g.path}: mesh has neither a file nor vertices; skipped", g)
+        ctx.invariant(NON_POSITIVE_SIZE, f"{g.path}: mesh has neither a file nor vertices; skipped", g)
         return None
     if g.visual_only:
         # a visual never changes the physics: no mass from it (its geom has density 0), its
@@ -189,13 +197,8 @@ def add_excludes(ctx: BuildContext) -> None:
         ba, bb = ctx.bodies.get(a), ctx.bodies.get(b)
         if ba is None or bb is None:
             if item is not None:
-                ctx.note(
-                    ERROR,
-                    "A131",
-                    f"collision exclusion names an unknown body: {a if ba is None else b}",
-                    item,
-                    path=a if ba is None else b,
-                )
+                ctx.inconsistent(f"collision exclusion names an unknown body: {a if ba is None else b}", item,
+                                 path=a if ba is None else b)
             continue
         key = frozenset((a, b))
         ctx.excluded.add(key)
@@ -210,11 +213,11 @@ def add_contact_pairs(ctx: BuildContext) -> None:
     for cm in ctx.scene.contact_models:
         ctx.names.add("contact", cm.path, cm.source)
         if not cm.enabled:
-            ctx.note(INFO, "A129", f"{cm.path} is disabled", cm)
+            ctx.disabled(f"{cm.path} is disabled", cm)
             continue
         key = frozenset((cm.material1, cm.material2))
         if key in seen:
-            ctx.invariant("A035",
+            ctx.invariant(DUPLICATE_CONTACT_MODEL,
                 f"{cm.path}: material pair already has contact model {seen[key]}; ignored",
                 cm,
             )
@@ -226,7 +229,7 @@ def add_contact_pairs(ctx: BuildContext) -> None:
             else (ctx.scene.default_friction if ctx.scene.default_friction is not None else 1.0)
         )
         if mu < 0:
-            ctx.invariant("A036", f"{cm.path}: friction coefficient {mu} < 0; using 0", cm
+            ctx.invariant(INVALID_CONTACT_PARAMETER, f"{cm.path}: friction coefficient {mu} < 0; using 0", cm
             )
             mu = 0.0
         if cm.friction_model not in ("dry", "dry_cone"):
@@ -298,7 +301,7 @@ def set_inertials(ctx: BuildContext, model: Any) -> None:
         cm = np.asarray(body.cm_pos, dtype=float) if body.cm_pos is not None else None
         if tensor is None and mass == 0.0 and cm is None:
             if geom_mass == 0.0:
-                ctx.invariant("A033",
+                ctx.invariant(ZERO_MASS_DYNAMIC_BODY,
                     f"{path}: dynamic body with mass 0 and no mass-contributing geometry; simulated with 1 kg",
                     body,
                 )
@@ -307,7 +310,7 @@ def set_inertials(ctx: BuildContext, model: Any) -> None:
         if mass == 0.0:
             mass = geom_mass
             if mass == 0.0:
-                ctx.invariant("A033",
+                ctx.invariant(ZERO_MASS_DYNAMIC_BODY,
                     f"{path}: dynamic body with mass 0 and no mass-contributing geometry; simulated with 1 kg",
                     body,
                 )
@@ -369,7 +372,7 @@ def valid_tensor(ctx: BuildContext, body: Body) -> np.ndarray | None:
             if a + b < c * (1 - 1e-9):
                 problem = f"breaks the triangle inequality (principal moments {[round(x, 6) for x in (a, b, c)]})"
     if problem:
-        ctx.invariant("A034",
+        ctx.invariant(INVALID_INERTIA,
             f"{body.path}: inertia tensor {problem}; computed from geometry instead",
             body,
         )

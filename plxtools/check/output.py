@@ -6,6 +6,7 @@ import math
 import os
 from typing import Any, TextIO
 
+from plxtools.check.checks import STATIC_MOTION_CODES
 from plxtools.check.pipeline import FileCheck, Skip
 from plxtools.diagnostics import Diagnostic, Severity
 
@@ -186,7 +187,7 @@ def findings(fc: FileCheck) -> list[str]:
 
 
 # diagnostics that explain how the scene moves (or fails to): the summary lists them with the findings
-MOTION_CODES = frozenset({"A017", "A018", "A023", "A037", "A106"})
+MOTION_CODES = STATIC_MOTION_CODES | {"A106"}
 
 
 def motion_diagnostics(fc: FileCheck) -> list[Diagnostic]:
@@ -194,7 +195,7 @@ def motion_diagnostics(fc: FileCheck) -> list[Diagnostic]:
 
 
 def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO, *, simulate: bool) -> None:
-    from plxtools.rules.reporters import _summary_line, render_text as lint_text
+    from plxtools.rules.reporters import render_text as lint_text
 
     rich = _use_rich(stream)
     lint_text(diags, stream, summary=False)
@@ -211,49 +212,69 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
         if results and (diags or len(results) > 1 or simulate):
             stream.write("\n") if console is None else console.print()
         _line(stream, console, assembly_line(fc), "bold")
-        if not simulate:
-            continue
-        if fc.simulation is None:
-            _line(stream, console, f"  simulation skipped: {fc.skipped or 'the scene did not compile'}", "yellow")
-            continue
-        s = fc.simulation
-        head = (f"  simulated {s.simulated_time:.2f} s in {s.steps} steps of {s.timestep:g} s "
-                f"({s.integrator}, {s.wall_time_s:.2f} s wall)")
-        _line(stream, console, head, None)
-        rows = motion_rows(fc)
-        cols = ("body", "start", "end", "moved", "heading", "top speed", "top kinetic energy")
-        if console is not None:
-            from rich.table import Table
-
-            table = Table(show_header=True, header_style="bold", box=None, padding=(0, 1), pad_edge=False)
-            for c in cols:
-                table.add_column(c, justify="left" if c in ("body", "start", "end") else "right")
-            for r in rows:
-                table.add_row(*r)
-            from rich.padding import Padding
-
-            console.print(Padding(table, (0, 0, 0, 2), expand=False))
-        else:
-            widths = [max(len(c), *(len(r[i]) for r in rows)) if rows else len(c) for i, c in enumerate(cols)]
-            fmt = "  " + "  ".join(f"{{:{'>' if i >= 3 else '<'}{w}}}" for i, w in enumerate(widths))
-            stream.write(fmt.format(*cols) + "\n")
-            for r in rows:
-                stream.write(fmt.format(*r) + "\n")
-        found = findings(fc)
-        if s.energy:
-            e = s.energy
-            checked = "" if e.get("checked", True) else " (not checked: kinematic bodies or signal inputs do work)"
-            _line(stream, console, f"  energy: {e['initial_total']:.6g} J at the start, {e['final_total']:.6g} J at the "
-                  f"end, motors' work {e.get('actuator_work', 0.0):.4g} J{checked}", None)
-        if found:
-            _line(stream, console, "  findings:", "bold red")
-            for f in found:
-                _line(stream, console, f"    - {f}", None)
-        else:
-            _line(stream, console, "  findings: none (no blow-up, no mate pulled apart, nothing fell through, "
-                  "no deep initial penetration, no energy gained, no implausible speed)", "green")
+        if simulate:
+            _render_simulation(fc, stream, console)
     if diags or results:
         stream.write("\n") if console is None else console.print()
+    summary = _summary_text(results, diags)
+    if console is not None:
+        console.print(summary, style="bold" if diags else "green")
+    else:
+        stream.write(summary + "\n")
+
+
+def _render_simulation(fc: FileCheck, stream: TextIO, console) -> None:
+    """One file's simulation: the run, how each body moved, the energy and the findings."""
+    if fc.simulation is None:
+        _line(stream, console, f"  simulation skipped: {fc.skipped or 'the scene did not compile'}", "yellow")
+        return
+    s = fc.simulation
+    head = (f"  simulated {s.simulated_time:.2f} s in {s.steps} steps of {s.timestep:g} s "
+            f"({s.integrator}, {s.wall_time_s:.2f} s wall)")
+    _line(stream, console, head, None)
+    _render_motion_table(motion_rows(fc), stream, console)
+    found = findings(fc)
+    if s.energy:
+        e = s.energy
+        checked = "" if e.get("checked", True) else " (not checked: kinematic bodies or signal inputs do work)"
+        _line(stream, console, f"  energy: {e['initial_total']:.6g} J at the start, {e['final_total']:.6g} J at the "
+              f"end, motors' work {e.get('actuator_work', 0.0):.4g} J{checked}", None)
+    if found:
+        _line(stream, console, "  findings:", "bold red")
+        for f in found:
+            _line(stream, console, f"    - {f}", None)
+    else:
+        _line(stream, console, "  findings: none (no blow-up, no mate pulled apart, nothing fell through, "
+              "no deep initial penetration, no energy gained, no implausible speed)", "green")
+
+
+MOTION_COLUMNS = ("body", "start", "end", "moved", "heading", "top speed", "top kinetic energy")
+
+
+def _render_motion_table(rows: list[tuple[str, ...]], stream: TextIO, console) -> None:
+    cols = MOTION_COLUMNS
+    if console is not None:
+        from rich.padding import Padding
+        from rich.table import Table
+
+        table = Table(show_header=True, header_style="bold", box=None, padding=(0, 1), pad_edge=False)
+        for c in cols:
+            table.add_column(c, justify="left" if c in ("body", "start", "end") else "right")
+        for r in rows:
+            table.add_row(*r)
+        console.print(Padding(table, (0, 0, 0, 2), expand=False))
+        return
+    widths = [max(len(c), *(len(r[i]) for r in rows)) if rows else len(c) for i, c in enumerate(cols)]
+    fmt = "  " + "  ".join(f"{{:{'>' if i >= 3 else '<'}{w}}}" for i, w in enumerate(widths))
+    stream.write(fmt.format(*cols) + "\n")
+    for r in rows:
+        stream.write(fmt.format(*r) + "\n")
+
+
+def _summary_text(results: list[FileCheck], diags: list[Diagnostic]) -> str:
+    """The last line: lint's count of findings, what the mapping notes are, and files not checked."""
+    from plxtools.rules.reporters import _summary_line
+
     summary = _summary_line(diags, len(results))
     mapping = _mapping_notes(diags)
     if mapping:  # a first run shows these: say they are not problems in the model
@@ -267,10 +288,7 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
         summary = (f"{summary.rstrip('.')}; {broken} file{'s' if broken != 1 else ''} could not be checked "
                    f"(internal error).") if diags else f"{broken} of {len(results)} " \
             f"file{'s' if len(results) != 1 else ''} could not be checked (internal error)."
-    if console is not None:
-        console.print(summary, style="bold" if diags else "green")
-    else:
-        stream.write(summary + "\n")
+    return summary
 
 
 def _mapping_notes(diags: list[Diagnostic]) -> int:

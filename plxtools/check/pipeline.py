@@ -13,18 +13,18 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from plxtools.check.assemble import Assembler, Assembly, Kinds, Placement
+from plxtools.check.assemble import MATE_NOT_COINCIDENT, Assembler, Assembly, Kinds, Placement
 from plxtools.check.checks import StaticChecks, scan_strings
 from plxtools.check.convert import Collector, to_scene
-from plxtools.check.evaluate import Evaluator
+from plxtools.check.evaluate import EVALUATION_ERROR, MISSING_VALUE, UNBOUND_REFERENCE, VALUE_CYCLE, Evaluator
 from plxtools.check.frames import mat_to_quat_wxyz
 from plxtools.check.instance import Builder
 from plxtools.check.report import Reporter
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Pos, Severity, Span
 from plxtools.model.checker import DEFAULT_CYCLE, TYPE_MISMATCH, UNKNOWN_ATTRIBUTE
 from plxtools.model.symbols import ModelSym
+from plxtools.rules import completeness
 from plxtools.rules.analysis import analyse_file
-from plxtools.rules.completeness import MISSING_ASSIGNMENT, UNBOUND_REFERENCE
 from plxtools.syntax import ast, parse_bytes
 from plxtools.syntax.source import BINARY_FILE, unreadable
 
@@ -42,7 +42,7 @@ class Skip(enum.Enum):
 
 
 # errors whose scene is exactly what the file says; they do not stop simulation, export or render
-SCENE_AS_WRITTEN = frozenset({"A016"})
+SCENE_AS_WRITTEN = frozenset({MATE_NOT_COINCIDENT})
 
 
 @dataclass
@@ -307,12 +307,18 @@ def _span_of_source(tree: ast.File, src) -> Span:
 
 
 # What lint's model checks own: a missing value (M007), an unbound reference (M008) or one given a
-# value of the wrong kind (T001), a value cycle (M006), a type or name error.  When lint has found one of these in the file, the evaluator's own
-# reports of the same kinds (A004, A005, A006, A003) are consequences of it and are not made.
-# an evaluation problem lint already owns; a missing value that follows from a misspelt attribute or a
-# block that did not parse is lint's too (its M007 is dropped as a consequence, see rules/completeness.py)
-_LINT_OWNED = {"A004": (MISSING_ASSIGNMENT, UNKNOWN_ATTRIBUTE, "S"), "A005": (UNBOUND_REFERENCE, TYPE_MISMATCH),
-               "A006": (DEFAULT_CYCLE,), "A003": ("T", "N")}
+# value of the wrong kind (T001), a value cycle (M006), a type or name error.  When lint has found one
+# of these in the file, the evaluator's own reports of the same kinds (A004, A005, A006, A003) are
+# consequences of it and are not made.  A missing value that follows from a misspelt attribute or a
+# block that did not parse is lint's too (its M007 is dropped as a consequence, see
+# rules/completeness.py).  Each entry: the evaluation code, then the lint codes (or whole families by
+# their letter: S syntax, T types, N names) that own it.
+_LINT_OWNED = {
+    MISSING_VALUE: (completeness.MISSING_ASSIGNMENT, UNKNOWN_ATTRIBUTE, "S"),
+    UNBOUND_REFERENCE: (completeness.UNBOUND_REFERENCE, TYPE_MISMATCH),
+    VALUE_CYCLE: (DEFAULT_CYCLE,),
+    EVALUATION_ERROR: ("T", "N"),
+}
 
 
 def _owned_by_lint(lint: list[Diagnostic]) -> frozenset[str]:

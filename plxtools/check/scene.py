@@ -27,6 +27,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from plxtools.check.mapped_types import CONTROLLERS, GEOMS, MATES, SCENE_ONLY_GEOMS, scene_geom_kind
+
 Vec3 = tuple[float, float, float]
 Quat = tuple[float, float, float, float]
 Mat3 = tuple[Vec3, Vec3, Vec3]
@@ -35,10 +37,11 @@ ZERO3: Vec3 = (0.0, 0.0, 0.0)
 IDENTITY_QUAT: Quat = (1.0, 0.0, 0.0, 0.0)
 INF = math.inf
 
-GEOM_KINDS = ("box", "sphere", "cylinder", "capsule", "mesh", "plane")
-MATE_KINDS = ("hinge", "prismatic", "cylindrical", "ball", "lock", "distance")
-CONTROLLER_KINDS = ("velocity_motor", "torque_motor", "force_motor", "range", "spring")
-DOF_KINDS = ("rotational", "linear")
+# the kinds a scene holds, from the mapped types (check/mapped_types.py)
+GEOM_KINDS = (*dict.fromkeys(scene_geom_kind(shape) for shape in GEOMS.values()), *SCENE_ONLY_GEOMS)
+MATE_KINDS = tuple(dict.fromkeys(MATES.values()))
+CONTROLLER_KINDS = tuple(dict.fromkeys(kind for kind, _dof, _name in CONTROLLERS.values()))
+DOF_KINDS = tuple(dict.fromkeys(dof for _kind, dof, _name in CONTROLLERS.values()))
 FRICTION_MODELS = (
     "dry",  # DefaultDryFriction
     "dry_cone",

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from plxtools.check.mapped_types import controller_name
+
 # the lists of check.scene.Scene counted, by the name a scenario or the API uses
 GROUPS = ("bodies", "mates", "controllers", "shafts", "shaft_couplings", "shaft_motors")
 PREFIX = "scene."
@@ -26,7 +28,18 @@ def scene_counts(scene: Any) -> dict[str, int]:
         items = list(getattr(scene, g, ()))
         out[g] = len(items)
         for x in items:
-            kind = getattr(x, "kind", None)
+            kind = _counted_kind(x)
             if isinstance(kind, str) and kind:
                 out[f"{g}.{kind}"] = out.get(f"{g}.{kind}", 0) + 1
     return out
+
+
+def _counted_kind(x: Any) -> str | None:
+    """The kind an item is counted under: a controller by its own name (a rotational and a linear
+    velocity motor are ``rotational_velocity_motor`` and ``linear_velocity_motor``, as signals call
+    them), anything else by its scene kind."""
+    kind = getattr(x, "kind", None)
+    dof = getattr(x, "dof", None)
+    if isinstance(kind, str) and isinstance(dof, str):
+        return controller_name(kind, dof) or kind
+    return kind

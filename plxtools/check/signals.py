@@ -24,25 +24,15 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
+from plxtools.check.mapped_types import CONTROLLERS, MATES
+
 INPUT = "Physics.Signals.Input"
 OUTPUT = "Physics.Signals.Output"
 
 # source type -> source kind (most derived first)
 SOURCE_KINDS = {
-    "Physics3D.Interactions.RotationalVelocityMotor": "rotational_velocity_motor",
-    "Physics3D.Interactions.LinearVelocityMotor": "linear_velocity_motor",
-    "Physics3D.Interactions.TorqueMotor": "torque_motor",
-    "Physics3D.Interactions.ForceMotor": "force_motor",
-    "Physics3D.Interactions.TorsionSpring": "torsion_spring",
-    "Physics3D.Interactions.LinearSpring": "linear_spring",
-    "Physics3D.Interactions.RotationalRange": "rotational_range",
-    "Physics3D.Interactions.LinearRange": "linear_range",
-    "Physics3D.Interactions.Hinge": "hinge",
-    "Physics3D.Interactions.Prismatic": "prismatic",
-    "Physics3D.Interactions.Cylindrical": "cylindrical",
-    "Physics3D.Interactions.Distance": "distance",
-    "Physics3D.Interactions.Lock": "lock",
-    "Physics3D.Interactions.Ball": "ball",
+    **{qn: name for qn, (_kind, _dof, name) in CONTROLLERS.items()},  # check/mapped_types.py
+    **MATES,
     "Physics3D.Interactions.MateConnector": "connector",
     "Physics3D.Bodies.RigidBody": "body",
     # drive trains (check/mj_drivetrain.py: a shaft is a hinge joint of its own, 1D motors act on it)
@@ -50,7 +40,8 @@ SOURCE_KINDS = {
     "DriveTrain.TorqueMotor": "torque_motor_1d",
     "Physics1D.Bodies.RotationalBody": "shaft",
 }
-ROT_MOTOR, LIN_MOTOR = "rotational_velocity_motor", "linear_velocity_motor"
+ROT_MOTOR = SOURCE_KINDS["Physics3D.Interactions.RotationalVelocityMotor"]
+LIN_MOTOR = SOURCE_KINDS["Physics3D.Interactions.LinearVelocityMotor"]
 ROT_MOTOR_1D, TORQUE_MOTOR_1D = "rotational_velocity_motor_1d", "torque_motor_1d"
 
 # (signal type, source kinds) -> quantity; the first matching row wins.  A quantity names how the
