@@ -15,6 +15,14 @@ from plxtools.check.mj_kinematic import KinematicMover, Stepper, body_velocity
 from plxtools.check.mj_math import angle_between
 from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
 
+# The codes of the run's findings that other modules recognise (plx test, the report, the static
+# checks): each is named here, where it is raised, and imported from here.
+FELL_THROUGH = "A102"  # a dynamic body fell through static geometry, or out of the world
+MATE_DRIFT = "A103"  # a mate's connectors drift apart
+OVERLAP_AT_START = "A104"  # geometries start deeper than the tolerance in each other
+MOTOR_OFF_TARGET = "A106"  # a velocity motor misses its target speed
+ENERGY_GAIN = "A134"  # energy gained that no motor supplied
+
 
 @dataclass(slots=True)
 class BodyReport:
@@ -398,7 +406,7 @@ def initial_penetrations(run: SimRun, deadline: float | None = None) -> bool:
 
     for done, j in enumerate(by_depth):
         if done == MAX_OVERLAPS_LISTED:
-            run.add(WARNING, "A104", f"{len(by_depth) - done} more pairs of geometries overlap at t=0 (the "
+            run.add(WARNING, OVERLAP_AT_START, f"{len(by_depth) - done} more pairs of geometries overlap at t=0 (the "
                     f"{done} deepest are listed)", None)
             break
         if deadline is not None and done % 256 == 0 and time.perf_counter() > deadline:
@@ -413,7 +421,7 @@ def initial_penetrations(run: SimRun, deadline: float | None = None) -> bool:
         depth = float(-dist[k])
         run.res.penetrations.append({"geom1": g1, "geom2": g2, "depth": depth, "contacts": int(counts[j]),
                                      "pos": _vec(pos[k])})
-        run.add(WARNING, "A104", f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
+        run.add(WARNING, OVERLAP_AT_START, f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
     return True
 
 
@@ -628,6 +636,13 @@ class BodyMotion(Monitor):
                 ke, float(self.ke_max[k]) if k is not None else 0.0, pe)
 
 
+def fell_out_of_world(path: str, message: str, source: Any) -> BackendNote:
+    """The A102 note for a body that left the world without crossing static geometry (which
+    :class:`FallThrough` would have seen): ``checks.bodies_out_of_world`` decides that after the
+    run from where the bodies started and ended."""
+    return BackendNote(ERROR, FELL_THROUGH, message, source, path)
+
+
 class FallThrough(Monitor):
     """A dynamic body whose centre of mass sinks through static geometry it started above (A102).
 
@@ -679,7 +694,7 @@ class FallThrough(Monitor):
                     self.fell[p] = t
                     gp = run.compiled.names.path("geom", run.model.geom(g).name)
                     run.res.fall_through.append({"body": p, "time": t, "ground": gp, "com": _vec(xipos[i])})
-                    run.add(ERROR, "A102", f"{p} fell through static geometry {gp} at t={t:.3f} s", p, at=at)
+                    run.add(ERROR, FELL_THROUGH, f"{p} fell through static geometry {gp} at t={t:.3f} s", p, at=at)
                     break
 
 
@@ -747,10 +762,10 @@ class MateSeparation(Monitor):
                 tr.initial_misalignment, tr.max_misalignment, tr.max_misalignment_time, pulled,
                 tr.separation, tr.misalignment)
             if pulled and m.role == "pulled":
-                run.add(WARNING, "A103", f"{m.path} started {tr.initial_separation:.4g} m apart and is still "
+                run.add(WARNING, MATE_DRIFT, f"{m.path} started {tr.initial_separation:.4g} m apart and is still "
                         f"{tr.separation:.4g} m apart at the end (axes {math.degrees(tr.misalignment):.3g} deg)", m.path)
             elif pulled:
-                run.add(WARNING, "A103",
+                run.add(WARNING, MATE_DRIFT,
                         f"{m.path} came apart: max separation {tr.max_separation:.4g} m at t="
                         f"{tr.max_separation_time:.3f} s, max axis misalignment "
                         f"{math.degrees(tr.max_misalignment):.3g} deg at t={tr.max_misalignment_time:.3f} s", m.path)
@@ -903,7 +918,7 @@ class MotorTracking(Monitor):
                 pct = f" ({100 * err / abs(a.target_speed):.3g} % off)" if a.target_speed else ""
                 why = (f"; its gain is kv = {a.kv:.4g} (A111), so under a load the speed sags by load / kv"
                        if a.kv is not None else "")
-                run.add(WARNING, "A106", f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g}{pct} over "
+                run.add(WARNING, MOTOR_OFF_TARGET, f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g}{pct} over "
                         f"the last 20 % of the run, with a mean effort of {mean_f:.4g}{why}", a.path)
 
 
@@ -1035,7 +1050,7 @@ class Energy(Monitor):
             m = run.model
             name = {int(run.mujoco.mjtIntegrator.mjINT_RK4): "rk4", int(run.mujoco.mjtIntegrator.mjINT_EULER): "euler",
                     int(run.mujoco.mjtIntegrator.mjINT_IMPLICIT): "implicit"}.get(int(m.opt.integrator), "implicitfast")
-            run.add(WARNING, "A134",
+            run.add(WARNING, ENERGY_GAIN,
                     f"the energy of this conservative scene (no contacts, damping, friction, limits or motors) drifted "
                     f"by {self.drift:.4g} J ({100 * self.drift / scale:.3g} % of its energy scale {scale:.4g} J; "
                     f"tolerance {100 * run.opt.drift_tol:g} %), largest at t={self.drift_time:.3f} s with the "
@@ -1048,7 +1063,7 @@ class Energy(Monitor):
         bodies = run.res.bodies
         if bodies:
             worst = max(bodies, key=lambda b: bodies[b].max_kinetic_energy if bodies[b].dynamic else -1.0)
-        run.add(WARNING, "A134",
+        run.add(WARNING, ENERGY_GAIN,
                 f"the scene gained {self.gain:.4g} J of energy that no motor supplied "
                 f"({100 * self.gain / scale:.3g} % of its energy scale {scale:.4g} J), largest at "
                 f"t={self.gain_time:.3f} s" + (f"; the most energetic body is {worst}" if worst else "")

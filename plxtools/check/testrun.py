@@ -121,7 +121,8 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
     import mujoco
 
     from plxtools.check.api import ModelError, prepare
-    from plxtools.check.mj_simulate import simulate_compiled
+    from plxtools.check.mj_simulate import FELL_THROUGH, MATE_DRIFT, OVERLAP_AT_START, simulate_compiled
+    from plxtools.check.pipeline import NO_SUCH_ROOT, TRAIT_AS_ROOT
     from plxtools.check.signals import SignalRuntime
 
     assert sc.model_file is not None
@@ -131,8 +132,8 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
         prep = prepare(sc.model_file, sc.root, bundle_path=bundle_path, openplx_version=openplx_version)
     except ModelError as exc:
         codes = {d.code for d in exc.diagnostics}
-        if sc.root is not None and codes & {"A001", "A002"}:
-            d = next(d for d in exc.diagnostics if d.code in ("A001", "A002"))
+        if sc.root is not None and codes & {NO_SUCH_ROOT, TRAIT_AS_ROOT}:
+            d = next(d for d in exc.diagnostics if d.code in (NO_SUCH_ROOT, TRAIT_AS_ROOT))
             _error(res, [ScenarioError(f"{model_file}: {d.message}", sc.root_loc or sc.model_loc)])
             return
         res.status = FAILED
@@ -195,7 +196,7 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
         if not o.passed:
             res.diagnostics.append(diag("A140", o.message(), o.expect.loc))
     for n in sim.notes:
-        if n.severity == "error" or n.code in ("A102", "A103", "A104"):
+        if n.severity == "error" or n.code in (FELL_THROUGH, MATE_DRIFT, OVERLAP_AT_START):
             src = n.source
             loc = Loc(display_path(Path(src.file)) if src else model_file, src.line if src and src.line else 1,
                       src.column if src and src.column else 1)
