@@ -63,7 +63,6 @@ TOO_COMPLEX_YET = set("""
 plxtools/check/assemble.py:Assembler._snap
 plxtools/check/checks.py:StaticChecks.masses
 plxtools/check/checks.py:StaticChecks.unsupported
-plxtools/check/cli.py:run_check
 plxtools/check/convert.py:Collector._geom
 plxtools/check/coverage.py:settings_not_simulated
 plxtools/check/drivetrain.py:collect
@@ -72,10 +71,6 @@ plxtools/check/mj_compile.py:classify_mates
 plxtools/check/mj_geoms.py:add_geom
 plxtools/check/mj_simulate.py:simulate_compiled
 plxtools/check/output.py:render_text
-plxtools/check/scenario.py:_parse_expect
-plxtools/check/scenario.py:bind
-plxtools/check/scenario.py:parse
-plxtools/check/testrun.py:_run
 plxtools/ide/line_context.py:classify
 plxtools/ide/outline.py:_symbol
 plxtools/ide/tokens.py:semantic_tokens
