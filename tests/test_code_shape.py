@@ -66,10 +66,8 @@ plxtools/check/checks.py:StaticChecks.unsupported
 plxtools/check/convert.py:Collector._geom
 plxtools/check/coverage.py:settings_not_simulated
 plxtools/check/drivetrain.py:collect
-plxtools/check/instance.py:Builder._build
 plxtools/check/mj_compile.py:classify_mates
 plxtools/check/mj_geoms.py:add_geom
-plxtools/check/mj_simulate.py:simulate_compiled
 plxtools/check/output.py:render_text
 plxtools/ide/line_context.py:classify
 plxtools/ide/outline.py:_symbol
