@@ -264,8 +264,10 @@ class Builder:
             self.opaque.append((obj, imported))
             return
         struct, templates, info = self._plan(model, traits)
-        if any(e[0].kind == VALUE for e in received):
-            obj.explicit = True
+        for e in received:
+            if e[0].kind == VALUE:
+                obj.explicit = True
+                break
         obj.struct = struct
         if struct is not None:
             effs = [(tm, obj, 0) for tm in templates]
@@ -300,13 +302,16 @@ class Builder:
         (``ce``): a primitive, a reference to another object, or an owned object built in turn."""
         ty = e[0].ty
         optional, reference = flags
-        if _holds_no_object(ty):
-            obj.prims[name] = Prim(name, ty, e, _whole_value(ce), optional)
+        whole = None  # the last effect that gives the member a whole value (not one of its fields)
+        for x in ce:
+            if x[0].kind == VALUE and len(x[0].path) == x[2]:
+                whole = x
+        if ty is None or ty.unknown or ty.alts or ty.array or ty.primitive is not None or ty.model is None:
+            obj.prims[name] = Prim(name, ty, e, whole, optional)  # a primitive, array, union or unknown type
             return
         cmodel = ty.model
         is_struct = self.struct_name(cmodel) is not None
         if not is_struct:
-            whole = _whole_value(ce)
             if whole is not None or reference or cmodel.is_trait:
                 obj.children[name] = Ref(name, path, obj, ty, e, whole, optional, reference)
                 return
@@ -369,20 +374,6 @@ def _declare(name: str, e: Eff, decls: dict, flags: dict, order: list) -> None:
         if not replaces(decls[name][0].stmt.keyword, t.stmt.keyword):
             return
     decls[name] = e
-
-
-def _holds_no_object(ty: Ty | None) -> bool:
-    """A primitive, array, union or unknown type: the member is a :class:`Prim`."""
-    return ty is None or ty.unknown or bool(ty.alts) or ty.array or ty.primitive is not None or ty.model is None
-
-
-def _whole_value(ce: list) -> Eff | None:
-    """The last effect that gives the member a whole value (not one of its fields)."""
-    value = None
-    for x in ce:
-        if x[0].kind == VALUE and len(x[0].path) == x[2]:
-            value = x
-    return value
 
 
 def _same_model_above(obj: Obj) -> list[Obj] | None:
