@@ -593,7 +593,7 @@ def bodies_out_of_world(sim, sources) -> list:
     the chassis, a part off the edge of the ground) falls out of the world without crossing any,
     so the start and end positions decide here. A scene that falls as a whole (a free-fall test
     with no ground) has nothing that stayed, and is not reported."""
-    from plxtools.check.mj_notes import ERROR, BackendNote
+    from plxtools.check.mj_simulate import fell_out_of_world
 
     if sim is None:
         return []
@@ -614,11 +614,11 @@ def bodies_out_of_world(sim, sources) -> list:
             below = floor - b.final_pos[2]
             sim.fall_through.append({"body": b.path, "time": None, "ground": None, "com": list(b.final_pos),
                                      "drop": below})
-            out.append(BackendNote(
-                ERROR, "A102",
+            out.append(fell_out_of_world(
+                b.path,
                 f"{b.path} fell out of the world: it ended at z = {b.final_pos[2]:.1f} m, {below:.1f} m below "
                 f"everything it started near (nothing held it: is it mated, and is there ground under it?)",
-                sources.get(b.path), b.path))
+                sources.get(b.path)))
     return out
 
 
@@ -627,11 +627,13 @@ def tie_mirrored_motors(rep: Reporter) -> None:
     wheels against each other (issue 32.6); the two findings name each other."""
     if not rep.mirrored_motors:
         return
+    from plxtools.check.mj_simulate import MOTOR_OFF_TARGET
+
     partner = {}
     for a, b, d in rep.mirrored_motors:
         partner[a], partner[b] = (b, d), (a, d)
     for e in rep.entries:
-        if e.diag.code == "A106" and e.path in partner:
+        if e.diag.code == MOTOR_OFF_TARGET and e.path in partner:
             other, a023 = partner[e.path]
             e.diag.help = (f"it is driven against {other} (A023, line {a023.span.start.line + 1}): give one of "
                            "the two the opposite target_speed to drive straight")

@@ -30,29 +30,50 @@ def _artefact_path(template: str, index: int, count: int) -> Path:
     return p.with_name(f"{p.stem}-{index + 1}{p.suffix}")
 
 
-def run_check(args) -> int:
-    from plxtools.config import ConfigError, config_for
-    from plxtools.discovery import UsageError, discover
+class _UsageError(Exception):
+    """A bad command line, path, configuration or bundle set: said on stderr, exit status 2."""
 
-    if args.duration is not None and not (math.isfinite(args.duration) and 0 < args.duration <= MAX_DURATION):
-        print(f"plx check: --duration must be a number of seconds in (0, {MAX_DURATION:g}]; got {args.duration:g}",
-              file=sys.stderr)
+
+def run_check(args) -> int:
+    try:
+        timeout = _options(args)
+        files, workspace = _inputs(args)
+        note = workspace.bundle_set.announcement()
+        if note and args.output_format == "text":
+            print(f"plx check: {note}", file=sys.stderr)
+        run = _Run(workspace, args.model, bool(args.simulate or args.render or args.export_mjcf),
+                   bool(args.simulate), args.duration, bool(getattr(args, "trace", None)), timeout,
+                   getattr(args, "integrator", None), getattr(args, "timestep", None))
+        results, status = _check_files(files, args, run)
+    except _UsageError as exc:
+        print(f"plx check: {exc}", file=sys.stderr)
         return 2
+    status = max(status, _artefacts(args, results))
+    diags = [d for fc in results for d in fc.diagnostics]
+    _report(args, results, diags)
+    if status:
+        return status
+    has_error = any(d.severity == Severity.ERROR for d in diags)
+    return 0 if (args.exit_zero or not has_error) else 1
+
+
+def _options(args) -> float:
+    """Check the numbers given on the command line (--duration, --timeout, --timestep, --fps and
+    the --video target); --trace and --video imply --simulate.  Returns the timeout."""
     from plxtools import envpath
 
+    if args.duration is not None and not (math.isfinite(args.duration) and 0 < args.duration <= MAX_DURATION):
+        raise _UsageError(f"--duration must be a number of seconds in (0, {MAX_DURATION:g}]; got {args.duration:g}")
     envpath.show_values(getattr(args, "show_env", False))  # set before any worker process forks
     timeout = getattr(args, "timeout", None)
     if timeout is None:
         timeout = DEFAULT_TIMEOUT
     elif not (math.isfinite(timeout) and timeout > 0):
-        print(f"plx check: --timeout must be a positive number of seconds; got {timeout:g}", file=sys.stderr)
-        return 2
+        raise _UsageError(f"--timeout must be a positive number of seconds; got {timeout:g}")
     timestep = getattr(args, "timestep", None)
     if timestep is not None and not (math.isfinite(timestep) and 1e-5 <= timestep <= 0.1):
-        print(f"plx check: --timestep must be a number of seconds in [1e-5, 0.1]; got {timestep:g}", file=sys.stderr)
-        return 2
-    trace = getattr(args, "trace", None)
-    if trace:
+        raise _UsageError(f"--timestep must be a number of seconds in [1e-5, 0.1]; got {timestep:g}")
+    if getattr(args, "trace", None):
         args.simulate = True
     video = getattr(args, "video", None)
     if video:
@@ -63,49 +84,56 @@ def run_check(args) -> int:
             check_target(video)
             check_fps(args.fps)
         except VideoError as exc:
-            print(f"plx check: {exc}", file=sys.stderr)
-            return 2
-    want_backend = bool(args.simulate or args.render or args.export_mjcf)
+            raise _UsageError(str(exc)) from None
+    return timeout
+
+
+def _inputs(args) -> tuple[list[Path], Any]:
+    """The files to check and the workspace (bundles) they are checked in."""
+    from plxtools.config import ConfigError
+    from plxtools.discovery import UsageError, discover
+
     try:
         files = discover(args.paths)
     except (UsageError, ConfigError) as exc:
-        print(f"plx check: {exc}", file=sys.stderr)
-        return 2
+        raise _UsageError(str(exc)) from None
     try:
         from plxtools.model.workspace import workspace_for_cli
 
         workspace = workspace_for_cli(args.bundle_path, files, openplx_version=getattr(args, "openplx_version", None))
     except (UsageError, ConfigError, ValueError) as exc:
-        print(f"plx check: {exc}", file=sys.stderr)
-        return 2
-    note = workspace.bundle_set.announcement()
-    if note and args.output_format == "text":
-        print(f"plx check: {note}", file=sys.stderr)
-    run = _Run(workspace, args.model, want_backend, bool(args.simulate), args.duration, bool(trace), timeout,
-               getattr(args, "integrator", None), timestep)
-    results = []
-    status = 0
+        raise _UsageError(str(exc)) from None
+    return files, workspace
+
+
+def _check_files(files: list[Path], args, run: "_Run") -> tuple[list, int]:
+    """Every file's FileCheck, in order, by the pool of workers or one by one here; their messages
+    go to stderr as each comes.  A file's broken configuration stops the run (_UsageError)."""
+    from plxtools.config import ConfigError, config_for
+
     parallel = _in_parallel(files, args, run)
-    if parallel is not None:
-        files = []  # all checked
-        for fc, messages, st in parallel:
-            for m in messages:
-                sys.stderr.write(m)
-            status = max(status, st)
-            results.append(fc)
-    for f in files:
-        try:
-            cfg = config_for(f)
-        except ConfigError as exc:
-            print(f"plx check: {exc}", file=sys.stderr)
-            return 2
-        fc, messages, st = _check_one((f, cfg), run)
-        for m in messages:
-            sys.stderr.write(m)
-        status = max(status, st)
-        results.append(fc)
-    status = max(status, _artefacts(args, results))
-    diags = [d for fc in results for d in fc.diagnostics]
+    if parallel is None:
+        parallel = []
+        for f in files:
+            try:
+                cfg = config_for(f)
+            except ConfigError as exc:
+                raise _UsageError(str(exc)) from None
+            parallel.append(_check_one((f, cfg), run))
+            _say(parallel[-1][1])
+    else:
+        for _fc, messages, _st in parallel:
+            _say(messages)
+    return [fc for fc, _m, _st in parallel], max((st for _fc, _m, st in parallel), default=0)
+
+
+def _say(messages: list[str]) -> None:
+    for m in messages:
+        sys.stderr.write(m)
+
+
+def _report(args, results: list, diags: list) -> None:
+    """The report on stdout, in --output-format."""
     fmt = args.output_format
     if fmt == "json":
         from plxtools.check.output import document
@@ -121,10 +149,6 @@ def run_check(args) -> int:
         from plxtools.check.output import render_text
 
         render_text(results, diags, sys.stdout, simulate=bool(args.simulate))
-    if status:
-        return status
-    has_error = any(d.severity == Severity.ERROR for d in diags)
-    return 0 if (args.exit_zero or not has_error) else 1
 
 
 @dataclass

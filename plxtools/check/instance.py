@@ -254,6 +254,8 @@ class Builder:
         return self._opaque_of[key]
 
     def _build(self, obj: Obj, model: ModelSym, traits: tuple, received: list, depth: int) -> None:
+        """Fill ``obj``: its type's own effects (the plan) under the effects its owners route down to
+        it (``received``), then one member after another."""
         self.objects += 1
         imported = self.opaque_import(obj)
         if imported is not None:
@@ -272,86 +274,106 @@ class Builder:
             effs.extend(received)
             obj.effects = effs
             return
-        if depth > MAX_DEPTH:
-            loop = _same_model_above(obj) if depth <= MAX_NESTING else None
-            if loop is not None or depth > MAX_NESTING:
-                self.too_deep.append(obj)
-                if self.report is not None:
-                    self.report("A009", _too_deep_message(obj, depth, loop), obj)
-                return
-        own_decls, own_order, own_flags, own_routed = info
-        decls: dict[str, Eff] = {}
-        flags: dict[str, list] = {}
-        order = obj.order
-        for name in own_order:
-            order.append(name)
-            decls[name] = (own_decls[name], obj, 0)
-            flags[name] = list(own_flags[name])
-        routed: dict[str, list] = {}
-        for e in received:
-            t, _scope, d = e
-            rest = len(t.path) - d
-            if rest <= 0:
-                continue  # a whole value on a non-struct object: decided by the owner (a Ref)
-            name = t.path[d]
-            if t.kind == DECL and rest == 1:
-                if name not in decls:
-                    order.append(name)
-                    flags[name] = [t.optional, t.reference]
-                else:
-                    f = flags[name]
-                    f[0] = f[0] or t.optional
-                    f[1] = f[1] or t.reference
-                    # the override rule of model/resolve.py: a later plain `is` does not undo a `becomes`
-                    if not replaces(decls[name][0].stmt.keyword, t.stmt.keyword):
-                        continue
-                decls[name] = e
-                continue
-            lst = routed.get(name)
-            if lst is None:
-                lst = routed[name] = []
-            lst.append((t, e[1], d + 1))
+        if depth > MAX_DEPTH and self._stops_too_deep(obj, depth):
+            return
+        decls, flags, routed = _merge_received(obj, info, received)
+        own_routed = info[3]
         prefix = obj.path + "." if obj.path else ""
-        for name in order:
-            e = decls[name]
-            t = e[0]
-            ty = t.ty
-            optional, reference = flags[name]
+        for name in obj.order:
             own = own_routed.get(name)
             ce = [(tm, obj, 1) for tm in own] if own else []
             more = routed.get(name)
             if more:
                 ce.extend(more)
-            if ty is None or ty.unknown or ty.alts or ty.array or ty.primitive is not None or ty.model is None:
-                value = None
-                for x in ce:
-                    if x[0].kind == VALUE and len(x[0].path) == x[2]:
-                        value = x
-                obj.prims[name] = Prim(name, ty, e, value, optional)
-                continue
-            cmodel = ty.model
-            path = prefix + name
-            whole = None
-            for x in ce:
-                if x[0].kind == VALUE and len(x[0].path) == x[2]:
-                    whole = x
-            is_struct = self.struct_name(cmodel) is not None
-            if not is_struct and (whole is not None or reference or cmodel.is_trait):
+            self._member(obj, name, decls[name], flags[name], ce, prefix + name, depth)
+
+    def _stops_too_deep(self, obj: Obj, depth: int) -> bool:
+        """Past MAX_DEPTH: stop (A009) at a model that contains itself, or past MAX_NESTING."""
+        loop = _same_model_above(obj) if depth <= MAX_NESTING else None
+        if loop is None and depth <= MAX_NESTING:
+            return False
+        self.too_deep.append(obj)
+        if self.report is not None:
+            self.report("A009", _too_deep_message(obj, depth, loop), obj)
+        return True
+
+    def _member(self, obj: Obj, name: str, e: Eff, flags: list, ce: list, path: str, depth: int) -> None:
+        """One member of ``obj``, from its winning declaration ``e`` and the effects routed to it
+        (``ce``): a primitive, a reference to another object, or an owned object built in turn."""
+        ty = e[0].ty
+        optional, reference = flags
+        whole = None  # the last effect that gives the member a whole value (not one of its fields)
+        for x in ce:
+            if x[0].kind == VALUE and len(x[0].path) == x[2]:
+                whole = x
+        if ty is None or ty.unknown or ty.alts or ty.array or ty.primitive is not None or ty.model is None:
+            obj.prims[name] = Prim(name, ty, e, whole, optional)  # a primitive, array, union or unknown type
+            return
+        cmodel = ty.model
+        is_struct = self.struct_name(cmodel) is not None
+        if not is_struct:
+            if whole is not None or reference or cmodel.is_trait:
                 obj.children[name] = Ref(name, path, obj, ty, e, whole, optional, reference)
-                continue
-            if cmodel.const and not is_struct:
+                return
+            if cmodel.const:
                 obj.children[name] = Ref(name, path, obj, ty, e, None, optional, reference, const_model=cmodel)
-                continue
-            ctraits = tuple(ty.traits)
-            sub = []
-            for x in ce:
-                if x[0].kind == WITH and len(x[0].path) == x[2]:
-                    ctraits = ctraits + tuple(tr for tr in x[0].traits if tr not in ctraits)
-                else:
-                    sub.append(x)
-            child = Obj(name, path, cmodel, ctraits, obj, e)
-            obj.children[name] = child
-            self._build(child, cmodel, ctraits, sub, depth + 1)
+                return
+        ctraits = tuple(ty.traits)
+        sub = []
+        for x in ce:
+            if x[0].kind == WITH and len(x[0].path) == x[2]:
+                ctraits = ctraits + tuple(tr for tr in x[0].traits if tr not in ctraits)
+            else:
+                sub.append(x)
+        child = Obj(name, path, cmodel, ctraits, obj, e)
+        obj.children[name] = child
+        self._build(child, cmodel, ctraits, sub, depth + 1)
+
+
+def _merge_received(obj: Obj, info: tuple, received: list) -> tuple[dict, dict, dict]:
+    """The members of a non-struct object: its plan's declarations, then those its owners route to
+    it (a later one replaces an earlier one as model/resolve.py says), in ``obj.order``; and the
+    effects routed further down, per member.  Returns (declarations, [optional, reference] flags,
+    routed effects) by member name."""
+    own_decls, own_order, own_flags, _own_routed = info
+    decls: dict[str, Eff] = {}
+    flags: dict[str, list] = {}
+    order = obj.order
+    for name in own_order:
+        order.append(name)
+        decls[name] = (own_decls[name], obj, 0)
+        flags[name] = list(own_flags[name])
+    routed: dict[str, list] = {}
+    for e in received:
+        t, _scope, d = e
+        rest = len(t.path) - d
+        if rest <= 0:
+            continue  # a whole value on a non-struct object: decided by the owner (a Ref)
+        name = t.path[d]
+        if t.kind == DECL and rest == 1:
+            _declare(name, e, decls, flags, order)
+            continue
+        lst = routed.get(name)
+        if lst is None:
+            lst = routed[name] = []
+        lst.append((t, e[1], d + 1))
+    return decls, flags, routed
+
+
+def _declare(name: str, e: Eff, decls: dict, flags: dict, order: list) -> None:
+    """A declaration an owner routes to a member: a new member, or one more declaration of it."""
+    t = e[0]
+    if name not in decls:
+        order.append(name)
+        flags[name] = [t.optional, t.reference]
+    else:
+        f = flags[name]
+        f[0] = f[0] or t.optional
+        f[1] = f[1] or t.reference
+        # the override rule of model/resolve.py: a later plain `is` does not undo a `becomes`
+        if not replaces(decls[name][0].stmt.keyword, t.stmt.keyword):
+            return
+    decls[name] = e
 
 
 def _same_model_above(obj: Obj) -> list[Obj] | None:

@@ -15,6 +15,14 @@ from plxtools.check.mj_kinematic import KinematicMover, Stepper, body_velocity
 from plxtools.check.mj_math import angle_between
 from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
 
+# The codes of the run's findings that other modules recognise (plx test, the report, the static
+# checks): each is named here, where it is raised, and imported from here.
+FELL_THROUGH = "A102"  # a dynamic body fell through static geometry, or out of the world
+MATE_DRIFT = "A103"  # a mate's connectors drift apart
+OVERLAP_AT_START = "A104"  # geometries start deeper than the tolerance in each other
+MOTOR_OFF_TARGET = "A106"  # a velocity motor misses its target speed
+ENERGY_GAIN = "A134"  # energy gained that no motor supplied
+
 
 @dataclass(slots=True)
 class BodyReport:
@@ -398,7 +406,7 @@ def initial_penetrations(run: SimRun, deadline: float | None = None) -> bool:
 
     for done, j in enumerate(by_depth):
         if done == MAX_OVERLAPS_LISTED:
-            run.add(WARNING, "A104", f"{len(by_depth) - done} more pairs of geometries overlap at t=0 (the "
+            run.add(WARNING, OVERLAP_AT_START, f"{len(by_depth) - done} more pairs of geometries overlap at t=0 (the "
                     f"{done} deepest are listed)", None)
             break
         if deadline is not None and done % 256 == 0 and time.perf_counter() > deadline:
@@ -413,7 +421,7 @@ def initial_penetrations(run: SimRun, deadline: float | None = None) -> bool:
         depth = float(-dist[k])
         run.res.penetrations.append({"geom1": g1, "geom2": g2, "depth": depth, "contacts": int(counts[j]),
                                      "pos": _vec(pos[k])})
-        run.add(WARNING, "A104", f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
+        run.add(WARNING, OVERLAP_AT_START, f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
     return True
 
 
@@ -628,6 +636,13 @@ class BodyMotion(Monitor):
                 ke, float(self.ke_max[k]) if k is not None else 0.0, pe)
 
 
+def fell_out_of_world(path: str, message: str, source: Any) -> BackendNote:
+    """The A102 note for a body that left the world without crossing static geometry (which
+    :class:`FallThrough` would have seen): ``checks.bodies_out_of_world`` decides that after the
+    run from where the bodies started and ended."""
+    return BackendNote(ERROR, FELL_THROUGH, message, source, path)
+
+
 class FallThrough(Monitor):
     """A dynamic body whose centre of mass sinks through static geometry it started above (A102).
 
@@ -679,7 +694,7 @@ class FallThrough(Monitor):
                     self.fell[p] = t
                     gp = run.compiled.names.path("geom", run.model.geom(g).name)
                     run.res.fall_through.append({"body": p, "time": t, "ground": gp, "com": _vec(xipos[i])})
-                    run.add(ERROR, "A102", f"{p} fell through static geometry {gp} at t={t:.3f} s", p, at=at)
+                    run.add(ERROR, FELL_THROUGH, f"{p} fell through static geometry {gp} at t={t:.3f} s", p, at=at)
                     break
 
 
@@ -747,10 +762,10 @@ class MateSeparation(Monitor):
                 tr.initial_misalignment, tr.max_misalignment, tr.max_misalignment_time, pulled,
                 tr.separation, tr.misalignment)
             if pulled and m.role == "pulled":
-                run.add(WARNING, "A103", f"{m.path} started {tr.initial_separation:.4g} m apart and is still "
+                run.add(WARNING, MATE_DRIFT, f"{m.path} started {tr.initial_separation:.4g} m apart and is still "
                         f"{tr.separation:.4g} m apart at the end (axes {math.degrees(tr.misalignment):.3g} deg)", m.path)
             elif pulled:
-                run.add(WARNING, "A103",
+                run.add(WARNING, MATE_DRIFT,
                         f"{m.path} came apart: max separation {tr.max_separation:.4g} m at t="
                         f"{tr.max_separation_time:.3f} s, max axis misalignment "
                         f"{math.degrees(tr.max_misalignment):.3g} deg at t={tr.max_misalignment_time:.3f} s", m.path)
@@ -903,7 +918,7 @@ class MotorTracking(Monitor):
                 pct = f" ({100 * err / abs(a.target_speed):.3g} % off)" if a.target_speed else ""
                 why = (f"; its gain is kv = {a.kv:.4g} (A111), so under a load the speed sags by load / kv"
                        if a.kv is not None else "")
-                run.add(WARNING, "A106", f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g}{pct} over "
+                run.add(WARNING, MOTOR_OFF_TARGET, f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g}{pct} over "
                         f"the last 20 % of the run, with a mean effort of {mean_f:.4g}{why}", a.path)
 
 
@@ -1035,7 +1050,7 @@ class Energy(Monitor):
             m = run.model
             name = {int(run.mujoco.mjtIntegrator.mjINT_RK4): "rk4", int(run.mujoco.mjtIntegrator.mjINT_EULER): "euler",
                     int(run.mujoco.mjtIntegrator.mjINT_IMPLICIT): "implicit"}.get(int(m.opt.integrator), "implicitfast")
-            run.add(WARNING, "A134",
+            run.add(WARNING, ENERGY_GAIN,
                     f"the energy of this conservative scene (no contacts, damping, friction, limits or motors) drifted "
                     f"by {self.drift:.4g} J ({100 * self.drift / scale:.3g} % of its energy scale {scale:.4g} J; "
                     f"tolerance {100 * run.opt.drift_tol:g} %), largest at t={self.drift_time:.3f} s with the "
@@ -1048,7 +1063,7 @@ class Energy(Monitor):
         bodies = run.res.bodies
         if bodies:
             worst = max(bodies, key=lambda b: bodies[b].max_kinetic_energy if bodies[b].dynamic else -1.0)
-        run.add(WARNING, "A134",
+        run.add(WARNING, ENERGY_GAIN,
                 f"the scene gained {self.gain:.4g} J of energy that no motor supplied "
                 f"({100 * self.gain / scale:.3g} % of its energy scale {scale:.4g} J), largest at "
                 f"t={self.gain_time:.3f} s" + (f"; the most energetic body is {worst}" if worst else "")
@@ -1140,71 +1155,110 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
                            compiled.compile_ms, notes=list(compiled.notes))
     if not compiled.ok:
         return res
+    run, stepper = _set_up(mujoco, compiled, res, opt, float(duration), controller)
+    if not initial_penetrations(run, deadline):
+        res.wall_time_s = time.perf_counter() - t_wall
+        return res
+    loop = _Loop(run, stepper, controller, deadline)
+    loop.step_to_end()
+    if controller is not None and res.blowup is None:
+        controller(loop.done * loop.h, run.model, run.data)  # the final state (mj_forward ran after the last chunk)
+    res.wall_time_s = time.perf_counter() - t_wall
+    loop.finish()
+    return res
+
+
+def _set_up(mujoco: Any, compiled: CompiledScene, res: SimulationResult, opt: SimOptions, duration: float,
+            controller: Any) -> tuple[SimRun, Stepper]:
+    """The MuJoCo data at the scene's initial keyframe, the bodies watched, and how a step is taken."""
     model, names = compiled.model, compiled.names
-    h = float(model.opt.timestep)
-    res.timestep = h
+    res.timestep = float(model.opt.timestep)
     res.integrator = compiled.integrator
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, model.key("initial").id)
     mujoco.mj_forward(model, data)
     bodies: list[tuple[str, int, bool]] = []
-    for b in scene.bodies:
+    for b in compiled.scene.bodies:
         n = names.name("body", b.path)
         if n is not None and n not in [x[0] for x in bodies]:
             bodies.append((b.path, model.body(n).id, b.is_dynamic))
-    run = SimRun(mujoco, compiled, model, data, res, opt, float(duration), bodies)
+    run = SimRun(mujoco, compiled, model, data, res, opt, duration, bodies)
     stepper = Stepper(mujoco, compiled, model, data)
     run.movers = stepper.movers
     run.controlled = controller is not None
+    return run, stepper
 
-    if not initial_penetrations(run, deadline):
-        res.wall_time_s = time.perf_counter() - t_wall
-        return res
-    monitors: list[Monitor] = [m(run) for m in MONITORS if m is not Trace or opt.record]
-    blowup = BlowUp(run)
-    per_step = [m for m in monitors if m.per_step]
-    batched = [m for m in monitors if m.batched]
-    plain = [m for m in monitors if not m.batched and type(m).sample is not Monitor.sample]
-    batch = Samples(data)
 
-    n_steps = max(1, int(round(duration / h)))
-    chunk = max(1, int(round(opt.sample_dt / h)))
-    # Without a controller or moving kinematic bodies, the state at a sample is computed by the
-    # next step's first half (mj_step1: positions and velocities, exactly what mj_forward would
-    # compute for them), instead of an extra mj_forward per sample; the step is then finished
-    # with mj_step2.  A controller reads acceleration-stage data (actuator forces) and a kinematic
-    # body is placed before each step, so those runs use mj_forward.
-    # RK4: mj_step2 would integrate with Euler, so an RK4 run takes whole mj_steps
-    split = controller is None and not run.movers and int(model.opt.integrator) != int(mujoco.mjtIntegrator.mjINT_RK4)
-    forces_from = MOTOR_WINDOW * duration if model.nu else math.inf  # MotorTracking reads actuator_force
-    primed = False  # mj_step1 of the next step has run
-    fast_after = None
-    if (controller is None and not run.movers and len(per_step) == 1
-            and type(per_step[0]).before_step is Monitor.before_step):
-        fast_after = per_step[0].after_step
-    done = 0
-    while done < n_steps:
-        if deadline is not None and time.perf_counter() > deadline:
-            if primed:
-                mujoco.mj_forward(model, data)
-            batch.flush(run, batched)
-            run.add(ERROR, "A109", f"the simulation was stopped by the time limit ({_limit(opt)}) "
-                    f"at t={done * h:.3f} s of {duration:g} s; the motion after that is not checked", None)
-            break
-        k = min(chunk, n_steps - done)
-        if primed:
+class _Loop:
+    """The monitored stepping of one run: chunks of steps, each ended by a sample the monitors see.
+
+    Without a controller or moving kinematic bodies, the state at a sample is computed by the next
+    step's first half (mj_step1: positions and velocities, exactly what mj_forward would compute for
+    them), instead of an extra mj_forward per sample; the step is then finished with mj_step2
+    (``split``; the step is then ``primed``).  A controller reads acceleration-stage data (actuator
+    forces) and a kinematic body is placed before each step, so those runs use mj_forward.  RK4:
+    mj_step2 would integrate with Euler, so an RK4 run takes whole mj_steps."""
+
+    def __init__(self, run: SimRun, stepper: Stepper, controller: Any, deadline: float | None) -> None:
+        mujoco, model = run.mujoco, run.model
+        self.run, self.stepper, self.controller, self.deadline = run, stepper, controller, deadline
+        self.monitors: list[Monitor] = [m(run) for m in MONITORS if m is not Trace or run.opt.record]
+        self.blowup = BlowUp(run)
+        self.per_step = [m for m in self.monitors if m.per_step]
+        self.batched = [m for m in self.monitors if m.batched]
+        self.plain = [m for m in self.monitors if not m.batched and type(m).sample is not Monitor.sample]
+        self.batch = Samples(run.data)
+        self.h = h = float(model.opt.timestep)
+        self.n_steps = max(1, int(round(run.duration / h)))
+        self.chunk = max(1, int(round(run.opt.sample_dt / h)))
+        self.split = (controller is None and not run.movers
+                      and int(model.opt.integrator) != int(mujoco.mjtIntegrator.mjINT_RK4))
+        # MotorTracking reads actuator_force
+        self.forces_from = MOTOR_WINDOW * run.duration if model.nu else math.inf
+        self.primed = False  # mj_step1 of the next step has run
+        self.fast_after = None  # the usual run: only one monitor (Energy) records something per step
+        if (controller is None and not run.movers and len(self.per_step) == 1
+                and type(self.per_step[0]).before_step is Monitor.before_step):
+            self.fast_after = self.per_step[0].after_step
+        self.done = 0
+
+    def step_to_end(self) -> None:
+        """Step to the end, the time limit or a blow-up, sampling after every chunk."""
+        run, batch = self.run, self.batch
+        while self.done < self.n_steps:
+            if self.deadline is not None and time.perf_counter() > self.deadline:
+                self._stop_at_deadline()
+                break
+            self._steps(min(self.chunk, self.n_steps - self.done))
+            t = self.done * self.h
+            if self._blew_up(t):
+                break
+            self._state_at_sample(t)
+            for m in self.plain:
+                m.sample(run, t)
+            if batch.record(t, self.done):
+                batch.flush(run, self.batched)
+        batch.flush(run, self.batched)
+
+    def _steps(self, k: int) -> None:
+        """Advance ``k`` steps (the first one finishes a primed step), with the per-step monitors."""
+        run, mujoco, model, data = self.run, self.run.mujoco, self.run.model, self.run.data
+        per_step = self.per_step
+        if self.primed:
             mujoco.mj_step2(model, data)
-            done += 1
+            self.done += 1
             k -= 1
-            primed = False
+            self.primed = False
             for m in per_step:
                 m.after_step(run)
-        if fast_after is not None:  # the usual run: only Energy records something per step
+        fast_after = self.fast_after
+        if fast_after is not None:
             for _ in range(k):
                 mujoco.mj_step(model, data)
                 fast_after(run)
-            done += k
-        elif run.movers or per_step or controller is not None:
+            self.done += k
+        elif run.movers or per_step or self.controller is not None:
+            stepper, controller, done = self.stepper, self.controller, self.done
             for _ in range(k):
                 for m in per_step:
                     m.before_step(run)
@@ -1212,39 +1266,52 @@ def simulate_compiled(compiled: CompiledScene, duration: float = 5.0, controller
                 done += 1
                 for m in per_step:
                     m.after_step(run)
+            self.done = done
         elif k:
             mujoco.mj_step(model, data, nstep=k)
-            done += k
-        t = done * h
-        reason = blowup.check(run)
-        if reason is not None:
-            mujoco.mj_forward(model, data)  # what the report reads of the final state
-            batch.flush(run, batched)  # the speeds before the blow-up
-            blowup.report(run, t, done, reason)
-            break
-        if split and done < n_steps and blowup.bounded:  # bounded: mj_step1's checks will not reset
-            for m in per_step:
+            self.done += k
+
+    def _state_at_sample(self, t: float) -> None:
+        """The position- and velocity-dependent data of the state at ``t``, for the monitors: by the
+        next step's mj_step1 when the run is ``split`` (and MuJoCo's own checks will not reset),
+        otherwise by mj_forward (mj_step leaves it one step behind)."""
+        run, mujoco = self.run, self.run.mujoco
+        if self.split and self.done < self.n_steps and self.blowup.bounded:
+            for m in self.per_step:
                 m.before_step(run)
-            mujoco.mj_step1(model, data)
-            primed = True
-            if t >= forces_from:
-                mujoco.mj_fwdActuation(model, data)
+            mujoco.mj_step1(run.model, run.data)
+            self.primed = True
+            if t >= self.forces_from:
+                mujoco.mj_fwdActuation(run.model, run.data)
         else:
-            mujoco.mj_forward(model, data)  # mj_step leaves positions-derived data one step behind
-        for m in plain:
-            m.sample(run, t)
-        if batch.record(t, done):
-            batch.flush(run, batched)
-    batch.flush(run, batched)
-    if controller is not None and res.blowup is None:
-        controller(done * h, model, data)  # the final state (mj_forward ran after the last chunk)
-    res.wall_time_s = time.perf_counter() - t_wall
-    res.steps = done
-    res.simulated_time = done * h
-    for m in monitors:
-        m.finish(run)
-    timed_out = any(n.code == "A109" for n in res.notes)
-    if res.blowup is None and not timed_out and res.simulated_time < duration - h / 2:
-        run.add(INFO, "A108", f"simulated {res.simulated_time:.3f} of {duration:g} s", None)
-    res.ok = not any(n.severity == ERROR for n in res.notes)
-    return res
+            mujoco.mj_forward(run.model, run.data)
+
+    def _blew_up(self, t: float) -> bool:
+        run = self.run
+        reason = self.blowup.check(run)
+        if reason is None:
+            return False
+        run.mujoco.mj_forward(run.model, run.data)  # what the report reads of the final state
+        self.batch.flush(run, self.batched)  # the speeds before the blow-up
+        self.blowup.report(run, t, self.done, reason)
+        return True
+
+    def _stop_at_deadline(self) -> None:
+        run = self.run
+        if self.primed:
+            run.mujoco.mj_forward(run.model, run.data)
+        self.batch.flush(run, self.batched)
+        run.add(ERROR, "A109", f"the simulation was stopped by the time limit ({_limit(run.opt)}) "
+                f"at t={self.done * self.h:.3f} s of {run.duration:g} s; the motion after that is not checked", None)
+
+    def finish(self) -> None:
+        """The result's totals, every monitor's part of it, and whether the run ended early."""
+        run, res, h = self.run, self.run.res, self.h
+        res.steps = self.done
+        res.simulated_time = self.done * h
+        for m in self.monitors:
+            m.finish(run)
+        timed_out = any(n.code == "A109" for n in res.notes)
+        if res.blowup is None and not timed_out and res.simulated_time < run.duration - h / 2:
+            run.add(INFO, "A108", f"simulated {res.simulated_time:.3f} of {run.duration:g} s", None)
+        res.ok = not any(n.severity == ERROR for n in res.notes)

@@ -43,6 +43,7 @@ class Skip(enum.Enum):
 
 # errors whose scene is exactly what the file says; they do not stop simulation, export or render
 SCENE_AS_WRITTEN = frozenset({MATE_NOT_COINCIDENT})
+NO_SUCH_ROOT, TRAIT_AS_ROOT = "A001", "A002"  # the root model asked for (--model, a scenario's root) is not a model
 
 
 @dataclass
@@ -140,14 +141,14 @@ def _pick_root(program, unit, name: str | None, rep: Reporter) -> ModelSym | Non
     found = program.lookup(name.split("."), unit)
     if isinstance(found, ModelSym) and found.is_trait:
         span = found.stmt.header if found.unit is unit and found.stmt is not None else EMPTY_SPAN
-        rep.add("A002", f"'{name}' is a trait; a trait cannot be instantiated as the root model", span=span,
+        rep.add(TRAIT_AS_ROOT, f"'{name}' is a trait; a trait cannot be instantiated as the root model", span=span,
                 help="name a model with --model, or leave it out to load the last model of the file")
         return None
     if not isinstance(found, ModelSym):
         models = [s.path.parts[0].name for s in unit.tree.statements
                   if isinstance(s, ast.Declaration) and s.keyword != "becomes" and len(s.path.parts) == 1
                   and s.value is None]
-        rep.add("A001", f"no model named '{name}'" + (f"; this file defines {', '.join(models)}" if models else ""),
+        rep.add(NO_SUCH_ROOT, f"no model named '{name}'" + (f"; this file defines {', '.join(models)}" if models else ""),
                 span=EMPTY_SPAN)
         return None
     return found

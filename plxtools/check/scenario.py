@@ -245,88 +245,114 @@ def parse(path: Path) -> tuple[Scenario | None, list[ScenarioError]]:
     """Read a scenario file; the errors say what is wrong and where (the scenario is None when it
     cannot be used at all)."""
     file = display_path(path)
-    errors: list[ScenarioError] = []
-    try:
-        text = path.read_bytes().decode("utf-8")
-    except OSError as exc:
-        return None, [ScenarioError(f"cannot read the scenario: {exc.strerror or exc}", Loc(file, 1))]
-    except UnicodeDecodeError:
-        return None, [ScenarioError("the scenario is not UTF-8 text", Loc(file, 1))]
-    try:
-        doc = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        m = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
-        loc = Loc(file, int(m.group(1)), int(m.group(2))) if m else Loc(file, 1)
-        msg = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(exc)) if m else str(exc)
-        return None, [ScenarioError(f"invalid TOML: {msg}", loc)]
+    text, doc, error = _read(path, file)
+    if doc is None:
+        return None, [error]  # type: ignore[list-item]
     lines = _Lines(text, file)
-
-    def at_key(keys: dict[str, Loc], key: str, fallback: Loc) -> Loc:
-        return keys.get(key, fallback)
-
     first = Loc(file, 1)
-    for k in doc:
-        if k not in TOP_KEYS:
-            hint = did_you_mean(k, list(TOP_KEYS))
-            errors.append(ScenarioError(f"unknown key '{k}'" + (f"; did you mean '{hint}'?" if hint else ""),
-                                        at_key(lines.top, k, first), help=f"top-level keys: {', '.join(TOP_KEYS)}"))
-    model = doc.get("model")
-    model_loc = at_key(lines.top, "model", first)
-    model_file = None
-    if model is None:
-        errors.append(ScenarioError("the scenario names no model: add model = \"FILE.openplx\"", first))
-    elif not isinstance(model, str) or not model:
-        errors.append(ScenarioError(f"model must be a file name, not {_kind(model)}", model_loc))
-    else:
-        model_file = (path.parent / model)
-        if not model_file.is_file():
-            errors.append(ScenarioError(f"model file '{model}' not found (looked for {display_path(model_file)})",
-                                        model_loc))
-            model_file = None
-    root = doc.get("root")
-    root_loc = lines.top.get("root")
-    if root is not None and (not isinstance(root, str) or not root):
-        errors.append(ScenarioError(f"root must be a model name, not {_kind(root)}", root_loc or first))
-        root = None
-    duration = doc.get("duration")
-    dur_loc = lines.top.get("duration")
-    if duration is not None and (not _is_num(duration) or not math.isfinite(duration) or duration <= 0
-                                 or duration > 3600):
-        errors.append(ScenarioError(f"duration must be a number of seconds in (0, 3600], not "
-                                    f"{duration!r}" if _is_num(duration) else
-                                    f"duration must be a number of seconds, not {_kind(duration)}", dur_loc or first))
-        duration = None
-    name = doc.get("name")
-    if not isinstance(name, str) or not name:
-        name = path.name[: -len(SUFFIX)] if path.name.endswith(SUFFIX) else path.stem
-    sc = Scenario(file, name, model_file, model_loc, root, root_loc, float(duration) if duration else None, dur_loc)
-
+    errors: list[ScenarioError] = []
+    _unknown_keys(doc, TOP_KEYS, lines.top, first, errors, where="", help="top-level keys")
+    model_file, model_loc = _model_file(doc.get("model"), path, lines.top.get("model", first), first, errors)
+    root, root_loc = _root(doc.get("root"), lines.top.get("root"), first, errors)
+    duration, dur_loc = _duration(doc.get("duration"), lines.top.get("duration"), first, errors)
+    sc = Scenario(file, _name(doc.get("name"), path), model_file, model_loc, root, root_loc,
+                  float(duration) if duration else None, dur_loc)
     for kind, keys_allowed in (("input", INPUT_KEYS), ("expect", EXPECT_KEYS)):
-        rows = doc.get(kind, [])
-        if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
-            errors.append(ScenarioError(f"'{kind}' must be tables written [[{kind}]]", at_key(lines.top, kind, first)))
-            continue
-        for i, row in enumerate(rows):
-            loc, keys = lines.table(kind, i)
-            for k in row:
-                if k not in keys_allowed:
-                    hint = did_you_mean(k, list(keys_allowed))
-                    errors.append(ScenarioError(f"unknown key '{k}' in [[{kind}]]" +
-                                                (f"; did you mean '{hint}'?" if hint else ""), at_key(keys, k, loc),
-                                                help=f"[[{kind}]] keys: {', '.join(keys_allowed)}"))
-            if kind == "input":
-                item = _parse_input(row, loc, keys, errors)
-                if item is not None:
-                    sc.inputs.append(item)
-            else:
-                exp = _parse_expect(row, loc, keys, errors)
-                if exp is not None:
-                    sc.expects.append(exp)
+        _parse_tables(doc, kind, keys_allowed, lines, sc, errors)
     if not errors and not sc.expects:
         errors.append(ScenarioError("the scenario expects nothing: add an [[expect]] table", first))
     if not errors and sc.end <= 0:
         errors.append(ScenarioError("the scenario runs for 0 s: give a duration or a time after 0", dur_loc or first))
     return sc, errors
+
+
+def _read(path: Path, file: str) -> tuple[str, dict | None, ScenarioError | None]:
+    """The file's text and TOML document, or the error that stops everything."""
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except OSError as exc:
+        return "", None, ScenarioError(f"cannot read the scenario: {exc.strerror or exc}", Loc(file, 1))
+    except UnicodeDecodeError:
+        return "", None, ScenarioError("the scenario is not UTF-8 text", Loc(file, 1))
+    try:
+        return text, tomllib.loads(text), None
+    except tomllib.TOMLDecodeError as exc:
+        m = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
+        loc = Loc(file, int(m.group(1)), int(m.group(2))) if m else Loc(file, 1)
+        msg = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(exc)) if m else str(exc)
+        return text, None, ScenarioError(f"invalid TOML: {msg}", loc)
+
+
+def _unknown_keys(row: dict, allowed: tuple[str, ...], keys: dict[str, Loc], fallback: Loc,
+                  errors: list[ScenarioError], where: str, help: str) -> None:
+    """An error for every key of ``row`` not in ``allowed``, with the nearest allowed one."""
+    for k in row:
+        if k not in allowed:
+            hint = did_you_mean(k, list(allowed))
+            errors.append(ScenarioError(f"unknown key '{k}'{where}" + (f"; did you mean '{hint}'?" if hint else ""),
+                                        keys.get(k, fallback), help=f"{help}: {', '.join(allowed)}"))
+
+
+def _model_file(model: Any, path: Path, model_loc: Loc, first: Loc,
+                errors: list[ScenarioError]) -> tuple[Path | None, Loc]:
+    """``model = "FILE.openplx"``: the file, relative to the scenario, that must exist."""
+    if model is None:
+        errors.append(ScenarioError("the scenario names no model: add model = \"FILE.openplx\"", first))
+        return None, model_loc
+    if not isinstance(model, str) or not model:
+        errors.append(ScenarioError(f"model must be a file name, not {_kind(model)}", model_loc))
+        return None, model_loc
+    model_file = path.parent / model
+    if not model_file.is_file():
+        errors.append(ScenarioError(f"model file '{model}' not found (looked for {display_path(model_file)})",
+                                    model_loc))
+        return None, model_loc
+    return model_file, model_loc
+
+
+def _root(root: Any, root_loc: Loc | None, first: Loc, errors: list[ScenarioError]) -> tuple[str | None, Loc | None]:
+    if root is not None and (not isinstance(root, str) or not root):
+        errors.append(ScenarioError(f"root must be a model name, not {_kind(root)}", root_loc or first))
+        return None, root_loc
+    return root, root_loc
+
+
+def _duration(duration: Any, dur_loc: Loc | None, first: Loc,
+              errors: list[ScenarioError]) -> tuple[Any, Loc | None]:
+    """``duration``: seconds in (0, 3600], or None (the run ends at the latest time named)."""
+    if duration is None:
+        return None, dur_loc
+    if not _is_num(duration):
+        errors.append(ScenarioError(f"duration must be a number of seconds, not {_kind(duration)}", dur_loc or first))
+        return None, dur_loc
+    if not math.isfinite(duration) or duration <= 0 or duration > 3600:
+        errors.append(ScenarioError(f"duration must be a number of seconds in (0, 3600], not {duration!r}",
+                                    dur_loc or first))
+        return None, dur_loc
+    return duration, dur_loc
+
+
+def _name(name: Any, path: Path) -> str:
+    if isinstance(name, str) and name:
+        return name
+    return path.name[: -len(SUFFIX)] if path.name.endswith(SUFFIX) else path.stem
+
+
+def _parse_tables(doc: dict, kind: str, keys_allowed: tuple[str, ...], lines: _Lines, sc: Scenario,
+                  errors: list[ScenarioError]) -> None:
+    """Every ``[[input]]`` (or ``[[expect]]``) table, into ``sc.inputs`` (``sc.expects``)."""
+    rows = doc.get(kind, [])
+    if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
+        errors.append(ScenarioError(f"'{kind}' must be tables written [[{kind}]]",
+                                    lines.top.get(kind, Loc(lines.file, 1))))
+        return
+    parse_row, into = (_parse_input, sc.inputs) if kind == "input" else (_parse_expect, sc.expects)
+    for i, row in enumerate(rows):
+        loc, keys = lines.table(kind, i)
+        _unknown_keys(row, keys_allowed, keys, loc, errors, where=f" in [[{kind}]]", help=f"[[{kind}]] keys")
+        item = parse_row(row, loc, keys, errors)
+        if item is not None:
+            into.append(item)
 
 
 def _time(v: Any, what: str, loc: Loc, errors: list[ScenarioError]) -> float | None:
@@ -355,47 +381,81 @@ def _parse_input(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[Scenari
 
 def _parse_expect(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[ScenarioError]) -> Expect | None:
     n = len(errors)
-    at = during = None
-    if "at" in row and "during" in row:
-        errors.append(ScenarioError("give either at or during, not both", keys.get("during", loc)))
-    elif "during" in row:
-        d = row["during"]
-        dl = keys.get("during", loc)
-        if not (isinstance(d, list) and len(d) == 2):
-            errors.append(ScenarioError(f"during must be [start, end] in seconds, not {_kind(d)}", dl))
-        else:
-            t0, t1 = _time(d[0], "during start", dl, errors), _time(d[1], "during end", dl, errors)
-            if t0 is not None and t1 is not None:
-                if t0 > t1:
-                    errors.append(ScenarioError(f"during = [{t0:g}, {t1:g}] ends before it starts", dl))
-                during = (t0, t1)
-    elif "at" in row:
-        at = _time(row["at"], "at", keys.get("at", loc), errors)
-    else:
-        errors.append(ScenarioError("[[expect]] needs a time: at = SECONDS or during = [START, END]", loc))
+    at, during = _when(row, loc, keys, errors)
     of = row.get("of")
     if not isinstance(of, str) or not of:
         errors.append(ScenarioError("[[expect]] needs of = \"an.output.path\" or \"a.body.x\"" if of is None else
                                     f"of must be a dotted path, not {_kind(of)}", keys.get("of", loc)))
+    checks = _comparisons(row, loc, keys, errors)
+    tol = _tolerance(row, loc, keys, errors)
+    unit = row.get("unit")
+    if unit is not None and unit not in UNITS:
+        errors.append(ScenarioError(f"unit must be \"deg\" or \"rad\", not {unit!r}", keys.get("unit", loc)))
+    if len(errors) > n:
+        return None
+    return Expect(at, during, of, checks, float(tol) if tol is not None else None, unit, loc, keys)  # type: ignore
+
+
+def _when(row: dict, loc: Loc, keys: dict[str, Loc],
+          errors: list[ScenarioError]) -> tuple[float | None, tuple[float, float] | None]:
+    """(at, during) of an expectation: exactly one of ``at = T`` and ``during = [T0, T1]``."""
+    if "at" in row and "during" in row:
+        errors.append(ScenarioError("give either at or during, not both", keys.get("during", loc)))
+        return None, None
+    if "during" in row:
+        return None, _during(row["during"], keys.get("during", loc), errors)
+    if "at" in row:
+        return _time(row["at"], "at", keys.get("at", loc), errors), None
+    errors.append(ScenarioError("[[expect]] needs a time: at = SECONDS or during = [START, END]", loc))
+    return None, None
+
+
+def _during(d: Any, dl: Loc, errors: list[ScenarioError]) -> tuple[float, float] | None:
+    if not (isinstance(d, list) and len(d) == 2):
+        errors.append(ScenarioError(f"during must be [start, end] in seconds, not {_kind(d)}", dl))
+        return None
+    t0, t1 = _time(d[0], "during start", dl, errors), _time(d[1], "during end", dl, errors)
+    if t0 is None or t1 is None:
+        return None
+    if t0 > t1:
+        errors.append(ScenarioError(f"during = [{t0:g}, {t1:g}] ends before it starts", dl))
+    return t0, t1
+
+
+def _comparisons(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[ScenarioError]) -> list[tuple[str, Any]]:
+    """The comparisons written (below, above, ...), each with its threshold(s), in COMPARATORS order."""
     checks: list[tuple[str, Any]] = []
     for op in COMPARATORS:
         if op not in row:
             continue
-        v, kl = row[op], keys.get(op, loc)
-        if op == "between":
-            if not (isinstance(v, list) and len(v) == 2 and all(_is_num(x) and math.isfinite(x) for x in v)):
-                errors.append(ScenarioError(f"between must be [low, high], not {_kind(v)}", kl))
-                continue
-            if v[0] > v[1]:
-                errors.append(ScenarioError(f"between = [{v[0]:g}, {v[1]:g}]: low is above high", kl))
-                continue
-            checks.append((op, (float(v[0]), float(v[1]))))
-        elif not _is_num(v) or not math.isfinite(v):
-            errors.append(ScenarioError(f"{op} must be a number, not {_kind(v) if not _is_num(v) else v}", kl))
-        else:
-            checks.append((op, float(v)))
+        parse_limit = _range if op == "between" else _number
+        limit = parse_limit(op, row[op], keys.get(op, loc), errors)
+        if limit is not None:
+            checks.append((op, limit))
     if not checks and not any(op in row for op in COMPARATORS):
         errors.append(ScenarioError(f"[[expect]] states nothing: add one of {', '.join(COMPARATORS)}", loc))
+    return checks
+
+
+def _range(op: str, v: Any, kl: Loc, errors: list[ScenarioError]) -> tuple[float, float] | None:
+    if not (isinstance(v, list) and len(v) == 2 and all(_is_num(x) and math.isfinite(x) for x in v)):
+        errors.append(ScenarioError(f"between must be [low, high], not {_kind(v)}", kl))
+        return None
+    if v[0] > v[1]:
+        errors.append(ScenarioError(f"between = [{v[0]:g}, {v[1]:g}]: low is above high", kl))
+        return None
+    return float(v[0]), float(v[1])
+
+
+def _number(op: str, v: Any, kl: Loc, errors: list[ScenarioError]) -> float | None:
+    if not _is_num(v) or not math.isfinite(v):
+        errors.append(ScenarioError(f"{op} must be a number, not {_kind(v) if not _is_num(v) else v}", kl))
+        return None
+    return float(v)
+
+
+def _tolerance(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[ScenarioError]) -> Any:
+    """``tolerance``: required by ``equals``, and only allowed with it."""
     tol = row.get("tolerance")
     if "equals" in row and tol is None:
         errors.append(ScenarioError("equals needs a tolerance (tolerance = 0.05)", keys.get("equals", loc)))
@@ -403,12 +463,7 @@ def _parse_expect(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[Scenar
         errors.append(ScenarioError(f"tolerance must be a number >= 0, not {tol!r}", keys.get("tolerance", loc)))
     elif tol is not None and "equals" not in row:
         errors.append(ScenarioError("tolerance only goes with equals", keys.get("tolerance", loc)))
-    unit = row.get("unit")
-    if unit is not None and unit not in UNITS:
-        errors.append(ScenarioError(f"unit must be \"deg\" or \"rad\", not {unit!r}", keys.get("unit", loc)))
-    if len(errors) > n:
-        return None
-    return Expect(at, during, of, checks, float(tol) if tol is not None else None, unit, loc, keys)  # type: ignore
+    return tol
 
 
 # ----------------------------------------------------------------------------- bind to a model
@@ -419,67 +474,116 @@ def bind(sc: Scenario, signals: list[SignalInfo], bodies: list[str], bound: set[
     """Check the scenario's paths, values and times against the loaded model; fills in what each
     input and expectation refers to.  ``bound`` are the signal paths that act on the MuJoCo model,
     ``unbound`` why the others do not; ``counts`` what the assembled scene holds (`scene.bodies`)."""
+    errors: list[ScenarioError] = []
+    model = _Model(signals, bodies, bound, unbound, model_file, counts)
+    if sc.duration is not None:
+        errors.extend(_after_the_end(sc, sc.duration))
+    for step in sc.inputs:
+        err = _bind_input(step, model)
+        if err is not None:
+            errors.append(err)
+    for e in sc.expects:
+        err = _bind_count(e, model) if model.is_count(e.of) else _bind_expect(e, model)
+        if err is not None:
+            errors.append(err)
+    return errors
+
+
+@dataclass
+class _Model:
+    """What :func:`bind` checks a scenario against: the model's signals, bodies and scene counts."""
+
+    signals: list[SignalInfo]
+    bodies: list[str]
+    bound: set[str]
+    unbound: dict[str, str]
+    model_file: str
+    counts: dict[str, int] | None
+    by_path: dict[str, SignalInfo] = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.by_path = {s.path: s for s in self.signals}
+
+    def paths(self, direction: str) -> list[str]:
+        return [s.path for s in self.signals if s.direction == direction]
+
+    def not_simulated(self, path: str) -> str:
+        return self.unbound.get(path, f"{path} is not simulated")
+
+    def is_count(self, of: str) -> bool:
+        """``scene.bodies``, ``scene.mates.hinge``...: unless a signal or body has that path."""
+        from plxtools.check.scenecounts import PREFIX
+
+        head = of.rsplit(".", 1)[0]
+        return (self.counts is not None and of.startswith(PREFIX) and of not in self.by_path
+                and head not in self.by_path and head not in self.bodies)
+
+
+COUNTED = ("bodies", "mates", "controllers", "shafts", "shaft_couplings", "shaft_motors")
+
+
+def _after_the_end(sc: Scenario, duration: float) -> list[ScenarioError]:
+    out = []
+    for x in [*sc.inputs, *sc.expects]:
+        t = x.at if x.at is not None else x.during[1]  # type: ignore[union-attr,index]
+        if t > duration + 1e-12:
+            key = "at" if x.at is not None else "during"
+            out.append(ScenarioError(f"{key} = {t:g} s is after the end of the run (duration = "
+                                     f"{duration:g} s)", x.keys.get(key, x.loc)))
+    return out
+
+
+def _bind_input(step: InputStep, model: _Model) -> ScenarioError | None:
+    """Point an ``[[input]]`` at a simulated input signal and convert its value."""
+    kl = step.keys.get("signal", step.loc)
+    info = model.by_path.get(step.signal)
+    if info is not None and info.direction != "input":
+        return ScenarioError(f"{step.signal} is an output; [[input]] sends to an input", kl)
+    if info is None:
+        hint = did_you_mean(step.signal, model.paths("input"))
+        return ScenarioError(f"{model.model_file} has no input '{step.signal}'" +
+                             (f"; did you mean '{hint}'?" if hint else ""), kl)
+    if step.signal not in model.bound:
+        return ScenarioError(model.not_simulated(step.signal), kl)
+    try:
+        step.coerced = coerce(info, step.value)
+    except SignalValueError as exc:
+        return ScenarioError(str(exc), step.keys.get("value", step.loc),
+                             help=f"{info.type} takes {KIND_TEXT[info.value_kind or 'real']}")
+    step.info = info
+    return None
+
+
+def _bind_count(e: Expect, model: _Model) -> ScenarioError | None:
+    """An expectation on a count of the assembled scene (``scene.mates.hinge``)."""
     from plxtools.check.scenecounts import PREFIX
+
+    counts = model.counts or {}
+    what = e.of[len(PREFIX):]
+    if e.unit is not None:
+        return ScenarioError(f"{e.of} is a count; it takes no unit", e.keys.get("unit", e.loc))
+    if what in counts or what.split(".", 1)[0] in COUNTED:
+        e.count = counts.get(what, 0)  # a kind the scene does not hold: 0 of them
+        return None
+    hint = did_you_mean(what, list(counts))
+    return ScenarioError(f"the scene has no count '{what}' (counts: bodies, mates, controllers, "
+                         "shafts, shaft_couplings, shaft_motors, and per kind such as mates.hinge)"
+                         + (f"; did you mean '{PREFIX}{hint}'?" if hint else ""), e.keys.get("of", e.loc))
+
+
+def _bind_expect(e: Expect, model: _Model) -> ScenarioError | None:
+    """Point an ``[[expect]]`` at an output (or a body quantity) and check its unit."""
     from plxtools.check.api import ANGULAR_OUTPUTS, BODY_QUANTITIES, component_index
 
-    errors: list[ScenarioError] = []
-    by_path = {s.path: s for s in signals}
-    inputs = [s.path for s in signals if s.direction == "input"]
-    outputs = [s.path for s in signals if s.direction == "output"]
-    if sc.duration is not None:
-        for x in [*sc.inputs, *sc.expects]:
-            t = x.at if x.at is not None else x.during[1]  # type: ignore[union-attr,index]
-            if t > sc.duration + 1e-12:
-                key = "at" if x.at is not None else "during"
-                errors.append(ScenarioError(f"{key} = {t:g} s is after the end of the run (duration = "
-                                            f"{sc.duration:g} s)", x.keys.get(key, x.loc)))
-    for step in sc.inputs:
-        kl = step.keys.get("signal", step.loc)
-        info = by_path.get(step.signal)
-        if info is None or info.direction != "input":
-            if info is not None:
-                errors.append(ScenarioError(f"{step.signal} is an output; [[input]] sends to an input", kl))
-                continue
-            hint = did_you_mean(step.signal, inputs)
-            errors.append(ScenarioError(f"{model_file} has no input '{step.signal}'" +
-                                        (f"; did you mean '{hint}'?" if hint else ""), kl))
-            continue
-        if step.signal not in bound:
-            errors.append(ScenarioError(unbound.get(step.signal, f"{step.signal} is not simulated"), kl))
-            continue
-        try:
-            step.coerced = coerce(info, step.value)
-        except SignalValueError as exc:
-            errors.append(ScenarioError(str(exc), step.keys.get("value", step.loc),
-                                        help=f"{info.type} takes {KIND_TEXT[info.value_kind or 'real']}"))
-            continue
-        step.info = info
-    for e in sc.expects:
-        kl = e.keys.get("of", e.loc)
-        if counts is not None and e.of.startswith(PREFIX) and e.of not in by_path and \
-                e.of.rsplit(".", 1)[0] not in by_path and e.of.rsplit(".", 1)[0] not in bodies:
-            what = e.of[len(PREFIX):]
-            if e.unit is not None:
-                errors.append(ScenarioError(f"{e.of} is a count; it takes no unit", e.keys.get("unit", e.loc)))
-            elif what in counts or what.split(".", 1)[0] in ("bodies", "mates", "controllers", "shafts",
-                                                              "shaft_couplings", "shaft_motors"):
-                e.count = counts.get(what, 0)  # a kind the scene does not hold: 0 of them
-            else:
-                hint = did_you_mean(what, list(counts))
-                errors.append(ScenarioError(f"the scene has no count '{what}' (counts: bodies, mates, controllers, "
-                                            "shafts, shaft_couplings, shaft_motors, and per kind such as mates.hinge)"
-                                            + (f"; did you mean '{PREFIX}{hint}'?" if hint else ""), kl))
-            continue
-        err = _bind_subject(e, by_path, bodies, outputs, bound, unbound, model_file, BODY_QUANTITIES,
-                            component_index)
-        if err is not None:
-            errors.append(ScenarioError(err, kl))
-            continue
-        e.angular = by_path[e.output].type.endswith(ANGULAR_OUTPUTS) and not e.norm
-        if e.unit == "deg" and not e.angular:
-            errors.append(ScenarioError(f"unit = \"deg\" but {e.of} is not an angle or an angular speed",
-                                        e.keys.get("unit", e.loc)))
-    return errors
+    err = _bind_subject(e, model.by_path, model.bodies, model.paths("output"), model.bound, model.unbound,
+                        model.model_file, BODY_QUANTITIES, component_index)
+    if err is not None:
+        return ScenarioError(err, e.keys.get("of", e.loc))
+    e.angular = model.by_path[e.output].type.endswith(ANGULAR_OUTPUTS) and not e.norm
+    if e.unit == "deg" and not e.angular:
+        return ScenarioError(f"unit = \"deg\" but {e.of} is not an angle or an angular speed",
+                             e.keys.get("unit", e.loc))
+    return None
 
 
 def _bind_subject(e: Expect, by_path: dict, bodies: list[str], outputs: list[str], bound: set[str],

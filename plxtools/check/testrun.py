@@ -120,89 +120,125 @@ def run_scenario(path: Path, *, bundle_path: list[str] | tuple = (), openplx_ver
 def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> None:
     import mujoco
 
-    from plxtools.check.api import ModelError, prepare
     from plxtools.check.mj_simulate import simulate_compiled
+    from plxtools.check.scenecounts import scene_counts
     from plxtools.check.signals import SignalRuntime
 
     assert sc.model_file is not None
     model_file = display_path(sc.model_file)
     res.model_file = model_file
-    try:
-        prep = prepare(sc.model_file, sc.root, bundle_path=bundle_path, openplx_version=openplx_version)
-    except ModelError as exc:
-        codes = {d.code for d in exc.diagnostics}
-        if sc.root is not None and codes & {"A001", "A002"}:
-            d = next(d for d in exc.diagnostics if d.code in ("A001", "A002"))
-            _error(res, [ScenarioError(f"{model_file}: {d.message}", sc.root_loc or sc.model_loc)])
-            return
-        res.status = FAILED
-        res.diagnostics.append(diag("A142", f"{sc.name}: the model cannot be simulated: {exc}", sc.model_loc))
-        res.diagnostics.extend(d for d in exc.diagnostics if d.severity == Severity.ERROR)
+    prep = _prepare(sc, res, model_file, bundle_path, openplx_version)
+    if prep is None:
         return
     res.model = prep.model
     runtime = SignalRuntime.bind(mujoco, prep.compiled, prep.signals)
-    from plxtools.check.scenecounts import scene_counts
-
     errors = bind(sc, prep.signals, prep.bodies, set(runtime.bindings), runtime.unbound, model_file,
                   scene_counts(prep.compiled.scene))
     if errors:
         _error(res, errors)
         return
-    h = float(prep.compiled.model.opt.timestep)
-    inputs = sorted(sc.inputs, key=lambda s: s.at)
-    outcomes = [Outcome(e) for e in sc.expects]
-    res.outcomes = outcomes
-    pending_at = [o for o in outcomes if o.expect.at is not None]
-    during = [o for o in outcomes if o.expect.during is not None]
-    nxt = 0
+    res.outcomes = [Outcome(e) for e in sc.expects]
+    driver = _Driver(sc, runtime, res.outcomes, float(prep.compiled.model.opt.timestep))
+    sim = simulate_compiled(prep.compiled, sc.end, controller=driver)
+    res.simulated_time, res.steps = sim.simulated_time, sim.steps
+    for o in res.outcomes:
+        if not o.passed:
+            res.diagnostics.append(diag("A140", o.message(), o.expect.loc))
+    _run_findings(sim.notes, res, model_file)
+    if res.failures:
+        res.status = FAILED
 
-    def measure(e: Expect, m: Any, d: Any) -> float:
+
+def _prepare(sc: Scenario, res: ScenarioResult, model_file: str, bundle_path, openplx_version) -> Any:
+    """The model compiled for MuJoCo, or None when it cannot be (``res`` then says why: a root that
+    is not in the file is the scenario's error, anything else a failure of the model)."""
+    from plxtools.check.api import ModelError, prepare
+    from plxtools.check.pipeline import NO_SUCH_ROOT, TRAIT_AS_ROOT
+
+    try:
+        return prepare(sc.model_file, sc.root, bundle_path=bundle_path, openplx_version=openplx_version)
+    except ModelError as exc:
+        codes = {d.code for d in exc.diagnostics}
+        if sc.root is not None and codes & {NO_SUCH_ROOT, TRAIT_AS_ROOT}:
+            d = next(d for d in exc.diagnostics if d.code in (NO_SUCH_ROOT, TRAIT_AS_ROOT))
+            _error(res, [ScenarioError(f"{model_file}: {d.message}", sc.root_loc or sc.model_loc)])
+            return None
+        res.status = FAILED
+        res.diagnostics.append(diag("A142", f"{sc.name}: the model cannot be simulated: {exc}", sc.model_loc))
+        res.diagnostics.extend(d for d in exc.diagnostics if d.severity == Severity.ERROR)
+        return None
+
+
+class _Driver:
+    """The controller of a scenario's run (called before every step and once after the last): it
+    sends each ``[[input]]`` when its time comes and measures each ``[[expect]]`` at its time (or at
+    every step of its ``during``), within half a step."""
+
+    def __init__(self, sc: Scenario, runtime: Any, outcomes: list[Outcome], h: float) -> None:
+        self.runtime = runtime
+        self.half = h / 2
+        self.inputs = sorted(sc.inputs, key=lambda s: s.at)
+        self.next_input = 0
+        self.pending_at = [o for o in outcomes if o.expect.at is not None]
+        self.during = [o for o in outcomes if o.expect.during is not None]
+
+    def __call__(self, t: float, m: Any, d: Any) -> None:
+        self._send(t, m, d)
+        if self.pending_at:
+            self._measure_due(t, m, d)
+        for o in self.during:
+            t0, t1 = o.expect.during  # type: ignore[misc]
+            if t0 - self.half <= t <= t1 + self.half:
+                _sample(o, self.measure(o.expect, m, d), t)
+
+    def _send(self, t: float, m: Any, d: Any) -> None:
+        inputs = self.inputs
+        while self.next_input < len(inputs) and inputs[self.next_input].at <= t + self.half:
+            step = inputs[self.next_input]
+            self.runtime.write(step.signal, step.coerced, m, d)
+            self.next_input += 1
+
+    def _measure_due(self, t: float, m: Any, d: Any) -> None:
+        due = [o for o in self.pending_at if o.expect.at <= t + self.half]  # type: ignore[operator]
+        for o in due:
+            o.measured, o.time = self.measure(o.expect, m, d), t
+            o.passed, o.samples = not o.expect.failures(o.measured), 1
+        if due:
+            self.pending_at = [o for o in self.pending_at if o not in due]
+
+    def measure(self, e: Expect, m: Any, d: Any) -> float:
         if e.count is not None:
             return float(e.count)
-        v = runtime.read(e.output, m, d)
+        v = self.runtime.read(e.output, m, d)
         if e.norm:
             return math.sqrt(sum(x * x for x in v))
         return float(v[e.index]) if e.index is not None else float(v)
 
-    def controller(t: float, m: Any, d: Any) -> None:
-        nonlocal nxt, pending_at
-        while nxt < len(inputs) and inputs[nxt].at <= t + h / 2:
-            runtime.write(inputs[nxt].signal, inputs[nxt].coerced, m, d)
-            nxt += 1
-        if pending_at:
-            due = [o for o in pending_at if o.expect.at <= t + h / 2]  # type: ignore[operator]
-            for o in due:
-                o.measured, o.time = measure(o.expect, m, d), t
-                o.passed, o.samples = not o.expect.failures(o.measured), 1
-            if due:
-                pending_at = [o for o in pending_at if o not in due]
-        for o in during:
-            t0, t1 = o.expect.during  # type: ignore[misc]
-            if t0 - h / 2 <= t <= t1 + h / 2:
-                v = measure(o.expect, m, d)
-                o.samples += 1
-                if o.expect.failures(v):
-                    if o.passed is not False:
-                        o.passed, o.measured, o.time = False, v, t
-                    if o.worst is None or o.expect.violation(v) > o.expect.violation(o.worst):
-                        o.worst, o.worst_time = v, t
-                elif o.passed is None:
-                    o.passed, o.measured, o.time = True, v, t
 
-    sim = simulate_compiled(prep.compiled, sc.end, controller=controller)
-    res.simulated_time, res.steps = sim.simulated_time, sim.steps
-    for o in outcomes:
-        if not o.passed:
-            res.diagnostics.append(diag("A140", o.message(), o.expect.loc))
-    for n in sim.notes:
-        if n.severity == "error" or n.code in ("A102", "A103", "A104"):
+def _sample(o: Outcome, v: float, t: float) -> None:
+    """One sample of a ``during`` expectation: the first failure, the worst one, or the first pass."""
+    if o.expect.failures(v):
+        if o.passed is not False:
+            o.passed, o.measured, o.time = False, v, t
+        if o.worst is None or o.expect.violation(v) > o.expect.violation(o.worst):
+            o.worst, o.worst_time = v, t
+    elif o.passed is None:
+        o.passed, o.measured, o.time = True, v, t
+    o.samples += 1
+
+
+def _run_findings(notes: list, res: ScenarioResult, model_file: str) -> None:
+    """The run's errors (a body that fell through among them) fail the scenario; its warnings of mates
+    drifting apart and of geometries that start in each other are shown beside the result."""
+    from plxtools.check.mj_simulate import FELL_THROUGH, MATE_DRIFT, OVERLAP_AT_START
+
+    for n in notes:
+        if n.severity == "error" or n.code in (FELL_THROUGH, MATE_DRIFT, OVERLAP_AT_START):
             src = n.source
             loc = Loc(display_path(Path(src.file)) if src else model_file, src.line if src and src.line else 1,
                       src.column if src and src.column else 1)
             d = diag(n.code, n.message, loc, Severity.ERROR if n.severity == "error" else Severity.WARNING)
             (res.diagnostics if n.severity == "error" else res.findings).append(d)
-    if res.failures:
-        res.status = FAILED
 
 
 # ----------------------------------------------------------------------------- reports
