@@ -350,6 +350,30 @@ def _fmt(v: np.ndarray) -> str:
     return "(" + ", ".join(f"{x:.3g}" for x in v) + ")"
 
 
+def _train_state(ctx: BuildContext, model: Any, joint: str, own: bool, members: list[tuple[Any, float]],
+                 qpos: np.ndarray, qvel: np.ndarray) -> None:
+    """A drive train's coordinate at the start, and each shaft's angle on it (mj_drivetrain).
+
+    A train carried by its first shaft starts at that shaft's angle, turning at the speed that
+    keeps the train's angular momentum (sum of I f v over sum of I f^2: the shafts' own speed when
+    they agree); a train carried by a hinge starts with the hinge.  A shaft whose own initial
+    speed is not the one its train starts with is an info (A120)."""
+    jid = model.joint(joint).id
+    qa, da = int(model.jnt_qposadr[jid]), int(model.jnt_dofadr[jid])
+    if own:
+        qpos[qa] = float(members[0][0].angle)
+        weight = sum(float(s.inertia) * f * f for s, f in members)
+        qvel[da] = sum(float(s.inertia) * f * float(s.velocity) for s, f in members) / weight
+    q0, v0 = float(qpos[qa]), float(qvel[da])
+    for s, f in members:
+        ctx.out.shafts[s.path].offset = float(s.angle) - f * q0
+        v = float(s.velocity)
+        if abs(v - f * v0) > 1e-9 * max(abs(v), abs(f * v0), 1.0):
+            ctx.note(INFO, "A120", f"{s.path}: its initial velocity {v:g} rad/s is not the {f * v0:.4g} rad/s "
+                     "its drive train starts with (the gears and hinge actuators let the train turn only as one; "
+                     "it starts at the train's speed)", s)
+
+
 def add_keyframe(ctx: BuildContext, model: Any) -> None:
     qvel = np.zeros(model.nv)
     roots = set(ctx.out.free_roots)
@@ -366,9 +390,7 @@ def add_keyframe(ctx: BuildContext, model: Any) -> None:
         elif np.any(v != 0) or np.any(w != 0):
             _joint_velocities(ctx, model, path, body, v, w, qvel)
     qpos = np.array(model.qpos0)
-    for jn, (angle, speed) in ctx.shaft_init.items():
-        jid = model.joint(jn).id
-        qpos[model.jnt_qposadr[jid]] = angle
-        qvel[model.jnt_dofadr[jid]] = speed
+    for jn, (own, members) in ctx.shaft_trains.items():
+        _train_state(ctx, model, jn, own, members, qpos, qvel)
     ctrl = [a.ctrl for a in ctx.out.actuators]  # actuators compile in the order they were added
     ctx.spec.add_key(name="initial", qpos=list(qpos), qvel=list(qvel), ctrl=ctrl)
