@@ -32,9 +32,10 @@ BIG_FORCE = 1e9
 def add_controllers(ctx: BuildContext, model: Any) -> None:
     bound = bind_controllers(ctx, model)
     choose_timestep(ctx, bound)
+    stopped = {joint for ctl, _m, joint, _s, _i in bound if ctl.kind == "range"}
     for ctl, mate, joint, sign, ieff in bound:
         if ctl.kind == "velocity_motor":
-            add_velocity_motor(ctx, ctl, mate, joint, sign, ieff)
+            add_velocity_motor(ctx, ctl, mate, joint, sign, ieff, joint in stopped)
         elif ctl.kind in ("torque_motor", "force_motor"):
             add_effort_motor(ctx, ctl, mate, joint, sign)
         elif ctl.kind == "range":
@@ -157,7 +158,8 @@ def effort_range(ctx: BuildContext, ctl: Controller, act: Any) -> None:
         act.forcerange = [max(lo, -BIG_FORCE), min(hi, BIG_FORCE)]
 
 
-def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str, sign: int, ieff: float) -> None:
+def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str, sign: int, ieff: float,
+                       stopped: bool = False) -> None:
     h = float(ctx.spec.option.timestep)
     if ctl.gain <= 0:
         ctx.note(
@@ -168,13 +170,16 @@ def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: st
         )
         return
     limited = math.isfinite(ctl.min_effort) or math.isfinite(ctl.max_effort)
-    steps = KV_STEPS_LIMITED if limited else KV_STEPS
+    steps = KV_STEPS_LIMITED if limited or stopped else KV_STEPS
     cap = steps * ieff / h
     kv = min(float(ctl.gain), cap)
     if kv < ctl.gain:
         why = (
             "effort-limited servo: a larger kv would chatter between the effort limits (MuJoCo ignores the implicit damping of a saturated actuator)"
             if limited
+            else "a range on the same joint: the joint limit is solved from the servo's explicit force, and a larger "
+            "kv would chatter against it (gaining energy, A134)"
+            if stopped
             else "integrated implicitly, nearly rigid speed tracking"
         )
         user = "gain" in ctl.user_set

@@ -20,15 +20,17 @@ gears, two hinges, a hinge actuator on a loop-closing mate) keeps the coupled ma
 shaft, a joint equality per gear / hinge actuator as stiff as MuJoCo allows.
 
 A **1D velocity motor** is a ``<velocity>`` actuator on its shaft's coordinate (``gear`` = the
-shaft's speed ratio, so the actuator's length, speed and force are the shaft's).  Its
-``kv = RIGID_SERVO_STEPS x I / h`` on a rigid train, ``I`` the inertia the shaft sees (the joint's
-effective inertia, ``1 / dof_invweight0``, over the ratio squared): integrated implicitly, one step
-from rest gives ``K / (1 + K)`` of the target, within 1 % for K = 150 at any inertia, ratio or time
-step (tests/check/test_drivetrain_one_step.py), as AGX's velocity constraint does.  With a finite
-effort limit ``K = 1`` (MuJoCo drops the implicit damping of a saturated actuator, and a stiffer
-servo chatters between the limits), and on a coupled train ``K = 1`` on the inertia of everything
-it drives (a stiffer servo yanks the couplings, which spring back: A134).  A **1D torque motor**
-is a ``<motor>`` whose control is its torque input (0 until a signal sets it).
+shaft's speed ratio, so the actuator's length, speed and force are the shaft's).  On a rigid train
+in a scene without contacts, joint limits or equalities, ``kv = RIGID_SERVO_STEPS x I / h``, ``I``
+the inertia the shaft sees (the joint's effective inertia, ``1 / dof_invweight0``, over the ratio
+squared): integrated implicitly, one step gives ``K / (1 + K)`` of a change of target, within 1 %
+for K = 150 at any inertia, ratio or time step (tests/check/test_drivetrain_one_step.py), as AGX's
+velocity constraint does.  Otherwise ``K = 1``: contacts, limits and equalities are solved from the
+explicit servo force too, and a servo 10 x stiffer made a cart driven through two trains gain 35 J
+at its first contact (150 x: it fell through the ground); with a finite effort limit MuJoCo drops
+the implicit damping of a saturated actuator and a stiffer servo chatters between the limits; on a
+coupled train the couplings spring back (A134).  A **1D torque motor** is a ``<motor>`` whose
+control is its torque input (0 until a signal sets it).
 """
 
 from __future__ import annotations
