@@ -105,3 +105,50 @@ def test_a_rigid_train_runs_without_energy_findings(tmp_path):
     (tmp_path / "mill.openplx").write_text(text)
     code = main(["check", str(tmp_path / "mill.openplx"), "--duration", "1", "--output-format", "json"])
     assert code == 0
+
+
+SPINNING = """\
+Spinner is Physics3D.System:
+    fast_shaft is DriveTrain.Shaft:
+        inertia.inertia: 1.0
+        kinematics.velocity: {fast}
+    slow_shaft is DriveTrain.Shaft:
+        inertia.inertia: 4.0
+        kinematics.velocity: {slow}
+        kinematics.angle: 0.5
+    reduction is DriveTrain.Gear:
+        connectors: [fast_shaft.output, slow_shaft.input]
+        ratio: 2.0
+    fast_speed is Physics.Signals.AngularVelocity1DOutput:
+        source: fast_shaft
+    slow_speed is Physics.Signals.AngularVelocity1DOutput:
+        source: slow_shaft
+    slow_angle is Physics.Signals.AngleOutput:
+        source: slow_shaft
+"""
+
+
+def _spinner(tmp_path, fast, slow):
+    path = tmp_path / "spinner.openplx"
+    path.write_text(SPINNING.format(fast=fast, slow=slow))
+    sim = load(path)
+    notes = [n for n in sim.prepared.compiled.notes if n.code == "A120"]
+    return sim, notes
+
+
+def test_a_train_of_shafts_keeps_speeds_that_agree(tmp_path):
+    sim, notes = _spinner(tmp_path, 4.0, 2.0)
+    assert notes == []
+    sim.step(0.1)
+    assert sim.read("fast_speed") == pytest.approx(4.0)
+    assert sim.read("slow_speed") == pytest.approx(2.0)
+    assert sim.read("slow_angle") == pytest.approx(0.5 + 2.0 * sim.time)
+
+
+def test_speeds_that_disagree_start_at_the_trains_momentum(tmp_path):
+    """I f v summed over I f^2 on the fast shaft's coordinate: (1 x 1 x 6 + 4 x 0.5 x 0) / (1 + 4 x 0.25) = 3."""
+    sim, notes = _spinner(tmp_path, 6.0, 0.0)
+    assert [n.path for n in notes] == ["fast_shaft", "slow_shaft"]
+    sim.step()
+    assert sim.read("fast_speed") == pytest.approx(3.0)
+    assert sim.read("slow_speed") == pytest.approx(1.5)
