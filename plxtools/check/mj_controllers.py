@@ -29,6 +29,16 @@ BIG_FORCE = 1e9
 
 
 # -- controllers -----------------------------------------------------------------------------
+def note_gain_clamped(ctx: BuildContext, severity: str, message: str, item: Any) -> None:
+    """A111, for mate motors here and drive-train motors (mj_drivetrain): one home for the code."""
+    ctx.note(severity, "A111", message, item)
+
+
+def note_on_loop_mate(ctx: BuildContext, message: str, item: Any) -> None:
+    """A124: a controller or hinge actuator on a mate that closes a loop (no joint to act on)."""
+    ctx.note(WARNING, "A124", message, item)
+
+
 def add_controllers(ctx: BuildContext, model: Any) -> None:
     bound = bind_controllers(ctx, model)
     choose_timestep(ctx, bound)
@@ -133,12 +143,8 @@ def controller_joint(ctx: BuildContext, ctl: Controller, mate: Mate) -> str | No
         )
         return None
     if not joints:
-        ctx.note(
-            WARNING,
-            "A124",
-            f"{ctl.path}: {mate.path} closes a kinematic loop (equality constraint); controllers on it are not supported",
-            ctl,
-        )
+        note_on_loop_mate(ctx, f"{ctl.path}: {mate.path} closes a kinematic loop (equality constraint); controllers on "
+                          "it are not supported", ctl)
         return None
     if mate.kind == "cylindrical":
         return joints[0] if ctl.dof == "rotational" else joints[1]
@@ -183,9 +189,9 @@ def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: st
             else "integrated implicitly, nearly rigid speed tracking"
         )
         user = "gain" in ctl.user_set
-        ctx.note(
+        note_gain_clamped(
+            ctx,
             WARNING if user else INFO,
-            "A111",
             f"{ctl.path}: {'your' if user else 'the default'} gain {ctl.gain:g} is far too stiff for MuJoCo; "
             f"kv clamped to {kv:.4g} "
             f"(= {steps:g} x effective inertia {ieff:.4g} / timestep {h:g}; {why})",

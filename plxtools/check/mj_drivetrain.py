@@ -41,8 +41,9 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mj_context import BuildContext
+from plxtools.check.mj_controllers import note_gain_clamped, note_on_loop_mate
 from plxtools.check.mj_integrator import contacts_possible
-from plxtools.check.mj_notes import INFO, WARNING
+from plxtools.check.mj_notes import INFO
 from plxtools.check.mj_types import ActuatorInfo, ShaftCoordinate
 
 SHAFT_BODY_MASS = 1e-6  # kg: a point (its inertia 1e-9 kg m^2 beside the armature), so the MJCF export reloads
@@ -175,8 +176,8 @@ def add_couplings(ctx: BuildContext) -> None:
             if not ja:
                 continue
             if not jm:
-                ctx.note(WARNING, "A124", f"{c.path}: {c.b} closes a kinematic loop (an equality constraint); "
-                         "a hinge actuator on it is not simulated", c)
+                note_on_loop_mate(ctx, f"{c.path}: {c.b} closes a kinematic loop (an equality constraint); "
+                                  "a hinge actuator on it is not simulated", c)
                 continue
             first, second, coef = ja[0], jm[0], float(ctx.out.joint_sign.get(c.b, 1))
         e = ctx.spec.add_equality(name=ctx.names.add("equality", c.path, c.source), type=mj.mjtEq.mjEQ_JOINT)
@@ -213,9 +214,10 @@ def add_shaft_motors(ctx: BuildContext, model: Any) -> None:
                 RIGID_SERVO_STEPS if not constrained else RIGID_SERVO_STEPS_CONSTRAINED)
             kv = min(float(m.gain), steps * ieff / h)
             if kv < m.gain:
-                ctx.note(INFO, "A111", f"{m.path}: the default gain {m.gain:g} is far too stiff for MuJoCo; kv "
-                         f"clamped to {kv:.4g} (= {steps:g} x the inertia it drives through the drive "
-                         f"train, {ieff:.4g}, / timestep {h:g}: {_gain_why(rigid, limited, constrained, steps)})", m)
+                note_gain_clamped(ctx, INFO, f"{m.path}: the default gain {m.gain:g} is far too stiff for MuJoCo; kv "
+                                  f"clamped to {kv:.4g} (= {steps:g} x the inertia it drives through the drive "
+                                  f"train, {ieff:.4g}, / timestep {h:g}: "
+                                  f"{_gain_why(rigid, limited, constrained, steps)})", m)
             act.set_to_velocity(kv=kv)
             ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, float(m.target_speed),
                                                   kv, float(m.target_speed)))
