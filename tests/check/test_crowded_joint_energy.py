@@ -49,7 +49,8 @@ Crowd is Physics3D.System:
 def _motor(name: str, kind: str, linear: bool, value: float, limit: float | None) -> str:
     if kind == "velocity":
         t = "LinearVelocityMotor" if linear else "RotationalVelocityMotor"
-        text = f"    {name} is Physics3D.Interactions.{t}:\n        connectors: joint.connectors\n        target_speed: {value}\n"
+        text = (f"    {name} is Physics3D.Interactions.{t}:\n        connectors: joint.connectors\n"
+                f"        target_speed: {value}\n")
         if limit is not None:
             text += f"        max_effort: {limit}\n        min_effort: {-limit}\n"
         return text
@@ -59,7 +60,8 @@ def _motor(name: str, kind: str, linear: bool, value: float, limit: float | None
 
 def _range(name: str, linear: bool, start: float, end: float) -> str:
     t = "LinearRange" if linear else "RotationalRange"
-    return f"    {name} is Physics3D.Interactions.{t}:\n        connectors: joint.connectors\n        start: {start}\n        end: {end}\n"
+    return (f"    {name} is Physics3D.Interactions.{t}:\n        connectors: joint.connectors\n"
+            f"        start: {start}\n        end: {end}\n")
 
 
 def _spring(name: str, linear: bool, rest: float, stiffness: float, damping: float | None) -> str:
