@@ -38,7 +38,8 @@ class BuildContext:
     joint_limits: dict[str, list[float]] = field(default_factory=dict)  # joint name -> [lo, hi]
     spring_count: dict[str, int] = field(default_factory=dict)  # joint name -> springs on it
     violated: set[str] = field(default_factory=set)  # mates that start apart (pulled together by equalities)
-    shaft_init: dict[str, tuple[float, float]] = field(default_factory=dict)  # shaft joint -> (angle, speed)
+    # joint -> (carrier is a shaft, [(shaft, factor)]): the shafts each drive-train joint carries
+    shaft_trains: dict[str, tuple[bool, list[tuple[Any, float]]]] = field(default_factory=dict)
     bouncy_pairs: list[tuple[Any, float]] = field(default_factory=list)  # (MjsPair, normal restitution)
 
     @classmethod

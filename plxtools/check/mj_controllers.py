@@ -33,12 +33,23 @@ BIG_FORCE = 1e9
 
 
 # -- controllers -----------------------------------------------------------------------------
+def note_gain_clamped(ctx: BuildContext, severity: str, message: str, item: Any) -> None:
+    """A111, for mate motors here and drive-train motors (mj_drivetrain): one home for the code."""
+    ctx.note(severity, "A111", message, item)
+
+
+def note_on_loop_mate(ctx: BuildContext, message: str, item: Any) -> None:
+    """A124: a controller or hinge actuator on a mate that closes a loop (no joint to act on)."""
+    ctx.note(WARNING, "A124", message, item)
+
+
 def add_controllers(ctx: BuildContext, model: Any) -> None:
     bound = bind_controllers(ctx, model)
     choose_timestep(ctx, bound)
+    stopped = {joint for ctl, _m, joint, _s, _i in bound if ctl.kind == "range"}
     for ctl, mate, joint, sign, ieff in bound:
         if ctl.kind == "velocity_motor":
-            add_velocity_motor(ctx, ctl, mate, joint, sign, ieff)
+            add_velocity_motor(ctx, ctl, mate, joint, sign, ieff, joint in stopped)
         elif ctl.kind in ("torque_motor", "force_motor"):
             add_effort_motor(ctx, ctl, mate, joint, sign)
         elif ctl.kind == "range":
@@ -132,12 +143,8 @@ def controller_joint(ctx: BuildContext, ctl: Controller, mate: Mate) -> str | No
         )
         return None
     if not joints:
-        ctx.note(
-            WARNING,
-            "A124",
-            f"{ctl.path}: {mate.path} closes a kinematic loop (equality constraint); controllers on it are not supported",
-            ctl,
-        )
+        note_on_loop_mate(ctx, f"{ctl.path}: {mate.path} closes a kinematic loop (equality constraint); controllers on "
+                          "it are not supported", ctl)
         return None
     if mate.kind == "cylindrical":
         return joints[0] if ctl.dof == "rotational" else joints[1]
@@ -157,7 +164,8 @@ def effort_range(ctx: BuildContext, ctl: Controller, act: Any) -> None:
         act.forcerange = [max(lo, -BIG_FORCE), min(hi, BIG_FORCE)]
 
 
-def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str, sign: int, ieff: float) -> None:
+def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str, sign: int, ieff: float,
+                       stopped: bool = False) -> None:
     h = float(ctx.spec.option.timestep)
     if ctl.gain <= 0:
         ctx.note(
@@ -168,19 +176,22 @@ def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: st
         )
         return
     limited = math.isfinite(ctl.min_effort) or math.isfinite(ctl.max_effort)
-    steps = KV_STEPS_LIMITED if limited else KV_STEPS
+    steps = KV_STEPS_LIMITED if limited or stopped else KV_STEPS
     cap = steps * ieff / h
     kv = min(float(ctl.gain), cap)
     if kv < ctl.gain:
         why = (
             "effort-limited servo: a larger kv would chatter between the effort limits (MuJoCo ignores the implicit damping of a saturated actuator)"
             if limited
+            else "a range on the same joint: the joint limit is solved from the servo's explicit force, and a larger "
+            "kv would chatter against it (gaining energy, A134)"
+            if stopped
             else "integrated implicitly, nearly rigid speed tracking"
         )
         user = "gain" in ctl.user_set
-        ctx.note(
+        note_gain_clamped(
+            ctx,
             WARNING if user else INFO,
-            "A111",
             f"{ctl.path}: {'your' if user else 'the default'} gain {ctl.gain:g} is far too stiff for MuJoCo; "
             f"kv clamped to {kv:.4g} "
             f"(= {steps:g} x effective inertia {ieff:.4g} / timestep {h:g}; {why})",
@@ -350,6 +361,30 @@ def _fmt(v: np.ndarray) -> str:
     return "(" + ", ".join(f"{x:.3g}" for x in v) + ")"
 
 
+def _train_state(ctx: BuildContext, model: Any, joint: str, own: bool, members: list[tuple[Any, float]],
+                 qpos: np.ndarray, qvel: np.ndarray) -> None:
+    """A drive train's coordinate at the start, and each shaft's angle on it (mj_drivetrain).
+
+    A train carried by its first shaft starts at that shaft's angle, turning at the speed that
+    keeps the train's angular momentum (sum of I f v over sum of I f^2: the shafts' own speed when
+    they agree); a train carried by a hinge starts with the hinge.  A shaft whose own initial
+    speed is not the one its train starts with is an info (A120)."""
+    jid = model.joint(joint).id
+    qa, da = int(model.jnt_qposadr[jid]), int(model.jnt_dofadr[jid])
+    if own:
+        qpos[qa] = float(members[0][0].angle)
+        weight = sum(float(s.inertia) * f * f for s, f in members)
+        qvel[da] = sum(float(s.inertia) * f * float(s.velocity) for s, f in members) / weight
+    q0, v0 = float(qpos[qa]), float(qvel[da])
+    for s, f in members:
+        ctx.out.shafts[s.path].offset = float(s.angle) - f * q0
+        v = float(s.velocity)
+        if abs(v - f * v0) > 1e-9 * max(abs(v), abs(f * v0), 1.0):
+            ctx.note(INFO, "A120", f"{s.path}: its initial velocity {v:g} rad/s is not the {f * v0:.4g} rad/s "
+                     "its drive train starts with (the gears and hinge actuators let the train turn only as one; "
+                     "it starts at the train's speed)", s)
+
+
 def add_keyframe(ctx: BuildContext, model: Any) -> None:
     qvel = np.zeros(model.nv)
     roots = set(ctx.out.free_roots)
@@ -366,9 +401,7 @@ def add_keyframe(ctx: BuildContext, model: Any) -> None:
         elif np.any(v != 0) or np.any(w != 0):
             _joint_velocities(ctx, model, path, body, v, w, qvel)
     qpos = np.array(model.qpos0)
-    for jn, (angle, speed) in ctx.shaft_init.items():
-        jid = model.joint(jn).id
-        qpos[model.jnt_qposadr[jid]] = angle
-        qvel[model.jnt_dofadr[jid]] = speed
+    for jn, (own, members) in ctx.shaft_trains.items():
+        _train_state(ctx, model, jn, own, members, qpos, qvel)
     ctrl = [a.ctrl for a in ctx.out.actuators]  # actuators compile in the order they were added
     ctx.spec.add_key(name="initial", qpos=list(qpos), qvel=list(qvel), ctrl=ctrl)

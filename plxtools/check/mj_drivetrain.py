@@ -1,23 +1,36 @@
 """Drive trains on MuJoCo (a step of the MjSpec build, on a :class:`BuildContext`).
 
-* A **shaft** is a body of its own with one hinge joint whose ``armature`` is the shaft's
-  inertia (the body itself is a negligible point mass, with no geometry and no gravity effect
-  on the joint), so its rotation is a MuJoCo coordinate like any mate's.
-* A **gear** is a joint equality ``q_out = q_in / ratio`` (an ideal gear: no slip, no
-  flexibility, no loss: the constraint does no work), as stiff as MuJoCo allows (time constant
-  of two steps).  Which connector is the input is not documented; plx takes ``connectors[0]``'s
-  shaft as the input, so ``ratio`` = input speed / output speed [I].
-* A **hinge actuator** is a joint equality ``q_shaft = q_hinge`` (in the hinge's OpenPLX sign).
-* A **1D velocity motor** is a ``<velocity>`` actuator on its shaft's joint with
-  ``kv = I_chain / h``, where ``I_chain`` is the inertia it drives through the gears and hinge
-  actuators (each coupled coordinate's effective inertia times its speed ratio squared): integrated
-  implicitly, the servo alone would reach its target in about one step; the soft couplings (time
-  constant 2 steps) pass it on, so the driven hinge is within 10 % of its target speed after two
-  steps and within 1 % after about 15 (measured on the 4:1 gear train of tests/physics).  A gain
-  on the shaft's own inertia (the first version) took 0.1 s to 0.5 s under a heavy load; a servo
-  ten times stiffer than I_chain / h yanks the chain, the couplings spring back and the run gains
-  energy that no motor supplied (A134: 57 J in that gear train).  A **1D torque motor** a ``<motor>`` whose control is its torque input (0 until
-  a signal sets it).
+A **rigid train** is a connected set of shafts, ideal gears (``q_out = q_in / ratio``; which
+connector is the input is not documented, plx takes ``connectors[0]``'s shaft, so ``ratio`` =
+input speed / output speed [I]) and hinge actuators (``q_shaft = q_hinge`` in the hinge's
+OpenPLX sign) that forms a tree and reaches at most one 3D hinge.  Its gears and hinge actuators
+do no work and allow no slip, so the whole train has ONE degree of freedom, and plx simulates it
+as one MuJoCo coordinate: the hinge's joint (or, with no hinge, the first shaft's own hinge joint),
+whose ``armature`` takes every shaft's inertia times the square of its speed ratio.  A shaft of
+the train has no body of its own: its angle and speed are its ratio times the joint's
+(:class:`ShaftCoordinate`, read by the signals and the trace).
+
+Why one coordinate and not a joint per shaft with equality couplings (the first mapping): MuJoCo's
+implicit integrators treat a velocity servo's damping after the constraint solver, which
+computed the couplings' forces for the explicit servo force; so the servo's own shaft lags while
+the rest of the train follows the explicit force, and the train reached 61 % of its target speed
+after one step (10 x the gain: 10 x the target).  On one coordinate the servo is integrated
+implicitly with nothing to disagree with.  A train that is not rigid in this sense (a loop of
+gears, two hinges, a hinge actuator on a loop-closing mate) keeps the coupled mapping: a joint per
+shaft, a joint equality per gear / hinge actuator as stiff as MuJoCo allows.
+
+A **1D velocity motor** is a ``<velocity>`` actuator on its shaft's coordinate (``gear`` = the
+shaft's speed ratio, so the actuator's length, speed and force are the shaft's).  On a rigid train
+in a scene without contacts, joint limits or equalities, ``kv = RIGID_SERVO_STEPS x I / h``, ``I``
+the inertia the shaft sees (the joint's effective inertia, ``1 / dof_invweight0``, over the ratio
+squared): integrated implicitly, one step gives ``K / (1 + K)`` of a change of target, within 1 %
+for K = 150 at any inertia, ratio or time step (tests/check/test_drivetrain_one_step.py), as AGX's
+velocity constraint does.  Otherwise ``K = 1``: contacts, limits and equalities are solved from the
+explicit servo force too, and a servo 10 x stiffer made a cart driven through two trains gain 35 J
+at its first contact (150 x: it fell through the ground); with a finite effort limit MuJoCo drops
+the implicit damping of a saturated actuator and a stiffer servo chatters between the limits; on a
+coupled train the couplings spring back (A134).  A **1D torque motor** is a ``<motor>`` whose
+control is its torque input (0 until a signal sets it).
 """
 
 from __future__ import annotations
@@ -28,35 +41,130 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mj_context import BuildContext
-from plxtools.check.mj_notes import INFO, WARNING
-from plxtools.check.mj_types import ActuatorInfo
+from plxtools.check.mj_controllers import note_gain_clamped, note_on_loop_mate
+from plxtools.check.mj_integrator import contacts_possible
+from plxtools.check.mj_notes import INFO
+from plxtools.check.mj_types import ActuatorInfo, ShaftCoordinate
 
 SHAFT_BODY_MASS = 1e-6  # kg: a point (its inertia 1e-9 kg m^2 beside the armature), so the MJCF export reloads
-SERVO_GAIN_STEPS = 1.0  # 1D velocity motor: kv = this x the inertia it drives / timestep
+SERVO_GAIN_STEPS = 1.0  # coupled train, or an effort-limited motor: kv = this x the inertia it drives / timestep
+RIGID_SERVO_STEPS = 150.0  # unlimited motor on a rigid train: one step reaches 150 / 151 of the target
+RIGID_SERVO_STEPS_CONSTRAINED = 1.0  # the same with contacts, limits or equalities in the scene (see below)
+
+Edge = tuple[str, float]  # (other node, its coordinate per this node's coordinate)
+
+
+def _links(ctx: BuildContext) -> dict[str, list[Edge]]:
+    """The couplings as a graph over shaft and mate paths, in coordinates: a gear's output turns
+    1 / ratio times as fast as its input; a hinge actuator's shaft turns with the hinge's
+    MuJoCo joint times the hinge's sign."""
+    links: dict[str, list[Edge]] = {}
+    for c in ctx.scene.shaft_couplings:
+        if c.kind == "gear":
+            f = 1.0 / c.ratio
+        else:
+            f = float(ctx.out.joint_sign.get(c.b, 1))  # joint = sign x shaft (sign is +-1)
+        links.setdefault(c.a, []).append((c.b, f))
+        links.setdefault(c.b, []).append((c.a, 1.0 / f))
+    return links
+
+
+def _component(links: dict[str, list[Edge]], start: str) -> tuple[dict[str, float], int]:
+    """Every node connected to ``start`` with its coordinate per ``start``'s, and the number of
+    couplings among them (a tree has one fewer than nodes)."""
+    seen, stack, edges = {start: 1.0}, [start], 0
+    while stack:
+        cur = stack.pop()
+        for nxt, f in links.get(cur, []):
+            edges += 1
+            if nxt not in seen:
+                seen[nxt] = seen[cur] * f
+                stack.append(nxt)
+    return seen, edges // 2
+
+
+def plan_trains(ctx: BuildContext) -> dict[str, tuple[str | None, dict[str, float]]]:
+    """For each shaft of a rigid train: (the hinge mate that carries its train, or None when the
+    train's first shaft does, and every shaft of the train with its speed per carrier speed).
+    Shafts of trains that are not rigid (a loop, two hinges, a hinge without a joint) are left out."""
+    links = _links(ctx)
+    shafts = {sh.path for sh in ctx.scene.shafts}
+    plan: dict[str, tuple[str | None, dict[str, float]]] = {}
+    for sh in ctx.scene.shafts:
+        if sh.path in plan:
+            continue
+        nodes, edges = _component(links, sh.path)
+        mates = [n for n in nodes if n not in shafts]
+        if edges != len(nodes) - 1 or len(mates) > 1 or any(not ctx.out.joints.get(m) for m in mates):
+            continue
+        carrier = mates[0] if mates else sh.path
+        base = nodes[carrier]
+        members = {n: f / base for n, f in nodes.items() if n in shafts}  # shaft per carrier coordinate
+        for n in members:
+            plan[n] = (mates[0] if mates else None, members)
+    return plan
 
 
 def add_shafts(ctx: BuildContext) -> None:
-    mj = ctx.mj
+    """A MuJoCo coordinate for every shaft: one per rigid train (the hinge's joint, or the first
+    shaft's own joint, with the train's inertia as armature), one per shaft of any other train."""
+    plan = plan_trains(ctx)
+    done: set[str] = set()
+    inertia = {s.path: float(s.inertia) for s in ctx.scene.shafts}
+    objs = {s.path: s for s in ctx.scene.shafts}
     for sh in ctx.scene.shafts:
-        name = ctx.names.add("body", sh.path, sh.source)
-        body = ctx.spec.worldbody.add_body(name=name, pos=[0, 0, 0])
-        body.mass = SHAFT_BODY_MASS
-        body.inertia = [SHAFT_BODY_MASS * 1e-3] * 3
-        body.explicitinertial = True
-        body.ipos = [0.0, 0.0, 0.0]
-        body.iquat = [1.0, 0.0, 0.0, 0.0]
-        body.gravcomp = 1.0
-        jn = ctx.names.add("joint", sh.path, sh.source)
-        body.add_joint(name=jn, type=mj.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1], armature=float(sh.inertia))
-        ctx.out.joints[sh.path] = [jn]
-        ctx.out.joint_sign[sh.path] = 1
-        ctx.shaft_init[jn] = (float(sh.angle), float(sh.velocity))
+        if sh.path in done:
+            continue
+        mate, members = plan.get(sh.path, (None, {sh.path: 1.0}))
+        done.update(members)
+        armature = sum(inertia[p] * f * f for p, f in members.items())
+        if mate is None:
+            joint = _shaft_joint(ctx, sh, armature)
+        else:
+            joint = ctx.out.joints[mate][0]
+            j = ctx.spec.joint(joint)
+            j.armature = float(j.armature) + armature
+        ctx.shaft_trains[joint] = (mate is None, [(objs[p], f) for p, f in members.items()])
+        for p, f in members.items():
+            ctx.out.shafts[p] = ShaftCoordinate(joint, f, rigid=sh.path in plan)
+            ctx.names.sources.setdefault(p, objs[p].source)
+
+
+def _shaft_joint(ctx: BuildContext, sh: Any, armature: float) -> str:
+    """A body of its own with one hinge joint whose ``armature`` is the train's inertia (the
+    body itself is a negligible point mass, with no geometry and no gravity effect on the joint)."""
+    mj = ctx.mj
+    name = ctx.names.add("body", sh.path, sh.source)
+    body = ctx.spec.worldbody.add_body(name=name, pos=[0, 0, 0])
+    body.mass = SHAFT_BODY_MASS
+    body.inertia = [SHAFT_BODY_MASS * 1e-3] * 3
+    body.explicitinertial = True
+    body.ipos = [0.0, 0.0, 0.0]
+    body.iquat = [1.0, 0.0, 0.0, 0.0]
+    body.gravcomp = 1.0
+    jn = ctx.names.add("joint", sh.path, sh.source)
+    body.add_joint(name=jn, type=mj.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1], armature=armature)
+    ctx.out.joints[sh.path] = [jn]
+    ctx.out.joint_sign[sh.path] = 1
+    return jn
+
+
+def _absorbed(ctx: BuildContext, a: str, b: str) -> bool:
+    """Both ends turn with one coordinate already (a rigid train): no coupling to add."""
+    ca = ctx.out.shafts.get(a)
+    if ca is None:
+        return False
+    cb = ctx.out.shafts.get(b)
+    other = cb.joint if cb is not None else (ctx.out.joints.get(b) or [None])[0]
+    return other == ca.joint
 
 
 def add_couplings(ctx: BuildContext) -> None:
     mj = ctx.mj
     h = float(ctx.spec.option.timestep)
     for c in ctx.scene.shaft_couplings:
+        if _absorbed(ctx, c.a, c.b):
+            continue
         ja = ctx.out.joints.get(c.a)
         if c.kind == "gear":
             jb = ctx.out.joints.get(c.b)
@@ -68,8 +176,8 @@ def add_couplings(ctx: BuildContext) -> None:
             if not ja:
                 continue
             if not jm:
-                ctx.note(WARNING, "A124", f"{c.path}: {c.b} closes a kinematic loop (an equality constraint); "
-                         "a hinge actuator on it is not simulated", c)
+                note_on_loop_mate(ctx, f"{c.path}: {c.b} closes a kinematic loop (an equality constraint); "
+                                  "a hinge actuator on it is not simulated", c)
                 continue
             first, second, coef = ja[0], jm[0], float(ctx.out.joint_sign.get(c.b, 1))
         e = ctx.spec.add_equality(name=ctx.names.add("equality", c.path, c.source), type=mj.mjtEq.mjEQ_JOINT)
@@ -83,15 +191,16 @@ def add_couplings(ctx: BuildContext) -> None:
 
 def add_shaft_motors(ctx: BuildContext, model: Any) -> None:
     h = float(ctx.spec.option.timestep)
+    constrained = _constrained(ctx, model) if ctx.scene.shaft_motors else False
     for m in ctx.scene.shaft_motors:
-        joints = ctx.out.joints.get(m.shaft)
-        if not joints:
+        coord = ctx.out.shafts.get(m.shaft)
+        if coord is None:
             continue
-        joint = joints[0]
+        joint, ratio = coord.joint, coord.factor
         ctx.names.add("controller", m.path, m.source)
         name = ctx.names.add("actuator", m.path, m.source)
         act = ctx.spec.add_actuator(name=name, target=joint, trntype=ctx.mj.mjtTrn.mjTRN_JOINT)
-        act.gear = [1.0, 0, 0, 0, 0, 0]
+        act.gear = [ratio, 0, 0, 0, 0, 0]  # the actuator's length, speed and force are the shaft's
         act.ctrllimited = ctx.mj.mjtLimited.mjLIMITED_FALSE
         lo, hi = float(m.min_effort), float(m.max_effort)
         limited = lo <= hi and (math.isfinite(lo) or math.isfinite(hi))
@@ -99,26 +208,55 @@ def add_shaft_motors(ctx: BuildContext, model: Any) -> None:
             act.forcelimited = ctx.mj.mjtLimited.mjLIMITED_TRUE
             act.forcerange = [max(lo, -1e9), min(hi, 1e9)]
         if m.kind == "velocity_motor":
-            ieff = chain_inertia(ctx, model, m.shaft)
-            kv = min(float(m.gain), SERVO_GAIN_STEPS * ieff / h)
+            rigid = coord.rigid
+            ieff = _joint_inertia(model, joint) / (ratio * ratio) if rigid else chain_inertia(ctx, model, m.shaft)
+            steps = SERVO_GAIN_STEPS if not rigid or limited else (
+                RIGID_SERVO_STEPS if not constrained else RIGID_SERVO_STEPS_CONSTRAINED)
+            kv = min(float(m.gain), steps * ieff / h)
             if kv < m.gain:
-                ctx.note(INFO, "A111", f"{m.path}: the default gain {m.gain:g} is far too stiff for MuJoCo; kv "
-                         f"clamped to {kv:.4g} (= {SERVO_GAIN_STEPS:g} x the inertia it drives through the drive "
-                         f"train, {ieff:.4g}, / timestep {h:g}: integrated implicitly, the driven hinge is at its "
-                         f"target speed within a few steps)", m)
+                note_gain_clamped(ctx, INFO, f"{m.path}: the default gain {m.gain:g} is far too stiff for MuJoCo; kv "
+                                  f"clamped to {kv:.4g} (= {steps:g} x the inertia it drives through the drive "
+                                  f"train, {ieff:.4g}, / timestep {h:g}: "
+                                  f"{_gain_why(rigid, limited, constrained, steps)})", m)
             act.set_to_velocity(kv=kv)
-            ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, 1.0, float(m.target_speed),
+            ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, float(m.target_speed),
                                                   kv, float(m.target_speed)))
         else:
             act.set_to_motor()
             ctrl = float(np.clip(m.effort, lo, hi)) if lo <= hi else float(m.effort)
-            ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, 1.0, ctrl))
+            ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, ctrl))
+
+
+def _gain_why(rigid: bool, limited: bool, constrained: bool, steps: float) -> str:
+    if not rigid:
+        return "integrated implicitly, the driven hinge is at its target speed within a few steps"
+    if limited:
+        return ("effort-limited: a stiffer servo would chatter between the limits; integrated implicitly, half way "
+                "to its target speed per step")
+    if constrained:
+        return ("the scene has contacts, joint limits or equalities, which a stiffer servo would fight; integrated "
+                "implicitly, half way to its target speed per step")
+    return (f"its drive train turns as one coordinate; integrated implicitly, within {100 / (1 + steps):.2g} % of "
+            "its target speed after one step")
+
+
+def _constrained(ctx: BuildContext, model: Any) -> bool:
+    """Whether the scene has constraints the solver computes from the servo's explicit force
+    (contacts, joint limits, equalities): then a stiff implicit servo is not safe (see the module
+    docstring)."""
+    return bool(model.neq) or bool(ctx.joint_limits) or contacts_possible(model)
+
+
+def _joint_inertia(model: Any, joint: str) -> float:
+    """A joint's effective inertia (``1 / dof_invweight0``: its armature and what hangs on it)."""
+    jid = model.joint(joint).id
+    return 1.0 / max(float(model.dof_invweight0[model.jnt_dofadr[jid]]), 1e-12)
 
 
 def chain_inertia(ctx: BuildContext, model: Any, shaft: str) -> float:
-    """The inertia a motor on ``shaft`` drives: every coordinate the gears and hinge actuators
-    couple to it, each with its own effective inertia (``1 / dof_invweight0``, which includes
-    what hangs on a hinge) times the square of its speed ratio to the shaft."""
+    """The inertia a motor on ``shaft`` of a coupled train drives: every coordinate the gears and
+    hinge actuators couple to it, each with its own effective inertia (which includes what hangs
+    on a hinge) times the square of its speed ratio to the shaft."""
     links: dict[str, list[tuple[str, float]]] = {}
     for c in ctx.scene.shaft_couplings:
         f = 1.0 / c.ratio if c.kind == "gear" and c.ratio else 1.0  # b turns f times as fast as a
@@ -135,7 +273,5 @@ def chain_inertia(ctx: BuildContext, model: Any, shaft: str) -> float:
         joints = ctx.out.joints.get(path)
         if not joints:
             continue
-        jid = model.joint(joints[0]).id
-        inv = float(model.dof_invweight0[model.jnt_dofadr[jid]])
-        total += factor * factor / max(inv, 1e-12)
+        total += factor * factor * _joint_inertia(model, joints[0])
     return total

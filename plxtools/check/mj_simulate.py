@@ -493,14 +493,20 @@ class Trace(Monitor):
 
     def __init__(self, run: SimRun) -> None:
         model, compiled = run.model, run.compiled
-        self.traced: list[tuple[str, int, int, int]] = []  # (key, qpos address, dof address, sign)
+        # (key, qpos address, dof address, sign or speed ratio, offset)
+        self.traced: list[tuple[str, int, int, float, float]] = []
         for mate_path, jnames in compiled.joints.items():
             for jn in jnames:
                 j = model.joint(jn)
                 if model.jnt_type[j.id] in (2, 3):
                     key = mate_path + (jn[jn.rfind(":") :] if len(jnames) > 1 else "")
                     self.traced.append((key, int(model.jnt_qposadr[j.id]), int(model.jnt_dofadr[j.id]),
-                                        compiled.joint_sign[mate_path]))
+                                        compiled.joint_sign[mate_path], 0.0))
+        for shaft, coord in compiled.shafts.items():  # a shaft of a rigid drive train turns with its joint
+            if shaft not in compiled.joints:
+                j = model.joint(coord.joint)
+                self.traced.append((shaft, int(model.jnt_qposadr[j.id]), int(model.jnt_dofadr[j.id]),
+                                    coord.factor, coord.offset))
         self.vel6 = np.zeros(6)
         run.res.trace = {"time": [], "joints": {k: [] for k, *_ in self.traced},
                          "joint_speeds": {k: [] for k, *_ in self.traced},
@@ -511,8 +517,8 @@ class Trace(Monitor):
     def sample(self, run: SimRun, t: float) -> None:
         tr, data = run.res.trace, run.data
         tr["time"].append(t)
-        for key, qa, da, sgn in self.traced:
-            tr["joints"][key].append(sgn * float(data.qpos[qa]))
+        for key, qa, da, sgn, off in self.traced:
+            tr["joints"][key].append(sgn * float(data.qpos[qa]) + off if off else sgn * float(data.qpos[qa]))
             tr["joint_speeds"][key].append(sgn * float(data.qvel[da]))
         for p, i, _ in run.bodies:
             b = tr["bodies"][p]

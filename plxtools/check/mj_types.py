@@ -45,6 +45,17 @@ class ActuatorInfo:
 
 
 @dataclass(slots=True)
+class ShaftCoordinate:
+    """Where a drive-train shaft's rotation lives in the MuJoCo model: a shaft of a rigid train
+    turns with the train's one joint (``mj_drivetrain``), ``factor`` times as fast."""
+
+    joint: str  # MuJoCo joint the shaft turns with (its own, a hinge's, or another shaft's)
+    factor: float = 1.0  # shaft speed per joint speed
+    offset: float = 0.0  # shaft angle when the joint's coordinate is 0
+    rigid: bool = True  # its train is this one coordinate (False: coupled to others by equalities)
+
+
+@dataclass(slots=True)
 class CompiledScene:
     scene: Scene
     spec: Any = None  # mujoco.MjSpec
@@ -61,6 +72,7 @@ class CompiledScene:
     integrator_why: str = ""
     prescribed_cache: Any = None  # mj_kinematic.prescribed: (model, body id -> prescribed velocity)
     actuators: list[ActuatorInfo] = field(default_factory=list)
+    shafts: dict[str, ShaftCoordinate] = field(default_factory=dict)  # shaft path -> its coordinate
     monitors: list[MateMonitor] = field(default_factory=list)
     compile_ms: float = 0.0
 

@@ -396,15 +396,16 @@ class SignalRuntime:
                 b.write = write_ctrl
             return b
         if q in ("shaft_position", "shaft_velocity"):
-            jname = self.compiled.names.name("joint", src)
-            if jname is None:
+            coord = self.compiled.shafts.get(src)  # a shaft turns with its drive train's joint (mj_drivetrain)
+            if coord is None:
                 raise _Unbindable(f"the shaft {src} is not simulated (see the check notes)")
-            jid = self.compiled.model.joint(jname).id
+            jid = self.compiled.model.joint(coord.joint).id
             qadr, dadr = int(self.compiled.model.jnt_qposadr[jid]), int(self.compiled.model.jnt_dofadr[jid])
+            f, off = coord.factor, coord.offset
             if q == "shaft_position":
-                b.read = lambda m, d: float(d.qpos[qadr])
+                b.read = lambda m, d: f * float(d.qpos[qadr]) + off
             else:
-                b.read = lambda m, d: float(d.qvel[dadr])
+                b.read = lambda m, d: f * float(d.qvel[dadr])
             return b
         if q in ("joint_position", "joint_velocity"):
             rotational = info.type.endswith(("AngleOutput", "AngularVelocity1DOutput"))
