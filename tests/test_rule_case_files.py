@@ -41,6 +41,9 @@ REPORTED = re.compile(r"^(?:\S+:)?\d+:\d+: (?:error|warning|info) ([A-Z]\d{3}) "
 NOT_A_CASE = {
     "B000": "tests/ide/test_bundles_unavailable.py",  # the bundles are not installed at all
     "B006": "tests/bundles/test_dependency_pins.py",  # reported in a bundle's own config.openplx
+    # an unreadable file: permissions cannot live in git, and a dangling link kept in tests/cases
+    # would break the tests that read every case file (tests/syntax/test_fast_path.py)
+    "E001": "tests/test_rule_case_files.py",  # test_an_unreadable_file_is_a_located_error below
 }
 
 
@@ -108,3 +111,19 @@ def test_every_registered_code_has_a_case_file():
     assert WITHOUT_A_CASE_YET <= registered
     for code, test in NOT_A_CASE.items():
         assert code in registered and code in (Path(__file__).parents[1] / test).read_text(encoding="utf-8")
+
+
+def test_an_unreadable_file_is_a_located_error(tmp_path):
+    """E001, from both commands that read files: a link to a file that is gone, found by the walk,
+    is one located error (not a traceback, not "All checks passed"), and the other files are still
+    checked."""
+    (tmp_path / "gone.openplx").symlink_to(tmp_path / "missing.openplx")
+    (tmp_path / "fine.openplx").write_text("Scene is Physics3D.System:\n    a is Real: 1\n", encoding="utf-8")
+    for command in ("lint", "check"):
+        r = plx_here(command, ".", cwd=tmp_path)
+        assert r.returncode == 1 and "Traceback" not in r.stdout + r.stderr, r.stdout + r.stderr
+        errors = [ln for ln in r.stdout.splitlines() if " error " in ln]
+        assert errors == ["gone.openplx:1:1: error E001 cannot read file: No such file or directory"], r.stdout
+        assert "All checks passed" not in r.stdout
+    assert "fine.openplx: Scene: 0 bodies" in r.stdout and "gone.openplx: not assembled: the file cannot be read" \
+        in r.stdout, r.stdout  # check: the readable file is still assembled
