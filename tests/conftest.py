@@ -25,6 +25,16 @@ settings.register_profile("plxtools", database=DirectoryBasedExampleDatabase(str
 settings.load_profile("plxtools")
 
 
+# Random and property campaigns run a third of their examples (at least 2) in the default run,
+# which has to stay quick; `.ci/run` runs them in full in a stage of their own (PLX_LONG_CAMPAIGNS=1).
+LONG_CAMPAIGNS = os.environ.get("PLX_LONG_CAMPAIGNS") == "1"
+
+
+def campaign_size(full: int) -> int:
+    """How many random examples (or seeds) a campaign of `full` runs now."""
+    return full if LONG_CAMPAIGNS else max(2, full // 3)
+
+
 def bundle_root() -> Path:
     import openplxbundles
 
