@@ -25,6 +25,16 @@ settings.register_profile("plxtools", database=DirectoryBasedExampleDatabase(str
 settings.load_profile("plxtools")
 
 
+# Random and property campaigns run a third of their examples (at least 2) in the default run,
+# which has to stay quick; `.ci/run` runs them in full in a stage of their own (PLX_LONG_CAMPAIGNS=1).
+LONG_CAMPAIGNS = os.environ.get("PLX_LONG_CAMPAIGNS") == "1"
+
+
+def campaign_size(full: int) -> int:
+    """How many random examples (or seeds) a campaign of `full` runs now."""
+    return full if LONG_CAMPAIGNS else max(2, full // 3)
+
+
 def bundle_root() -> Path:
     import openplxbundles
 
@@ -59,6 +69,48 @@ def bundles() -> list[Path]:
     assert len(files) == 465, "expected the 465 files of openplx-bundles 0.19.0"
     return files
 
+
+
+# What a first run leaves in a cache folder that any later run of any command re-uses: the bundle
+# program (a cold build is about 1.5 CPU-seconds per run), the record of its bundle set, the code
+# stamp and the grammar. Not the per-command kinds (results, formatted, replays) that tests count.
+_SHARED_KINDS = ("programs", "bundle-sets", "stamps", "grammars")
+
+
+@pytest.fixture(scope="session")
+def warm_cache_seed(tmp_path_factory) -> Path:
+    """A cache folder filled by one real cold `plx lint` (its forked writer waited for), from which
+    `warm_cache` copies: tests of caches and replays start from a warm bundle program, as a user's
+    second run does, instead of building it again in every test (the fresh answer they compare
+    with is computed without any cache)."""
+    import time
+
+    top = tmp_path_factory.mktemp("warm-cache")
+    f = top / "w.openplx"
+    f.write_text("Wheel is Physics3D.Bodies.RigidBody:\n    inertia.mass: 10\n")
+    r = run_plx("lint", str(f), env={"PLX_CACHE_DIR": str(top / "cache")})
+    assert r.returncode == 0, r.stdout + r.stderr
+    folder = top / "cache" / "plxtools"
+    for _ in range(600):  # the forked writer is done when its temporary file has been renamed
+        if list(folder.glob("programs/*")) and not list(folder.glob("programs/.*.tmp")):
+            break
+        time.sleep(0.1)
+    assert list(folder.glob("programs/*")), "the cold run left no bundle program behind"
+    return top / "cache"
+
+
+@pytest.fixture
+def warm_cache(warm_cache_seed, tmp_path) -> Path:
+    """A new cache folder of this test's own (tmp_path/cache) holding only the shared kinds of
+    `warm_cache_seed`: empty of results, formatted files and replays."""
+    import shutil
+
+    dest = tmp_path / "cache"
+    for kind in _SHARED_KINDS:
+        src = warm_cache_seed / "plxtools" / kind
+        if src.is_dir():
+            shutil.copytree(src, dest / "plxtools" / kind, ignore=shutil.ignore_patterns(".*.tmp"))
+    return dest
 
 
 @contextmanager

@@ -13,7 +13,7 @@ import pytest
 
 from check_helpers import BROKEN, REPO
 
-from tests.conftest import run_plx as _run_plx
+from tests.conftest import campaign_size, run_plx as _run_plx
 
 
 def run_plx(*args: str):
@@ -259,7 +259,7 @@ def check_one(path: Path, export: Path) -> None:
         raise AssertionError("no export written, yet exit code %d" % r.returncode)
 
 
-@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("seed", range(campaign_size(4)))
 def test_fuzz_bad_scenes(tmp_path, seed):
     rng = random.Random(seed)
     f = _write(tmp_path, mutate(rng))

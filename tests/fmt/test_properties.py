@@ -8,12 +8,12 @@ from hypothesis import strategies as st
 
 from plxtools.fmt import format_text
 from plxtools.syntax import parse_text
-from tests.conftest import bundle_files
+from tests.conftest import bundle_files, campaign_size
 from tests.fmt.helpers import assert_fixed_point, assert_same_lint, assert_same_meaning, assert_same_tokens
 from tests.fmt.programs import mutate, programs
 
 SETTINGS = settings(
-    max_examples=120,
+    max_examples=campaign_size(120),
     deadline=None,
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
 )

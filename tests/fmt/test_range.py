@@ -8,6 +8,7 @@ from hypothesis import strategies as st
 from plxtools.diagnostics import Edit
 from plxtools.fmt import format_range
 from plxtools.syntax import ast, parse_text
+from tests.conftest import campaign_size
 from tests.fmt.programs import programs
 
 SOURCE = (
@@ -79,7 +80,7 @@ def test_comments_in_the_range_are_reindented():
     assert out == "A is Base:\n    x: 1\n    # note\n    y: 2  #  trailing\n"
 
 
-@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@settings(max_examples=campaign_size(80), deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 @given(programs(), st.integers(0, 60), st.integers(0, 20))
 def test_any_range_of_any_program_keeps_the_meaning(source, start, length):
     tree = parse_text(source)

@@ -6,7 +6,7 @@ from hypothesis import strategies as st
 from plxtools.config import Config
 from plxtools.rules.analysis import analyse_tree
 from plxtools.syntax import parse_text
-from tests.conftest import REPO, bundle_files
+from tests.conftest import REPO, bundle_files, campaign_size
 from tests.syntax.test_mutation import mutate
 
 SOURCES = [p.read_text(encoding="utf-8") for p in bundle_files()[::11]]
@@ -24,7 +24,7 @@ def ws():
     return _WS
 
 
-@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=campaign_size(120), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     st.integers(0, len(SOURCES) - 1),
     st.lists(st.tuples(st.integers(0, 3), st.integers(0, 10_000), st.integers(0, 10_000),

@@ -4,7 +4,7 @@ again. Each test compares with what a run without any cache (`--no-cache`) print
 
 import time
 
-from tests.conftest import run_plx
+from tests.conftest import plx_here, run_plx
 
 CLEAN = ("Wheel is Physics3D.Bodies.RigidBody:\n    inertia.mass: 10\n\n"
          "Scene is Physics3D.System:\n    wheel is Wheel\n")
@@ -22,12 +22,12 @@ def _same(a, b):
 
 
 def _fresh(tmp_path, *args):
-    """The answer of a run with no cache at all."""
-    return run_plx(*args, "--no-cache", env={"PLX_CACHE_DIR": str(tmp_path / "none")})
+    """The answer of a run with no cache at all (in this process: it reads no cache and replays nothing)."""
+    return plx_here(*args, "--no-cache", env={"PLX_CACHE_DIR": str(tmp_path / "none")})
 
 
-def test_an_unchanged_run_is_replayed_with_the_same_output(tmp_path):
-    env = {"PLX_CACHE_DIR": str(tmp_path / "cache")}
+def test_an_unchanged_run_is_replayed_with_the_same_output(tmp_path, warm_cache):
+    env = {"PLX_CACHE_DIR": str(warm_cache)}
     f = tmp_path / "w.openplx"
     f.write_text(BROKEN)
     for fmt in ("text", "json", "sarif"):
@@ -35,13 +35,13 @@ def test_an_unchanged_run_is_replayed_with_the_same_output(tmp_path):
         again = run_plx("lint", "--output-format", fmt, str(f), env=env)
         assert first.returncode == 1 and _same(first, again), fmt
         assert _same(first, _fresh(tmp_path, "lint", "--output-format", fmt, str(f)))
-    assert len(_runs(tmp_path / "cache")) == 3  # one entry per command line
+    assert len(_runs(warm_cache)) == 3  # one entry per command line
     quiet = run_plx("lint", "-q", "--exit-zero", str(f), env=env)
     assert quiet.returncode == 0 and _same(quiet, run_plx("lint", "-q", "--exit-zero", str(f), env=env))
 
 
-def test_a_changed_file_or_config_runs_again(tmp_path):
-    env = {"PLX_CACHE_DIR": str(tmp_path / "cache")}
+def test_a_changed_file_or_config_runs_again(tmp_path, warm_cache):
+    env = {"PLX_CACHE_DIR": str(warm_cache)}
     proj = tmp_path / "a" / "b"
     proj.mkdir(parents=True)
     f = proj / "w.openplx"
@@ -64,11 +64,11 @@ def test_a_changed_file_or_config_runs_again(tmp_path):
     assert run_plx("lint", str(f), env=env).returncode == 1
     assert run_plx("lint", str(f), env=env | {"NO_COLOR": ""}).returncode == 1  # other environment
     r = run_plx("lint", str(f), env=env, cwd=tmp_path)  # another working folder: paths print otherwise
-    assert _same(r, run_plx("lint", str(f), "--no-cache", env=env, cwd=tmp_path))
+    assert _same(r, plx_here("lint", str(f), "--no-cache", env=env, cwd=tmp_path))
 
 
-def test_an_imported_file_is_part_of_the_answer(tmp_path):
-    env = {"PLX_CACHE_DIR": str(tmp_path / "cache")}
+def test_an_imported_file_is_part_of_the_answer(tmp_path, warm_cache):
+    env = {"PLX_CACHE_DIR": str(warm_cache)}
     f = tmp_path / "w.openplx"
     f.write_text('import @"wheel.obj"\n\n' + CLEAN)
     missing = run_plx("lint", str(f), env=env)
@@ -79,8 +79,8 @@ def test_an_imported_file_is_part_of_the_answer(tmp_path):
     assert found.stdout != missing.stdout or found.returncode != missing.returncode
 
 
-def test_what_depends_on_the_surroundings_is_never_replayed(tmp_path):
-    cache = tmp_path / "cache"
+def test_what_depends_on_the_surroundings_is_never_replayed(tmp_path, warm_cache):
+    cache = warm_cache
     env = {"PLX_CACHE_DIR": str(cache)}
     f = tmp_path / "u.openplx"
     f.write_text(UNKNOWN)  # an unknown name: its help may name a bundle folder found nearby
@@ -99,8 +99,8 @@ def test_what_depends_on_the_surroundings_is_never_replayed(tmp_path):
     assert not _runs(cache)
 
 
-def test_fmt_check_is_replayed_while_the_file_is_formatted(tmp_path):
-    cache = tmp_path / "cache"
+def test_fmt_check_is_replayed_while_the_file_is_formatted(tmp_path, warm_cache):
+    cache = warm_cache
     env = {"PLX_CACHE_DIR": str(cache)}
     f = tmp_path / "w.openplx"
     f.write_text(CLEAN)
@@ -134,12 +134,12 @@ def test_a_cold_run_leaves_the_bundle_program_cache_behind(tmp_path):
     assert _same(second, _fresh(tmp_path, "lint", "--output-format", "json", str(f)))
 
 
-def test_unrelated_files_beside_it_keep_the_run_replayable(tmp_path):
+def test_unrelated_files_beside_it_keep_the_run_replayable(tmp_path, warm_cache):
     """An editor's swap file or a new file beside it changes nothing plx reads: the run is replayed
     (seen here by the per-file result, removed in between, not being stored again)."""
     import shutil
 
-    cache = tmp_path / "cache"
+    cache = warm_cache
     env = {"PLX_CACHE_DIR": str(cache)}
     f = tmp_path / "w.openplx"
     f.write_text(BROKEN)
@@ -154,8 +154,8 @@ def test_unrelated_files_beside_it_keep_the_run_replayable(tmp_path):
     assert (cache / "plxtools" / "results").exists()
 
 
-def test_a_damaged_entry_is_a_miss(tmp_path):
-    cache = tmp_path / "cache"
+def test_a_damaged_entry_is_a_miss(tmp_path, warm_cache):
+    cache = warm_cache
     env = {"PLX_CACHE_DIR": str(cache)}
     f = tmp_path / "w.openplx"
     f.write_text(BROKEN)

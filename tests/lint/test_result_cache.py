@@ -1,7 +1,7 @@
 """Per-file result caches of `plx lint` and `plx fmt`: an unchanged file gets the same answer
 without being checked again; any change to what the answer depends on is a miss."""
 
-from tests.conftest import run_plx
+from tests.conftest import plx_here, run_plx
 
 CLEAN = ("Wheel is Physics3D.Bodies.RigidBody:\n    inertia.mass: 10\n\n"
          "Scene is Physics3D.System:\n    wheel is Wheel\n")
@@ -14,8 +14,8 @@ def _entries(cache, name):
         else []
 
 
-def test_lint_results_are_reused_until_the_file_or_config_changes(tmp_path):
-    cache = tmp_path / "cache"
+def test_lint_results_are_reused_until_the_file_or_config_changes(tmp_path, warm_cache):
+    cache = warm_cache
     env = {"PLX_CACHE_DIR": str(cache)}
     proj = tmp_path / "proj"
     proj.mkdir()
@@ -41,12 +41,12 @@ def test_lint_results_are_reused_until_the_file_or_config_changes(tmp_path):
     ignored = run_plx("lint", str(f), "--ignore", "N002", env=env)  # the command's own options count too
     assert ignored.returncode == 0, ignored.stdout
 
-    nocache = run_plx("lint", "--no-cache", str(f), env={"PLX_CACHE_DIR": str(tmp_path / "other")})
+    nocache = plx_here("lint", "--no-cache", str(f), env={"PLX_CACHE_DIR": str(tmp_path / "other")})
     assert nocache.returncode == 1 and not _entries(tmp_path / "other", "results")
 
 
-def test_results_that_depend_on_the_surroundings_are_not_stored(tmp_path):
-    cache = tmp_path / "cache"
+def test_results_that_depend_on_the_surroundings_are_not_stored(tmp_path, warm_cache):
+    cache = warm_cache
     f = tmp_path / "u.openplx"
     f.write_text(UNKNOWN)
     r = run_plx("lint", str(f), env={"PLX_CACHE_DIR": str(cache)})
@@ -54,8 +54,8 @@ def test_results_that_depend_on_the_surroundings_are_not_stored(tmp_path):
     assert not _entries(cache, "results")  # its help may name a bundle folder found nearby
 
 
-def test_files_in_a_user_bundle_are_always_checked(tmp_path):
-    cache = tmp_path / "cache"
+def test_files_in_a_user_bundle_are_always_checked(tmp_path, warm_cache):
+    cache = warm_cache
     b = tmp_path / "MyBundle"
     b.mkdir()
     (b / "config.openplx").write_text('config is Bundle:\n    name: "MyBundle"\n    version: "0.1"\n')
@@ -65,8 +65,8 @@ def test_files_in_a_user_bundle_are_always_checked(tmp_path):
     assert not _entries(cache, "results")
 
 
-def test_fmt_remembers_formatted_files_only(tmp_path):
-    cache = tmp_path / "cache"
+def test_fmt_remembers_formatted_files_only(tmp_path, warm_cache):
+    cache = warm_cache
     env = {"PLX_CACHE_DIR": str(cache)}
     f = tmp_path / "w.openplx"
     f.write_text(CLEAN)
@@ -81,7 +81,7 @@ def test_fmt_remembers_formatted_files_only(tmp_path):
     assert run_plx("fmt", "--no-cache", "--check", str(f), env=env).returncode == 1
 
 
-def test_many_files_in_parallel_report_what_one_by_one_runs_do(tmp_path):
+def test_many_files_in_parallel_report_what_one_by_one_runs_do(tmp_path, warm_cache):
     """Enough loose files to use the worker pool (8 files, over 256 KB): the same diagnostics in
     the same order as linting each file on its own."""
     import json
@@ -98,11 +98,11 @@ def test_many_files_in_parallel_report_what_one_by_one_runs_do(tmp_path):
         f.write_text(body)
         files.append(f)
     assert sum(f.stat().st_size for f in files) > 256 * 1024
-    env = {"PLX_CACHE_DIR": str(tmp_path / "cache")}
+    env = {"PLX_CACHE_DIR": str(warm_cache)}
     together = run_plx("lint", "--no-cache", "--output-format", "json", str(tmp_path), env=env)
     alone = []
     for f in files:
-        r = run_plx("lint", "--no-cache", "--output-format", "json", str(f), env=env)
+        r = plx_here("lint", "--no-cache", "--output-format", "json", str(f), env=env)  # the reference
         alone += json.loads(r.stdout)
     assert json.loads(together.stdout) == alone
     assert together.returncode == 1 and any(d["code"] == "N002" for d in alone)

@@ -10,6 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from plxtools.lsp.convert import apply_change
+from tests.conftest import campaign_size
 from tests.lsp.rawclient import RawServer
 
 # characters that are line breaks to Python's str.splitlines but not to LSP, and non-BMP text
@@ -60,7 +61,7 @@ def _change(sl, sc, el, ec, new):
 texts = st.lists(st.sampled_from(ALPHABET), max_size=30).map("".join)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=campaign_size(300), deadline=None)
 @given(text=texts, edits=st.lists(st.tuples(st.integers(0, 8), st.integers(0, 12), st.integers(0, 8),
                                             st.integers(0, 12), texts), min_size=1, max_size=6))
 def test_random_edits_match_a_client_model(text, edits):
@@ -107,7 +108,7 @@ def _typing(text: str, line: int, col: int, word: str, first_version: int, step:
     return [(first_version + i * step, [_change(line, col + i, line, col + i, ch)]) for i, ch in enumerate(word)]
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=campaign_size(200), deadline=None)
 @given(data=st.data(), step=st.integers(1, 3))
 def test_edits_that_arrive_out_of_order_give_the_text_typed(data, step):
     from plxtools.lsp.documents import Documents

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 from plxtools.model.apiindex import where_defined
-from tests.conftest import run_plx
+from tests.conftest import plx_here, run_plx
 
 
 def test_a_removed_type_of_an_older_version_names_the_versions_that_have_it(tmp_path):
@@ -55,16 +55,16 @@ def test_renamed_models_are_u001_with_a_safe_fix_and_attributes_u002_with_an_uns
     assert "# written for 0.17" in f.read_text(encoding="utf-8")
 
 
-def test_the_renamed_attribute_table_from_the_cache_folder_gives_the_same_hints(tmp_path):
+def test_the_renamed_attribute_table_from_the_cache_folder_gives_the_same_hints(tmp_path, warm_cache):
     """U002's table is composed once and kept in plx's cache folder: a run that reads it, one that
     writes it and one with --no-cache report the same."""
     f = tmp_path / "scene.openplx"
     f.write_text(OLD_STYLE, encoding="utf-8")
-    env = {"PLX_CACHE_DIR": str(tmp_path / "cache")}
+    env = {"PLX_CACHE_DIR": str(warm_cache)}  # a warm bundle program, no renames table yet
     first = run_plx("lint", "--output-format", "json", str(f), env=env).stdout
     assert list((tmp_path / "cache" / "plxtools" / "renames").glob("*")), "the table was not kept"
     (f.parent / "scene2.openplx").write_text(OLD_STYLE, encoding="utf-8")  # not a stored result
     second = run_plx("lint", "--output-format", "json", str(f.parent / "scene2.openplx"), env=env).stdout
-    uncached = run_plx("lint", "--no-cache", "--output-format", "json", str(f), env=env).stdout
+    uncached = plx_here("lint", "--no-cache", "--output-format", "json", str(f), env=env).stdout
     assert [d["code"] for d in json.loads(first)][-1] == "U002"
     assert second.replace("scene2.openplx", "scene.openplx") == first == uncached

@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from plxtools.syntax import ast, parse_text, parser
-from tests.conftest import bundle_files
+from tests.conftest import bundle_files, campaign_size
 
 
 def _dump(tree: ast.File) -> list:
@@ -65,7 +65,7 @@ EXPR_LINE = st.lists(st.sampled_from(["a", "b.c", "`d`", ":", ".", "1", "-", "2.
                      min_size=1, max_size=10).map(" ".join)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=campaign_size(300), deadline=None)
 @given(st.lists(EXPR_LINE, max_size=4))
 def test_generated_expression_lines_same_tree(lines):
     text = "M is N:\n" + "".join(f"    a: {ln}\n    b is T: {ln}\n    {ln}\n" for ln in lines) \
@@ -85,7 +85,7 @@ def test_example_and_case_files_same_tree(path):
     assert fast == slow
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=campaign_size(200), deadline=None)
 @given(st.lists(LINE, max_size=4))
 def test_generated_lines_same_tree(lines):
     text = "M is N:\n" + "".join(f"    {ln}\n    .{ln}\n" for ln in lines) + "".join(f"{ln}\n" for ln in lines)

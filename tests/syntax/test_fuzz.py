@@ -8,9 +8,9 @@ from hypothesis import strategies as st
 
 from plxtools.syntax import ast, parse_bytes, parse_text
 from plxtools.syntax.lexer import lex
-from tests.conftest import bundle_files
+from tests.conftest import bundle_files, campaign_size
 
-SETTINGS = settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+SETTINGS = settings(max_examples=campaign_size(150), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 PIECES = [
     "Scene", "is", "becomes", "Physics3D.System", "x", "chassis", "this", "axis", "fn", "const", "trait",

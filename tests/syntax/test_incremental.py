@@ -8,7 +8,7 @@ import pytest
 
 from plxtools.syntax.incremental import IncrementalParser, same_tree, split_chunks
 from plxtools.syntax import parse_text
-from tests.conftest import bundle_files
+from tests.conftest import bundle_files, campaign_size
 from tests.ide.conftest import EXAMPLE
 
 
@@ -32,7 +32,7 @@ def test_chunks_start_at_top_level_statements():
 SNIPPETS = ["x", " ", "\n", ":", "(", "]", '"', '"""', "#", "    y: 1\n", "Foo is Bar\n", "\n\n", "é", "\t"]
 
 
-@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("seed", range(campaign_size(6)))
 def test_random_edits_match_a_full_parse(seed):
     rng = random.Random(seed)
     text = example()

@@ -6,7 +6,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from plxtools.syntax import ast, parse_text
-from tests.conftest import bundle_files
+from tests.conftest import bundle_files, campaign_size
 
 FILES = [p.read_text(encoding="utf-8") for p in bundle_files()[::7]]
 
@@ -39,7 +39,7 @@ def check_ranges(tree):
         assert tree.index.pos(s.header.start.offset) == s.header.start
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=campaign_size(150), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     st.integers(0, len(FILES) - 1),
     st.lists(
@@ -54,7 +54,7 @@ def test_mutated_bundle_files_never_raise(index, ops):
     check_ranges(tree)
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=campaign_size(100), deadline=None)
 @given(st.text(max_size=300))
 def test_arbitrary_text_never_raises(text):
     check_ranges(parse_text(text))
