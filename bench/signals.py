@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 
 from plxtools.check.api import prepare
-from plxtools.check.mj_simulate import simulate_compiled
+from plxtools.check.mujoco.simulate import simulate_compiled
 from plxtools.check.testrun import run_scenario
 
 REPO = Path(__file__).resolve().parent.parent

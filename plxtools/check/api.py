@@ -174,7 +174,7 @@ class Prepared:
 def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str] | tuple = (),
             openplx_version: str | None = None) -> Prepared:
     """Check, assemble and compile ``path`` (raises ModelError when it cannot be simulated)."""
-    from plxtools.check import mujoco_backend as mjb
+    from plxtools.check.mujoco import backend as mjb
     from plxtools.check.convert import _source
     from plxtools.check.pipeline import analyse, blocking_reason
     from plxtools.config import ConfigError, config_for
@@ -300,7 +300,7 @@ class Simulation:
     def __init__(self, prepared: Prepared):
         import mujoco
 
-        from plxtools.check.mj_kinematic import Stepper
+        from plxtools.check.mujoco.kinematic import Stepper
 
         self.prepared = prepared
         self.path = prepared.path
@@ -427,7 +427,7 @@ class Simulation:
 
     def body(self, path: str) -> BodyState:
         """The world state of a rigid body."""
-        from plxtools.check.mj_kinematic import body_velocity
+        from plxtools.check.mujoco.kinematic import body_velocity
         from plxtools.check.signals import rpy_of_mat
 
         if path not in self.prepared.bodies:

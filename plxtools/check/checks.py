@@ -593,7 +593,7 @@ def bodies_out_of_world(sim, sources) -> list:
     the chassis, a part off the edge of the ground) falls out of the world without crossing any,
     so the start and end positions decide here. A scene that falls as a whole (a free-fall test
     with no ground) has nothing that stayed, and is not reported."""
-    from plxtools.check.mj_simulate import fell_out_of_world
+    from plxtools.check.mujoco.simulate import fell_out_of_world
 
     if sim is None:
         return []
@@ -627,7 +627,7 @@ def tie_mirrored_motors(rep: Reporter) -> None:
     wheels against each other (issue 32.6); the two findings name each other."""
     if not rep.mirrored_motors:
         return
-    from plxtools.check.mj_simulate import MOTOR_OFF_TARGET
+    from plxtools.check.mujoco.simulate import MOTOR_OFF_TARGET
 
     partner = {}
     for a, b, d in rep.mirrored_motors:

@@ -77,7 +77,7 @@ def _options(args) -> float:
         args.simulate = True
     video = getattr(args, "video", None)
     if video:
-        from plxtools.check.mj_video import VideoError, check_fps, check_target
+        from plxtools.check.mujoco.video import VideoError, check_fps, check_target
 
         args.simulate = True
         try:
@@ -261,7 +261,7 @@ def _in_parallel(files: list[Path], args, run: _Run) -> list | None:
             try:  # mujoco_backend imports mujoco only when it first compiles
                 import mujoco  # noqa: F401
 
-                import plxtools.check.mujoco_backend  # noqa: F401
+                import plxtools.check.mujoco.backend  # noqa: F401
             except ImportError:  # reported per file, as in the serial loop
                 pass
         rest = workpool.map_ordered(_pool_item, items[1:], workers=workers,
@@ -318,7 +318,7 @@ def _artefacts(args, results) -> int:
                 continue
             try:
                 if kind == "export":
-                    from plxtools.check.mujoco_backend import ExportError, export_mjcf
+                    from plxtools.check.mujoco.backend import ExportError, export_mjcf
 
                     try:
                         export_mjcf(fc.compiled, str(out))
@@ -328,7 +328,7 @@ def _artefacts(args, results) -> int:
                               f"(see {exc.note.code})", file=sys.stderr)
                         status = 2
                 else:
-                    from plxtools.check.mujoco_backend import RenderUnavailable, render_png
+                    from plxtools.check.mujoco.backend import RenderUnavailable, render_png
 
                     try:
                         render_png(fc.compiled, str(out))
@@ -347,7 +347,7 @@ def _artefacts(args, results) -> int:
 
 def _write_video(fc, out: Path, args) -> int:
     """Record the file's scene again from its initial state, offscreen, for --duration seconds."""
-    from plxtools.check.mj_video import VideoError, record
+    from plxtools.check.mujoco.video import VideoError, record
 
     if fc.simulation is None or fc.compiled is None or not fc.compiled.ok:
         why = fc.skipped or "the scene was not simulated"

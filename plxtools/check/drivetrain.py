@@ -1,5 +1,5 @@
 """Drive trains in the scene: the Physics1D shafts, DriveTrain gears, hinge actuators and the 1D
-motors that the MuJoCo backend maps (``mj_drivetrain``).  Every other Physics1D / DriveTrain
+motors that the MuJoCo backend maps (``mujoco.drivetrain``).  Every other Physics1D / DriveTrain
 object (engines, clutches, brakes, differentials, gear boxes, torque converters, linear bodies,
 prismatic actuators) stays named as unsupported (A040) by the static checks.
 

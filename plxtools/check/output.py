@@ -191,14 +191,14 @@ MOTION_CODES = STATIC_MOTION_CODES  # and the run's MOTOR_OFF_TARGET
 
 
 def motion_diagnostics(fc: FileCheck) -> list[Diagnostic]:
-    from plxtools.check.mj_simulate import MOTOR_OFF_TARGET
+    from plxtools.check.mujoco.simulate import MOTOR_OFF_TARGET
 
     return [d for d in fc.diagnostics if d.code in MOTION_CODES or d.code == MOTOR_OFF_TARGET]
 
 
 def _energy_gained(s) -> bool:
     """The run reported energy that no motor supplied (its finding, not a threshold of ours)."""
-    from plxtools.check.mj_simulate import ENERGY_GAIN
+    from plxtools.check.mujoco.simulate import ENERGY_GAIN
 
     return any(n.code == ENERGY_GAIN for n in s.notes)
 

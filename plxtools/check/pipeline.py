@@ -260,7 +260,7 @@ def blocking_reason(fc: FileCheck) -> str | None:
 def run_backend(fc: FileCheck, *, simulate: bool, duration: float, compile_only: bool = False,
                 record: bool = False, timeout: float | None = None, deadline: float | None = None) -> None:
     """Compile (and simulate) the file's scene; backend notes become diagnostics."""
-    from plxtools.check import mujoco_backend as mjb
+    from plxtools.check.mujoco import backend as mjb
 
     t0 = time.perf_counter()
     fc.compiled = mjb.compile_scene(fc.scene)

@@ -562,13 +562,31 @@ def _bind_count(e: Expect, model: _Model) -> ScenarioError | None:
     what = e.of[len(PREFIX):]
     if e.unit is not None:
         return ScenarioError(f"{e.of} is a count; it takes no unit", e.keys.get("unit", e.loc))
-    if what in counts or what.split(".", 1)[0] in COUNTED:
+    group, _, kind = what.partition(".")
+    kinds = _known_kinds(group)
+    if what not in counts and kind and kinds and kind not in kinds:
+        hint = did_you_mean(kind, sorted(kinds))
+        return ScenarioError(f"no {group} are counted as '{kind}' (kinds: {', '.join(sorted(kinds))})"
+                             + (f"; did you mean '{PREFIX}{group}.{hint}'?" if hint else ""),
+                             e.keys.get("of", e.loc))
+    if what in counts or group in COUNTED:
         e.count = counts.get(what, 0)  # a kind the scene does not hold: 0 of them
         return None
     hint = did_you_mean(what, list(counts))
     return ScenarioError(f"the scene has no count '{what}' (counts: bodies, mates, controllers, "
                          "shafts, shaft_couplings, shaft_motors, and per kind such as mates.hinge)"
                          + (f"; did you mean '{PREFIX}{hint}'?" if hint else ""), e.keys.get("of", e.loc))
+
+
+def _known_kinds(group: str) -> set[str]:
+    """The kinds a mate or controller count may name (the mapping's tables); other groups: any."""
+    from plxtools.check.mapped_types import CONTROLLERS, MATES
+
+    if group == "mates":
+        return set(MATES.values())
+    if group == "controllers":
+        return {name for _kind, _dof, name in CONTROLLERS.values()}
+    return set()
 
 
 def _bind_expect(e: Expect, model: _Model) -> ScenarioError | None:

@@ -294,7 +294,7 @@ class Scene:
     gravity: Vec3 = (0.0, 0.0, -9.80665)
     unsupported: list[Unsupported] = field(default_factory=list)
     timestep: float = 0.002
-    integrator: str = "auto"  # auto (chosen by the scene, mj_integrator.py) or a MuJoCo integrator's name
+    integrator: str = "auto"  # auto (chosen by the scene, check/mujoco/integrator.py) or a MuJoCo integrator's name
     base_dir: str | None = None  # directory of the root .openplx file (relative mesh paths)
     default_friction: float | None = None  # material pairs without a model; None = backend default
     shafts: list[Shaft] = field(default_factory=list)

@@ -35,7 +35,7 @@ SOURCE_KINDS = {
     **MATES,
     "Physics3D.Interactions.MateConnector": "connector",
     "Physics3D.Bodies.RigidBody": "body",
-    # drive trains (check/mj_drivetrain.py: a shaft is a hinge joint of its own, 1D motors act on it)
+    # drive trains (check/mujoco/drivetrain.py: a shaft is a hinge joint of its own, 1D motors act on it)
     "Physics1D.Interactions.RotationalVelocityMotor": "rotational_velocity_motor_1d",
     "DriveTrain.TorqueMotor": "torque_motor_1d",
     "Physics1D.Bodies.RotationalBody": "shaft",
@@ -396,7 +396,7 @@ class SignalRuntime:
                 b.write = write_ctrl
             return b
         if q in ("shaft_position", "shaft_velocity"):
-            coord = self.compiled.shafts.get(src)  # a shaft turns with its drive train's joint (mj_drivetrain)
+            coord = self.compiled.shafts.get(src)  # a shaft turns with its drive train's joint (mujoco.drivetrain)
             if coord is None:
                 raise _Unbindable(f"the shaft {src} is not simulated (see the check notes)")
             jid = self.compiled.model.joint(coord.joint).id
@@ -439,7 +439,7 @@ class SignalRuntime:
             compiled = self.compiled
 
             def read_vel(m, d):
-                from plxtools.check.mj_kinematic import body_velocity  # a kinematic body's is prescribed
+                from plxtools.check.mujoco.kinematic import body_velocity  # a kinematic body's is prescribed
 
                 res = body_velocity(mj, m, d, compiled, bid)
                 return tuple(float(x) for x in (res[3:] if lin else res[:3]))

@@ -120,7 +120,7 @@ def run_scenario(path: Path, *, bundle_path: list[str] | tuple = (), openplx_ver
 def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> None:
     import mujoco
 
-    from plxtools.check.mj_simulate import simulate_compiled
+    from plxtools.check.mujoco.simulate import simulate_compiled
     from plxtools.check.scenecounts import scene_counts
     from plxtools.check.signals import SignalRuntime
 
@@ -230,7 +230,7 @@ def _sample(o: Outcome, v: float, t: float) -> None:
 def _run_findings(notes: list, res: ScenarioResult, model_file: str) -> None:
     """The run's errors (a body that fell through among them) fail the scenario; its warnings of mates
     drifting apart and of geometries that start in each other are shown beside the result."""
-    from plxtools.check.mj_simulate import FELL_THROUGH, MATE_DRIFT, OVERLAP_AT_START
+    from plxtools.check.mujoco.simulate import FELL_THROUGH, MATE_DRIFT, OVERLAP_AT_START
 
     for n in notes:
         if n.severity == "error" or n.code in (FELL_THROUGH, MATE_DRIFT, OVERLAP_AT_START):

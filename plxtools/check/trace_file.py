@@ -19,7 +19,7 @@ BODY_FIELDS = (("position", ("x", "y", "z")), ("quaternion", ("qw", "qx", "qy", 
 
 
 def trace_rows(trace: dict[str, Any]) -> tuple[list[str], list[list[float]]]:
-    """Header and rows of a recorded trace (see :class:`plxtools.check.mj_simulate.Trace`)."""
+    """Header and rows of a recorded trace (see :class:`plxtools.check.mujoco.simulate.Trace`)."""
     header = ["time"]
     columns: list[list[float]] = [trace["time"]]
     for key, q in trace["joints"].items():

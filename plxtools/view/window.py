@@ -35,9 +35,9 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
     import mujoco
     import mujoco.viewer
 
-    from plxtools.check.mj_video import COLLISION_BEHIND_VISUALS, floor_grid, floor_height, show_visuals
-    from plxtools.check.mj_types import VISUAL_GROUP
-    from plxtools.check.mj_render import frame_camera
+    from plxtools.check.mujoco.video import COLLISION_BEHIND_VISUALS, floor_grid, floor_height, show_visuals
+    from plxtools.check.mujoco.results import VISUAL_GROUP
+    from plxtools.check.mujoco.render import frame_camera
 
     session.load()
     while session.sim is None:  # nothing to show yet: say why and wait for a fix, never a blank window

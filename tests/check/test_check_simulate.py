@@ -53,7 +53,7 @@ def test_violated_mate_is_pulled_together_in_the_simulation(check_file):
 
 
 def test_exported_mjcf_loads_alone_and_matches_the_assembly(check_file, tmp_path):
-    from plxtools.check.mujoco_backend import export_mjcf
+    from plxtools.check.mujoco.backend import export_mjcf
 
     fc = check_file(EXAMPLE)
     from plxtools.check.pipeline import run_backend

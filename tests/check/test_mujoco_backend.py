@@ -9,7 +9,7 @@ import zlib
 import numpy as np
 import pytest
 
-from plxtools.check.mujoco_backend import RenderUnavailable, compile_scene, export_mjcf, render_png, simulate
+from plxtools.check.mujoco.backend import RenderUnavailable, compile_scene, export_mjcf, render_png, simulate
 from plxtools.check.scene import (
     IDENTITY_QUAT,
     Body,

@@ -135,3 +135,18 @@ def test_scene_bodies_mates_and_counts_in_the_api_and_a_scenario(tmp_path):
     bad.write_text(scen.read_text().replace("scene.bodies", "scene.bodys"), encoding="utf-8")
     r = run_plx("test", str(bad))
     assert r.returncode == 2 and "did you mean 'scene.bodies'" in r.stdout, r.stdout
+
+
+def test_a_count_of_a_kind_no_mapping_has_is_an_error_not_zero(tmp_path):
+    """`scene.controllers.velocity_motor` (a motor's kind, not its name) or a misspelt mate kind is a
+    located error with the kinds there are, never a silent count of 0."""
+    (tmp_path / "chain.openplx").write_text(SCENE, encoding="utf-8")
+    for of, hint in [("scene.controllers.velocity_motor", "scene.controllers.linear_velocity_motor"),
+                     ("scene.mates.hinges", "scene.mates.hinge")]:
+        scen = tmp_path / "kind.scenario.toml"
+        scen.write_text(f'model = "chain.openplx"\nduration = 0.1\n\n[[expect]]\nat = 0\nof = "{of}"\n'
+                        'equals = 0\ntolerance = 0\n', encoding="utf-8")
+        r = run_plx("test", str(scen))
+        assert r.returncode == 2, r.stdout + r.stderr
+        assert "kind.scenario.toml:6:" in r.stdout and "are counted as" in r.stdout, r.stdout
+        assert f"did you mean '{hint}'" in r.stdout or "kinds: " in r.stdout, r.stdout

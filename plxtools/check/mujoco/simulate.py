@@ -9,11 +9,11 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.mj_compile import VISUAL_GROUP, CompiledScene, MateMonitor
-from plxtools.check.mj_integrator import not_conservative
-from plxtools.check.mj_kinematic import KinematicMover, Stepper, body_velocity
-from plxtools.check.mj_math import angle_between
-from plxtools.check.mj_notes import ERROR, INFO, WARNING, BackendNote
+from plxtools.check.mujoco.compile import VISUAL_GROUP, CompiledScene, MateMonitor
+from plxtools.check.mujoco.integrator import not_conservative
+from plxtools.check.mujoco.kinematic import KinematicMover, Stepper, body_velocity
+from plxtools.check.mujoco.poses import angle_between
+from plxtools.check.mujoco.notes import ERROR, INFO, WARNING, BackendNote
 
 # The codes of the run's findings that other modules recognise (plx test, the report, the static
 # checks): each is named here, where it is raised, and imported from here.
@@ -84,7 +84,7 @@ class SimulationResult:
     timestep: float
     wall_time_s: float
     compile_ms: float
-    integrator: str = "implicitfast"  # MuJoCo's integrator (mj_integrator.choose says why)
+    integrator: str = "implicitfast"  # MuJoCo's integrator (mujoco.integrator.choose says why)
     blowup: dict[str, Any] | None = None
     penetrations: list[dict[str, Any]] = field(default_factory=list)
     fall_through: list[dict[str, Any]] = field(default_factory=list)
@@ -189,7 +189,7 @@ def _monitor_measure(mon: MateMonitor, ids: tuple[int, int], data: Any) -> tuple
 
 @dataclass(frozen=True, slots=True)
 class SimOptions:
-    """Thresholds of the monitors (see :func:`plxtools.check.mujoco_backend.simulate`)."""
+    """Thresholds of the monitors (see :func:`plxtools.check.mujoco.backend.simulate`)."""
 
     sample_dt: float = 0.01
     timeout: float | None = None  # s of wall-clock time; None: no limit

@@ -30,10 +30,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from plxtools.check.mj_compile import ActuatorInfo, CompiledScene, MateMonitor, compile_scene
-from plxtools.check.mj_notes import BackendNote
-from plxtools.check.mj_render import RenderUnavailable, render_compiled, write_png
-from plxtools.check.mj_simulate import (
+from plxtools.check.mujoco.compile import ActuatorInfo, CompiledScene, MateMonitor, compile_scene
+from plxtools.check.mujoco.notes import BackendNote
+from plxtools.check.mujoco.render import RenderUnavailable, render_compiled, write_png
+from plxtools.check.mujoco.simulate import (
     BodyReport,
     MateReport,
     MotorReport,
@@ -93,7 +93,7 @@ def export_mjcf(compiled: CompiledScene, path: str | None = None) -> str:
     :class:`ExportError` names the element and its OpenPLX source."""
     import mujoco
 
-    from plxtools.check.mj_notes import note_from_compile_error
+    from plxtools.check.mujoco.notes import note_from_compile_error
 
     if compiled.spec is None:
         raise ValueError("nothing to export: the scene has no MjSpec")

@@ -10,11 +10,11 @@ import numpy as np
 from plxtools.check.checks import DUPLICATE_CONTACT_MODEL, INVALID_INERTIA, ZERO_MASS_DYNAMIC_BODY
 from plxtools.check.convert import MISSING_FILE
 from plxtools.check.coverage import NOT_SIMULATED
-from plxtools.check.mj_context import BuildContext
-from plxtools.check.mj_math import Z_TO_Y_QUAT, quat_mul, quat_normalize
-from plxtools.check.mj_notes import INFO, WARNING
-from plxtools.check.mj_restitution import restitution_solref
-from plxtools.check.mj_types import VISUAL_GROUP
+from plxtools.check.mujoco.context import BuildContext
+from plxtools.check.mujoco.poses import Z_TO_Y_QUAT, quat_mul, quat_normalize
+from plxtools.check.mujoco.notes import INFO, WARNING
+from plxtools.check.mujoco.restitution import restitution_solref
+from plxtools.check.mujoco.results import VISUAL_GROUP
 from plxtools.check.scene import GEOM_KINDS, Body, Geom
 from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NON_POSITIVE_SIZE
 

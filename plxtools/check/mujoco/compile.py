@@ -1,8 +1,8 @@
 """Compile an assembled :class:`~plxtools.check.scene.Scene` into a MuJoCo model via ``MjSpec``.
 
 mujoco is imported lazily (inside functions).  Entry point: :func:`compile_scene`.  The builder
-is split over ``mj_compile`` (tree, joints, loop closures), ``mj_geoms`` (geometry, mass,
-collision filtering, contact pairs) and ``mj_controllers`` (motors, ranges, springs, keyframe).
+is split over ``mujoco.compile`` (tree, joints, loop closures), ``mujoco.geoms`` (geometry, mass,
+collision filtering, contact pairs) and ``mujoco.controllers`` (motors, ranges, springs, keyframe).
 
 Mapping decisions (see also the module docstring of ``mujoco_backend``):
 
@@ -29,17 +29,17 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.mj_drivetrain import add_couplings, add_shaft_motors, add_shafts
+from plxtools.check.mujoco.drivetrain import add_couplings, add_shaft_motors, add_shafts
 from plxtools.check.assemble import CONNECTOR_COUNT, MATE_SAME_BODY, ZERO_MAIN_AXIS
 from plxtools.check.coverage import NOT_SIMULATED
-from plxtools.check.mj_context import BuildContext, CompileFailed
-from plxtools.check.mj_controllers import add_controllers, add_keyframe
-from plxtools.check.mj_geoms import add_contact_pairs, add_excludes, add_geoms, set_inertials, set_restitution
-from plxtools.check.mj_integrator import choose as choose_integrator
+from plxtools.check.mujoco.context import BuildContext, CompileFailed
+from plxtools.check.mujoco.controllers import add_controllers, add_keyframe
+from plxtools.check.mujoco.geoms import add_contact_pairs, add_excludes, add_geoms, set_inertials, set_restitution
+from plxtools.check.mujoco.integrator import choose as choose_integrator
 from plxtools.check.frames import mat_to_quat_wxyz
-from plxtools.check.mj_math import angle_between, quat_normalize, quat_to_mat, relative_pose, unit
-from plxtools.check.mj_notes import INFO, WARNING, BackendNote
-from plxtools.check.mj_types import VISUAL_GROUP, ActuatorInfo, CompiledScene, MateMonitor
+from plxtools.check.mujoco.poses import angle_between, quat_normalize, quat_to_mat, relative_pose, unit
+from plxtools.check.mujoco.notes import INFO, WARNING, BackendNote
+from plxtools.check.mujoco.results import VISUAL_GROUP, ActuatorInfo, CompiledScene, MateMonitor
 from plxtools.check.scene import Connector, Mate, Scene, default_normal, orthogonalize
 from plxtools.rules.literals import NEGATIVE_MASS
 

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.mj_compile import VISUAL_GROUP, CompiledScene
+from plxtools.check.mujoco.compile import VISUAL_GROUP, CompiledScene
 
 
 class RenderUnavailable(RuntimeError):

@@ -1,5 +1,5 @@
-"""The state shared by the steps that build a MuJoCo model from a scene (:mod:`mj_compile`,
-:mod:`mj_geoms`, :mod:`mj_controllers`): one object with named fields, passed to plain functions.
+"""The state shared by the steps that build a MuJoCo model from a scene (:mod:`mujoco.compile`,
+:mod:`mujoco.geoms`, :mod:`mujoco.controllers`): one object with named fields, passed to plain functions.
 
 It is the one home of the two notes every step may make: A129 (an element is disabled,
 :meth:`BuildContext.disabled`) and A131 (the scene breaks what the static checks guarantee,
@@ -10,8 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from plxtools.check.mj_notes import ERROR, INFO, BackendNote, NameMap, note_from_compile_error
-from plxtools.check.mj_types import CompiledScene
+from plxtools.check.mujoco.notes import ERROR, INFO, BackendNote, NameMap, note_from_compile_error
+from plxtools.check.mujoco.results import CompiledScene
 from plxtools.check.scene import Body, Scene
 
 

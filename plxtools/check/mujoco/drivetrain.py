@@ -40,11 +40,11 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.mj_context import BuildContext
-from plxtools.check.mj_controllers import note_gain_clamped, note_on_loop_mate
-from plxtools.check.mj_integrator import contacts_possible
-from plxtools.check.mj_notes import INFO
-from plxtools.check.mj_types import ActuatorInfo, ShaftCoordinate
+from plxtools.check.mujoco.context import BuildContext
+from plxtools.check.mujoco.controllers import note_gain_clamped, note_on_loop_mate
+from plxtools.check.mujoco.integrator import contacts_possible
+from plxtools.check.mujoco.notes import INFO
+from plxtools.check.mujoco.results import ActuatorInfo, ShaftCoordinate
 
 SHAFT_BODY_MASS = 1e-6  # kg: a point (its inertia 1e-9 kg m^2 beside the armature), so the MJCF export reloads
 SERVO_GAIN_STEPS = 1.0  # coupled train, or an effort-limited motor: kv = this x the inertia it drives / timestep

@@ -19,8 +19,8 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.mj_render import _gl_context, frame_camera
-from plxtools.check.mj_types import VISUAL_GROUP
+from plxtools.check.mujoco.render import _gl_context, frame_camera
+from plxtools.check.mujoco.results import VISUAL_GROUP
 
 COLLISION_BEHIND_VISUALS = 3  # geom group of collision geometry on bodies that have visuals
 VIDEO_SUFFIXES = (".gif", ".mp4")

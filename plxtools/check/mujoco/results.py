@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.mj_notes import BackendNote, NameMap
+from plxtools.check.mujoco.notes import BackendNote, NameMap
 from plxtools.check.scene import Scene
 
 VISUAL_GROUP = 2  # MuJoCo geom group of Visuals.Geometries (rendered, no contacts, no mass)
@@ -47,7 +47,7 @@ class ActuatorInfo:
 @dataclass(slots=True)
 class ShaftCoordinate:
     """Where a drive-train shaft's rotation lives in the MuJoCo model: a shaft of a rigid train
-    turns with the train's one joint (``mj_drivetrain``), ``factor`` times as fast."""
+    turns with the train's one joint (``mujoco.drivetrain``), ``factor`` times as fast."""
 
     joint: str  # MuJoCo joint the shaft turns with (its own, a hinge's, or another shaft's)
     factor: float = 1.0  # shaft speed per joint speed
@@ -68,9 +68,9 @@ class CompiledScene:
     loop_mates: list[str] = field(default_factory=list)
     free_roots: list[str] = field(default_factory=list)  # body paths given a free joint
     kinematic: list[str] = field(default_factory=list)  # body paths moved as prescribed (mocap bodies)
-    integrator: str = "implicitfast"  # the MuJoCo integrator the scene runs with (mj_integrator.choose)
+    integrator: str = "implicitfast"  # the MuJoCo integrator the scene runs with (mujoco.integrator.choose)
     integrator_why: str = ""
-    prescribed_cache: Any = None  # mj_kinematic.prescribed: (model, body id -> prescribed velocity)
+    prescribed_cache: Any = None  # mujoco.kinematic.prescribed: (model, body id -> prescribed velocity)
     actuators: list[ActuatorInfo] = field(default_factory=list)
     shafts: dict[str, ShaftCoordinate] = field(default_factory=dict)  # shaft path -> its coordinate
     monitors: list[MateMonitor] = field(default_factory=list)

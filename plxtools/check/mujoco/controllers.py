@@ -19,10 +19,10 @@ from plxtools.check.assemble import CONNECTOR_COUNT
 from plxtools.check.checks import CONTROLLER_DOF_MISMATCH, CONTROLLER_WITHOUT_MATE, INVERTED_LIMITS
 from plxtools.check.coverage import NOT_SIMULATED
 from plxtools.check.mapped_types import FREE_DOFS
-from plxtools.check.mj_context import BuildContext
-from plxtools.check.mj_math import quat_to_mat
-from plxtools.check.mj_notes import ERROR, INFO, WARNING
-from plxtools.check.mj_types import ActuatorInfo
+from plxtools.check.mujoco.context import BuildContext
+from plxtools.check.mujoco.poses import quat_to_mat
+from plxtools.check.mujoco.notes import ERROR, INFO, WARNING
+from plxtools.check.mujoco.results import ActuatorInfo
 from plxtools.check.scene import Controller, Mate
 
 KV_STEPS = 10.0
@@ -34,7 +34,7 @@ BIG_FORCE = 1e9
 
 # -- controllers -----------------------------------------------------------------------------
 def note_gain_clamped(ctx: BuildContext, severity: str, message: str, item: Any) -> None:
-    """A111, for mate motors here and drive-train motors (mj_drivetrain): one home for the code."""
+    """A111, for mate motors here and drive-train motors (mujoco.drivetrain): one home for the code."""
     ctx.note(severity, "A111", message, item)
 
 
@@ -363,7 +363,7 @@ def _fmt(v: np.ndarray) -> str:
 
 def _train_state(ctx: BuildContext, model: Any, joint: str, own: bool, members: list[tuple[Any, float]],
                  qpos: np.ndarray, qvel: np.ndarray) -> None:
-    """A drive train's coordinate at the start, and each shaft's angle on it (mj_drivetrain).
+    """A drive train's coordinate at the start, and each shaft's angle on it (mujoco.drivetrain).
 
     A train carried by its first shaft starts at that shaft's angle, turning at the speed that
     keeps the train's angular momentum (sum of I f v over sum of I f^2: the shafts' own speed when
