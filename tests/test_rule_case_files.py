@@ -44,6 +44,8 @@ NOT_A_CASE = {
     # an unreadable file: permissions cannot live in git, and a dangling link kept in tests/cases
     # would break the tests that read every case file (tests/syntax/test_fast_path.py)
     "E001": "tests/test_rule_case_files.py",  # test_an_unreadable_file_is_a_located_error below
+    # a plane on a moving body: no bundle geometry becomes a plane, only a scene built through the API
+    "A127": "tests/check/test_mujoco_backend.py",
 }
 
 
@@ -91,19 +93,13 @@ def reported_by_cases() -> set[str]:
 
 
 # codes still without a case file (issue 28): this list may only shrink; a code that gets a case
-# must leave it (the test below fails while it is still named here). The two left are reported to the
-# lead as unreachable from any input:
-# - A108: the stepping loop ends early only on a blow-up (A101) or the time limit (A109), and both
-#   exclude A108; otherwise it runs round(duration / h) steps. It appears only where that rounding
-#   and float arithmetic meet (`--duration 1.157`: 578.5 steps rounded to 578, "simulated 1.156 of
-#   1.157 s"), which is not the early stop the rule describes, so no case shows it.
-# - A127: no OpenPLX geometry becomes a MuJoCo plane (check/convert.py GEOM_KINDS has none), so
-#   the backend's plane branch is reached only from a hand-built Scene.
-# A108 (the run stopped short without a blow-up or the time limit) and A127 (a plane on a moving
-# body) guard states that no input reaches today: the stepping loop only stops early through A101 or
-# A109, and no OpenPLX geometry maps to a MuJoCo plane. They stay registered as safety nets.
+# must leave it (the test below fails while it is still named here). The one left is unreachable from
+# any input: the stepping loop ends early only on a blow-up (A101) or the time limit (A109), which
+# both exclude A108, and otherwise runs round(duration / h) steps; it shows only where that rounding
+# and float arithmetic meet (`--duration 1.157`: "simulated 1.156 of 1.157 s"), not the early stop
+# the rule describes. It stays registered as a safety net.
 WITHOUT_A_CASE_YET = set("""
-A108 A127
+A108
 """.split())
 
 

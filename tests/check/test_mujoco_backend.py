@@ -665,3 +665,15 @@ def test_mass_properties_follow_agx_rules() -> None:
     assert sorted(m.body("b").inertia) == pytest.approx(sorted([3.0 / 12 * v for v in (0.52, 0.40, 0.20)]))
     assert m.body("c").inertia == pytest.approx([0.4 * 2.0 * 0.01] * 3)  # tensor rejected -> sphere
     assert m.body("d").mass[0] == pytest.approx(0.5)  # density 500 x 1e-3 m^3
+
+
+def test_a_plane_on_a_moving_body_is_skipped_with_a127(tmp_path) -> None:
+    """A127: no bundle geometry becomes a plane, but a scene built through the Python API may hold one;
+    MuJoCo planes cannot move, so on a dynamic body it is left out, said, and the rest still runs."""
+    body = Body("m.raft", (0.0, 0.0, 1.0), geoms=[Geom("m.raft.deck", "plane", size=(2.0, 2.0, 0.0)),
+                                                  Geom("m.raft.hull", "box", size=(0.5, 0.5, 0.1))])
+    compiled = compile_scene(Scene("Raft", [body], base_dir=str(tmp_path)))
+    notes = [n for n in compiled.notes if n.code == "A127"]
+    assert compiled.ok and len(notes) == 1 and "m.raft.deck" in notes[0].message, compiled.notes
+    assert compiled.model.ngeom == 1  # the box alone
+    assert simulate(compiled, 0.1).bodies["m.raft"].final_pos[2] < 1.0  # it falls: still simulated
