@@ -4,7 +4,6 @@ import the parser, so this sits below every layer."""
 
 from __future__ import annotations
 
-import os
 import re
 
 _VAR = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")

@@ -9,7 +9,6 @@ that depend on a changed one.
 from __future__ import annotations
 
 import logging
-import os
 import time
 
 from lsprotocol import types

@@ -130,6 +130,14 @@ def test_edits_that_arrive_out_of_order_give_the_text_typed(data, step):
     assert (doc.text, doc.version) == (in_order, edits[-1][0])
 
 
+def _send_edit(s, uri: str, edit) -> None:
+    """One keystroke of `_typing` as a didChange notification."""
+    version, changes = edit
+    c = changes[0]
+    s.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": version}, "contentChanges": [
+        {"range": {"start": vars(c.range.start), "end": vars(c.range.end)}, "text": c.text}]})
+
+
 def test_a_shuffled_burst_over_stdio_is_checked_as_typed():
     s = RawServer()
     try:
@@ -139,10 +147,7 @@ def test_a_shuffled_burst_over_stdio_is_checked_as_typed():
         s.notification("textDocument/publishDiagnostics", where=lambda p: p["uri"] == uri)
         edits = _typing("", 2, 4, "is_dynamic: false", 2)
         for k in (0, 1, 3, 4, 2, 5, 7, 6, 8, 9, 10, 12, 11, 13, 14, 16, 15):  # the order Helix wrote them in
-            version, changes = edits[k]
-            c = changes[0]
-            s.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": version}, "contentChanges": [
-                {"range": {"start": vars(c.range.start), "end": vars(c.range.end)}, "text": c.text}]})
+            _send_edit(s, uri, edits[k])
         # a check may run between two arrivals (the server cannot know an edit is still on its way,
         # versions may skip numbers), so an early publish for the newest version may show the text
         # without the late edit; the late edit must then be checked and published for that version
@@ -168,19 +173,12 @@ def test_an_edit_that_arrives_after_its_successor_was_checked_is_checked_again()
         s.open(uri, "Ball is Physics3D.Bodies.RigidBody:\n    inertia.mass: 1\n    \n")
         s.notification("textDocument/publishDiagnostics", where=lambda p: p["uri"] == uri)
         edits = _typing("", 2, 4, "is_dynamic: false", 2)
-
-        def send(k):
-            version, changes = edits[k]
-            c = changes[0]
-            s.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": version}, "contentChanges": [
-                {"range": {"start": vars(c.range.start), "end": vars(c.range.end)}, "text": c.text}]})
-
         for k in [*range(15), 16]:  # every keystroke but the 's'
-            send(k)
+            _send_edit(s, uri, edits[k])
         early = s.notification("textDocument/publishDiagnostics",
                                where=lambda p: p["uri"] == uri and p["version"] == edits[-1][0])
         assert [d["code"] for d in early["diagnostics"]] == ["N003"], early  # `fale` without its 's'
-        send(15)
+        _send_edit(s, uri, edits[15])
         got = s.notification("textDocument/publishDiagnostics",
                              where=lambda p: p["uri"] == uri and p["version"] == edits[-1][0])
         assert got["diagnostics"] == []
