@@ -378,12 +378,19 @@ class Simulation:
         if signal.kind != want:
             raise SignalValueError(f"{info.path} takes {_kind_text(want)}: send a {_SIGNAL_FOR_KIND[want]}, "
                                    f"not a {signal.type_name}")
-        self._pending.append((info.path, coerce(info, signal.value)))
+        self._send_later(info.path, coerce(info, signal.value))
 
     def set(self, input_path: str | Input, value: Any) -> None:
         """``send`` of the signal class that fits the input (a number, [min, max] or [x, y, z])."""
         info = self._signal(input_path, "input")
-        self._pending.append((info.path, coerce(info, value)))
+        self._send_later(info.path, coerce(info, value))
+
+    def _send_later(self, path: str, value: Any) -> None:
+        """Written at the next step; a value this model cannot take is refused now, where it was sent."""
+        why = self.runtime.refusal(path, value)
+        if why is not None:
+            raise SignalValueError(why)
+        self._pending.append((path, value))
 
     # -- stepping -------------------------------------------------------------------------------
 

@@ -302,6 +302,51 @@ class Binding:
     info: SignalInfo
     read: Callable[[Any, Any], Any] | None = None  # (model, data) -> value
     write: Callable[[Any, Any, Any], None] | None = None  # (model, data, value)
+    refuse: Callable[[Any], str | None] | None = None  # a value this binding cannot take: why
+
+
+def _ctrl_binding(b: Binding, aid: int) -> None:
+    """A motor's target speed or effort: its actuator's control."""
+    b.read = lambda m, d: float(d.ctrl[aid])
+
+    def write_ctrl(m, d, v):
+        d.ctrl[aid] = v
+
+    b.write = write_ctrl
+
+
+def _constraint_motor_binding(b: Binding, q: str, act: Any, model: Any, aid: int) -> Binding:
+    """A motor run as a velocity constraint (mujoco.velocity_constraint): its target speed is its
+    reference's control, its effort the constraint's force, its effort range the tendon's
+    friction bound (symmetric only)."""
+    from plxtools.check.mujoco import velocity_constraint as vc
+
+    if q == "actuator_effort":
+        dof = vc.reference_dof(model, act.reference)
+        b.read = lambda m, d: vc.effort(d, dof)
+    elif q == "effort_range":
+        tid = int(model.tendon(act.tendon).id)
+
+        def read_range(m, d):
+            e = float(m.tendon_frictionloss[tid])
+            return (-math.inf, math.inf) if e >= vc.BIG_EFFORT else (-e, e)
+
+        def refuse(v):
+            if vc.symmetric_bound(float(v[0]), float(v[1])) is None:
+                return (f"{b.info.path}: [{v[0]:g}, {v[1]:g}] is not symmetric; {act.path} runs as a velocity "
+                        "constraint whose effort range is a friction bound [-e, e] (give a symmetric range)")
+            return None
+
+        def write_range(m, d, v):
+            why = refuse(v)
+            if why is not None:
+                raise SignalValueError(why)
+            m.tendon_frictionloss[tid] = vc.symmetric_bound(float(v[0]), float(v[1]))
+
+        b.read, b.write, b.refuse = read_range, write_range, refuse
+    else:
+        _ctrl_binding(b, aid)
+    return b
 
 
 @dataclass
@@ -374,6 +419,8 @@ class SignalRuntime:
             if src not in acts:
                 raise _Unbindable(f"its motor {src} is not simulated (see the check notes)")
             act, aid = acts[src]
+            if act.reference is not None:
+                return _constraint_motor_binding(b, q, act, self.compiled.model, aid)
             if q == "actuator_effort":
                 b.read = lambda m, d: float(d.actuator_force[aid])
             elif q == "effort_range":
@@ -388,12 +435,7 @@ class SignalRuntime:
 
                 b.read, b.write = read_range, write_range
             else:
-                b.read = lambda m, d: float(d.ctrl[aid])
-
-                def write_ctrl(m, d, v):
-                    d.ctrl[aid] = v
-
-                b.write = write_ctrl
+                _ctrl_binding(b, aid)
             return b
         if q in ("shaft_position", "shaft_velocity"):
             coord = self.compiled.shafts.get(src)  # a shaft turns with its drive train's joint (mujoco.drivetrain)
@@ -477,6 +519,11 @@ class SignalRuntime:
         b = self.bindings[path]
         assert b.write is not None
         b.write(model, data, value)
+
+    def refusal(self, path: str, value: Any) -> str | None:
+        """Why ``value`` cannot be written to ``path`` on this model (checked before a run), or None."""
+        b = self.bindings.get(path)
+        return b.refuse(value) if b is not None and b.refuse is not None else None
 
     def read(self, path: str, model: Any, data: Any) -> Any:
         b = self.bindings[path]

@@ -14,23 +14,20 @@ Why one coordinate and not a joint per shaft with equality couplings (the first 
 implicit integrators treat a velocity servo's damping after the constraint solver, which
 computed the couplings' forces for the explicit servo force; so the servo's own shaft lags while
 the rest of the train follows the explicit force, and the train reached 61 % of its target speed
-after one step (10 x the gain: 10 x the target).  On one coordinate the servo is integrated
-implicitly with nothing to disagree with.  A train that is not rigid in this sense (a loop of
+after one step (10 x the gain: 10 x the target).  One coordinate also makes the gears exact: no
+coupling to spring back (A134) or to drift.  A train that is not rigid in this sense (a loop of
 gears, two hinges, a hinge actuator on a loop-closing mate) keeps the coupled mapping: a joint per
 shaft, a joint equality per gear / hinge actuator as stiff as MuJoCo allows.
 
-A **1D velocity motor** is a ``<velocity>`` actuator on its shaft's coordinate (``gear`` = the
-shaft's speed ratio, so the actuator's length, speed and force are the shaft's).  On a rigid train
-in a scene without contacts, joint limits or equalities, ``kv = RIGID_SERVO_STEPS x I / h``, ``I``
-the inertia the shaft sees (the joint's effective inertia, ``1 / dof_invweight0``, over the ratio
-squared): integrated implicitly, one step gives ``K / (1 + K)`` of a change of target, within 1 %
-for K = 150 at any inertia, ratio or time step (tests/check/test_drivetrain_one_step.py), as AGX's
-velocity constraint does.  Otherwise ``K = 1``: contacts, limits and equalities are solved from the
-explicit servo force too, and a servo 10 x stiffer made a cart driven through two trains gain 35 J
-at its first contact (150 x: it fell through the ground); with a finite effort limit MuJoCo drops
-the implicit damping of a saturated actuator and a stiffer servo chatters between the limits; on a
-coupled train the couplings spring back (A134).  A **1D torque motor** is a ``<motor>`` whose
-control is its torque input (0 until a signal sets it).
+A **1D velocity motor** with a stiff gain (the default) and a symmetric or no effort range is a
+velocity constraint on its shaft's coordinate (``mujoco.velocity_constraint``: a friction-loss
+tendon against a reference turning at the target speed), solved together with contacts, limits and
+the couplings, so the shaft is at its target speed after one step as with AGX's velocity
+constraint (tests/check/test_drivetrain_one_step.py, also on a cart driven over the ground).  With
+an asymmetric effort range it is a ``<velocity>`` servo (``gear`` = the shaft's speed ratio, so the
+actuator's length, speed and force are the shaft's) of ``kv = min(gain, I / h)``, ``I`` the inertia
+the shaft sees, which gets half way to a new target per step.  A **1D torque motor** is a
+``<motor>`` whose control is its torque input (0 until a signal sets it).
 """
 
 from __future__ import annotations
@@ -42,14 +39,12 @@ import numpy as np
 
 from plxtools.check.mujoco.context import BuildContext
 from plxtools.check.mujoco.controllers import note_gain_clamped, note_on_loop_mate
-from plxtools.check.mujoco.integrator import contacts_possible
+from plxtools.check.mujoco import velocity_constraint
 from plxtools.check.mujoco.notes import INFO
 from plxtools.check.mujoco.results import ActuatorInfo, ShaftCoordinate
 
 SHAFT_BODY_MASS = 1e-6  # kg: a point (its inertia 1e-9 kg m^2 beside the armature), so the MJCF export reloads
-SERVO_GAIN_STEPS = 1.0  # coupled train, or an effort-limited motor: kv = this x the inertia it drives / timestep
-RIGID_SERVO_STEPS = 150.0  # unlimited motor on a rigid train: one step reaches 150 / 151 of the target
-RIGID_SERVO_STEPS_CONSTRAINED = 1.0  # the same with contacts, limits or equalities in the scene (see below)
+SERVO_GAIN_STEPS = 1.0  # a servo (an asymmetric effort range): kv = this x the inertia it drives / timestep
 
 Edge = tuple[str, float]  # (other node, its coordinate per this node's coordinate)
 
@@ -190,61 +185,59 @@ def add_couplings(ctx: BuildContext) -> None:
 
 
 def add_shaft_motors(ctx: BuildContext, model: Any) -> None:
-    h = float(ctx.spec.option.timestep)
-    constrained = _constrained(ctx, model) if ctx.scene.shaft_motors else False
     for m in ctx.scene.shaft_motors:
         coord = ctx.out.shafts.get(m.shaft)
         if coord is None:
             continue
-        joint, ratio = coord.joint, coord.factor
         ctx.names.add("controller", m.path, m.source)
-        name = ctx.names.add("actuator", m.path, m.source)
-        act = ctx.spec.add_actuator(name=name, target=joint, trntype=ctx.mj.mjtTrn.mjTRN_JOINT)
-        act.gear = [ratio, 0, 0, 0, 0, 0]  # the actuator's length, speed and force are the shaft's
-        act.ctrllimited = ctx.mj.mjtLimited.mjLIMITED_FALSE
         lo, hi = float(m.min_effort), float(m.max_effort)
-        limited = lo <= hi and (math.isfinite(lo) or math.isfinite(hi))
-        if limited:
-            act.forcelimited = ctx.mj.mjtLimited.mjLIMITED_TRUE
-            act.forcerange = [max(lo, -1e9), min(hi, 1e9)]
         if m.kind == "velocity_motor":
-            rigid = coord.rigid
-            ieff = _joint_inertia(model, joint) / (ratio * ratio) if rigid else chain_inertia(ctx, model, m.shaft)
-            steps = SERVO_GAIN_STEPS if not rigid or limited else (
-                RIGID_SERVO_STEPS if not constrained else RIGID_SERVO_STEPS_CONSTRAINED)
-            kv = min(float(m.gain), steps * ieff / h)
-            if kv < m.gain:
-                note_gain_clamped(ctx, INFO, f"{m.path}: the default gain {m.gain:g} is far too stiff for MuJoCo; kv "
-                                  f"clamped to {kv:.4g} (= {steps:g} x the inertia it drives through the drive "
-                                  f"train, {ieff:.4g}, / timestep {h:g}: "
-                                  f"{_gain_why(rigid, limited, constrained, steps)})", m)
-            act.set_to_velocity(kv=kv)
-            ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, float(m.target_speed),
-                                                  kv, float(m.target_speed)))
-        else:
-            act.set_to_motor()
-            ctrl = float(np.clip(m.effort, lo, hi)) if lo <= hi else float(m.effort)
-            ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, ctrl))
+            _velocity_motor(ctx, model, m, coord, lo, hi)
+            continue
+        name = ctx.names.add("actuator", m.path, m.source)
+        act = ctx.spec.add_actuator(name=name, target=coord.joint, trntype=ctx.mj.mjtTrn.mjTRN_JOINT)
+        act.gear = [coord.factor, 0, 0, 0, 0, 0]  # the actuator's length, speed and force are the shaft's
+        act.ctrllimited = ctx.mj.mjtLimited.mjLIMITED_FALSE
+        _effort_range(ctx, act, lo, hi)
+        act.set_to_motor()
+        ctrl = float(np.clip(m.effort, lo, hi)) if lo <= hi else float(m.effort)
+        ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, coord.joint, coord.factor, ctrl))
 
 
-def _gain_why(rigid: bool, limited: bool, constrained: bool, steps: float) -> str:
-    if not rigid:
-        return "integrated implicitly, the driven hinge is at its target speed within a few steps"
-    if limited:
-        return ("effort-limited: a stiffer servo would chatter between the limits; integrated implicitly, half way "
-                "to its target speed per step")
-    if constrained:
-        return ("the scene has contacts, joint limits or equalities, which a stiffer servo would fight; integrated "
-                "implicitly, half way to its target speed per step")
-    return (f"its drive train turns as one coordinate; integrated implicitly, within {100 / (1 + steps):.2g} % of "
-            "its target speed after one step")
+def _effort_range(ctx: BuildContext, act: Any, lo: float, hi: float) -> None:
+    if lo <= hi and (math.isfinite(lo) or math.isfinite(hi)):
+        act.forcelimited = ctx.mj.mjtLimited.mjLIMITED_TRUE
+        act.forcerange = [max(lo, -1e9), min(hi, 1e9)]
 
 
-def _constrained(ctx: BuildContext, model: Any) -> bool:
-    """Whether the scene has constraints the solver computes from the servo's explicit force
-    (contacts, joint limits, equalities): then a stiff implicit servo is not safe (see the module
-    docstring)."""
-    return bool(model.neq) or bool(ctx.joint_limits) or contacts_possible(model)
+def _velocity_motor(ctx: BuildContext, model: Any, m: Any, coord: ShaftCoordinate, lo: float, hi: float) -> None:
+    """A velocity constraint (mujoco.velocity_constraint) when the gain is stiff and the effort
+    range symmetric; otherwise a servo of gain ``min(gain, inertia / h)``."""
+    h = float(ctx.spec.option.timestep)
+    joint, ratio = coord.joint, coord.factor
+    ieff = _joint_inertia(model, joint) / (ratio * ratio) if coord.rigid else chain_inertia(ctx, model, m.shaft)
+    cap = SERVO_GAIN_STEPS * ieff / h
+    bound = velocity_constraint.symmetric_bound(lo, hi)
+    target = float(m.target_speed)
+    if m.gain > cap and bound is not None:
+        name, ref = velocity_constraint.add(ctx, m.path, m.source, joint, ratio, ieff, bound)
+        ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, target, None, target,
+                                              reference=ref, tendon=ctx.names.name("tendon", m.path)))
+        return
+    kv = min(float(m.gain), cap)
+    if kv < m.gain:
+        note_gain_clamped(ctx, INFO, f"{m.path}: the default gain {m.gain:g} is far too stiff for a MuJoCo servo; kv "
+                          f"clamped to {kv:.4g} (= the inertia it drives through the drive train, {ieff:.4g}, / "
+                          f"timestep {h:g}): its effort range [{lo:g}, {hi:g}] is not symmetric, so it cannot be "
+                          "solved as a velocity constraint; integrated implicitly, half way to its target speed "
+                          "per step", m)
+    name = ctx.names.add("actuator", m.path, m.source)
+    act = ctx.spec.add_actuator(name=name, target=joint, trntype=ctx.mj.mjtTrn.mjTRN_JOINT)
+    act.gear = [ratio, 0, 0, 0, 0, 0]  # the actuator's length, speed and force are the shaft's
+    act.ctrllimited = ctx.mj.mjtLimited.mjLIMITED_FALSE
+    _effort_range(ctx, act, lo, hi)
+    act.set_to_velocity(kv=kv)
+    ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, target, kv, target))
 
 
 def _joint_inertia(model: Any, joint: str) -> float:

@@ -48,11 +48,6 @@ def not_conservative(model: Any) -> str | None:
     return None
 
 
-def contacts_possible(model: Any) -> bool:
-    """Whether two geometries of the compiled scene could ever touch (see :func:`_contacts_possible`)."""
-    return bool(model.npair) or _contacts_possible(model)
-
-
 def _contacts_possible(model: Any) -> bool:
     """Whether any two geometries can ever collide: both with matching contype / conaffinity, on
     different bodies, not both fixed to the world, not a parent and its child (MuJoCo filters

@@ -42,6 +42,10 @@ class ActuatorInfo:
     ctrl: float
     kv: float | None = None
     target_speed: float | None = None
+    # a velocity constraint (mujoco.velocity_constraint): the reference joint its actuator turns
+    # and the tendon whose friction force is the motor's effort; None for a servo or a motor
+    reference: str | None = None
+    tendon: str | None = None
 
 
 @dataclass(slots=True)

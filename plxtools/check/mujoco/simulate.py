@@ -13,6 +13,7 @@ from plxtools.check.mujoco.compile import VISUAL_GROUP, CompiledScene, MateMonit
 from plxtools.check.mujoco.integrator import not_conservative
 from plxtools.check.mujoco.kinematic import KinematicMover, Stepper, body_velocity
 from plxtools.check.mujoco.poses import angle_between
+from plxtools.check.mujoco.velocity_constraint import reference_dof, reference_energy
 from plxtools.check.mujoco.notes import ERROR, INFO, WARNING, BackendNote
 
 # The codes of the run's findings that other modules recognise (plx test, the report, the static
@@ -281,7 +282,7 @@ class Monitor:
 
 
 # what a sample records for the batched monitors (MjData fields, copied whole)
-SAMPLE_FIELDS = ("xpos", "xmat", "xipos", "ximat", "cvel", "subtree_com", "qpos", "energy",
+SAMPLE_FIELDS = ("xpos", "xmat", "xipos", "ximat", "cvel", "subtree_com", "qpos", "qvel", "qfrc_constraint", "energy",
                  "actuator_velocity", "actuator_force")
 _SAMPLE_BYTES = 4_000_000  # buffer size that sets how many samples a batch holds (8 to 256)
 MOTOR_WINDOW = 0.8  # MotorTracking averages over t >= MOTOR_WINDOW * duration
@@ -892,13 +893,21 @@ class JointLimits(Monitor):
 
 
 class MotorTracking(Monitor):
-    """Mean speed and effort of every actuator over the last 20 % of the run (A106)."""
+    """Mean speed and effort of every actuator over the last 20 % of the run (A106).  A motor run as
+    a velocity constraint (mujoco.velocity_constraint) is read on its coordinate: its speed is the
+    joint's times its gear, its effort the constraint's force."""
 
     batched = True
 
     def __init__(self, run: SimRun) -> None:
-        self.acts = [(a, run.model.actuator(a.name).id) for a in run.compiled.actuators]
+        model = run.model
+        self.acts = [(a, model.actuator(a.name).id) for a in run.compiled.actuators]
         self.aid = np.array([aid for _, aid in self.acts], dtype=int)
+        self.constraint = [k for k, (a, _) in enumerate(self.acts) if a.reference is not None]
+        self.c_dof = np.array([int(model.jnt_dofadr[model.joint(self.acts[k][0].joint).id]) for k in self.constraint],
+                              dtype=int)
+        self.c_gear = np.array([float(self.acts[k][0].gear) for k in self.constraint])
+        self.c_ref = np.array([reference_dof(model, self.acts[k][0].reference) for k in self.constraint], dtype=int)
         self.speed_sum = np.zeros(len(self.acts))
         self.force_sum = np.zeros(len(self.acts))
         self.count = 0
@@ -909,8 +918,13 @@ class MotorTracking(Monitor):
         rows = np.flatnonzero(~(b.t[:b.n] < MOTOR_WINDOW * run.duration))
         if not rows.size:
             return
-        self.speed_sum = _running_sum(self.speed_sum, b.actuator_velocity[rows][:, self.aid])
-        self.force_sum = _running_sum(self.force_sum, b.actuator_force[rows][:, self.aid])
+        speed = b.actuator_velocity[rows][:, self.aid]
+        force = b.actuator_force[rows][:, self.aid]
+        if self.constraint:
+            speed[:, self.constraint] = b.qvel[rows][:, self.c_dof] * self.c_gear
+            force[:, self.constraint] = -b.qfrc_constraint[rows][:, self.c_ref]
+        self.speed_sum = _running_sum(self.speed_sum, speed)
+        self.force_sum = _running_sum(self.force_sum, force)
         self.count += int(rows.size)
 
     def finish(self, run: SimRun) -> None:
@@ -923,7 +937,8 @@ class MotorTracking(Monitor):
             if err is not None and self.count and err > TRACKING_TOL * abs(a.target_speed) + TRACKING_ABS:
                 pct = f" ({100 * err / abs(a.target_speed):.3g} % off)" if a.target_speed else ""
                 why = (f"; its gain is kv = {a.kv:.4g} (A111), so under a load the speed sags by load / kv"
-                       if a.kv is not None else "")
+                       if a.kv is not None else "; it runs as a velocity constraint, which falls behind only when the "
+                       "load needs more than its effort range" if a.reference is not None else "")
                 run.add(WARNING, MOTOR_OFF_TARGET, f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g}{pct} over "
                         f"the last 20 % of the run, with a mean effort of {mean_f:.4g}{why}", a.path)
 
@@ -943,8 +958,11 @@ class Energy(Monitor):
 
     def __init__(self, run: SimRun) -> None:
         data, model = run.data, run.model
+        # velocity constraints' references (mujoco.velocity_constraint): their motion is not the scene's
+        self.ref_dofs = np.array([reference_dof(model, a.reference) for a in run.compiled.actuators
+                                  if a.reference is not None], dtype=int)
         self.initial = self._total(run)
-        self.max_kinetic = float(data.energy[1])
+        self.max_kinetic = float(data.energy[1]) - reference_energy(model, data.qvel, self.ref_dofs)
         self.work = 0.0
         self.work_abs = 0.0
         self.gain, self.gain_time = 0.0, 0.0
@@ -961,6 +979,10 @@ class Energy(Monitor):
         self.dof = np.array([int(model.jnt_dofadr[model.joint(a.joint).id]) for a in acts], dtype=int)
         self.gear = np.array([float(a.gear) for a in acts])
         self.kv = np.array([float(a.kv) if a.kv is not None else 0.0 for a in acts])
+        # a velocity constraint's force is the constraint's (-qfrc_constraint of its reference), per step
+        self.is_constraint = np.array([a.reference is not None for a in acts], dtype=bool)
+        self.c_ref = np.array([reference_dof(model, a.reference) if a.reference is not None else 0 for a in acts],
+                              dtype=int)
         ids = [model.actuator(a.name).id for a in acts]
         self.aid = np.array(ids, dtype=int)
         self.limited = np.array([bool(model.actuator_forcelimited[i]) for i in ids], dtype=bool)
@@ -973,24 +995,29 @@ class Energy(Monitor):
         # (and at the end): the same arithmetic, element by element and summed step by step in the
         # same order.  The speed before a step is the speed after the one before it.
         self.h = float(model.opt.timestep)
-        self._qvel, self._ctrl_now = data.qvel, data.ctrl
+        self._qvel, self._ctrl_now, self._qfrc_c = data.qvel, data.ctrl, data.qfrc_constraint
         self._last = data.qvel.copy()
         self._qv = np.zeros((_ENERGY_ROWS, model.nv))
         self._ct = np.zeros((_ENERGY_ROWS, model.nu))
+        self._fc = np.zeros((_ENERGY_ROWS, len(acts))) if self.is_constraint.any() else None
         self._rows = 0
         self._base = 0  # steps before the first buffered row
 
-    @staticmethod
-    def _total(run: SimRun) -> float:
-        return float(run.data.energy[0] + run.data.energy[1])
+    def _total(self, run: SimRun) -> float:
+        return float(run.data.energy[0] + run.data.energy[1]) - reference_energy(run.model, run.data.qvel,
+                                                                                 self.ref_dofs)
 
     def after_step(self, run: SimRun) -> None:
         k = self._rows
         if k == len(self._qv):
             self._qv = np.concatenate([self._qv, np.zeros_like(self._qv)])
             self._ct = np.concatenate([self._ct, np.zeros_like(self._ct)])
+            if self._fc is not None:
+                self._fc = np.concatenate([self._fc, np.zeros_like(self._fc)])
         self._qv[k] = self._qvel
         self._ct[k] = self._ctrl_now
+        if self._fc is not None:
+            self._fc[k] = -self._qfrc_c[self.c_ref]
         self._rows = k + 1
 
     def _add_work(self) -> np.ndarray:
@@ -1017,6 +1044,8 @@ class Energy(Monitor):
         saturated = self.limited & (clamped != explicit)
         implicit = np.where(self.kv > 0, self.kv * (ctrl - v_new), ctrl)
         force = np.where(saturated, clamped, np.clip(implicit, self.lo, self.hi))
+        if self._fc is not None:
+            force = np.where(self.is_constraint, self._fc[:k], force)
         w = force * 0.5 * (v_old + v_new) * self.h
         cum = np.add.accumulate(np.concatenate([[self.work], w.sum(axis=1)]))
         self.work = float(cum[-1])
@@ -1028,7 +1057,7 @@ class Energy(Monitor):
         base = self._base
         cum = self._add_work()
         work = cum[b.step[:n] - base] if self.per_step else np.full(n, self.work)
-        ke = b.energy[:n, 1]
+        ke = b.energy[:n, 1] - reference_energy(run.model, b.qvel[:n], self.ref_dofs)
         top = np.where(ke > self.max_kinetic, ke, -np.inf).max()
         if top > self.max_kinetic:
             self.max_kinetic = float(top)

@@ -1,0 +1,108 @@
+"""A stiff velocity motor as a velocity constraint that MuJoCo solves together with contacts.
+
+AGX's velocity motor is a constraint: the solver finds the torque, within the effort range, that
+makes the joint turn at the target speed at the end of the step, in the same solve as contacts,
+limits and other joints.  A MuJoCo ``<velocity>`` servo is a force ``kv (target - v)``; the implicit
+integrators treat its damping only after the constraint solver, which computed contact and limit
+forces for the explicit force.  So a servo stiff enough to reach the target in one step makes a
+driven cart jump off the ground, and a safe one gets half way per step.
+
+MuJoCo has one velocity-level constraint with a force bound: friction loss, which drives a
+velocity to zero with at most ``frictionloss`` of force.  Applied to a fixed tendon whose length is
+the driven coordinate minus a **reference coordinate** turning at the target speed, it drives the
+driven coordinate to the target speed, within the effort range, in the constraint solve itself:
+
+* the reference is a hinge of a body of its own (no geometry, no gravity effect) whose armature is
+  ``REFERENCE_INERTIA`` times the inertia the motor drives, so the constraint's reaction moves it by
+  a millionth of the driven side's change;
+* a ``<velocity>`` actuator on the reference with ``kv = armature / h`` holds the motor's target
+  speed as its control, so every input that sets a motor's target sets it.  In the constraint
+  solve the reference's predicted speed at the end of the step is exactly that control (an
+  explicit step of ``kv (ctrl - v) / armature`` covers the whole difference), whatever the
+  integrator then does to the reference itself;
+* the tendon's friction loss is the effort limit (symmetric: ``[-e, e]``; ``BIG_EFFORT`` when
+  unlimited), with ``solreffriction = (-0, -1/h)`` (a damping that removes the whole speed error
+  in one step) and an impedance of 0.9999 (nearly hard).
+
+The motor's effort is the constraint's force on the tendon: the reference's ``qfrc_constraint``
+with its sign flipped (:func:`effort`), which the signals, the motor report and the energy monitor
+read instead of an actuator force.  The reference's kinetic energy is not the scene's: the energy
+monitor subtracts it (:func:`reference_energy`).  An asymmetric effort range cannot be a friction
+bound, so such a motor stays a servo (``mujoco.drivetrain`` / ``mujoco.controllers``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from plxtools.check.mujoco.context import BuildContext
+
+REFERENCE_INERTIA = 1e6  # reference armature per unit of the inertia the motor drives
+BIG_EFFORT = 1e9  # the friction bound of an unlimited motor (N m or N)
+SOLIMP = [0.9999, 0.9999, 0.001, 0.5, 2.0]  # nearly hard
+_POINT_MASS = 1e-6  # kg: the reference body (its inertia 1e-9 kg m^2 beside the armature)
+
+
+def symmetric_bound(lo: float, hi: float) -> float | None:
+    """The friction bound for an effort range, or None when it is not symmetric (then a servo)."""
+    if lo > hi:
+        return None
+    if not math.isfinite(lo) and not math.isfinite(hi):
+        return BIG_EFFORT
+    if math.isfinite(lo) and math.isfinite(hi) and abs(lo + hi) <= 1e-12 * max(abs(lo), abs(hi), 1.0):
+        return min(hi, BIG_EFFORT)
+    return None
+
+
+def add(ctx: BuildContext, path: str, source: Any, joint: str, gear: float, inertia: float, bound: float) -> tuple[str, str]:
+    """The reference, its actuator and the friction tendon for a motor at ``path`` on ``joint``
+    (``gear`` = the motor's coordinate per joint coordinate; ``inertia`` = what the motor drives,
+    in its own coordinate).  Returns (actuator name, reference joint name)."""
+    mj, spec = ctx.mj, ctx.spec
+    h = float(spec.option.timestep)
+    armature = REFERENCE_INERTIA * max(float(inertia), 1e-9)
+    body = spec.worldbody.add_body(name=ctx.names.add("body", path, source, ":reference"), pos=[0, 0, 0])
+    body.mass = _POINT_MASS
+    body.inertia = [_POINT_MASS * 1e-3] * 3
+    body.explicitinertial = True
+    body.ipos = [0.0, 0.0, 0.0]
+    body.iquat = [1.0, 0.0, 0.0, 0.0]
+    body.gravcomp = 1.0
+    ref = ctx.names.add("joint", path, source, ":reference")
+    body.add_joint(name=ref, type=mj.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1], armature=armature)
+    tendon = spec.add_tendon(name=ctx.names.add("tendon", path, source))
+    tendon.wrap_joint(joint, float(gear))
+    tendon.wrap_joint(ref, -1.0)
+    tendon.frictionloss = float(bound)
+    tendon.solref_friction = [-0.0, -1.0 / h]
+    tendon.solimp_friction = list(SOLIMP)
+    name = ctx.names.add("actuator", path, source)
+    act = spec.add_actuator(name=name, target=ref, trntype=mj.mjtTrn.mjTRN_JOINT)
+    act.set_to_velocity(kv=armature / h)
+    act.ctrllimited = mj.mjtLimited.mjLIMITED_FALSE
+    return name, ref
+
+
+def reference_dof(model: Any, ref_joint: str) -> int:
+    return int(model.jnt_dofadr[model.joint(ref_joint).id])
+
+
+def effort(data: Any, ref_dof: int) -> float:
+    """The motor's effort now: the constraint's force on its tendon (the reference takes minus it)."""
+    return -float(data.qfrc_constraint[ref_dof])
+
+
+def reference_energy(model: Any, qvel: np.ndarray, ref_dofs: np.ndarray) -> np.ndarray | float:
+    """Kinetic energy of the references (to take out of MuJoCo's total); ``qvel`` one row or many."""
+    if not len(ref_dofs):
+        return 0.0
+    arm = np.asarray(model.dof_armature)[ref_dofs]
+    v = np.asarray(qvel)[..., ref_dofs]
+    return 0.5 * (v * v * arm).sum(axis=-1)
+
+
+def bound_of(model: Any, tendon_name: str) -> float:
+    return float(model.tendon_frictionloss[model.tendon(tendon_name).id])

@@ -1,0 +1,82 @@
+"""A stiff velocity motor runs as a velocity constraint solved together with contacts (issue 29,
+section 5; plxtools/check/mujoco/velocity_constraint.py): a cart on the ground, driven through a
+gear by a 1D velocity motor, has its wheel at the input speed after ONE step and after a
+reversal, stays on the ground, and its motor's effort is the constraint's force, bounded by a
+symmetric effort range.  An asymmetric range keeps the servo, and says so."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("mujoco")
+
+from plxtools.check.api import SignalValueError, load  # noqa: E402
+from plxtools.cli import main  # noqa: E402
+
+CART = (Path(__file__).parent / "models" / "driven_cart.openplx").read_text()
+RATIO, RADIUS = 4.0, 0.3
+
+
+def _cart(tmp_path, text=CART, dt=None):
+    if dt is not None:
+        (tmp_path / "plx.toml").write_text(f"[check]\ntimestep = {dt}\n")
+    path = tmp_path / "cart.openplx"
+    path.write_text(text)
+    return load(path)
+
+
+@pytest.mark.parametrize("dt", [0.001, 0.002, 0.01])
+def test_the_wheel_is_at_the_input_speed_after_one_step_on_the_ground(tmp_path, dt):
+    sim = _cart(tmp_path, dt=dt)
+    sim.set("speed_input", 16.0)
+    sim.step()
+    assert sim.read("wheel_speed") == pytest.approx(16.0 / RATIO, rel=0.01)
+    sim.step(1.0)
+    assert sim.read("wheel_speed") == pytest.approx(16.0 / RATIO, rel=1e-4)
+    x, y, z = sim.read("chassis_position")
+    assert z == pytest.approx(0.35, abs=0.01)  # on its wheels: a stiff servo made it jump
+    vx = sim.read("chassis_velocity")[0]
+    assert vx == pytest.approx(16.0 / RATIO * RADIUS, rel=0.02)  # rolling, not slipping
+    sim.set("speed_input", -16.0)
+    sim.step()
+    assert sim.read("wheel_speed") == pytest.approx(-16.0 / RATIO, rel=0.01)
+
+
+def test_a_symmetric_effort_range_bounds_the_constraint_force(tmp_path):
+    text = CART.replace("        target_speed: 16.0\n", "        target_speed: 0.0\n        min_effort: -2.0\n"
+                        "        max_effort: 2.0\n")
+    sim = _cart(tmp_path, text)
+    sim.set("speed_input", 16.0)
+    sim.step(0.2)
+    assert sim.read("motor_torque") == pytest.approx(2.0, rel=1e-6)  # pushing at its limit
+    assert 0.0 < sim.read("wheel_speed") < 0.5 * 16.0 / RATIO  # 2 N m cannot spin up a 300 kg cart in 0.2 s
+    assert sim.read("motor_range") == (-2.0, 2.0)
+    sim.set("range_input", (-1e3, 1e3))
+    sim.step(0.5)
+    assert sim.read("wheel_speed") == pytest.approx(16.0 / RATIO, rel=1e-3)
+    with pytest.raises(SignalValueError, match="not symmetric"):
+        sim.set("range_input", (-1.0, 5.0))
+
+
+def test_an_asymmetric_effort_range_keeps_the_servo_and_says_so(tmp_path):
+    text = CART.replace("        target_speed: 16.0\n", "        target_speed: 16.0\n        min_effort: -1.0\n"
+                        "        max_effort: 50.0\n")
+    sim = _cart(tmp_path, text)
+    notes = [n.message for n in sim.prepared.compiled.notes if n.code == "A111"]
+    assert len(notes) == 1 and "not symmetric" in notes[0]
+    sim.step()
+    assert sim.read("wheel_speed") < 0.9 * 16.0 / RATIO  # a servo gets half way per step
+
+
+def test_check_finds_nothing_wrong_with_the_driven_cart(tmp_path, capsys):
+    path = tmp_path / "cart.openplx"
+    path.write_text(CART)
+    code = main(["check", str(path), "--simulate", "--duration", "2", "--output-format", "json"])
+    out = json.loads(capsys.readouterr().out)
+    codes = sorted({d["code"] for f in out["files"] for d in f["diagnostics"]}) if "files" in out else out
+    assert code == 0, codes
+    text = json.dumps(out)
+    assert "A134" not in text and "A106" not in text and "A135" not in text
