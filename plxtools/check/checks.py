@@ -399,9 +399,9 @@ class StaticChecks:
             d = self.rep.add(
                 MIRRORED_DRIVE_MOTORS, f"{x.path} and {y.path} have the same target_speed ({vx:g}) on hinges whose axes "
                 f"point opposite ways ({_v(ax)} and {_v(ay)}): the two wheels are driven in opposite directions, "
-                f"so the vehicle does not drive straight: it turns on the spot where nothing resists, and where "
-                f"other wheels on the ground resist (a four-wheeled truck) the driven wheels scrub against each "
-                f"other and both motors fall short of their target (A106 with --simulate)",
+                f"so the vehicle does not drive straight: it turns where it stands, and where other wheels on the "
+                f"ground resist (a four-wheeled truck) the driven wheels slip and scrub against each other (motors "
+                f"with an effort limit then fall short of their target: A106 with --simulate)",
                 **self._where_kw(y.obj, "target_speed"), obj=y.obj,
                 help=f"to drive straight, give {y.obj.name} target_speed: {-vy:g}")
             self.rep.mirrored_motors.append((x.path, y.path, d))

@@ -28,14 +28,14 @@ def test_boxtruck_drives_straight(check_file):
         assert abs(abs(m.mean_speed) - 1.0) < 0.02  # both motors hold 1 rad/s (right one in -1 about +Y)
     assert not s.fall_through and not s.penetrations and not any(m.pulled_apart for m in s.mates.values())
     # clean: only the approximation notes of the MuJoCo mapping (info)
-    assert {d.code for d in fc.diagnostics} == {"A044", "A111", "A113"}
+    assert {d.code for d in fc.diagnostics} == {"A044", "A113"}
     assert all(d.severity.value == "info" for d in fc.diagnostics)
 
 
 def test_mirrored_motors_turn_instead_of_driving(check_file):
     fc = check_file(BROKEN / "mirrored_motors.openplx", simulate=True, duration=3.0)
     ch = fc.simulation.bodies["box_truck.chassis"]
-    assert ch.horizontal_distance < 0.1  # it does not get anywhere ...
+    assert ch.horizontal_distance < 0.35  # it does not get far (0.25 m in 3 s; 0.78 m driving straight) ...
     assert ch.heading_change < -math.radians(0.1)  # ... it turns clockwise, front wheels slipping
 
 
@@ -65,10 +65,13 @@ def test_exported_mjcf_loads_alone_and_matches_the_assembly(check_file, tmp_path
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
     assembled = fc.assembled_bodies()
-    assert model.nbody == 1 + len(assembled)  # world + the six bodies
+    # world + the six bodies + the references of the two motors' velocity constraints
+    refs = [a for a in fc.compiled.actuators if a.reference is not None]
+    assert len(refs) == 2 and model.nbody == 1 + len(assembled) + len(refs)
     for path, b in assembled.items():
         i = model.body(path).id
         assert data.xpos[i] == pytest.approx(b["position"], abs=1e-9), path
         q = np.array(b["quaternion"])
         assert abs(float(np.dot(data.xquat[i], q))) == pytest.approx(1.0, abs=1e-9), path  # same rotation
-    assert model.nu == 2 and model.njnt == 5  # two motors; four hinges + the chassis' free joint
+    # two motors; four hinges + the chassis' free joint + the two references
+    assert model.nu == 2 and model.njnt == 5 + len(refs) and model.ntendon == len(refs)

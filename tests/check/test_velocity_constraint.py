@@ -80,3 +80,14 @@ def test_check_finds_nothing_wrong_with_the_driven_cart(tmp_path, capsys):
     assert code == 0, codes
     text = json.dumps(out)
     assert "A134" not in text and "A106" not in text and "A135" not in text
+
+
+def test_plx_test_refuses_an_asymmetric_range_for_a_constraint_at_its_line(tmp_path, capsys):
+    (tmp_path / "cart.openplx").write_text(CART)
+    (tmp_path / "cart.plxtest.toml").write_text(
+        'model = "cart.openplx"\nduration = 0.1\n\n[[input]]\nat = 0.0\nsignal = "range_input"\n'
+        'value = [-1.0, 5.0]\n\n[[expect]]\nat = 0.1\nof = "wheel_speed"\nabove = 0.0\n')
+    code = main(["test", str(tmp_path / "cart.plxtest.toml")])
+    out = capsys.readouterr().out
+    assert code == 2, out
+    assert "cart.plxtest.toml:4:1: error A141" in out and "not symmetric" in out and "Traceback" not in out

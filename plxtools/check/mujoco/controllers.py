@@ -1,6 +1,8 @@
 """Controllers (motors, ranges, springs) and the initial keyframe (steps of the MjSpec build, on a :class:`BuildContext`).
 
-Velocity motors: ``kv = min(gain, KV_STEPS * I_eff / timestep)`` with ``I_eff = 1 / dof_invweight0``;
+Velocity motors: a stiff one (``gain > KV_STEPS * I_eff / timestep``) with a symmetric or no effort
+range is a velocity constraint (``mujoco.velocity_constraint``), solved with the contacts.  Any
+other is a servo, ``kv = min(gain, KV_STEPS * I_eff / timestep)`` with ``I_eff = 1 / dof_invweight0``;
 ``KV_STEPS`` is 10 for unlimited motors (a servo time constant of a tenth of a step: tight tracking)
 and 1 when an effort limit is finite (MuJoCo drops the implicit damping of a saturated actuator, and
 a stiffer servo then chatters bang-bang between the limits). 1000 was tried first: stable for the
@@ -19,6 +21,7 @@ from plxtools.check.assemble import CONNECTOR_COUNT
 from plxtools.check.checks import CONTROLLER_DOF_MISMATCH, CONTROLLER_WITHOUT_MATE, INVERTED_LIMITS
 from plxtools.check.coverage import NOT_SIMULATED
 from plxtools.check.mapped_types import FREE_DOFS
+from plxtools.check.mujoco import velocity_constraint
 from plxtools.check.mujoco.context import BuildContext
 from plxtools.check.mujoco.poses import quat_to_mat
 from plxtools.check.mujoco.notes import ERROR, INFO, WARNING
@@ -178,10 +181,19 @@ def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: st
     limited = math.isfinite(ctl.min_effort) or math.isfinite(ctl.max_effort)
     steps = KV_STEPS_LIMITED if limited or stopped else KV_STEPS
     cap = steps * ieff / h
+    bound = velocity_constraint.symmetric_bound(float(ctl.min_effort), float(ctl.max_effort))
+    if ctl.gain > cap and bound is not None:
+        name, ref = velocity_constraint.add(ctx, ctl.path, ctl.source, joint, float(sign), ieff, bound)
+        ctx.out.actuators.append(ActuatorInfo(ctl.path, name, ctl.kind, mate.path, joint, float(sign),
+                                              float(ctl.target_speed), None, float(ctl.target_speed), reference=ref,
+                                              tendon=ctx.names.name("tendon", ctl.path)))
+        return
     kv = min(float(ctl.gain), cap)
     if kv < ctl.gain:
         why = (
-            "effort-limited servo: a larger kv would chatter between the effort limits (MuJoCo ignores the implicit damping of a saturated actuator)"
+            "its effort range is not symmetric, so it cannot run as a velocity constraint (a friction bound [-e, e]); "
+            "as an effort-limited servo, a larger kv would chatter between the effort limits (MuJoCo ignores the "
+            "implicit damping of a saturated actuator)"
             if limited
             else "a range on the same joint: the joint limit is solved from the servo's explicit force, and a larger "
             "kv would chatter against it (gaining energy, A134)"

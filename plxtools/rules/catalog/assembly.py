@@ -298,12 +298,15 @@ rule("A110", "mujoco-compile-error", E,
      "MuJoCo rejected the compiled model; the message names the OpenPLX element when it can.",
      "This is a model MuJoCo cannot represent (or a gap in the backend).", stage=SIM)
 rule("A111", "velocity-motor-gain-clamped", I,
-     "A velocity motor's `gain` (1e8 by default) is far too stiff for an explicit actuator; the MuJoCo "
-     "velocity gain is clamped to 10 x the joint's effective inertia / timestep (1 x with an effort limit). "
-     "An info for the bundle's default gain (whose meaning, a nearly rigid speed servo, is kept); a warning "
+     "A stiff velocity motor (the bundle's default `gain` is 1e8) runs as a velocity constraint solved "
+     "together with contacts and limits, as AGX's does, when its effort range is symmetric or unlimited. "
+     "One with an asymmetric effort range cannot (the constraint's bound is a friction bound [-e, e]): it "
+     "runs as a MuJoCo velocity servo whose gain is clamped to 10 x the joint's effective inertia / timestep "
+     "(1 x with an effort limit, or on a drive train). An info for the bundle's default gain; a warning "
      "naming your value and the one used when your files set the gain.",
-     "With the implicit integrator this still tracks the target speed almost rigidly, like AGX's stiff "
-     "motor, without making the simulation unstable.", stage=SIM)
+     "The clamped servo gets close to its target speed in a few steps and sags by load / kv under a load "
+     "(A106 says by how much); give the motor a symmetric effort range to have it run as a constraint.",
+     stage=SIM)
 rule("A112", "spring-stiffness-clamped", W,
      "A spring is so stiff that even the shortest time step plxtools uses (1e-4 s) cannot integrate it; "
      "the message names your stiffness and the lower one simulated.",
