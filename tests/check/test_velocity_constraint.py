@@ -91,3 +91,21 @@ def test_plx_test_refuses_an_asymmetric_range_for_a_constraint_at_its_line(tmp_p
     out = capsys.readouterr().out
     assert code == 2, out
     assert "cart.plxtest.toml:4:1: error A141" in out and "not symmetric" in out and "Traceback" not in out
+
+
+def test_a_train_driving_two_wheels_is_at_the_input_speed_after_one_step(tmp_path):
+    """Two hinges on one train: a joint per shaft coupled by velocity-level equalities, solved with
+    the motor's constraint and the contacts."""
+    text = (Path(__file__).parent / "models" / "driven_axle.openplx").read_text()
+    sim = _cart(tmp_path, text)
+    sim.set("speed_input", 16.0)
+    sim.step()
+    assert sim.read("wheel_speed") == pytest.approx(16.0 / RATIO, rel=0.01)
+    assert sim.read("right_speed") == pytest.approx(sim.read("wheel_speed"), rel=1e-3)
+    sim.step(1.0)
+    assert sim.read("chassis_position")[2] == pytest.approx(0.35, abs=0.01)
+    assert sim.read("chassis_velocity")[0] == pytest.approx(16.0 / RATIO * RADIUS, rel=0.02)
+    sim.set("speed_input", -16.0)
+    sim.step()
+    assert sim.read("wheel_speed") == pytest.approx(-16.0 / RATIO, rel=0.02)
+    assert sim.read("right_speed") == pytest.approx(sim.read("wheel_speed"), rel=1e-3)

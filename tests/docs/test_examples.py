@@ -117,8 +117,9 @@ def test_clean_examples_simulate_and_drive():
     for n in ("step07", "step08"):
         assert abs(moved_x(step[n], "boxTruck.chassis")) < 0.05, n  # on its wheels, no motors yet
     for n in ("step09", "step10", "step11"):
-        # equal speeds on mirrored hubs: the front wheels fight (A023), the truck hardly moves
-        assert abs(moved_x(step[n], "boxTruck.chassis")) < 0.2, n
+        # equal speeds on mirrored hubs: the front wheels fight (A023) and slip at their target speed (velocity
+        # constraints): the truck turns where it stands, its centre moving 0.25 m in 3 s (driving: 0.78 m)
+        assert abs(moved_x(step[n], "boxTruck.chassis")) < 0.35, n
         assert abs(height(step[n], "boxTruck.chassis") - 1.0) < 0.05, n
     a023 = [d for d in doc["diagnostics"] if d["code"] == "A023"]
     assert {d["file"] for d in a023} == {step["step09"], step["step10"], step["step11"]}

@@ -17,7 +17,11 @@ the rest of the train follows the explicit force, and the train reached 61 % of 
 after one step (10 x the gain: 10 x the target).  One coordinate also makes the gears exact: no
 coupling to spring back (A134) or to drift.  A train that is not rigid in this sense (a loop of
 gears, two hinges, a hinge actuator on a loop-closing mate) keeps the coupled mapping: a joint per
-shaft, a joint equality per gear / hinge actuator as stiff as MuJoCo allows.
+shaft, a joint equality per gear / hinge actuator, nearly hard (impedance 0.9999) with a direct
+reference (``solref = (-0.25 / h^2, -1 / h)``) that removes the whole speed error in one step and a
+quarter of the angle error per step: solved with the motor's velocity constraint and the
+contacts, a train driving two wheels is at its input speed after one step too (before, with a
+time constant of two steps, 42 %).
 
 A **1D velocity motor** with a stiff gain (the default) and a symmetric or no effort range is a
 velocity constraint on its shaft's coordinate (``mujoco.velocity_constraint``: a friction-loss
@@ -44,6 +48,7 @@ from plxtools.check.mujoco.notes import INFO
 from plxtools.check.mujoco.results import ActuatorInfo, ShaftCoordinate
 
 SHAFT_BODY_MASS = 1e-6  # kg: a point (its inertia 1e-9 kg m^2 beside the armature), so the MJCF export reloads
+COUPLING_ANGLE_RATE = 0.25  # a coupled train's equalities remove this share of their angle error per step
 SERVO_GAIN_STEPS = 1.0  # a servo (an asymmetric effort range): kv = this x the inertia it drives / timestep
 
 Edge = tuple[str, float]  # (other node, its coordinate per this node's coordinate)
@@ -181,7 +186,8 @@ def add_couplings(ctx: BuildContext) -> None:
         data = np.zeros(len(e.data))
         data[1] = coef
         e.data = data
-        e.solref = [2.0 * h, 1.0]
+        e.solref = [-COUPLING_ANGLE_RATE / (h * h), -1.0 / h]  # see the module docstring
+        e.solimp = list(velocity_constraint.SOLIMP)
 
 
 def add_shaft_motors(ctx: BuildContext, model: Any) -> None:
