@@ -7,9 +7,11 @@ Two halves:
   and what it maps to, or why it does not map.  ``checks.py`` asks :func:`classify` whether a signal
   the user declared is simulated (A040 otherwise).
 * :class:`SignalRuntime` binds those to a compiled MuJoCo model: an input writes the value it names
-  (a control, an actuator force range, a spring reference, a free body's velocity); an output reads
-  a joint coordinate, an actuator force or a body's pose and velocity.  mujoco is never imported
-  here: the bindings only touch ``model`` / ``data`` arrays and call the module given to them.
+  (a control, an actuator force range, a spring reference, a free body's velocity, an external
+  force or torque on a body: ``body_loads.py``); an output reads a joint coordinate, an actuator
+  force, a body's pose, velocity or mass, or a mate connector's frame (``connector_signals.py``).
+  mujoco is never imported here: the bindings only touch ``model`` / ``data`` arrays and call the
+  module given to them.
 
 Conventions: values are SI (rad, rad/s, m, m/s, N, N m).  1D joint values are in the OpenPLX sign of
 the mate (``connectors[1]`` relative to ``connectors[0]``), motor values in the motor's own
