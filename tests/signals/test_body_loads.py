@@ -128,3 +128,21 @@ def test_a_body_without_the_trait_cannot_take_a_torque_input(tmp_path):
                  "    spin is Physics3D.Signals.Torque3DInput:\n        source: body\n", encoding="utf-8")
     r = run_plx("lint", str(f))
     assert r.returncode == 1 and "T001" in r.stdout and "Torque3DInputTrait" in r.stdout, r.stdout
+
+
+def test_check_counts_the_loads_as_simulated():
+    """`plx check` names no A040 for the force, torque and mass signals of the model."""
+    r = run_plx("check", LOADS)
+    assert r.returncode == 0 and " A040 " not in r.stdout, r.stdout
+
+
+def test_a_torque_input_on_a_connector_is_named_as_not_simulated(tmp_path):
+    f = tmp_path / "twist.openplx"
+    f.write_text("TwistPoint is Physics3D.Interactions.MateConnector:\n    with Physics3D.Signals.Torque3DInputTrait\n\n"
+                 "Scene is Physics3D.System:\n    body is Physics3D.Bodies.RigidBody:\n        inertia.mass: 1\n"
+                 "        point is TwistPoint\n    twist is Physics3D.Signals.Torque3DInput:\n"
+                 "        source: body.point\n", encoding="utf-8")
+    r = run_plx("check", str(f))
+    a040 = [ln for ln in r.stdout.splitlines() if " A040 " in ln]
+    assert len(a040) == 1 and "twist" in a040[0] and "Torque3DInput of a connector has no MuJoCo mapping" in a040[0], \
+        r.stdout
