@@ -155,3 +155,19 @@ def test_rpm_of_shafts_that_say_they_have_one(tmp_path):
     assert sim.read("wheel_shaft.rpm_output") == pytest.approx(15.0, rel=0.01)  # ratio 4
     assert sim.read("wheel_shaft.rpm_output") == pytest.approx(
         sim.read("wheel_shaft.angular_velocity_output") * 60 / (2 * math.pi), rel=1e-12)
+
+
+def test_connectors_on_a_kinematic_body_and_in_the_world():
+    """A rim 2 m out on a table turned at a prescribed 1.5 rad/s: the circle, v = 3 m/s tangential,
+    a = 4.5 m/s^2 inwards (MuJoCo gives a moved body no velocity or acceleration of its own); a
+    connector of the system stays where it is."""
+    sim = load("tests/signals/models/turntable.openplx")
+    sim.step(1.0)
+    a = 1.5 * sim.time
+    assert sim.read("table.rim_position") == pytest.approx((2 * math.cos(a), 2 * math.sin(a), 0.0), abs=1e-9)
+    assert sim.read("table.rim_velocity") == pytest.approx((-3 * math.sin(a), 3 * math.cos(a), 0.0), abs=1e-9)
+    assert sim.read("table.rim_acceleration") == pytest.approx((-4.5 * math.cos(a), -4.5 * math.sin(a), 0.0),
+                                                               abs=1e-9)
+    assert sim.read("mark_position") == (0.0, 3.0, 0.0)
+    with pytest.raises(NotSimulatedError, match="relative_to table.rim, which moves"):
+        sim.read("mark_velocity")
