@@ -35,6 +35,7 @@ from typing import Any
 from plxtools.check.signals import (
     COMPONENTS,
     RPY_COMPONENTS,
+    RPY_QUANTITIES,
     SignalInfo,
     SignalRuntime,
     SignalValueError,
@@ -175,6 +176,7 @@ def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str
             openplx_version: str | None = None) -> Prepared:
     """Check, assemble and compile ``path`` (raises ModelError when it cannot be simulated)."""
     from plxtools.check.mujoco import backend as mjb
+    from plxtools.check.connector_frames import connector_frame
     from plxtools.check.convert import _source
     from plxtools.check.pipeline import analyse, blocking_reason
     from plxtools.config import ConfigError, config_for
@@ -205,7 +207,8 @@ def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str
     ev = fc.evaluator  # the assembly's own: its values are already evaluated
     ev.report = lambda *a: None  # the file's diagnostics are final; reading signals adds none
     owned = fc.assembly.owned[1:]
-    signals = collect(owned, ev, fc.kinds, lambda o: _source(fc.rep, o))
+    signals = collect(owned, ev, fc.kinds, lambda o: _source(fc.rep, o),
+                      lambda o: connector_frame(fc.assembly, ev, fc.kinds, o))
     objects = {o.display: program.concrete(o.model).qname for o in owned}
     bodies = [n.path for n in fc.assembly.bodies]
     return Prepared(str(p), fc.model or "", fc, compiled, signals, objects, bodies, ws)
@@ -479,6 +482,6 @@ def component_index(info: SignalInfo, comp: str) -> int | None:
     names = COMPONENTS.get(info.value_kind or "", ())
     if comp in names:
         return names.index(comp)
-    if info.quantity == "body_rpy" and comp in RPY_COMPONENTS:
+    if info.quantity in RPY_QUANTITIES and comp in RPY_COMPONENTS:
         return RPY_COMPONENTS.index(comp)
     return None

@@ -646,9 +646,9 @@ def _bind_subject(e: Expect, by_path: dict, bodies: list[str], outputs: list[str
 
 
 def _components(info: SignalInfo) -> list[str]:
-    from plxtools.check.signals import COMPONENTS, RPY_COMPONENTS
+    from plxtools.check.signals import COMPONENTS, RPY_COMPONENTS, RPY_QUANTITIES
 
-    if info.quantity == "body_rpy":
+    if info.quantity in RPY_QUANTITIES:
         return list(RPY_COMPONENTS)
     return list(COMPONENTS.get(info.value_kind or "", ()))
 

@@ -7,9 +7,11 @@ Two halves:
   and what it maps to, or why it does not map.  ``checks.py`` asks :func:`classify` whether a signal
   the user declared is simulated (A040 otherwise).
 * :class:`SignalRuntime` binds those to a compiled MuJoCo model: an input writes the value it names
-  (a control, an actuator force range, a spring reference, a free body's velocity); an output reads
-  a joint coordinate, an actuator force or a body's pose and velocity.  mujoco is never imported
-  here: the bindings only touch ``model`` / ``data`` arrays and call the module given to them.
+  (a control, an actuator force range, a spring reference, a free body's velocity, an external
+  force or torque on a body: ``body_loads.py``); an output reads a joint coordinate, an actuator
+  force, a body's pose, velocity or mass, or a mate connector's frame (``connector_signals.py``).
+  mujoco is never imported here: the bindings only touch ``model`` / ``data`` arrays and call the
+  module given to them.
 
 Conventions: values are SI (rad, rad/s, m, m/s, N, N m).  1D joint values are in the OpenPLX sign of
 the mate (``connectors[1]`` relative to ``connectors[0]``), motor values in the motor's own
@@ -57,11 +59,26 @@ INPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
     ("Physics.Signals.Position1DInput", ("linear_spring",), "spring_rest"),
     ("Physics3D.Signals.LinearVelocity3DInput", ("body",), "body_linear_velocity"),
     ("Physics3D.Signals.AngularVelocity3DInput", ("body",), "body_angular_velocity"),
+    # an external load on a body (check/body_loads.py): the body must say it takes one
+    # (`with Physics3D.Signals.Torque3DInputTrait`), the type checker holds the source to that
+    ("Physics3D.Signals.Torque3DInput", ("body",), "body_torque"),
+)
+# inputs of no bundle type above, mapped by what their `type:` (a Physics.Signals.InputOutputType
+# member, read from the bundles) says they carry: the bundles have no Force3DInput, so a project that
+# pushes a body declares its own `Physics.Signals.Input` with `type: InputOutputType.Force3D`
+INPUT_TYPE_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
+    ("Force3D", ("body",), "body_force"),
+    ("Torque3D", ("body",), "body_torque"),
 )
 OUTPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
     ("Physics.Signals.AngleOutput", ("hinge", "cylindrical"), "joint_position"),
     ("Physics.Signals.AngleOutput", ("shaft",), "shaft_position"),
     ("Physics.Signals.AngularVelocity1DOutput", ("shaft",), "shaft_velocity"),
+    # the bundles' own sources of these (engines, a shovel's soil) are not simulated; a shaft, hinge or
+    # body given the output's trait has the value (rev/min = rad/s * 60 / 2 pi; the body's mass in MuJoCo)
+    ("Physics.Signals.RpmOutput", ("shaft",), "shaft_rpm"),
+    ("Physics.Signals.RpmOutput", ("hinge", "cylindrical"), "joint_rpm"),
+    ("Physics.Signals.MassOutput", ("body",), "body_mass"),
     ("Physics.Signals.AngleOutput", ("torsion_spring",), "spring_rest"),
     ("Physics.Signals.Position1DOutput", ("prismatic", "cylindrical"), "joint_position"),
     ("Physics.Signals.Position1DOutput", ("linear_spring",), "spring_rest"),
@@ -79,41 +96,49 @@ OUTPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
     ("Physics3D.Signals.RPYOutput", ("body",), "body_rpy"),
     ("Physics3D.Signals.LinearVelocity3DOutput", ("body",), "body_linear_velocity"),
     ("Physics3D.Signals.AngularVelocity3DOutput", ("body",), "body_angular_velocity"),
+    # a mate connector's frame: its body's pose times the connector's frame in it (check/connector_signals.py)
+    ("Physics3D.Signals.MateConnector.PositionOutput", ("connector",), "connector_position"),
+    ("Physics3D.Signals.MateConnector.RPYOutput", ("connector",), "connector_rpy"),
+    ("Physics3D.Signals.MateConnector.LinearVelocity3DOutput", ("connector",), "connector_linear_velocity"),
+    ("Physics3D.Signals.MateConnector.AngularVelocity3DOutput", ("connector",), "connector_angular_velocity"),
+    ("Physics3D.Signals.LinearVelocity3DOutput", ("connector",), "connector_linear_velocity"),
+    ("Physics3D.Signals.AngularVelocity3DOutput", ("connector",), "connector_angular_velocity"),
+    ("Physics3D.Signals.MateConnector.Acceleration3DOutput", ("connector",), "connector_acceleration"),
+    ("Physics3D.Signals.MateConnector.AngularAcceleration3DOutput", ("connector",),
+     "connector_angular_acceleration"),
 )
 # every other Input / Output type of the bundles, refused by name with the reason (a test checks that
 # each signal type the installed bundles define is mapped above or listed here)
-_NO_PEER = "the MuJoCo backend has no counterpart of this value"
+_SWITCH = ("its sources in the bundles are interactions switched on and off and the vacuum gripper: nothing can be "
+           "switched during a MuJoCo run")
+_GEARBOX = "its source in the bundles is DriveTrain.GearBox (the selected gear and its ratio), which is not simulated"
+_REACTION = ("constraint forces of mates are not read: the bundle gives neither the point nor the frame they are "
+             "measured at, and a MuJoCo tree joint has no reaction force of its own (cfrc_int also holds the "
+             "child body's inertial load)")
 REFUSED: dict[str, str] = {
     "Physics.Signals.Input": "the abstract base of inputs",
     "Physics.Signals.Output": "the abstract base of outputs",
-    "Physics.Signals.ActivateInput": _NO_PEER,
-    "Physics.Signals.ActivatedOutput": _NO_PEER,
-    "Physics.Signals.BoolInput": _NO_PEER,
-    "Physics.Signals.BoolOutput": _NO_PEER,
-    "Physics.Signals.IntInput": _NO_PEER,
-    "Physics.Signals.IntOutput": _NO_PEER,
-    "Physics.Signals.DurationInput": _NO_PEER,
-    "Physics.Signals.DurationOutput": _NO_PEER,
+    "Physics.Signals.ActivateInput": _SWITCH,
+    "Physics.Signals.ActivatedOutput": _SWITCH,
+    "Physics.Signals.BoolInput": _SWITCH,
+    "Physics.Signals.BoolOutput": _SWITCH,
+    "Physics.Signals.IntInput": _GEARBOX,
+    "Physics.Signals.IntOutput": _GEARBOX,
+    "Physics.Signals.DurationInput": "its sources in the bundles are automatic clutches and brakes, which are not "
+                                     "simulated",
+    "Physics.Signals.DurationOutput": "its sources in the bundles are automatic clutches and brakes, which are not "
+                                      "simulated",
     "Physics.Signals.FractionInput": "gear ratios, clutch and brake engagement fractions are fixed in the MuJoCo model",
     "Physics.Signals.FractionOutput": "gear ratios, clutch and brake engagement fractions are fixed in the MuJoCo model",
     "Physics.Signals.EngageInput": "clutches and brakes are not simulated",
     "Physics.Signals.EngagedOutput": "clutches and brakes are not simulated",
     "Physics.Signals.EnableInteractionInput": "interactions cannot be switched on or off during a run",
     "Physics.Signals.InteractionEnabledOutput": "interactions cannot be switched on or off during a run",
-    "Physics.Signals.MassOutput": _NO_PEER,
-    "Physics.Signals.RatioOutput": _NO_PEER,
-    "Physics.Signals.RpmOutput": _NO_PEER,
+    "Physics.Signals.RatioOutput": _GEARBOX,
     "Physics.Signals.RelativeVelocity1DOutput": "clutches and brakes are not simulated",
-    "Physics3D.Signals.Torque3DInput": "external torques on bodies are not applied",
-    "Physics3D.Signals.Force3DOutput": "constraint forces of mates are not read",
-    "Physics3D.Signals.Torque3DOutput": "constraint torques of mates are not read",
-    "Physics3D.Signals.MateConnector.Output": "outputs of mate connectors are not read",
-    "Physics3D.Signals.MateConnector.PositionOutput": "outputs of mate connectors are not read",
-    "Physics3D.Signals.MateConnector.RPYOutput": "outputs of mate connectors are not read",
-    "Physics3D.Signals.MateConnector.LinearVelocity3DOutput": "outputs of mate connectors are not read",
-    "Physics3D.Signals.MateConnector.AngularVelocity3DOutput": "outputs of mate connectors are not read",
-    "Physics3D.Signals.MateConnector.Acceleration3DOutput": "outputs of mate connectors are not read",
-    "Physics3D.Signals.MateConnector.AngularAcceleration3DOutput": "outputs of mate connectors are not read",
+    "Physics3D.Signals.Force3DOutput": _REACTION,
+    "Physics3D.Signals.Torque3DOutput": _REACTION,
+    "Physics3D.Signals.MateConnector.Output": "the abstract base of mate connector outputs",
     "DriveTrain.Signals.AutomaticClutchDisengagementDurationInput": "clutches and brakes are not simulated",
     "DriveTrain.Signals.AutomaticClutchEngagementDurationInput": "clutches and brakes are not simulated",
     "DriveTrain.Signals.AutomaticClutchDisengagementDurationOutput": "clutches and brakes are not simulated",
@@ -127,16 +152,21 @@ REFUSED: dict[str, str] = {
     "Sensors.Signals.LidarOutput": "sensors are not simulated",
 }
 VALUE_KIND = {
-    "shaft_position": "real", "shaft_velocity": "real",
+    "shaft_position": "real", "shaft_velocity": "real", "shaft_rpm": "real", "joint_rpm": "real", "body_mass": "real",
     "target_speed": "real", "effort": "real", "effort_range": "vec2", "spring_rest": "real",
     "joint_position": "real", "joint_velocity": "real", "actuator_effort": "real", "spring_effort": "real",
     "body_position": "vec3", "body_rpy": "vec3", "body_linear_velocity": "vec3", "body_angular_velocity": "vec3",
+    "body_force": "vec3", "body_torque": "vec3",
+    "connector_position": "vec3", "connector_rpy": "vec3", "connector_linear_velocity": "vec3",
+    "connector_angular_velocity": "vec3", "connector_acceleration": "vec3", "connector_angular_acceleration": "vec3",
 }
+RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)  # RpmOutput: revolutions per minute
 # what a value kind looks like, for messages
 KIND_TEXT = {"real": "a number", "vec2": "two numbers [min, max]", "vec3": "three numbers [x, y, z]"}
 # the components an expectation may pick from a vector output
 COMPONENTS = {"vec3": ("x", "y", "z"), "vec2": ("min", "max")}
 RPY_COMPONENTS = ("roll", "pitch", "yaw")
+RPY_QUANTITIES = ("body_rpy", "connector_rpy")  # vec3 outputs whose components are roll, pitch, yaw
 
 
 @dataclass(slots=True)
@@ -152,6 +182,8 @@ class SignalInfo:
     why: str = ""  # when quantity is None: why not
     enabled: bool = True  # outputs: the model's `enabled`
     location: Any = None  # plxtools.check.scene.Source of the declaration, when known
+    frame: Any = None  # a connector output: its source's ConnectorFrame (check/connector_frames.py)
+    relative: Any = None  # and its relative_to's (None: the world)
 
     @property
     def value_kind(self) -> str | None:
@@ -198,6 +230,10 @@ def classify(obj: Any, ev: Any, kinds: Any) -> SignalInfo | None:
             if skind in sources:
                 info.quantity = quantity
                 return info
+    if direction == "input":
+        info.quantity = _by_carried_type(obj, ev, kinds, skind)
+        if info.quantity is not None:
+            return info
     refused = next((REFUSED[t] for t in _lineage(obj, kinds) if t in REFUSED and t not in (INPUT, OUTPUT)), None)
     if refused is not None:
         of = f" of a {skind.replace('_', ' ')}" if skind else ""
@@ -211,6 +247,24 @@ def classify(obj: Any, ev: Any, kinds: Any) -> SignalInfo | None:
     return info
 
 
+IO_TYPES = "Physics.Signals.InputOutputType"
+
+
+def _by_carried_type(obj: Any, ev: Any, kinds: Any, skind: str | None) -> str | None:
+    """What an input of no mapped type maps to by its ``type:`` (INPUT_TYPE_MAP), the members'
+    values read from the bundles' ``Physics.Signals.InputOutputType``; None when nothing fits."""
+    rows = [(name, q) for name, sources, q in INPUT_TYPE_MAP if skind in sources]
+    sym = kinds.sym(IO_TYPES) if rows else None
+    if sym is None:
+        return None
+    try:
+        carried = ev.get(obj, "type")
+        members = ev.b.singleton(sym)
+        return next((q for name, q in rows if members is not None and ev.get(members, name) == carried), None)
+    except Exception:  # an unevaluable `type:` is the check's to report; the input is then not mapped
+        return None
+
+
 def _lineage(obj: Any, kinds: Any) -> list[str]:
     """The qualified names of an object's model and its bases, nearest first."""
     from plxtools.model.resolve import linearize
@@ -222,16 +276,30 @@ def _short(qn: str) -> str:
     return qn.rsplit(".", 1)[-1]
 
 
-def collect(owned: list, ev: Any, kinds: Any, locate: Callable[[Any], Any] | None = None) -> list[SignalInfo]:
-    """Every Input and Output among the ``owned`` objects, in declaration order."""
+def collect(owned: list, ev: Any, kinds: Any, locate: Callable[[Any], Any] | None = None,
+            frame: Callable[[Any], Any] | None = None) -> list[SignalInfo]:
+    """Every Input and Output among the ``owned`` objects, in declaration order.  ``frame`` gives a
+    connector's frame (check/connector_frames.py) for the outputs that read one."""
     out = []
     for obj in owned:
         info = classify(obj, ev, kinds)
         if info is not None:
             if locate is not None:
                 info.location = locate(obj)
+            if frame is not None and info.source_kind == "connector" and info.mapped:
+                _frames(info, obj, ev, frame)
             out.append(info)
     return out
+
+
+def _frames(info: SignalInfo, obj: Any, ev: Any, frame: Callable[[Any], Any]) -> None:
+    """The frames of a connector output's source and of its ``relative_to`` (None: the world)."""
+    from plxtools.check.instance import Obj
+
+    src = ev.child(obj, "source")
+    info.frame = frame(src) if isinstance(src, Obj) else None
+    rel = ev.child(obj, "relative_to") if "relative_to" in obj.children else None
+    info.relative = frame(rel) if isinstance(rel, Obj) else None
 
 
 def mapping_summary() -> dict[str, list[str]]:
@@ -359,6 +427,8 @@ class SignalRuntime:
     infos: dict[str, SignalInfo]
     bindings: dict[str, Binding] = field(default_factory=dict)
     unbound: dict[str, str] = field(default_factory=dict)
+    loads: dict[tuple[int, int], dict] = field(default_factory=dict)  # body loads (check/body_loads.py)
+    _initial: Any = None
 
     @classmethod
     def bind(cls, mujoco: Any, compiled: Any, infos: list[SignalInfo]) -> "SignalRuntime":
@@ -371,7 +441,7 @@ class SignalRuntime:
                 continue
             try:
                 b = rt._binding(info, acts)
-            except _Unbindable as exc:
+            except Unbindable as exc:
                 rt.unbound[info.path] = f"{info.path} cannot act on the MuJoCo model: {exc}"
                 continue
             rt.bindings[info.path] = b
@@ -385,8 +455,8 @@ class SignalRuntime:
         names = c.joints.get(mate_path)
         if not names:
             if mate_path in c.loop_mates:
-                raise _Unbindable(f"{mate_path} closes a kinematic loop (an equality constraint, no joint)")
-            raise _Unbindable(f"{mate_path} is not simulated (see the check notes)")
+                raise Unbindable(f"{mate_path} closes a kinematic loop (an equality constraint, no joint)")
+            raise Unbindable(f"{mate_path} is not simulated (see the check notes)")
         name = names[0]
         if len(names) > 1:
             name = next((n for n in names if n.endswith(":rot" if dof == "rotational" else ":slide")), names[0])
@@ -397,66 +467,88 @@ class SignalRuntime:
         scene = self.compiled.scene
         ctl = next((x for x in scene.controllers if x.path == ctl_path), None)
         if ctl is None or not ctl.enabled:
-            raise _Unbindable(f"{ctl_path} is not simulated (see the check notes)")
+            raise Unbindable(f"{ctl_path} is not simulated (see the check notes)")
         pair = (ctl.connectors[0].path, ctl.connectors[1].path)
         for m in scene.mates:
             key = (m.connectors[0].path, m.connectors[1].path)
             if key == pair or key == pair[::-1]:
                 qadr, dadr, sign = self._joint(m.path, ctl.dof)
                 return qadr, dadr, sign * (-1 if key != pair else 1)
-        raise _Unbindable(f"no mate of {ctl_path} is simulated")
+        raise Unbindable(f"no mate of {ctl_path} is simulated")
 
     def _body(self, path: str) -> int:
         name = self.compiled.names.name("body", path)
         if name is None:
-            raise _Unbindable(f"the body {path} is not simulated")
+            raise Unbindable(f"the body {path} is not simulated")
         return int(self.compiled.model.body(name).id)
+
+    body_id = _body
+
+    def initial_data(self) -> Any:
+        """MuJoCo data at the model's initial keyframe, positions computed (where the assembly put
+        everything); made once."""
+        if self._initial is None:
+            mj, model = self.mujoco, self.compiled.model
+            d = mj.MjData(model)
+            mj.mj_resetDataKeyframe(model, d, model.key("initial").id)
+            mj.mj_kinematics(model, d)
+            self._initial = d
+        return self._initial
+
+    def _bind_actuator(self, info: SignalInfo, acts: dict) -> Binding:
+        """A motor's control, effort or effort range (the compiled actuator's ``ctrl`` / force)."""
+        q, src, b = info.quantity, info.source or "", Binding(info)
+        if src not in acts:
+            raise Unbindable(f"its motor {src} is not simulated (see the check notes)")
+        act, aid = acts[src]
+        if act.reference is not None:
+            return _constraint_motor_binding(b, q, act, self.compiled.model, aid)
+        if q == "actuator_effort":
+            b.read = lambda m, d: float(d.actuator_force[aid])
+        elif q == "effort_range":
+            def read_range(m, d):
+                if m.actuator_forcelimited[aid]:
+                    return (float(m.actuator_forcerange[aid][0]), float(m.actuator_forcerange[aid][1]))
+                return (-math.inf, math.inf)
+
+            def write_range(m, d, v):
+                m.actuator_forcelimited[aid] = 1
+                m.actuator_forcerange[aid] = [v[0], v[1]]
+
+            b.read, b.write = read_range, write_range
+        else:
+            _ctrl_binding(b, aid)
+        return b
 
     def _binding(self, info: SignalInfo, acts: dict) -> Binding:  # noqa: C901 - one table of small cases
         q, src, mj = info.quantity, info.source or "", self.mujoco
-        b = Binding(info)
+        elsewhere = _bound_elsewhere(q)
+        if elsewhere is not None:
+            return elsewhere(self, info)
         if q in ("target_speed", "effort", "actuator_effort", "effort_range"):
-            if src not in acts:
-                raise _Unbindable(f"its motor {src} is not simulated (see the check notes)")
-            act, aid = acts[src]
-            if act.reference is not None:
-                return _constraint_motor_binding(b, q, act, self.compiled.model, aid)
-            if q == "actuator_effort":
-                b.read = lambda m, d: float(d.actuator_force[aid])
-            elif q == "effort_range":
-                def read_range(m, d):
-                    if m.actuator_forcelimited[aid]:
-                        return (float(m.actuator_forcerange[aid][0]), float(m.actuator_forcerange[aid][1]))
-                    return (-math.inf, math.inf)
-
-                def write_range(m, d, v):
-                    m.actuator_forcelimited[aid] = 1
-                    m.actuator_forcerange[aid] = [v[0], v[1]]
-
-                b.read, b.write = read_range, write_range
-            else:
-                _ctrl_binding(b, aid)
-            return b
-        if q in ("shaft_position", "shaft_velocity"):
+            return self._bind_actuator(info, acts)
+        b = Binding(info)
+        if q in ("shaft_position", "shaft_velocity", "shaft_rpm"):
             coord = self.compiled.shafts.get(src)  # a shaft turns with its drive train's joint (mujoco.drivetrain)
             if coord is None:
-                raise _Unbindable(f"the shaft {src} is not simulated (see the check notes)")
+                raise Unbindable(f"the shaft {src} is not simulated (see the check notes)")
             jid = self.compiled.model.joint(coord.joint).id
             qadr, dadr = int(self.compiled.model.jnt_qposadr[jid]), int(self.compiled.model.jnt_dofadr[jid])
             f, off = coord.factor, coord.offset
             if q == "shaft_position":
                 b.read = lambda m, d: f * float(d.qpos[qadr]) + off
             else:
-                b.read = lambda m, d: f * float(d.qvel[dadr])
+                scale = f * (RPM_PER_RAD_S if q == "shaft_rpm" else 1.0)
+                b.read = lambda m, d: scale * float(d.qvel[dadr])
             return b
-        if q in ("joint_position", "joint_velocity"):
-            rotational = info.type.endswith(("AngleOutput", "AngularVelocity1DOutput"))
-            dof = "rotational" if rotational else "linear"
-            qadr, dadr, sign = self._joint(src, dof)
+        if q in ("joint_position", "joint_velocity", "joint_rpm"):
+            rotational = q == "joint_rpm" or info.type.endswith(("AngleOutput", "AngularVelocity1DOutput"))
+            qadr, dadr, sign = self._joint(src, "rotational" if rotational else "linear")
             if q == "joint_position":
                 b.read = lambda m, d: sign * float(d.qpos[qadr])
             else:
-                b.read = lambda m, d: sign * float(d.qvel[dadr])
+                scale = sign * (RPM_PER_RAD_S if q == "joint_rpm" else 1.0)
+                b.read = lambda m, d: scale * float(d.qvel[dadr])
             return b
         if q in ("spring_rest", "spring_effort"):
             qadr, dadr, sign = self._controller_joint(src)
@@ -491,11 +583,11 @@ class SignalRuntime:
                 jname = self.compiled.names.name("joint", src, ":free")
                 sb = self.compiled.scene.body(src)
                 if sb is not None and not sb.is_dynamic:
-                    raise _Unbindable(f"{src} is not dynamic (is_dynamic: false or kinematically controlled): it "
+                    raise Unbindable(f"{src} is not dynamic (is_dynamic: false or kinematically controlled): it "
                                       f"moves at its prescribed velocity, which the MuJoCo backend does not let an "
                                       f"input change")
                 if src not in self.compiled.free_roots or jname is None:
-                    raise _Unbindable(f"{src} is attached to other bodies by mates (only a free body's velocity "
+                    raise Unbindable(f"{src} is attached to other bodies by mates (only a free body's velocity "
                                       f"can be set)")
                 dadr = int(self.compiled.model.jnt_dofadr[self.compiled.model.joint(jname).id])
 
@@ -510,7 +602,7 @@ class SignalRuntime:
 
                 b.write = write_vel
         else:  # pragma: no cover - the tables and this function are kept in step by tests
-            raise _Unbindable(f"quantity {q} has no binding")
+            raise Unbindable(f"quantity {q} has no binding")
         return b
 
     # -- use --------------------------------------------------------------------------------------
@@ -531,8 +623,19 @@ class SignalRuntime:
         return b.read(model, data)
 
 
-class _Unbindable(Exception):
-    pass
+def _bound_elsewhere(quantity: str | None) -> Callable[[SignalRuntime, SignalInfo], Binding] | None:
+    """The binder of a quantity kept in a module of its own (connector outputs, loads on bodies)."""
+    from plxtools.check import body_loads, connector_signals
+
+    if quantity in connector_signals.CONNECTOR_QUANTITIES:
+        return connector_signals.bind_connector
+    if quantity in body_loads.LOAD_QUANTITIES:
+        return body_loads.bind_load
+    return body_loads.bind_mass if quantity == "body_mass" else None
+
+
+class Unbindable(Exception):
+    """A mapped signal that cannot act on this compiled model (the message says why)."""
 
 
 def rpy_of_mat(xmat: Any) -> tuple[float, float, float]:
