@@ -466,6 +466,15 @@ class _Folders:
             if part:
                 self.add(Path(part), "OPENPLX_BUNDLE_PATH")
 
+    def add_agx_bundle(self, agx) -> None:
+        """AGX's own bundle (`data/openplx/agxBundle`) beside its official bundles, when those are
+        in use: models written for AGX name it (`AGX.*`) as they name Physics3D."""
+        p = getattr(agx, "agx_bundle", None)
+        if p is None or Path(p) in self.seen or not bundle_roots_in(Path(p)):
+            return
+        self.seen.add(Path(p))
+        self.sources.append(BundleSource(Path(p), f"AGX's own bundle; {agx.describe()}"))
+
     def add_found(self, found: list[Path], official_root: Path | None, workspace_root: Path | None) -> None:
         """Bundles found in the linted tree or the workspace, after the configured folders."""
         for r in found:
@@ -604,6 +613,8 @@ def resolve_bundle_set(
         agx = find_agx(cfg_agx)
     choice = _choose((cli_version, version_why), cfg_version, pins, replacing, agx, inst)
     official = _official(choice, inst)
+    if choice.agx_official is not None:
+        folders.add_agx_bundle(agx)
     folders.add_found(found, official[0], workspace_root)
     bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources,
                    choice.notes, agx, choice.agx_official is not None)

@@ -36,3 +36,15 @@ def agx_copy_of(release: Path, root: Path, layout: str = "data/openplx") -> Path
     shutil.copytree(release, bundles, ignore=shutil.ignore_patterns("__pycache__", "*.py"))
     (root / "bin").mkdir(parents=True, exist_ok=True)
     return bundles
+
+
+def documented_agx(root: Path, openplx: str = "0.20.1") -> Path:
+    """An installation laid out as Algoryx documents it (docs/bundles.md): the official bundles in
+    `openplxbundles/`, AGX's own bundle in `data/openplx/agxBundle/`, plugins in `bin/plugins/`."""
+    bundles = fake_agx(root, openplx, layout="openplxbundles")
+    agx = root / "data" / "openplx" / "agxBundle"
+    write(agx / "config.openplx", f'config is BundleConfig:\n    name: "AGX"\n    version: "{openplx}"\n'
+                                  f'    dependencies: ["Physics3D"]\n')
+    write(agx / "Cable.openplx", "Cable is Physics3D.System\n")
+    (root / "bin" / "plugins").mkdir(parents=True, exist_ok=True)
+    return bundles
