@@ -54,11 +54,13 @@ class AgxInstall:
 
 
 def usual_folders() -> list[str]:
-    """Glob patterns of the folders AGX's installers use."""
+    """Glob patterns of the folders AGX's installers use, matched without regard to case: the Linux
+    and macOS packages install into /opt/Algoryx/AGX-x.y.z.w (AgX-x.y.z.w in older releases), the
+    Windows installer into Program Files\\Algoryx\\AGX-x.y.z.w (agx-/AgX- in older ones)."""
     if sys.platform.startswith("win"):
         bases = [os.environ.get("ProgramFiles") or r"C:\Program Files", os.environ.get("ProgramW6432") or ""]
-        return [os.path.join(b, "Algoryx", "AGX-*") for b in bases if b]
-    return ["/opt/Algoryx/AGX-*", "/opt/Algoryx/agx*", "/usr/local/Algoryx/AGX-*",
+        return list(dict.fromkeys(os.path.join(b, "Algoryx", "AGX-*") for b in bases if b))
+    return ["/opt/Algoryx/AGX-*", "/usr/local/Algoryx/AGX-*",
             os.path.join(os.path.expanduser("~"), "Algoryx", "AGX-*")]
 
 
@@ -182,13 +184,14 @@ def _agx_package_folder() -> Path | None:
 
 
 def _glob(pattern: str) -> list[str]:
-    """`glob` of a pattern whose wildcards are in its last part, with the folder's names noted."""
+    """`glob` of a pattern whose wildcards are in its last part, without regard to case (AGX-, AgX-
+    and agx- folders are all AGX's), with the folder's names noted."""
     folder, leaf = os.path.split(pattern)
     try:
         names = reads.listdir(folder)
     except OSError:
         return []
-    return [os.path.join(folder, n) for n in fnmatch.filter(names, leaf)]
+    return [os.path.join(folder, n) for n in names if fnmatch.fnmatchcase(n.lower(), leaf.lower())]
 
 
 def find_agx(configured: str | None = None, env: dict | None = None,

@@ -49,3 +49,14 @@ def test_the_agx_bundle_is_loaded_with_the_official_ones_and_reported(tmp_path):
     write(tmp_path / "proj" / "plx.toml", 'openplx-version = "0.19.0"\n')
     n = run_plx("lint", str(scene), "--show-settings", env=env)
     assert str(agx_bundle) not in n.stdout.split("bundle  ")[0] and "(found, not used" in n.stdout, n.stdout
+
+
+def test_usual_folders_match_every_spelling_of_the_release_folder(tmp_path):
+    """Older Linux packages install into /opt/Algoryx/AgX-x.y.z.w, Windows ones into agx-x.y.z.w."""
+    base = tmp_path / "Algoryx"
+    documented_agx(base / "AgX-2.25.0.1", openplx="0.15.0")
+    documented_agx(base / "agx-2.21.0.0", openplx="0.15.0")
+    found = find_agx(env={}, usual=[str(base / "AGX-*")])
+    assert found is not None and found.agx_version == "2.25.0.1", found
+    documented_agx(base / "AGX-2.42.2.1")
+    assert find_agx(env={}, usual=[str(base / "AGX-*")]).agx_version == "2.42.2.1"
