@@ -87,17 +87,12 @@ def _ends(files, args):
 def _setup(files, args) -> _Setup:
     """The ends, the plan between them (the stored index for two releases, else indexes built from
     the bundle folders) and a workspace per end."""
-    from plxtools.migrate import endpoints
-    from plxtools.migrate.rewrite import plan, plan_of
-    from plxtools.model.apichanges import changes_over
+    from plxtools.migrate.endpoints import plan_between
     from plxtools.model.workspace import workspace_for_set
 
     src, dst = _ends(files, args)
-    if src.stored and dst.stored:
-        p = plan(src.version, dst.version)
-    else:
-        p = plan_of(src.label, dst.label, changes_over(endpoints.chain(src, dst)))
-    return _Setup(src, dst, p, workspace_for_set(src.bundle_set), workspace_for_set(dst.bundle_set))
+    return _Setup(src, dst, plan_between(src, dst), workspace_for_set(src.bundle_set),
+                  workspace_for_set(dst.bundle_set))
 
 
 def _show_settings(files, args) -> int:

@@ -133,3 +133,24 @@ def chain(src: End, dst: End) -> list[ApiIndex]:
     lo, hi = version_key(src.version), version_key(dst.version)
     middle = [load(v) for v in versions() if lo < version_key(v) < hi]
     return [src.index(), *middle, dst.index()]
+
+
+def plan_between(src: End, dst: End):
+    """The rewrite plan from one end to the other: the stored index's changes for two releases,
+    else the changes along `chain` (bundles in no release indexed now)."""
+    from plxtools.migrate.rewrite import plan, plan_of
+    from plxtools.model.apichanges import changes_over
+
+    if src.stored and dst.stored:
+        return plan(src.version, dst.version)
+    return plan_of(src.label, dst.label, changes_over(chain(src, dst)))
+
+
+def plan_for_sets(from_set: BundleSet, to_set: BundleSet):
+    """The plan between two loaded bundle sets (the editor's migrate action): the same as the CLI's."""
+    ends = []
+    for bs in (from_set, to_set):
+        if bs.official_version is None or not VERSION_RE.match(bs.official_version):
+            raise EndpointError(f"cannot tell which OpenPLX version the bundles at {bs.official_root} are")
+        ends.append(End(bs.official_version, bs))
+    return plan_between(ends[0], ends[1])
