@@ -67,14 +67,18 @@ def _files_named(files: list[Path]) -> str:
 
 
 def _found_agx(files: list[Path]):
-    """The AGX installation plx finds for these files (config, environment, usual folders), used or not."""
-    try:
-        return resolve_bundle_set(files, [], None).agx
-    except BundleSetError:
-        from plxtools.config import config_for
-        from plxtools.model.agx import find_agx
+    """The AGX installation plx finds for these files, used or not: `agx-dir` of the first config
+    that sets it (the anchors `resolve_bundle_set` reads), else the environment and usual folders.
+    Nothing else of the bundle set is resolved, so no version is fetched just to ask this."""
+    from plxtools.config import config_for
+    from plxtools.model.agx import find_agx
 
-        return find_agx(config_for(files[0]).agx_dir if files else None)
+    configured = None
+    for anchor in sorted({(f if f.is_dir() else f.parent) for f in files}) or [Path(".")]:
+        configured = config_for(anchor / "x.openplx").agx_dir
+        if configured is not None:
+            break
+    return find_agx(configured)
 
 
 def _check_loadable(version: str, files: list[Path], flag: str) -> None:

@@ -121,3 +121,12 @@ def test_the_live_index_of_a_release_copy_equals_the_stored_one(tmp_path):
     copy = tmp_path / "copy"
     shutil.copytree(bundle_root(), copy, ignore=shutil.ignore_patterns("__pycache__", "*.py"))
     assert index_folder(copy, "0.19.0")["models"] == load("0.19.0").models
+
+
+def test_agx_dir_in_the_config_is_the_installation_migrate_uses(tmp_path, agx_242):
+    proj = tmp_path / "proj"
+    f = write(proj / "scene.openplx", USES_FRACTURE)
+    write(proj / "plx.toml", f'openplx-version = "0.19.0"\nagx-dir = "{agx_242.as_posix()}"\n')
+    r = run_plx("migrate", "--to", "0.20.1", str(f), env=NO_AGX)
+    assert r.returncode == 0, r.stderr
+    assert f.read_text(encoding="utf-8") == USES_FRACTURE.replace(OLD_HOME, NEW_HOME)
