@@ -87,6 +87,8 @@ often a version that is in no `openplx-bundles` release. `plx migrate` takes the
 - **to** them with `--to` their OpenPLX version (`plx migrate --to 0.20.1 models/` with AGX 2.42
   installed); `--show-settings` shows which installation and why.
 
+`plx migrate --explain 0.19.0 0.20.1` lists the changes up to them the same way.
+
 A release is described by plx's stored API index; AGX's bundles are indexed when the migration
 runs, from their folder, by the same code that built the stored index (for a copy of a release the
 two are equal, which a test checks), and the changes are composed over the releases in between, as

@@ -110,17 +110,17 @@ def _end(files: list[Path], version: str | None, flag: str) -> End:
     return End(bs.official_version, bs)
 
 
-def source(files: list[Path], from_flag: str | None) -> End:
+def source(files: list[Path], from_flag: str | None, flag: str = "--from") -> End:
     """The end the files start from: --from, else the bundles `plx lint` uses for them."""
     if from_flag is not None:
-        _check_loadable(from_flag, files, "--from")
-    return _end(files, from_flag, "--from")
+        _check_loadable(from_flag, files, flag)
+    return _end(files, from_flag, flag)
 
 
-def target(files: list[Path], to_v: str) -> End:
+def target(files: list[Path], to_v: str, flag: str = "--to") -> End:
     """The end asked for with --to: a release, or the version of the AGX installation found."""
-    _check_loadable(to_v, files, "--to")
-    return _end(files, to_v, "--to")
+    _check_loadable(to_v, files, flag)
+    return _end(files, to_v, flag)
 
 
 def check_direction(files: list[Path], src: End, dst: End) -> None:

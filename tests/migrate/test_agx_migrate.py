@@ -130,3 +130,15 @@ def test_agx_dir_in_the_config_is_the_installation_migrate_uses(tmp_path, agx_24
     r = run_plx("migrate", "--to", "0.20.1", str(f), env=NO_AGX)
     assert r.returncode == 0, r.stderr
     assert f.read_text(encoding="utf-8") == USES_FRACTURE.replace(OLD_HOME, NEW_HOME)
+
+
+def test_explain_lists_the_changes_up_to_the_agx_bundles(agx_242):
+    env = {**NO_AGX, "AGX_DIR": str(agx_242)}
+    r = run_plx("migrate", "--explain", "0.19.0", "0.20.1", env=env)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("OpenPLX API changes from 0.19.0 to 0.20.1 (AGX 2.42.0.0)"), r.stdout
+    assert f"{OLD_HOME} -> {NEW_HOME}  [0.20.1]" in r.stdout
+    back = run_plx("migrate", "--explain", "0.20.1", "0.19.0", env=env)
+    assert back.returncode == 2 and "forward only" in back.stderr and back.stderr.count("\n") == 1
+    none = run_plx("migrate", "--explain", "0.19.0", "0.20.1", env=NO_AGX)
+    assert none.returncode == 2 and "no AGX installation found" in none.stderr
