@@ -74,13 +74,14 @@ def run_migrate(args) -> int:
     return _summary(args, tally, len(files))
 
 
-def _ends(files, args):
+def _ends(files, args, check: bool = True):
     """The source and target ends (raises EndpointError with what to pass)."""
     from plxtools.migrate import endpoints
 
     src = endpoints.source(files, args.from_version)
     dst = endpoints.target(files, args.to)
-    endpoints.check_direction(files, src, dst)
+    if check:
+        endpoints.check_direction(files, src, dst)
     return src, dst
 
 
@@ -99,10 +100,13 @@ def _show_settings(files, args) -> int:
     """`plx migrate --show-settings`: the bundles of both ends and why (nothing is migrated)."""
     from plxtools.bundles_cli import print_set
 
-    src, dst = _ends(files, args)
+    from plxtools.migrate.endpoints import check_direction
+
+    src, dst = _ends(files, args, check=False)
     for title, end in (("from", src), ("to", dst)):
         print(f"migrate {title}: {end.describe()}")
         print_set(end.bundle_set, indent="  ")
+    check_direction(files, src, dst)  # shown first: the settings are what explains a refusal
     return 0
 
 

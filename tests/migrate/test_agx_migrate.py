@@ -142,3 +142,25 @@ def test_explain_lists_the_changes_up_to_the_agx_bundles(agx_242):
     assert back.returncode == 2 and "forward only" in back.stderr and back.stderr.count("\n") == 1
     none = run_plx("migrate", "--explain", "0.19.0", "0.20.1", env=NO_AGX)
     assert none.returncode == 2 and "no AGX installation found" in none.stderr
+
+
+def _official_line(text: str) -> str:
+    return next(line.strip() for line in text.splitlines() if line.strip().startswith("official bundles:"))
+
+
+@pytest.mark.parametrize("setup", ["agx", "config", "pin", "nothing"])
+def test_migrate_starts_from_the_bundles_lint_uses(tmp_path, agx_242, setup):
+    """One rule: the source end of `plx migrate` is the bundle set `plx lint` reports for the same
+    files, whatever chooses it (an AGX installation, the config, a dependency's version, nothing)."""
+    proj = tmp_path / "proj"
+    write(proj / "scene.openplx", "Scene is Physics3D.System:\n    b is Physics3D.Bodies.RigidBody\n")
+    env = {**NO_AGX, "AGX_DIR": str(agx_242)} if setup != "nothing" else NO_AGX
+    if setup == "config":
+        write(proj / "plx.toml", 'openplx-version = "0.19.0"\n')
+    if setup == "pin":
+        write(proj / "Bot" / "config.openplx",
+              'config is BundleConfig:\n    name: "Bot"\n    dependencies: ["Physics3D==0.20.1"]\n')
+    lint = run_plx("lint", "--show-settings", str(proj), env=env)
+    mig = run_plx("migrate", "--to", "0.19.0" if setup == "nothing" else "0.20.1", "--show-settings", str(proj), env=env)
+    assert lint.returncode == 0 and mig.returncode == 0, lint.stderr + mig.stderr
+    assert _official_line(mig.stdout.split("migrate to:")[0]) == _official_line(lint.stdout), mig.stdout + lint.stdout
