@@ -60,22 +60,44 @@ def print_settings(ws) -> int:
     """`plx lint --show-settings`: the bundle set, one bundle per line, and where the choice came from."""
     from plxtools.model.workspace import describe_bundle_set
 
-    bs = ws.bundle_set
-    print(f"official bundles: {bs.official_version or '?'} from {bs.official_root} ({bs.official_why})")
-    agx = getattr(bs, "agx", None)
-    if agx is not None:
-        print(f"AGX: {agx.describe()}{'' if bs.agx_used else ' (found, not used: see the note below)'}")
-    else:
-        from plxtools.model.agx import ENV_VARS
-
-        print(f"AGX: none found ({', '.join(ENV_VARS)}, the agx Python package, the usual install folders)")
-    for s in bs.sources:
-        print(f"bundle folder: {s.path} ({s.why})")
-    for n in bs.notes:
-        print(f"note: {n}")
+    print_set(ws.bundle_set)
     rows = describe_bundle_set(ws)
     w = max((len(r["name"]) for r in rows), default=4)
     print(f"{'bundle':{w}}  {'version':9}  folder  (why)")
     for r in rows:
         print(f"{r['name']:{w}}  {r['version'] or '-':9}  {r['folder']}  ({r['why'] or 'user bundle'})")
     return 0
+
+
+def print_set(bs, indent: str = "") -> None:
+    """A bundle set's choice: the official bundles (OpenPLX version, folder, why), the AGX
+    installation found (in use or not), the bundle folders and the notes."""
+    print(f"{indent}official bundles: {bs.official_version or '?'} from {bs.official_root} ({bs.official_why})")
+    agx = getattr(bs, "agx", None)
+    if agx is not None:
+        print(f"{indent}AGX: {agx.describe()}"
+              f"{' (in use: its bundles are the official bundles)' if bs.agx_used else ' (found, not used: see the note below)'}")
+    else:
+        from plxtools.model.agx import ENV_VARS
+
+        print(f"{indent}AGX: none found ({', '.join(ENV_VARS)}, the agx Python package, the usual install folders)")
+    for s in bs.sources:
+        print(f"{indent}bundle folder: {s.path} ({s.why})")
+    for n in bs.notes:
+        print(f"{indent}note: {n}")
+
+
+def show_settings(command: str, args) -> int:
+    """`plx check --show-settings`: the bundle set `plx check` would use for these paths, by the
+    same rule as `plx lint` (exit 2 with a message when the setup cannot be used)."""
+    from plxtools.config import ConfigError
+    from plxtools.discovery import UsageError, discover
+    from plxtools.model.workspace import workspace_for_cli
+
+    try:
+        files = discover(args.paths)
+        ws = workspace_for_cli(args.bundle_path, files, openplx_version=getattr(args, "openplx_version", None))
+    except (UsageError, ConfigError, ValueError) as exc:
+        print(f"plx {command}: {exc}", file=sys.stderr)
+        return 2
+    return print_settings(ws)

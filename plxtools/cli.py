@@ -112,6 +112,8 @@ def _add_check(sub) -> None:
                    help="processes that check files at once: 'auto' (default: every core when the files' "
                    "estimated work pays for the workers' start), or a number (1: one file after the other)")
     _add_bundle_options(p)
+    p.add_argument("--show-settings", action="store_true",
+                   help="print the bundles in use (OpenPLX version, AGX installation, folder, why) and exit")
     p.set_defaults(func=_run_check)
 
 
@@ -358,6 +360,10 @@ def _run_fmt(args) -> int:
 
 
 def _run_check(args) -> int:
+    if getattr(args, "show_settings", False):
+        from plxtools.bundles_cli import show_settings
+
+        return show_settings("check", args)
     from plxtools.check.cli import run_check
 
     return run_check(args)

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import gzip
-import hashlib
 import json
 import os
 import re
@@ -35,7 +34,6 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
 DATA = REPO / "plxtools" / "model" / "apiindex" / "data"
-FORMAT = 1
 _VERSION = re.compile(r"^\d+(\.\d+)*$")
 
 
@@ -64,98 +62,11 @@ def wheel_for(version: str, wheels: Path) -> Path:
     return path
 
 
-def _short_hash(text: str | None) -> str | None:
-    if not text:
-        return None
-    return hashlib.sha1(" ".join(text.split()).encode()).hexdigest()[:10]
-
-
-def _type_text(program, texpr, unit) -> str:
-    """A type as qualified names (relative names in the source are resolved), else its source text."""
-    ty = program.resolve_type_expr(texpr, unit)
-    if not ty.unknown:
-        return ty.display()
-    parts = [r.name.text + ("[]" if r.array else "") for r in texpr.alternatives]
-    text = " or ".join(parts)
-    if texpr.traits:
-        text += " with " + ", ".join(q.text for q in texpr.traits)
-    return "?" + text  # '?': did not resolve in this version
-
-
-def _ref_text(program, ref, unit) -> str:
-    ty = program.resolve_type_ref(ref, unit)
-    return ty.display() if not ty.unknown else "?" + ref.name.text + ("[]" if ref.array else "")
-
-
-def index_program(ws, root: Path) -> dict:
-    """Every model, trait and global of the loaded bundles, as plain data."""
-    from plxtools.model.symbols import GlobalSym, ModelSym
-
-    program = ws.program
-    out: dict[str, dict] = {}
-    stack = [program.root]
-    while stack:
-        ns = stack.pop()
-        stack.extend(ns.children.values())
-        for sym in ns.symbols.values():
-            rel = Path(sym.unit.path).resolve().relative_to(root).as_posix()
-            if isinstance(sym, GlobalSym):
-                out[sym.qname] = {"k": "g", "f": rel, "l": sym.stmt.header.start.line + 1,
-                                  "t": _type_text(program, sym.stmt.type, sym.unit)}
-                continue
-            assert isinstance(sym, ModelSym)
-            rec: dict = {"k": "t" if sym.is_trait else "m", "f": rel, "l": sym.stmt.header.start.line + 1}
-            if sym.base_ref is not None:
-                base = program.base_of(sym)
-                rec["b"] = base.display() if base is not None else "?" + " or ".join(
-                    r.name.text for r in sym.base_ref.alternatives)
-            traits = sorted(t.qname for t in program.traits_of(sym))
-            if traits:
-                rec["w"] = traits
-            attrs = {}
-            for name, mem in sym.members.items():
-                flags = ""
-                if mem.value is not None or mem.stmt.body is not None:
-                    flags += "d"
-                if mem.optional:
-                    flags += "o"
-                if mem.reference:
-                    flags += "r"
-                if mem.keyword == "becomes":
-                    flags += "b"
-                attrs[name] = [_type_text(program, mem.stmt.type, sym.unit), flags,
-                               mem.stmt.header.start.line + 1, _short_hash(mem.doc)]
-            if attrs:
-                rec["a"] = attrs
-            fns = {}
-            for name, meth in sym.methods.items():
-                params = ", ".join(f"{p.name.name}: {_ref_text(program, p.type, sym.unit)}" for p in meth.stmt.params)
-                ret = f" -> {_ref_text(program, meth.stmt.returns, sym.unit)}" if meth.stmt.returns else ""
-                fns[name] = f"{'static ' if meth.static else ''}fn {name}({params}){ret}"
-            if fns:
-                rec["fn"] = fns
-            if sym.deprecated:
-                rec["dep"] = dict(sym.deprecated)
-            if sym.doc:
-                rec["doc"] = _short_hash(sym.doc)
-                if "deprecated" in sym.doc.lower() and not sym.deprecated:
-                    rec["dep"] = {"": next(line.strip() for line in sym.doc.splitlines()
-                                           if "deprecated" in line.lower())}
-            out[sym.qname] = rec
-    return out
-
-
 def index_folder(root: Path, version: str) -> dict:
     """The index record of one version from its bundle folder (the one holding Math/, Physics/, ...)."""
-    from plxtools.model.workspace import Workspace
+    from plxtools.model.apiindex.build import index_folder as build
 
-    root = root.resolve()
-    ws = Workspace([root], use_cache=False)
-    if ws.official_root != root:
-        raise SystemExit(f"build_api_index: {version}: the bundles were not loaded from {root}")
-    bundles = {b.name: b.version for b in ws.bundles.values()}
-    return {"format": FORMAT, "version": version, "bundles": dict(sorted(bundles.items())),
-            "models": index_program(ws, root)}
+    return build(root, version)
 
 
 def build_version(version: str, wheels: Path) -> dict:

@@ -95,7 +95,8 @@ def migration(host, st) -> Migration | None:
                                           f"`plx bundles install {from_v}`, then try again")
         from_v = have[-1]
         title = f"Migrate this file from OpenPLX {from_v} to {to_v}"
-    from plxtools.migrate.rewrite import migrate_text, plan
+    from plxtools.migrate.endpoints import plan_for_sets
+    from plxtools.migrate.rewrite import migrate_text
     from plxtools.model.versions import resolve_bundle_set
     from plxtools.model.workspace import workspace_for_set
 
@@ -105,7 +106,11 @@ def migration(host, st) -> Migration | None:
         to_ws = workspace_for_set(bs)  # the same set as the server's, in a model of its own
     except Exception as exc:  # noqa: BLE001 - a version plx cannot load: the action says why
         return Migration(title, None, f"cannot load OpenPLX {from_v}: {exc}")
-    fm = migrate_text(Path(st.path), st.text, plan(from_v, to_v), host.config(st.path), from_ws, to_ws)
+    try:  # the server's set may be an AGX installation's: the plan comes from both sets, as in the CLI
+        p = plan_for_sets(from_ws.bundle_set, bs)
+    except ValueError as exc:
+        return Migration(title, None, f"cannot plan the migration: {exc}")
+    fm = migrate_text(Path(st.path), st.text, p, host.config(st.path), from_ws, to_ws)
     # the models of the migration must not keep this buffer's symbols
     for w in (from_ws, to_ws):
         if st.path in w.program.units and w.program.units[st.path].bundle is None:

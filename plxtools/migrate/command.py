@@ -4,6 +4,7 @@ rewrite, and the write (or the diff, or the check)."""
 from __future__ import annotations
 
 import sys
+from dataclasses import dataclass
 
 from plxtools.config import ConfigError, config_for
 from plxtools.discovery import UsageError, discover
@@ -38,79 +39,100 @@ class _Tally:
         self.changed = self.refused = self.edits = self.partial = 0
 
 
-def run_migrate(args) -> int:
-    from plxtools.model.apiindex import UnknownVersion, check_version
+@dataclass
+class _Setup:
+    """Both ends of the run (one bundle set each, chosen as `plx lint` chooses it for these files),
+    their workspaces and the plan between them."""
 
+    src: object  # endpoints.End
+    dst: object
+    plan: object  # rewrite.Plan
+    from_ws: object
+    to_ws: object
+
+    @property
+    def step(self) -> str:
+        return f"{self.src.label} -> {self.dst.label}"
+
+
+def run_migrate(args) -> int:
     try:
-        to_v = check_version(args.to)
-        from_flag = check_version(args.from_version) if args.from_version else None
         files = discover(args.paths)
-    except (UnknownVersion, UsageError, ConfigError, ValueError) as exc:
+        if getattr(args, "show_settings", False):
+            return _show_settings(files, args)
+        setup = _setup(files, args) if files else None
+    except (UsageError, ConfigError, ValueError) as exc:
         _say(f"plx migrate: {exc}")
         return 2
     tally = _Tally()
-    plans: dict[str, object] = {}
     try:
         for f in files:
-            _migrate_file(f, args, from_flag, to_v, plans, tally)
+            _migrate_file(f, args, setup, tally)
     except _Failed as exc:
         _say(f"plx migrate: {exc}")
         return 2
     return _summary(args, tally, len(files))
 
 
-def _inputs(f, from_flag: str | None, to_v: str):
-    """A file's config, the version it was written for, its bytes and text, and the workspaces of
-    both versions (raises `_Failed`)."""
-    from plxtools.model.apiindex import UnknownVersion
-    from plxtools.model.versions import BundleSetError, resolve_bundle_set
+def _ends(files, args, check: bool = True):
+    """The source and target ends (raises EndpointError with what to pass)."""
+    from plxtools.migrate import endpoints
+
+    src = endpoints.source(files, args.from_version)
+    dst = endpoints.target(files, args.to)
+    if check:
+        endpoints.check_direction(files, src, dst)
+    return src, dst
+
+
+def _setup(files, args) -> _Setup:
+    """The ends, the plan between them (the stored index for two releases, else indexes built from
+    the bundle folders) and a workspace per end."""
+    from plxtools.migrate.endpoints import plan_between
     from plxtools.model.workspace import workspace_for_set
 
+    src, dst = _ends(files, args)
+    return _Setup(src, dst, plan_between(src, dst), workspace_for_set(src.bundle_set),
+                  workspace_for_set(dst.bundle_set))
+
+
+def _show_settings(files, args) -> int:
+    """`plx migrate --show-settings`: the bundles of both ends and why (nothing is migrated)."""
+    from plxtools.bundles_cli import print_set
+
+    from plxtools.migrate.endpoints import check_direction
+
+    src, dst = _ends(files, args, check=False)
+    for title, end in (("from", src), ("to", dst)):
+        print(f"migrate {title}: {end.describe()}")
+        print_set(end.bundle_set, indent="  ")
+    check_direction(files, src, dst)  # shown first: the settings are what explains a refusal
+    return 0
+
+
+def _inputs(f):
+    """A file's config, bytes and text (raises `_Failed`)."""
     try:
         cfg = config_for(f)
-        from_v = from_flag if from_flag is not None else _written_for(f)
-        _forward_only(f, from_v, to_v)
         data = f.read_bytes()
         text = data.decode("utf-8-sig")
-        from_ws = workspace_for_set(resolve_bundle_set([f], [], from_v))
-        to_ws = workspace_for_set(resolve_bundle_set([f], [], to_v))
-    except (UsageError, ConfigError, BundleSetError, UnknownVersion, ValueError) as exc:
+    except (UsageError, ConfigError, ValueError) as exc:
         raise _Failed(exc) from exc
     except (OSError, UnicodeDecodeError) as exc:
         raise _Failed(f"{f}: cannot read it: {getattr(exc, 'strerror', None) or exc}") from exc
-    return cfg, from_v, data, text, from_ws, to_ws
+    return cfg, data, text
 
 
-def _written_for(f) -> str:
-    """The version the file is linted with today: config, a bundle's pin, else the installed one."""
-    from plxtools.model.versions import BundleSetError, resolve_bundle_set
-
-    from_v = resolve_bundle_set([f], [], None).official_version
-    if from_v is None:
-        raise BundleSetError(f"{f}: cannot tell which OpenPLX version it was written for; pass --from")
-    return from_v
-
-
-def _forward_only(f, from_v: str, to_v: str) -> None:
-    from plxtools.model.apiindex import version_key
-
-    if version_key(from_v) > version_key(to_v):
-        raise UsageError(f"{f}: written for {from_v}, which is newer than --to {to_v} "
-                         "(plx migrate only moves forward)")
-
-
-def _migrate_file(f, args, from_flag: str | None, to_v: str, plans: dict, tally: _Tally) -> None:
+def _migrate_file(f, args, setup: _Setup, tally: _Tally) -> None:
     """Migrate one file (or show or check what would change) and say what happened."""
-    from plxtools.migrate.rewrite import migrate_text, plan
+    from plxtools.migrate.rewrite import migrate_text
 
-    cfg, from_v, data, text, from_ws, to_ws = _inputs(f, from_flag, to_v)
-    key = f"{from_v}->{to_v}"
-    if key not in plans:
-        plans[key] = plan(from_v, to_v)
-    fm = migrate_text(f, text, plans[key], cfg, from_ws, to_ws)
+    cfg, data, text = _inputs(f)
+    to_v = setup.dst.version
+    fm = migrate_text(f, text, setup.plan, cfg, setup.from_ws, setup.to_ws)
     if fm.refused:
         tally.refused += 1
-        _say(f"{f}: not migrated from {from_v} to {to_v}: {fm.refused}")
+        _say(f"{f}: not migrated from {setup.src.label} to {setup.dst.label}: {fm.refused}")
         _left_for_a_person(f, fm, to_v)
         return
     for note in fm.notes:
@@ -120,7 +142,7 @@ def _migrate_file(f, args, from_flag: str | None, to_v: str, plans: dict, tally:
     if fm.changed:
         tally.changed += 1
         tally.edits += fm.edits
-        _write(f, args, fm, data, f"{from_v} -> {to_v}", _remaining(fm, from_v))
+        _write(f, args, fm, data, setup.step, _remaining(fm, setup.src.label))
     _left_for_a_person(f, fm, to_v)
 
 
@@ -165,12 +187,16 @@ def _summary(args, tally: _Tally, n_files: int) -> int:
 
 def add_arguments(p) -> None:
     p.add_argument("paths", nargs="*", metavar="PATH", help="files or folders to migrate (with --to)")
-    p.add_argument("--to", metavar="VERSION", help="the OpenPLX version to migrate the files to (e.g. 0.19.0)")
+    p.add_argument("--to", metavar="VERSION", help="the OpenPLX version to migrate the files to: a release (e.g. 0.19.0) or the version of "
+                   "the AGX installation's bundles (e.g. 0.20.1)")
     p.add_argument("--from", dest="from_version", metavar="VERSION",
-                   help="the version the files were written for (default: the version plx lints them with: "
-                        "openplx-version in the config, a bundle's pin, else the installed bundles)")
+                   help="the version the files were written for (default: the bundles plx lints them with: "
+                        "openplx-version in the config, a dependency's version, an AGX installation, else the "
+                        "installed bundles)")
     p.add_argument("--diff", action="store_true", help="print the changes as a unified diff; write nothing")
     p.add_argument("--check", action="store_true", help="write nothing; exit 1 when a file would change")
+    p.add_argument("--show-settings", action="store_true",
+                   help="print the bundles of both versions (AGX installation, OpenPLX version, why) and exit")
 
 
 def run(args) -> int:

@@ -64,15 +64,45 @@ file; they are applied, and plx lists each error that remains under the new vers
 not), the rewrites that add none are applied one by one and the others are named. Only a file
 with syntax errors is refused as a whole.
 
-- `--from VERSION`: the version the files were written for. By default, the version plx lints
-  them with: `openplx-version` in `plx.toml` / `[tool.plx]`, a version written in a user bundle's
-  dependency (`"Physics3D==0.17.26"`; a bundle's own `version:` is not one), else the installed
-  bundles (then there is nothing to do: pass `--from`).
+- `--from VERSION`: the version the files were written for. By default, the bundles `plx lint`
+  uses for the same files, by the same rule (one bundle set for the whole run, as lint has):
+  `openplx-version` in `plx.toml` / `[tool.plx]`, a version written in a user bundle's dependency
+  (`"Physics3D==0.17.26"`; a bundle's own `version:` is not one), an AGX installation, else the
+  installed bundles (then there is nothing to do: pass `--from`).
+- `--show-settings` prints both ends (`migrate from:`, `migrate to:`), each with its OpenPLX
+  version and why, the AGX installation found and whether it is used, and migrates nothing.
 - `--diff` prints the changes as a unified diff and writes nothing; `--check` writes nothing and
   exits 1 when a file would change.
 - Exit codes: 0 done, 1 with `--check` when something would change, or when a file has errors
   left for a person that it did not have under its old version (its safe rewrites are applied),
   or when some files were refused; 2 for a usage error or when no file could be migrated.
+
+## Migrating to or from AGX's bundles
+
+An AGX Dynamics installation ships its own OpenPLX bundles (see [Bundle versions](bundles.md#agx-installations)),
+often a version that is in no `openplx-bundles` release. `plx migrate` takes them as either end:
+
+- **from** them when `plx lint` uses them for the files (an installation found with nothing else
+  configured, a dependency on its exact version, or `--from` its version);
+- **to** them with `--to` their OpenPLX version (`plx migrate --to 0.20.1 models/` with AGX 2.42
+  installed); `--show-settings` shows which installation and why.
+
+`plx migrate --explain 0.19.0 0.20.1` lists the changes up to them the same way.
+
+A release is described by plx's stored API index; AGX's bundles are indexed when the migration
+runs, from their folder, by the same code that built the stored index (for a copy of a release the
+two are equal, which a test checks), and the changes are composed over the releases in between, as
+between two releases. So models AGX moved or renamed one to one and renamed attributes are
+rewritten in both directions, and AGX-only models (the `AGX` bundle, say) that a release lacks are
+listed for a person.
+
+What cannot be done stops the run with one line and exit 2, before anything is written:
+
+| case | message (shortened) |
+|---|---|
+| a version neither released nor AGX's | `--to 0.21.0: OpenPLX version '0.21.0' is neither an openplx-bundles release in plx's API index (0.15.0 to 0.19.0) nor the version of AGX's bundles (the AGX installation found, AGX 2.42.0.0 at /opt/Algoryx/AGX-2.42.0.0 (AGX_DIR), has OpenPLX 0.20.1)` |
+| AGX's version asked for but no installation found | `... (no AGX installation found: set AGX_DIR, or agx-dir in the config, to one whose bundles are 0.20.1)` |
+| files on AGX's newer bundles, `--to` an older release | `models/a.openplx: written for OpenPLX 0.20.1 (AGX 2.42.0.0 at ..., OpenPLX 0.20.1 (AGX_DIR)), which is newer than --to 0.19.0 (plx migrate only moves forward): pass --to 0.20.1 or newer, or --from VERSION when the files were written for an older OpenPLX` |
 
 ## How changes are found
 

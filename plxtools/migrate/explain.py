@@ -31,9 +31,10 @@ def describe(c: Change) -> str:
     return f"{text}  [{c.since}]"
 
 
-def render_text(from_v: str, to_v: str, cs: list[Change]) -> str:
+def render_text(from_v: str, to_v: str, cs: list[Change], apart: int | None = None) -> str:
     counts = summary(cs)
-    lines = [f"OpenPLX API changes from {from_v} to {to_v} ({len(between(from_v, to_v)) - 1} indexed versions apart)",
+    apart = len(between(from_v, to_v)) - 1 if apart is None else apart
+    lines = [f"OpenPLX API changes from {from_v} to {to_v} ({apart} indexed versions apart)",
              f"{counts[AUTO]} automatic, {counts[TABLE]} from the reviewed table, {counts[PERSON]} need a person, "
              f"{counts[INFO]} additions or notes. [V] is the first version with the change."]
     for kind in KIND_ORDER:
@@ -64,10 +65,29 @@ def run_explain(from_v: str, to_v: str, output_format: str = "text") -> int:
     from plxtools.model.apiindex import UnknownVersion
 
     try:
-        cs = changes(from_v, to_v)
-        text = render_json(from_v, to_v, cs) if output_format == "json" else render_text(from_v, to_v, cs)
+        from_label, to_label, cs, apart = _changes(from_v, to_v)
+        text = render_json(from_label, to_label, cs) if output_format == "json" else \
+            render_text(from_label, to_label, cs, apart)
     except (UnknownVersion, RenameTableError, ValueError) as exc:
         print(f"plx migrate: {exc}", file=sys.stderr)
         return 2
     sys.stdout.write(text)
     return 0
+
+
+def _changes(from_v: str, to_v: str) -> tuple[str, str, list[Change], int | None]:
+    """The changes between two releases of the stored index, or, when either version is the one
+    of the AGX installation found (its bundles indexed now), along the chain of indexes between."""
+    from plxtools.model.apiindex import versions, version_key
+
+    if from_v in versions() and to_v in versions():
+        return from_v, to_v, changes(from_v, to_v), None
+    from plxtools.migrate import endpoints
+    from plxtools.model.apichanges import changes_over
+
+    src = endpoints.source([], from_v, "FROM")
+    dst = endpoints.target([], to_v, "TO")
+    if version_key(src.version) > version_key(dst.version):
+        raise ValueError(f"'{from_v}' is newer than '{to_v}': plx migrates forward only")
+    chain = endpoints.chain(src, dst)
+    return src.label, dst.label, changes_over(chain), len(chain) - 1

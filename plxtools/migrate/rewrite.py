@@ -35,16 +35,22 @@ class Plan:
 
 
 def plan(from_v: str, to_v: str) -> Plan:
+    """The plan between two releases of plx's stored index."""
+    return plan_of(from_v, to_v, changes(from_v, to_v))
+
+
+def plan_of(from_label: str, to_label: str, cs) -> Plan:
+    """The plan of a list of changes (`apichanges.changes` or `changes_over`): what is one to one."""
     types: dict[str, str] = {}
     attrs: dict[tuple[str, str], str] = {}
-    for c in changes(from_v, to_v):
+    for c in cs:
         if c.handling not in (AUTO, TABLE):
             continue
         if c.kind in ("model-moved", "model-renamed") and c.old and c.new:
             types[c.old] = c.new
         elif c.kind == "attr-renamed" and c.old and c.new:
             attrs[(c.model, c.old)] = c.new
-    return Plan(from_v, to_v, types, attrs)
+    return Plan(from_label, to_label, types, attrs)
 
 
 @dataclass

@@ -10,9 +10,12 @@ installation the way a shell set up for AGX would find it, in this order:
 3. the `agx` Python package when it can be imported (found, not imported: it loads native libraries);
 4. the usual install folders: `/opt/Algoryx/AGX-*` on Linux, `%ProgramFiles%\\Algoryx\\AGX-*` on Windows.
 
-The bundles are the folder inside the installation that holds `Math/config.openplx` and
-`Physics/config.openplx` (searched a few levels deep, since layouts differ between releases). Only the
-file system is read here; nothing is run.
+Inside an installation, the official bundles (Math, Physics, ...) are in `<AGX_DIR>/openplxbundles`
+and AGX's own bundle in `<AGX_DIR>/data/openplx/agxBundle` (`$AGX_DATA_DIR/openplx/agxBundle`): the
+layout Algoryx's AGX Dynamics for Unreal build script copies from an installed AGX on Linux and
+Windows (docs/bundles.md cites it). Those documented places are looked at first; an installation
+laid out otherwise is searched a few levels deep for the folder holding `Math/config.openplx` and
+`Physics/config.openplx`. Only the file system is read here; nothing is run.
 """
 
 from __future__ import annotations
@@ -27,6 +30,9 @@ from pathlib import Path
 from plxtools.cache import reads
 
 ENV_VARS = ("AGX_DIR", "AGX_DATA_DIR", "AGX_PLUGIN_PATH")
+# where an installed AGX keeps them, relative to the installation (see the module docstring)
+OFFICIAL_BUNDLES = ("openplxbundles",)
+AGX_BUNDLE = ("data", "openplx", "agxBundle")
 _VERSION_IN_NAME = re.compile(r"(?i)agx[-_ ]?(\d+\.\d+(?:\.\d+)*)")
 
 
@@ -39,6 +45,7 @@ class AgxInstall:
     agx_version: str | None  # "2.42.0.0", from the folder name or the agx package; None when unknown
     openplx_version: str | None  # the bundles' own version (Math/config.openplx)
     why: str  # how it was found
+    agx_bundle: Path | None = None  # AGX's own bundle (data/openplx/agxBundle), when there is one
 
     def describe(self) -> str:
         """`AGX 2.42.0.0 at /opt/Algoryx/AGX-2.42.0.0, OpenPLX 0.20.1 (AGX_DIR)`."""
@@ -47,11 +54,13 @@ class AgxInstall:
 
 
 def usual_folders() -> list[str]:
-    """Glob patterns of the folders AGX's installers use."""
+    """Glob patterns of the folders AGX's installers use, matched without regard to case: the Linux
+    and macOS packages install into /opt/Algoryx/AGX-x.y.z.w (AgX-x.y.z.w in older releases), the
+    Windows installer into Program Files\\Algoryx\\AGX-x.y.z.w (agx-/AgX- in older ones)."""
     if sys.platform.startswith("win"):
         bases = [os.environ.get("ProgramFiles") or r"C:\Program Files", os.environ.get("ProgramW6432") or ""]
-        return [os.path.join(b, "Algoryx", "AGX-*") for b in bases if b]
-    return ["/opt/Algoryx/AGX-*", "/opt/Algoryx/agx*", "/usr/local/Algoryx/AGX-*",
+        return list(dict.fromkeys(os.path.join(b, "Algoryx", "AGX-*") for b in bases if b))
+    return ["/opt/Algoryx/AGX-*", "/usr/local/Algoryx/AGX-*",
             os.path.join(os.path.expanduser("~"), "Algoryx", "AGX-*")]
 
 
@@ -60,9 +69,13 @@ def _has_bundles(folder: Path) -> bool:
 
 
 def bundles_in(root: Path, max_depth: int = 4) -> Path | None:
-    """The folder of OpenPLX bundles inside an AGX installation (shallowest first), or None."""
+    """The folder of OpenPLX bundles inside an AGX installation: the documented place first, else
+    the shallowest folder that holds Math/ and Physics/ (None: neither)."""
     if not reads.is_dir(root):
         return None
+    documented = root.joinpath(*OFFICIAL_BUNDLES)
+    if _has_bundles(documented):
+        return documented
     level = [root]
     for _depth in range(max_depth + 1):
         nxt: list[Path] = []
@@ -109,13 +122,36 @@ def _release_key(path: str) -> tuple[int, ...]:
     return tuple(int(x) for x in m.group(1).split(".")) if m else ()
 
 
-def _install_at(root: Path, why: str, look_in: Path | None = None) -> AgxInstall | None:
-    """The installation at `root` with bundles found in `look_in` (default: the root)."""
+def agx_bundle_in(root: Path, data_dir: Path | None = None) -> Path | None:
+    """AGX's own bundle in an installation (`data/openplx/agxBundle`, or under AGX_DATA_DIR)."""
+    for cand in ([data_dir.joinpath(*AGX_BUNDLE[1:])] if data_dir is not None else []) + [root.joinpath(*AGX_BUNDLE)]:
+        if reads.is_dir(cand):
+            return cand.resolve()
+    return None
+
+
+def _install_at(root: Path, why: str, look_in: Path | None = None, data_dir: Path | None = None) -> AgxInstall | None:
+    """The installation at `root` with bundles in their documented place, else found in `look_in`
+    (default: the root), else in the root."""
     root = root.expanduser()
-    b = bundles_in(look_in or root) or (bundles_in(root) if look_in is not None else None)
+    documented = root.joinpath(*OFFICIAL_BUNDLES)
+    b = documented if _has_bundles(documented) else (
+        bundles_in(look_in or root) or (bundles_in(root) if look_in is not None else None))
     if b is None:
         return None
-    return AgxInstall(root.resolve(), b.resolve(), _agx_version(root), _openplx_version(b), why)
+    return AgxInstall(root.resolve(), b.resolve(), _agx_version(root), _openplx_version(b), why,
+                      agx_bundle_in(root, data_dir))
+
+
+def _install_holding(folder: Path, why: str) -> AgxInstall | None:
+    """The installation that holds a folder AGX's setup script exports (AGX_DATA_DIR is
+    `<root>/data`; AGX_PLUGIN_PATH is inside the root too): the nearest parent whose documented
+    bundle folder exists, else the parent searched, starting in the folder itself."""
+    data_dir = folder if why == "AGX_DATA_DIR" else None
+    for cand in folder.parents[:3]:
+        if _has_bundles(cand.joinpath(*OFFICIAL_BUNDLES)):
+            return _install_at(cand, why, data_dir=data_dir)
+    return _install_at(folder.parent, why, folder, data_dir)
 
 
 def _install_above(folder: Path, why: str, levels: int = 3) -> AgxInstall | None:
@@ -148,13 +184,14 @@ def _agx_package_folder() -> Path | None:
 
 
 def _glob(pattern: str) -> list[str]:
-    """`glob` of a pattern whose wildcards are in its last part, with the folder's names noted."""
+    """`glob` of a pattern whose wildcards are in its last part, without regard to case (AGX-, AgX-
+    and agx- folders are all AGX's), with the folder's names noted."""
     folder, leaf = os.path.split(pattern)
     try:
         names = reads.listdir(folder)
     except OSError:
         return []
-    return [os.path.join(folder, n) for n in fnmatch.filter(names, leaf)]
+    return [os.path.join(folder, n) for n in names if fnmatch.fnmatchcase(n.lower(), leaf.lower())]
 
 
 def find_agx(configured: str | None = None, env: dict | None = None,
@@ -172,7 +209,7 @@ def find_agx(configured: str | None = None, env: dict | None = None,
             continue
         folder = Path(value)
         # AGX_DIR is the installation; AGX_DATA_DIR (<root>/data) and AGX_PLUGIN_PATH (<root>/plugins) are in it
-        found = _install_at(folder, var) if var == "AGX_DIR" else _install_at(folder.parent, var, folder)
+        found = _install_at(folder, var) if var == "AGX_DIR" else _install_holding(folder, var)
         if found is not None:
             return found
     pkg = _agx_package_folder()

@@ -427,8 +427,18 @@ def changes(from_v: str, to_v: str) -> list[Change]:
     A chain of renames and moves becomes one change from the first name to the last; something
     added and later removed in the range disappears; a type changed twice shows first and last.
     """
+    return _compose(cs for _a, _b, cs in steps(from_v, to_v))
+
+
+def changes_over(chain: list[ApiIndex]) -> list[Change]:
+    """The changes along a chain of indexes, oldest first, composed as `changes` does: for bundles
+    that are in no release (an AGX installation's, indexed at run time) between indexed versions."""
+    return _compose(tuple(diff(a, b)) for a, b in zip(chain, chain[1:]))
+
+
+def _compose(steps_changes) -> list[Change]:
     composer = _Composer()
-    for _a, _b, cs in steps(from_v, to_v):
+    for cs in steps_changes:
         composer.step(cs)
     return [c for c in composer.out if c is not None]
 

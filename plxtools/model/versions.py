@@ -5,8 +5,9 @@ Order, the same for the CLI, the language server and check:
 1. bundle folders: `--bundle-path`, `bundle-path` in the config, `OPENPLX_BUNDLE_PATH`, then bundles
    found in the linted tree / workspace root. A bundle found there replaces the official bundle of the
    same name, so a copy of the official bundles (an AGX installation) is read instead of the package.
-2. `--openplx-version` / `openplx-version` in the config: that `openplx-bundles` release, fetched with
-   pip into the cache on first use.
+2. `--openplx-version` / `openplx-version` in the config: that version, from an AGX installation whose
+   bundles are that version, else that `openplx-bundles` release, fetched with pip into the cache on
+   first use.
 3. a version written in a user bundle's dependency (`"Physics3D==0.17.26"`), however the bundle was
    found; a bundle's own `version:` is its own and selects nothing (an AGX installation whose
    bundles are that version is used for it).
@@ -465,6 +466,15 @@ class _Folders:
             if part:
                 self.add(Path(part), "OPENPLX_BUNDLE_PATH")
 
+    def add_agx_bundle(self, agx) -> None:
+        """AGX's own bundle (`data/openplx/agxBundle`) beside its official bundles, when those are
+        in use: models written for AGX name it (`AGX.*`) as they name Physics3D."""
+        p = getattr(agx, "agx_bundle", None)
+        if p is None or Path(p) in self.seen or not bundle_roots_in(Path(p)):
+            return
+        self.seen.add(Path(p))
+        self.sources.append(BundleSource(Path(p), f"AGX's own bundle; {agx.describe()}"))
+
     def add_found(self, found: list[Path], official_root: Path | None, workspace_root: Path | None) -> None:
         """Bundles found in the linted tree or the workspace, after the configured folders."""
         for r in found:
@@ -503,21 +513,31 @@ def _follow_pin(c: _Choice, pins: list[tuple[str, str]], agx, inst) -> None:
     others = sorted({v for v, _w in pins if v != c.version})
     if others:
         c.notes.append(f"other pins ignored: {', '.join(others)} (the first pin, {where}, wins)")
-    if agx is not None and agx.openplx_version == c.version:
-        c.agx_official = (agx.bundles, c.version, f"{c.why}; {agx.describe()}")
-        c.version = None
-    elif inst is not None and inst[1] == c.version:  # what is installed anyway: nothing to announce
+    if _agx_serves(c, agx):
+        return
+    if inst is not None and inst[1] == c.version:  # what is installed anyway: nothing to announce
         c.version = None
         c.installed_why = f"the installed {PACKAGE} package, the version {where.split(': ', 1)[0]} asks for"
 
 
-def _choose(cli_version: str | None, cfg_version: tuple[str, str] | None, pins: list[tuple[str, str]],
+def _agx_serves(c: _Choice, agx) -> bool:
+    """An AGX installation whose bundles are the version chosen serves it (nothing is fetched)."""
+    if agx is None or c.version is None or agx.openplx_version != c.version:
+        return False
+    c.agx_official = (agx.bundles, c.version, f"{c.why}; {agx.describe()}")
+    c.version = None
+    return True
+
+
+def _choose(cli: tuple[str | None, str], cfg_version: tuple[str, str] | None, pins: list[tuple[str, str]],
             replacing: list[BundleSource], agx, inst) -> _Choice:
     c = _Choice()
-    if cli_version:
-        c.version, c.why = cli_version, "--openplx-version"
+    if cli[0]:
+        c.version, c.why = cli
+        _agx_serves(c, agx)
     elif cfg_version:
         c.version, c.why = cfg_version
+        _agx_serves(c, agx)
     elif pins and replacing:
         c.notes.append(f"the dependency version {pins[0][1]} is not used: the official bundles come from "
                        f"{replacing[0].path} ({replacing[0].why})")
@@ -559,9 +579,11 @@ def resolve_bundle_set(
     use_env: bool = True,
     discover: bool = True,
     use_config: bool = True,
+    version_why: str = "--openplx-version",
 ) -> BundleSet:
     """The bundle set for files/folders `targets` (and an editor's workspace root), in the documented
-    order: the bundle folders given, then the official base they choose, then the bundles found."""
+    order: the bundle folders given, then the official base they choose, then the bundles found.
+    `version_why`: what asked for `cli_version` (`plx migrate` passes `--to` / `--from`)."""
     folders = _Folders()
     for p in cli_paths:
         folders.add(Path(p), "--bundle-path")
@@ -589,8 +611,10 @@ def resolve_bundle_set(
         from plxtools.model.agx import find_agx
 
         agx = find_agx(cfg_agx)
-    choice = _choose(cli_version, cfg_version, pins, replacing, agx, inst)
+    choice = _choose((cli_version, version_why), cfg_version, pins, replacing, agx, inst)
     official = _official(choice, inst)
+    if choice.agx_official is not None:
+        folders.add_agx_bundle(agx)
     folders.add_found(found, official[0], workspace_root)
     bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources,
                    choice.notes, agx, choice.agx_official is not None)

@@ -3,35 +3,13 @@ unknown-name help (issue 29, point 2). Every installation here is a fake tree bu
 
 from __future__ import annotations
 
-import shutil
-from pathlib import Path
-
 from plxtools.model.agx import find_agx
-from tests.conftest import bundle_root, run_plx
+from tests.bundles.agx_fake import fake_agx
+from tests.bundles.agx_fake import write as _write
+from tests.conftest import run_plx
 
 SCENE = "Scene is Physics3D.System:\n    tracks is Vehicles.TrackSystem\n"
 NO_AGX = {"AGX_DIR": "", "AGX_DATA_DIR": "", "AGX_PLUGIN_PATH": "", "OPENPLX_BUNDLE_PATH": ""}
-
-
-def _write(p: Path, text: str) -> Path:
-    p.parent.mkdir(parents=True, exist_ok=True)
-    p.write_text(text, encoding="utf-8")
-    return p
-
-
-def fake_agx(root: Path, openplx: str = "0.20.1", layout: str = "data/openplx") -> Path:
-    """An AGX installation folder whose bundles are newer than any PyPI release: the official
-    Math/Physics/Physics3D relabelled, and a Vehicles bundle with a model 0.19.0 does not have."""
-    bundles = root / layout
-    for name in ("Math", "Physics", "Physics3D"):
-        shutil.copytree(bundle_root() / name, bundles / name, ignore=shutil.ignore_patterns("__pycache__"))
-        cfg = bundles / name / "config.openplx"
-        cfg.write_text(cfg.read_text(encoding="utf-8").replace("0.19.0", openplx), encoding="utf-8")
-    _write(bundles / "Vehicles" / "config.openplx", f'config is BundleConfig:\n    name: "Vehicles"\n'
-                                                   f'    version: "{openplx}"\n    dependencies: ["Physics3D=={openplx}"]\n')
-    _write(bundles / "Vehicles" / "TrackSystem.openplx", "TrackSystem is Physics3D.System\n")
-    (root / "bin").mkdir(parents=True, exist_ok=True)
-    return bundles
 
 
 def test_agx_dir_is_found_used_and_reported(tmp_path):
