@@ -432,6 +432,7 @@ def entry() -> None:
     from plxtools import runmemo, runmode
 
     runmode.one_shot(sys.argv[1:2] != ["lsp"])  # the process ends after the command (the server lives on)
+    runmode.watch_interrupts()
     code = runmemo.replay(sys.argv[1:])  # an unchanged one-file run: its output, nothing imported
     if code is None:
         token = runmemo.start(sys.argv[1:])

@@ -22,3 +22,26 @@ def one_shot(on: bool = True) -> None:
 
 def is_one_shot() -> bool:
     return _one_shot
+
+
+_interrupted = False
+
+
+def watch_interrupts() -> None:
+    """Ctrl-C still raises KeyboardInterrupt, and is also remembered here.  Native code can turn
+    that exception into an error of its own: MuJoCo's bindings, interrupted inside a step, raise
+    `UnexpectedError: cannot find callable`.  A command that catches errors per file asks
+    `interrupted()` so it ends as interrupted instead of reporting a bug."""
+    import signal
+
+    def on_sigint(signum, frame):
+        global _interrupted
+        _interrupted = True
+        signal.default_int_handler(signum, frame)
+
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        signal.signal(signal.SIGINT, on_sigint)
+
+
+def interrupted() -> bool:
+    return _interrupted

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from plxtools import runmode
 from plxtools.diagnostics import Severity
 
 
@@ -189,6 +190,8 @@ def _check_one(item: tuple, run: _Run, analysed=None) -> tuple:
                 fc.skip, fc.skip_detail = Skip.BLOCKED, reason
         return fc, [], 0
     except Exception as exc:  # a bug in plxtools: say so, go on with the other files
+        if runmode.interrupted():  # Ctrl-C, turned into another error by native code (MuJoCo)
+            raise KeyboardInterrupt from exc
         return _internal_error(f, f"{type(exc).__name__}: {exc}", str(exc),
                                traceback.format_exc() if os.environ.get("PLX_DEBUG") else "")
 

@@ -349,6 +349,11 @@ def run_test(args) -> int:
             import os
             import traceback
 
+            from plxtools import runmode
+
+            if runmode.interrupted():  # Ctrl-C, turned into another error by native code (MuJoCo)
+                raise KeyboardInterrupt from exc
+
             print(f"plx test: internal error while running {f}: {type(exc).__name__}: {exc}", file=sys.stderr)
             if os.environ.get("PLX_DEBUG"):
                 traceback.print_exc()
