@@ -1,8 +1,7 @@
 """Controllers (motors, ranges, springs) and the initial keyframe (steps of the MjSpec build, on a :class:`BuildContext`).
 
-Velocity motors: a stiff one (``gain > KV_STEPS * I_eff / timestep``) with a symmetric or no effort
-range is a velocity constraint (``mujoco.velocity_constraint``), solved with the contacts.  Any
-other is a servo, ``kv = min(gain, KV_STEPS * I_eff / timestep)`` with ``I_eff = 1 / dof_invweight0``;
+Velocity motors: one with a symmetric or no effort range is a velocity constraint of its gain
+(``mujoco.velocity_constraint``), solved with the contacts.  Any other is a servo, ``kv = min(gain, KV_STEPS * I_eff / timestep)`` with ``I_eff = 1 / dof_invweight0``;
 ``KV_STEPS`` is 10 for unlimited motors (a servo time constant of a tenth of a step: tight tracking)
 and 1 when an effort limit is finite (MuJoCo drops the implicit damping of a saturated actuator, and
 a stiffer servo then chatters bang-bang between the limits). 1000 was tried first: stable for the
@@ -52,7 +51,7 @@ def add_controllers(ctx: BuildContext, model: Any) -> None:
     stopped = {joint for ctl, _m, joint, _s, _i in bound if ctl.kind == "range"}
     for ctl, mate, joint, sign, ieff in bound:
         if ctl.kind == "velocity_motor":
-            add_velocity_motor(ctx, ctl, mate, joint, sign, ieff, joint in stopped)
+            add_velocity_motor(ctx, model, ctl, mate, joint, sign, ieff, joint in stopped)
         elif ctl.kind in ("torque_motor", "force_motor"):
             add_effort_motor(ctx, ctl, mate, joint, sign)
         elif ctl.kind == "range":
@@ -167,7 +166,7 @@ def effort_range(ctx: BuildContext, ctl: Controller, act: Any) -> None:
         act.forcerange = [max(lo, -BIG_FORCE), min(hi, BIG_FORCE)]
 
 
-def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str, sign: int, ieff: float,
+def add_velocity_motor(ctx: BuildContext, model: Any, ctl: Controller, mate: Mate, joint: str, sign: int, ieff: float,
                        stopped: bool = False) -> None:
     h = float(ctx.spec.option.timestep)
     if ctl.gain <= 0:
@@ -182,10 +181,12 @@ def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: st
     steps = KV_STEPS_LIMITED if limited or stopped else KV_STEPS
     cap = steps * ieff / h
     bound = velocity_constraint.symmetric_bound(float(ctl.min_effort), float(ctl.max_effort))
-    if ctl.gain > cap and bound is not None:
-        name, ref = velocity_constraint.add(ctx, ctl.path, ctl.source, joint, float(sign), ieff, bound)
+    d = velocity_constraint.impedance(ctl.gain, h, velocity_constraint.tendon_invweight(model, joint, float(sign), ieff))
+    if bound is not None and d is not None:
+        name, ref = velocity_constraint.add(ctx, ctl.path, ctl.source, joint, float(sign), ieff, bound, d)
         ctx.out.actuators.append(ActuatorInfo(ctl.path, name, ctl.kind, mate.path, joint, float(sign),
-                                              float(ctl.target_speed), None, float(ctl.target_speed), reference=ref,
+                                              float(ctl.target_speed), _soft_gain(ctl.gain, d),
+                                              float(ctl.target_speed), reference=ref,
                                               tendon=ctx.names.name("tendon", ctl.path)))
         return
     kv = min(float(ctl.gain), cap)
@@ -228,6 +229,11 @@ def add_velocity_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: st
             float(ctl.target_speed),
         )
     )
+
+
+def _soft_gain(gain: float, d: float) -> float | None:
+    """The gain a velocity constraint honours, or None when it is rigid (MuJoCo's largest impedance)."""
+    return None if d >= velocity_constraint.MAX_IMPEDANCE else float(gain)
 
 
 def add_effort_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str, sign: int) -> None:

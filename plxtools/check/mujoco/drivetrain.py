@@ -23,8 +23,8 @@ quarter of the angle error per step: solved with the motor's velocity constraint
 contacts, a train driving two wheels is at its input speed after one step too (before, with a
 time constant of two steps, 42 %).
 
-A **1D velocity motor** with a stiff gain (the default) and a symmetric or no effort range is a
-velocity constraint on its shaft's coordinate (``mujoco.velocity_constraint``: a friction-loss
+A **1D velocity motor** with a symmetric or no effort range is a velocity constraint of its gain
+(rigid with the default gain) on its shaft's coordinate (``mujoco.velocity_constraint``: a friction-loss
 tendon against a reference turning at the target speed), solved together with contacts, limits and
 the couplings, so the shaft is at its target speed after one step as with AGX's velocity
 constraint (tests/check/test_drivetrain_one_step.py, also on a cart driven over the ground).  With
@@ -217,17 +217,19 @@ def _effort_range(ctx: BuildContext, act: Any, lo: float, hi: float) -> None:
 
 
 def _velocity_motor(ctx: BuildContext, model: Any, m: Any, coord: ShaftCoordinate, lo: float, hi: float) -> None:
-    """A velocity constraint (mujoco.velocity_constraint) when the gain is stiff and the effort
-    range symmetric; otherwise a servo of gain ``min(gain, inertia / h)``."""
+    """A velocity constraint (mujoco.velocity_constraint) of the motor's gain when the effort range
+    is symmetric (or none); otherwise a servo of gain ``min(gain, inertia / h)``."""
     h = float(ctx.spec.option.timestep)
     joint, ratio = coord.joint, coord.factor
     ieff = _joint_inertia(model, joint) / (ratio * ratio) if coord.rigid else chain_inertia(ctx, model, m.shaft)
     cap = SERVO_GAIN_STEPS * ieff / h
     bound = velocity_constraint.symmetric_bound(lo, hi)
     target = float(m.target_speed)
-    if m.gain > cap and bound is not None:
-        name, ref = velocity_constraint.add(ctx, m.path, m.source, joint, ratio, ieff, bound)
-        ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, target, None, target,
+    d = velocity_constraint.impedance(m.gain, h, velocity_constraint.tendon_invweight(model, joint, ratio, ieff))
+    if bound is not None and d is not None:
+        name, ref = velocity_constraint.add(ctx, m.path, m.source, joint, ratio, ieff, bound, d)
+        soft = float(m.gain) if d < velocity_constraint.MAX_IMPEDANCE else None
+        ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, target, soft, target,
                                               reference=ref, tendon=ctx.names.name("tendon", m.path)))
         return
     kv = min(float(m.gain), cap)

@@ -936,11 +936,21 @@ class MotorTracking(Monitor):
                 a.path, a.kind, a.target_speed if a.target_speed is not None else a.ctrl, mean_v, mean_f, a.kv, err)
             if err is not None and self.count and err > TRACKING_TOL * abs(a.target_speed) + TRACKING_ABS:
                 pct = f" ({100 * err / abs(a.target_speed):.3g} % off)" if a.target_speed else ""
-                why = (f"; its gain is kv = {a.kv:.4g} (A111), so under a load the speed sags by load / kv"
-                       if a.kv is not None else "; it runs as a velocity constraint, which falls behind only when the "
-                       "load needs more than its effort range" if a.reference is not None else "")
+                why = _tracking_why(a)
                 run.add(WARNING, MOTOR_OFF_TARGET, f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g}{pct} over "
                         f"the last 20 % of the run, with a mean effort of {mean_f:.4g}{why}", a.path)
+
+
+def _tracking_why(a: Any) -> str:
+    """Why a velocity motor can be off its target, by how it runs (A106's message)."""
+    if a.reference is not None and a.kv is None:
+        return "; it runs as a rigid velocity constraint, which falls behind only when the load needs more than its effort range"
+    if a.reference is not None:
+        return (f"; it runs as a velocity constraint of gain {a.kv:.4g}, so under a load the speed sags by "
+                "load / gain")
+    if a.kv is not None:
+        return f"; its gain is kv = {a.kv:.4g} (A111), so under a load the speed sags by load / kv"
+    return ""
 
 
 _ENERGY_ROWS = 1024  # steps Energy buffers at first (it grows when a batch of samples needs more)

@@ -1,4 +1,4 @@
-"""A stiff velocity motor as a velocity constraint that MuJoCo solves together with contacts.
+"""A velocity motor as a velocity constraint that MuJoCo solves together with contacts.
 
 AGX's velocity motor is a constraint: the solver finds the torque, within the effort range, that
 makes the joint turn at the target speed at the end of the step, in the same solve as contacts,
@@ -21,8 +21,17 @@ driven coordinate to the target speed, within the effort range, in the constrain
   explicit step of ``kv (ctrl - v) / armature`` covers the whole difference), whatever the
   integrator then does to the reference itself;
 * the tendon's friction loss is the effort limit (symmetric: ``[-e, e]``; ``BIG_EFFORT`` when
-  unlimited), with ``solreffriction = (-0, -1/h)`` (a damping that removes the whole speed error
-  in one step) and an impedance of 0.9999 (nearly hard).
+  unlimited), with a direct ``solreffriction`` whose damping removes the whole speed error in one
+  step, and the impedance below.
+
+A finite gain is honoured exactly.  MuJoCo's soft constraint pushes with ``(aref - a) / R``, where
+``R = (1 - d) / d * w`` (``d`` the impedance, ``w`` the tendon's inverse inertia at the initial
+pose, ``tendon_invweight0``); with the damping ``1 / h`` in ``aref`` that force is
+``gain (target - v_next)``, an implicit servo's force law, exactly when
+``d = g h w / (g h w + 1)`` (:func:`impedance`), and it is solved with the contacts instead of
+after them.  A gain whose ``d`` is 0.999 or more (the default 1e8 on any ordinary body) is rigid:
+MuJoCo's largest impedance, 0.9999.  (A servo of gain 100 on a light wheel on the ground made the
+cart of examples/user_bundle hop, A134.)
 
 The motor's effort is the constraint's force on the tendon: the reference's ``qfrc_constraint``
 with its sign flipped (:func:`effort`), which the signals, the motor report and the energy monitor
@@ -42,7 +51,10 @@ from plxtools.check.mujoco.context import BuildContext
 
 REFERENCE_INERTIA = 1e6  # reference armature per unit of the inertia the motor drives
 BIG_EFFORT = 1e9  # the friction bound of an unlimited motor (N m or N)
-SOLIMP = [0.9999, 0.9999, 0.001, 0.5, 2.0]  # nearly hard
+MAX_IMPEDANCE = 0.9999  # MuJoCo's largest: a rigid motor (the default gain)
+MIN_IMPEDANCE = 0.0001  # MuJoCo's smallest
+RIGID_IMPEDANCE = 0.999  # a gain that leaves less than 0.1 % of a speed error per step is rigid
+SOLIMP = [MAX_IMPEDANCE, MAX_IMPEDANCE, 0.001, 0.5, 2.0]  # nearly hard (also the coupled trains' equalities)
 _POINT_MASS = 1e-6  # kg: the reference body (its inertia 1e-9 kg m^2 beside the armature)
 
 
@@ -57,13 +69,40 @@ def symmetric_bound(lo: float, hi: float) -> float | None:
     return None
 
 
-def add(ctx: BuildContext, path: str, source: Any, joint: str, gear: float, inertia: float, bound: float) -> tuple[str, str]:
+def impedance(gain: float, h: float, invweight: float) -> float | None:
+    """The constraint impedance that makes a motor of ``gain`` push with exactly
+    ``gain (target - v_next)``, as an implicit servo would, but solved with the contacts (see the
+    module docstring); capped at MAX_IMPEDANCE (rigid).  None when the gain is so soft that MuJoCo's
+    smallest impedance would be stiffer (then a servo, which is harmless that soft)."""
+    x = float(gain) * h * invweight
+    if not math.isfinite(x):
+        return MAX_IMPEDANCE
+    d = x / (x + 1.0)
+    if d < MIN_IMPEDANCE:
+        return None
+    return d if d < RIGID_IMPEDANCE else MAX_IMPEDANCE
+
+
+def tendon_invweight(model: Any, joint: str, gear: float, inertia: float) -> float:
+    """The tendon's inverse inertia at the initial pose, as MuJoCo computes it
+    (``tendon_invweight0``): the joint's ``dof_invweight0`` times gear squared, plus the reference's."""
+    dof = int(model.jnt_dofadr[model.joint(joint).id])
+    return gear * gear * float(model.dof_invweight0[dof]) + 1.0 / reference_armature(inertia)
+
+
+def reference_armature(inertia: float) -> float:
+    return REFERENCE_INERTIA * max(float(inertia), 1e-9)
+
+
+def add(ctx: BuildContext, path: str, source: Any, joint: str, gear: float, inertia: float, bound: float,
+        d: float = MAX_IMPEDANCE) -> tuple[str, str]:
     """The reference, its actuator and the friction tendon for a motor at ``path`` on ``joint``
     (``gear`` = the motor's coordinate per joint coordinate; ``inertia`` = what the motor drives,
-    in its own coordinate).  Returns (actuator name, reference joint name)."""
+    in its own coordinate; ``d`` the impedance, from :func:`impedance`).  Returns (actuator name,
+    reference joint name)."""
     mj, spec = ctx.mj, ctx.spec
     h = float(spec.option.timestep)
-    armature = REFERENCE_INERTIA * max(float(inertia), 1e-9)
+    armature = reference_armature(inertia)
     body = spec.worldbody.add_body(name=ctx.names.add("body", path, source, ":reference"), pos=[0, 0, 0])
     body.mass = _POINT_MASS
     body.inertia = [_POINT_MASS * 1e-3] * 3
@@ -77,8 +116,11 @@ def add(ctx: BuildContext, path: str, source: Any, joint: str, gear: float, iner
     tendon.wrap_joint(joint, float(gear))
     tendon.wrap_joint(ref, -1.0)
     tendon.frictionloss = float(bound)
-    tendon.solref_friction = [-0.0, -1.0 / h]
-    tendon.solimp_friction = list(SOLIMP)
+    # direct reference: MuJoCo divides the damping by the impedance, so -d / h gives b = 1 / h, the
+    # servo law of a finite gain; a rigid motor keeps b = 1 / (d h), which settles without the
+    # faint two-step ringing (1e-3 N m) that b = 1 / h leaves at the largest impedance
+    tendon.solref_friction = [-0.0, -(d if d < MAX_IMPEDANCE else 1.0) / h]
+    tendon.solimp_friction = [d, d, 0.001, 0.5, 2.0]
     name = ctx.names.add("actuator", path, source)
     act = spec.add_actuator(name=name, target=ref, trntype=mj.mjtTrn.mjTRN_JOINT)
     act.set_to_velocity(kv=armature / h)

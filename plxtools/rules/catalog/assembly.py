@@ -298,8 +298,9 @@ rule("A110", "mujoco-compile-error", E,
      "MuJoCo rejected the compiled model; the message names the OpenPLX element when it can.",
      "This is a model MuJoCo cannot represent (or a gap in the backend).", stage=SIM)
 rule("A111", "velocity-motor-gain-clamped", I,
-     "A stiff velocity motor (the bundle's default `gain` is 1e8) runs as a velocity constraint solved "
-     "together with contacts and limits, as AGX's does, when its effort range is symmetric or unlimited. "
+     "A velocity motor runs as a velocity constraint of its gain, solved together with contacts and "
+     "limits as AGX's is (rigid with the bundle's default `gain`, 1e8), when its effort range is "
+     "symmetric or unlimited. "
      "One with an asymmetric effort range cannot (the constraint's bound is a friction bound [-e, e]): it "
      "runs as a MuJoCo velocity servo whose gain is clamped to 10 x the joint's effective inertia / timestep "
      "(1 x with an effort limit, or on a drive train). An info for the bundle's default gain; a warning "
