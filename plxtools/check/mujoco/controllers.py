@@ -1,7 +1,8 @@
 """Controllers (motors, ranges, springs) and the initial keyframe (steps of the MjSpec build, on a :class:`BuildContext`).
 
 Velocity motors: one with a symmetric or no effort range is a velocity constraint of its gain
-(``mujoco.velocity_constraint``), solved with the contacts.  Any other is a servo, ``kv = min(gain, KV_STEPS * I_eff / timestep)`` with ``I_eff = 1 / dof_invweight0``;
+(``mujoco.velocity_constraint``), solved with the contacts.  Any other is a servo,
+``kv = min(gain, KV_STEPS * I_eff / timestep)`` with ``I_eff = 1 / dof_invweight0``;
 ``KV_STEPS`` is 10 for unlimited motors (a servo time constant of a tenth of a step: tight tracking)
 and 1 when an effort limit is finite (MuJoCo drops the implicit damping of a saturated actuator, and
 a stiffer servo then chatters bang-bang between the limits). 1000 was tried first: stable for the
@@ -185,7 +186,7 @@ def add_velocity_motor(ctx: BuildContext, model: Any, ctl: Controller, mate: Mat
     if bound is not None and d is not None:
         name, ref = velocity_constraint.add(ctx, ctl.path, ctl.source, joint, float(sign), ieff, bound, d)
         ctx.out.actuators.append(ActuatorInfo(ctl.path, name, ctl.kind, mate.path, joint, float(sign),
-                                              float(ctl.target_speed), _soft_gain(ctl.gain, d),
+                                              float(ctl.target_speed), velocity_constraint.honoured_gain(ctl.gain, d),
                                               float(ctl.target_speed), reference=ref,
                                               tendon=ctx.names.name("tendon", ctl.path)))
         return
@@ -229,11 +230,6 @@ def add_velocity_motor(ctx: BuildContext, model: Any, ctl: Controller, mate: Mat
             float(ctl.target_speed),
         )
     )
-
-
-def _soft_gain(gain: float, d: float) -> float | None:
-    """The gain a velocity constraint honours, or None when it is rigid (MuJoCo's largest impedance)."""
-    return None if d >= velocity_constraint.MAX_IMPEDANCE else float(gain)
 
 
 def add_effort_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str, sign: int) -> None:

@@ -228,8 +228,8 @@ def _velocity_motor(ctx: BuildContext, model: Any, m: Any, coord: ShaftCoordinat
     d = velocity_constraint.impedance(m.gain, h, velocity_constraint.tendon_invweight(model, joint, ratio, ieff))
     if bound is not None and d is not None:
         name, ref = velocity_constraint.add(ctx, m.path, m.source, joint, ratio, ieff, bound, d)
-        soft = float(m.gain) if d < velocity_constraint.MAX_IMPEDANCE else None
-        ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, target, soft, target,
+        ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, target,
+                                              velocity_constraint.honoured_gain(m.gain, d), target,
                                               reference=ref, tendon=ctx.names.name("tendon", m.path)))
         return
     kv = min(float(m.gain), cap)

@@ -83,6 +83,11 @@ def impedance(gain: float, h: float, invweight: float) -> float | None:
     return d if d < RIGID_IMPEDANCE else MAX_IMPEDANCE
 
 
+def honoured_gain(gain: float, d: float) -> float | None:
+    """The gain a velocity constraint of impedance ``d`` follows, or None when it is rigid."""
+    return None if d >= MAX_IMPEDANCE else float(gain)
+
+
 def tendon_invweight(model: Any, joint: str, gear: float, inertia: float) -> float:
     """The tendon's inverse inertia at the initial pose, as MuJoCo computes it
     (``tendon_invweight0``): the joint's ``dof_invweight0`` times gear squared, plus the reference's."""
