@@ -34,7 +34,8 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.evaluate import Evaluator, Unavailable, report_non_finite
-from plxtools.check.frames import IDENTITY, Pose, angle_between, compose, from_transform, inverse, rot_z, rotation_angle
+from plxtools.check.frames import (IDENTITY, Pose, angle_between, compose, from_transform, inverse, orthogonal_unit,
+                                   rot_z, rotation_angle)
 from plxtools.check.instance import Obj, walk_owned
 from plxtools.check.mapped_types import CONTROLLERS, FREE_DOFS, MATES
 from plxtools.check.report import Reporter
@@ -237,6 +238,16 @@ class Assembly:
     def node_of(self, obj: Obj) -> Node | None:
         return self.by_obj.get(id(obj))
 
+    def owner_node(self, obj: Obj) -> Node | None:
+        """The nearest placed node that owns ``obj`` (None: it belongs to no node, like ``World``)."""
+        cur = obj.owner
+        while cur is not None:
+            n = self.node_of(cur)
+            if n is not None:
+                return n
+            cur = cur.owner
+        return None
+
     def conn_world(self, c: Conn) -> Pose:
         return compose(c.node.world, c.frame)
 
@@ -346,13 +357,8 @@ class Assembler:
         return asm
 
     def _parent_node(self, asm: Assembly, obj: Obj) -> Node | None:
-        cur = obj.owner
-        while cur is not None:
-            n = asm.node_of(cur)
-            if n is not None:
-                return n
-            cur = cur.owner
-        return asm.root_node
+        n = asm.owner_node(obj)
+        return n if n is not None else asm.root_node
 
     def _kinematically_controlled(self, asm: Assembly) -> None:
         """``System.kinematically_controlled: [bodies]`` (deprecated in 0.19, still honoured by AGX's
@@ -414,9 +420,8 @@ class Assembler:
         x = None
         if normal is not None and ok:
             nn = float(np.linalg.norm(normal))
-            perp = normal - float(np.dot(normal, z)) * z
-            np_ = float(np.linalg.norm(perp))
-            if nn < 1e-9 or np_ < 1e-6 * max(nn, 1.0):
+            x = orthogonal_unit(normal, z)
+            if x is None:
                 node_, unit_ = self.ev.where(obj, "normal")
                 what = "zero" if nn < 1e-9 else ("parallel" if float(np.dot(normal, z)) > 0 else "antiparallel") \
                     + " to its main_axis"
@@ -424,13 +429,11 @@ class Assembler:
                              f"about the main axis is undefined", node=node_, unit=unit_, obj=obj,
                              help="give a normal orthogonal to main_axis")
                 ok = False
-            else:
-                x = perp / np_
-                if abs(float(np.dot(normal / nn, z))) > 1e-6:
-                    node_, unit_ = self.ev.where(obj, "normal")
-                    self.rep.add("A012", f"connector {obj.display}: normal {_v(normal)} is not orthogonal to "
-                                 f"main_axis {_v(axis)}; only its orthogonal part {_v(x)} counts",
-                                 node=node_, unit=unit_, obj=obj)
+            elif abs(float(np.dot(normal / nn, z))) > 1e-6:
+                node_, unit_ = self.ev.where(obj, "normal")
+                self.rep.add("A012", f"connector {obj.display}: normal {_v(normal)} is not orthogonal to "
+                             f"main_axis {_v(axis)}; only its orthogonal part {_v(x)} counts",
+                             node=node_, unit=unit_, obj=obj)
         if x is None:
             from plxtools.check.scene import default_normal
 

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.frames import compose
+from plxtools.check.frames import compose, orthogonal_unit
 
 REDIRECTED = "Physics3D.Interactions.RedirectedMateConnector"
 
@@ -57,24 +57,10 @@ def _local_frame(ev: Any, obj: Any) -> tuple[np.ndarray, np.ndarray] | None:
         return None
     z = axis / n
     normal = _vec(ev, obj, "normal", None)
-    x = None
-    if normal is not None:
-        perp = normal - float(np.dot(normal, z)) * z
-        if float(np.linalg.norm(perp)) > 1e-6 * max(float(np.linalg.norm(normal)), 1.0):
-            x = perp / float(np.linalg.norm(perp))
+    x = orthogonal_unit(normal, z) if normal is not None else None
     if x is None:
         x = np.array(default_normal(tuple(float(c) for c in z)))
     return np.column_stack([x, np.cross(z, x), z]), pos
-
-
-def _owner_node(asm: Any, obj: Any) -> Any:
-    cur = obj.owner
-    while cur is not None:
-        node = asm.node_of(cur)
-        if node is not None:
-            return node
-        cur = cur.owner
-    return None
 
 
 def connector_frame(asm: Any, ev: Any, kinds: Any, obj: Any) -> ConnectorFrame | None:
@@ -83,7 +69,7 @@ def connector_frame(asm: Any, ev: Any, kinds: Any, obj: Any) -> ConnectorFrame |
     local = _local_frame(ev, obj)
     if local is None:
         return None
-    owner = _owner_node(asm, obj)
+    owner = asm.owner_node(obj)
     world = compose(owner.world, local) if owner is not None and owner.world is not None else local
     mover = owner
     if kinds.isa(obj, REDIRECTED):

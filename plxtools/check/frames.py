@@ -12,6 +12,17 @@ Pose = tuple  # (R: (3, 3) ndarray, p: (3,) ndarray)
 IDENTITY: Pose = (np.eye(3), np.zeros(3))
 
 
+def orthogonal_unit(v: np.ndarray, z: np.ndarray) -> np.ndarray | None:
+    """The unit part of ``v`` orthogonal to the unit vector ``z`` (a connector's normal made
+    orthogonal to its main axis), or None when ``v`` is zero or (nearly) parallel to ``z``."""
+    nn = float(np.linalg.norm(v))
+    perp = v - float(np.dot(v, z)) * z
+    n_perp = float(np.linalg.norm(perp))
+    if nn < 1e-9 or n_perp < 1e-6 * max(nn, 1.0):
+        return None
+    return perp / n_perp
+
+
 def compose(a: Pose, b: Pose) -> Pose:
     """``a * b``: the frame ``b`` (given in ``a``) expressed in ``a``'s parent."""
     return a[0] @ b[0], a[0] @ b[1] + a[1]

@@ -32,7 +32,7 @@ KV_STEPS = 10.0
 KV_STEPS_LIMITED = 1.0
 SPRING_OMEGA_H = 0.2  # spring stiffness cap: natural frequency * timestep <= 0.2
 MIN_TIMESTEP = 1e-4  # s: the shortest step chosen for stiff springs (20 x shorter than the default)
-BIG_FORCE = 1e9
+BIG_FORCE = velocity_constraint.BIG_EFFORT  # N m or N: the bound of an unlimited effort, for servos and constraints
 
 
 # -- controllers -----------------------------------------------------------------------------
@@ -162,6 +162,11 @@ def effort_range(ctx: BuildContext, ctl: Controller, act: Any) -> None:
             ctl,
         )
         return
+    force_range(ctx, act, lo, hi)
+
+
+def force_range(ctx: BuildContext, act: Any, lo: float, hi: float) -> None:
+    """An actuator's force range from an effort range ``lo <= hi`` (none when both are infinite)."""
     if math.isfinite(lo) or math.isfinite(hi):
         act.forcelimited = ctx.mj.mjtLimited.mjLIMITED_TRUE
         act.forcerange = [max(lo, -BIG_FORCE), min(hi, BIG_FORCE)]

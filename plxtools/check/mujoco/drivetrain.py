@@ -36,14 +36,13 @@ the shaft sees, which gets half way to a new target per step.  A **1D torque mot
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 
-from plxtools.check.mujoco.context import BuildContext
-from plxtools.check.mujoco.controllers import note_gain_clamped, note_on_loop_mate
 from plxtools.check.mujoco import velocity_constraint
+from plxtools.check.mujoco.context import BuildContext
+from plxtools.check.mujoco.controllers import force_range, note_gain_clamped, note_on_loop_mate
 from plxtools.check.mujoco.notes import INFO
 from plxtools.check.mujoco.results import ActuatorInfo, ShaftCoordinate
 
@@ -211,9 +210,8 @@ def add_shaft_motors(ctx: BuildContext, model: Any) -> None:
 
 
 def _effort_range(ctx: BuildContext, act: Any, lo: float, hi: float) -> None:
-    if lo <= hi and (math.isfinite(lo) or math.isfinite(hi)):
-        act.forcelimited = ctx.mj.mjtLimited.mjLIMITED_TRUE
-        act.forcerange = [max(lo, -1e9), min(hi, 1e9)]
+    if lo <= hi:  # an inverted range is left unlimited (the static checks report it)
+        force_range(ctx, act, lo, hi)
 
 
 def _velocity_motor(ctx: BuildContext, model: Any, m: Any, coord: ShaftCoordinate, lo: float, hi: float) -> None:
