@@ -21,7 +21,8 @@ async function run(msg) {
   switch (msg.op) {
     case 'goto': {
       if (page) await page.close();
-      page = await browser.newPage({ viewport: { width: msg.width || 800, height: msg.height || 600 } });
+      // bypassCSP: waitForFunction evaluates its expression as a string, which the page's policy forbids
+      page = await browser.newPage({ viewport: { width: msg.width || 800, height: msg.height || 600 }, bypassCSP: true });
       page.on('console', (m) => logs.push(`${m.type()}: ${m.text()}`));
       page.on('pageerror', (e) => logs.push(`pageerror: ${e.message}`));
       await page.goto(msg.url);

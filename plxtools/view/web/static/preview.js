@@ -81,8 +81,8 @@
   }
 
   function tintFor(keys) {
-    if (keys.some((k) => k === state.selected)) return TINT_SELECTED;
     if (keys.some((k) => state.cursor.has(k))) return TINT_CURSOR;
+    if (keys.some((k) => k === state.selected)) return TINT_SELECTED;
     if (keys.some((k) => state.findingElements.has(k))) return TINT_FINDING;
     return null;
   }
@@ -405,7 +405,8 @@
     }
     const k = e.key.toLowerCase();
     const act = { e: () => control('toggle'), r: () => control('reset'), 1: () => control('reload'), f5: () => control('reload'),
-      g: () => toggle('collision'), c: () => toggle('frames'), ' ': fit, '.': () => control('step') }[k];
+      g: () => toggle('collision'), c: () => toggle('frames'), ' ': fit, '.': () => control('step'),
+      escape: () => select(null) }[k];
     if (act) { e.preventDefault(); act(); }
   });
   window.addEventListener('keyup', (e) => {
@@ -444,6 +445,12 @@
       return renderer.toScreen(p);
     },
     selectedPath: () => (state.selected ? byKey(state.selected).path : null),
+    // look from another side (radians; the target and distance stay)
+    setView(azimuth, elevation) {
+      renderer.camera.azimuth = azimuth;
+      renderer.camera.elevation = elevation;
+      state.dirty = true;
+    },
     // draw n frames now and return the milliseconds each took (the page's frame rate ceiling)
     benchDraw(n) {
       const t0 = performance.now();

@@ -191,8 +191,8 @@
     if (uMode == 1) { outColor = uColor; return; }   // picking: the id as a colour
     vec3 n = normalize(vNormal);
     if (dot(n, uEye - vWorld) < 0.0) n = -n;          // two-sided
-    vec3 l1 = normalize(vec3(0.4, 0.3, 1.0)), l2 = normalize(vec3(-0.6, -0.8, 0.3));
-    float d = 0.35 + 0.55 * max(dot(n, l1), 0.0) + 0.25 * max(dot(n, l2), 0.0);
+    vec3 l1 = normalize(vec3(0.4, 0.3, 1.0)), head = normalize(uEye - vWorld);   // a sky light and a headlight
+    float d = 0.3 + 0.35 * max(dot(n, l1), 0.0) + 0.45 * max(dot(n, head), 0.0);
     vec3 c = mix(uColor.rgb, uTint, uTintAmount) * d;
     outColor = vec4(c, uColor.a);
   }`;
@@ -371,7 +371,7 @@
           } else {
             gl.uniform4f(this.u.uColor, it.color[0], it.color[1], it.color[2], 1);
             gl.uniform3fv(this.u.uTint, it.tint || [0, 0, 0]);
-            gl.uniform1f(this.u.uTintAmount, it.tint ? 0.55 : 0);
+            gl.uniform1f(this.u.uTintAmount, it.tint ? 0.7 : 0);
           }
           gl.uniform3fv(this.u.uPos, it.pos);
           gl.uniformMatrix3fv(this.u.uRot, false, it.rot);
