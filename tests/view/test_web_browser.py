@@ -176,5 +176,8 @@ def test_the_pages_poses_after_2_s_equal_the_trace(page, tmp_path):
     bodies = b.eval("plxPreview.state.scene.bodies.map(b => b.path)")
     for i, path in enumerate(bodies):
         want = [float(last[f"{path}.{c}"]) for c in "xyz"]
-        assert poses[7 * i:7 * i + 3] == pytest.approx(want, abs=1e-3), path
+        assert poses[7 * i:7 * i + 3] == pytest.approx(want, abs=1e-3), path  # 1 mm
+        quat = [float(last[f"{path}.{c}"]) for c in ("qw", "qx", "qy", "qz")]
+        sign = 1 if sum(a * b for a, b in zip(quat, poses[7 * i + 3:7 * i + 7])) >= 0 else -1
+        assert [sign * v for v in poses[7 * i + 3:7 * i + 7]] == pytest.approx(quat, abs=1e-4), path
     b.screenshot(page["shots"] / "t2.png")

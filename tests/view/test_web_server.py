@@ -206,7 +206,29 @@ def test_the_poses_after_2_s_equal_the_trace_of_plx_check(served, tmp_path):
     for i, b in enumerate(scene["bodies"]):
         got = reply["q"][7 * i:7 * i + 3]
         want = [float(last[f"{b['path']}.{c}"]) for c in "xyz"]
-        assert got == pytest.approx(want, abs=1e-3), b["path"]
+        assert got == pytest.approx(want, abs=1e-3), b["path"]  # 1 mm
+        quat = [float(last[f"{b['path']}.{c}"]) for c in ("qw", "qx", "qy", "qz")]
+        q = reply["q"][7 * i + 3:7 * i + 7]
+        sign = 1 if sum(x * y for x, y in zip(quat, q)) >= 0 else -1
+        assert [sign * v for v in q] == pytest.approx(quat, abs=1e-4), b["path"]
         moved = max(moved, abs(got[0] - scene["poses"][7 * i]))
     assert moved > 0.1  # the truck drove: the comparison is not of two resting scenes
     assert state["status"]["ok"]
+
+
+def test_play_and_reset_send_poses_the_page_can_use(served):
+    """A reset starts a new simulation (a new generation): its scene is sent again, so the page
+    keeps drawing the poses that follow (they name the generation they belong to)."""
+    web, _ = served
+    events = Events(web)
+    try:
+        assert web.post("api/control", {"action": "play"})["paused"] is False
+        moving = events.next("poses", where=lambda p: p["t"] > 0.2)
+        assert web.post("api/key", {"code": ord("R"), "down": True})["action"] == "reset"
+        scene = events.next("scene", where=lambda s: s["generation"] > moving["generation"])
+        later = events.next("poses", where=lambda p: p["generation"] == scene["generation"] and p["t"] > 0.1)
+        assert later["q"]
+        assert web.post("api/key", {"code": ord("E"), "down": True})["action"] == "pause"
+        assert web.get("api/state")["poses"]["paused"] is True
+    finally:
+        events.close()

@@ -42,7 +42,6 @@ class LivePreview:
         self.loads = 0  # loads tried (good or bad): tests and bench wait on it
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
-        self._shown_gen = -1
 
     # -- events ---------------------------------------------------------------------------------
 
@@ -117,20 +116,14 @@ class LivePreview:
 
     def load(self) -> None:
         """(Re)load now; a failure keeps the last good scene and sends the located findings."""
-        from plxtools.check.mujoco.video import show_visuals
-
         with self.lock:
             self.status = {**self.status, "loading": True}
             result = self.session.load()
             self.loads += 1
             sim = self.session.sim
             if result.ok and sim is not None:
-                show_visuals(sim.model)  # collision geometry under a visual: group 3, as in plx view
-                self.ids = scene_data.body_ids(sim)
-                self.scene = scene_data.scene_json(sim, self.session.generation)
-                self._shown_gen = self.session.generation
+                self._publish_scene()
                 findings = [scene_data.finding_json(d) for d in sim.diagnostics]
-                self.broadcast("scene", self.scene)
             else:
                 findings = self._failed_findings(result)
             self.status = {"ok": result.ok, "loading": False, "error": None if result.ok else result.message,
@@ -141,6 +134,16 @@ class LivePreview:
             self.broadcast("status", self.status)
             if sim is not None:
                 self.broadcast("poses", self._poses())
+
+    def _publish_scene(self) -> None:
+        """Send the current simulation's scene (after a load, and after a reset: a new generation)."""
+        from plxtools.check.mujoco.video import show_visuals
+
+        sim = self.session.sim
+        show_visuals(sim.model)  # collision geometry under a visual: group 3, as in plx view
+        self.ids = scene_data.body_ids(sim)
+        self.scene = scene_data.scene_json(sim, self.session.generation)
+        self.broadcast("scene", self.scene)
 
     def _failed_findings(self, result: Any) -> list[dict]:
         """The failed load's located findings; without any (a MuJoCo or key-table error), its message."""
@@ -186,11 +189,13 @@ class LivePreview:
                 s.sim.step(max(1, int(kw.get("steps", 1))) * s.sim.timestep)
             elif action == "reset":
                 s.reset()
+                self._publish_scene()
             elif action == "seek":
                 target = float(kw.get("time", 0.0))
                 s.paused = True
                 if target < s.sim.time - 1e-12:
                     s.reset()
+                    self._publish_scene()
                 n = int(round((target - s.sim.time) / s.sim.timestep))
                 if n > 0:
                     s.sim.step(n * s.sim.timestep)
@@ -216,7 +221,18 @@ class LivePreview:
             self.pending_open = (path, model)
 
     def key(self, code: int, down: bool) -> str | None:
+        """A key of the page: the model's bound keys first, then the view's own (as in plx view)."""
+        from plxtools.view.keys import KeyboardCallback
+        from plxtools.view.session import PAUSE_KEY, RELOAD_KEYS, RESET_KEY
+
         with self.lock:
+            if code not in KeyboardCallback.keys() and down:
+                if code in RELOAD_KEYS:
+                    return self.control("reload") and "reload"
+                if code == RESET_KEY:
+                    return self.control("reset") and "reset"
+                if code == PAUSE_KEY:
+                    return self.control("toggle") and ("pause" if self.session.paused else "play")
             return self.session.key(code, down)
 
     def cursor(self, file: str, line: int) -> None:
