@@ -52,18 +52,26 @@ def poses(sim: Any, ids: list[tuple[int, str]]) -> list[float]:
 
 def scene_json(sim: Any, generation: int) -> dict:
     """The whole scene for the page (sent on every good load)."""
-    m = sim.model
-    prepared = sim.prepared
-    compiled = prepared.compiled
+    compiled = sim.prepared.compiled
     names = compiled.names
     ids = body_ids(sim)
+    ranges = _ranges(sim.prepared)
+    bodies = [{"path": path, "dynamic": bool(compiled.scene.body(path).is_dynamic),
+               "src": _src(names.sources.get(path)), "ranges": ranges.get(path, [])} for _, path in ids]
+    geoms, meshes = _geoms(sim, ids, ranges)
+    connectors, cindex = _connectors(compiled.scene, ids, ranges)
+    mates = [{"path": mt.path, "kind": mt.kind, "connectors": [cindex[c.path] for c in mt.connectors],
+              "src": _src(mt.source), "ranges": ranges.get(mt.path, [])}
+             for mt in compiled.scene.mates if all(c.path in cindex for c in mt.connectors)]
+    return {"model": sim.model_name, "file": os.path.abspath(sim.path), "generation": generation,
+            "timestep": sim.timestep, "bodies": bodies, "geoms": geoms, "meshes": meshes,
+            "connectors": connectors, "mates": mates, "poses": poses(sim, ids), "time": _r(sim.time)}
+
+
+def _geoms(sim: Any, ids: list[tuple[int, str]], ranges: dict) -> tuple[list[dict], list[dict]]:
+    """Every drawable geom of the MuJoCo model in its body's frame, and the meshes they use."""
+    m, names = sim.model, sim.prepared.compiled.names
     index = {b: i for i, (b, _) in enumerate(ids)}
-    ranges = _ranges(prepared)
-    bodies = []
-    for b, path in ids:
-        body = compiled.scene.body(path)
-        bodies.append({"path": path, "dynamic": bool(body.is_dynamic), "src": _src(names.sources.get(path)),
-                       "ranges": ranges.get(path, [])})
     geoms, meshes, mesh_index = [], [], {}
     for g in range(m.ngeom):
         kind = GEOM_KINDS.get(int(m.geom_type[g]))
@@ -85,25 +93,27 @@ def scene_json(sim: Any, generation: int) -> dict:
                 meshes.append(_mesh(m, mid))
             item["mesh"] = mesh_index[mid]
         geoms.append(item)
-    connectors, cindex = [], {}
-    for c in compiled.scene.connectors():
-        owner = next((i for i, (_, p) in enumerate(ids) if p == c.body), -1)
-        pos, axis, normal = (c.local_pos, c.main_axis, c.normal) if owner >= 0 or c.body is None else \
-            compiled.scene.connector_world(c)
-        from plxtools.check.scene import default_normal, normalize, orthogonalize
+    return geoms, meshes
 
+
+def _connectors(scene: Any, ids: list[tuple[int, str]], ranges: dict) -> tuple[list[dict], dict[str, int]]:
+    """The connectors of the scene's mates and controllers, in their body's frame (world: body -1)."""
+    from plxtools.check.scene import default_normal, normalize, orthogonalize
+
+    owner_of = {p: i for i, (_, p) in enumerate(ids)}
+    out, index = [], {}
+    for c in scene.connectors():
+        owner = owner_of.get(c.body, -1) if c.body is not None else -1
+        if owner < 0 and c.body is not None:  # on a body the page does not draw: place it in the world
+            pos, axis, normal = scene.connector_world(c)
+        else:
+            pos, axis, normal = c.local_pos, c.main_axis, c.normal
         axis = normalize(axis)
         normal = orthogonalize(normal if normal is not None else default_normal(axis), axis)
-        cindex[c.path] = len(connectors)
-        connectors.append({"path": c.path, "body": owner, "pos": [_r(v) for v in pos],
-                           "axis": [_r(v) for v in axis], "normal": [_r(v) for v in normal],
-                           "src": _src(c.source), "ranges": ranges.get(c.path, [])})
-    mates = [{"path": mt.path, "kind": mt.kind, "connectors": [cindex[c.path] for c in mt.connectors],
-              "src": _src(mt.source), "ranges": ranges.get(mt.path, [])}
-             for mt in compiled.scene.mates if all(c.path in cindex for c in mt.connectors)]
-    return {"model": sim.model_name, "file": os.path.abspath(sim.path), "generation": generation,
-            "timestep": sim.timestep, "bodies": bodies, "geoms": geoms, "meshes": meshes,
-            "connectors": connectors, "mates": mates, "poses": poses(sim, ids), "time": _r(sim.time)}
+        index[c.path] = len(out)
+        out.append({"path": c.path, "body": owner, "pos": [_r(v) for v in pos], "axis": [_r(v) for v in axis],
+                    "normal": [_r(v) for v in normal], "src": _src(c.source), "ranges": ranges.get(c.path, [])})
+    return out, index
 
 
 def _mesh(m: Any, mid: int) -> dict:
