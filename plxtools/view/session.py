@@ -126,6 +126,11 @@ class ViewSession:
         if not moved:
             return None
         self.say(f"changed: {', '.join(moved)}; reloading")
+        if any(p != os.path.abspath(self.path) for p in moved):
+            # a user bundle file (or a configuration) changed: the process's workspace holds the old one
+            from plxtools.model.workspace import forget_cli_workspaces
+
+            forget_cli_workspaces()
         return self.load()
 
     # -- keys ------------------------------------------------------------------------------------
