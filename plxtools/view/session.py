@@ -120,17 +120,21 @@ class ViewSession:
         """Watched files whose content may have changed since the last load."""
         return [p for p, st in self.stamps.items() if deps.stamp(p) != st]
 
-    def poll(self) -> LoadResult | None:
-        """Reload when a watched file changed (None: nothing changed)."""
-        moved = self.changed()
-        if not moved:
-            return None
+    def note_changes(self, moved: list[str]) -> None:
+        """Before reloading for ``moved`` files: say which, and let go of what they make stale."""
         self.say(f"changed: {', '.join(moved)}; reloading")
         if any(p != os.path.abspath(self.path) for p in moved):
             # a user bundle file (or a configuration) changed: the process's workspace holds the old one
             from plxtools.model.workspace import forget_cli_workspaces
 
             forget_cli_workspaces()
+
+    def poll(self) -> LoadResult | None:
+        """Reload when a watched file changed (None: nothing changed)."""
+        moved = self.changed()
+        if not moved:
+            return None
+        self.note_changes(moved)
         return self.load()
 
     # -- keys ------------------------------------------------------------------------------------

@@ -232,3 +232,27 @@ def test_play_and_reset_send_poses_the_page_can_use(served):
         assert web.get("api/state")["poses"]["paused"] is True
     finally:
         events.close()
+
+
+def test_a_file_that_never_loads_gives_its_findings_and_no_scene(tmp_path):
+    model = tmp_path / "broken.openplx"
+    model.write_text("Scene is Physics3D.System:\n    box is Physics3D.Bodies.RigidBody:\n        inertia.mass: heavy\n")
+    web = PlxWeb(model)
+    try:
+        st = web.wait_loaded()
+        assert st["status"]["ok"] is False and st["scene"] is None and web.get("scene") is None
+        assert any(f["line"] == 3 and f["code"] == "N003" for f in st["status"]["findings"])
+        model.write_text("Scene is Physics3D.System:\n    box is Physics3D.Bodies.RigidBody:\n        inertia.mass: 2\n")
+        st = web.wait_loaded(st["loads"] + 1)
+        assert st["status"]["ok"] and st["scene"]["model"] == "Scene"
+    finally:
+        web.stop()
+
+
+def test_web_options_without_web_and_a_busy_port_are_usage_errors(served):
+    web, model = served
+    r = plx_here("view", str(model), "--no-open")
+    assert r.returncode == 2 and "--no-open needs --web" in r.stderr
+    port = web.base.rsplit(":", 1)[1]
+    r = plx_here("view", "--web", str(model), "--no-open", "--port", port)
+    assert r.returncode == 2 and f"cannot serve on 127.0.0.1:{port}" in r.stderr

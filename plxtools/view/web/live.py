@@ -91,26 +91,40 @@ class LivePreview:
         next_poll = last + POLL_S
         while not self._stop.is_set():
             t0 = time.perf_counter()
-            with self.lock:
-                if self.pending_open is not None:
-                    self._open(*self.pending_open)
-                if self.pending_text is not None or self.reload_requested:
-                    if self.pending_text is not None:
-                        self.session.text = self.pending_text[1]
-                    self.pending_text, self.reload_requested = None, False
-                    self.load()
-                elif t0 >= next_poll:
-                    next_poll = t0 + POLL_S
-                    if self.session.changed():
-                        self.load()
-                now = time.perf_counter()
-                stepped = self.session.advance(now - last)
-                last = now
-                if stepped:
-                    self.broadcast("poses", self._poses())
+            try:
+                last, next_poll = self._frame(t0, last, next_poll)
+            except Exception as exc:  # noqa: BLE001 - a step or a key callback failed: say so, pause, go on
+                self.say(f"stopped the simulation: {type(exc).__name__}: {exc}")
+                with self.lock:
+                    self.session.paused = True
+                    self.status = {**self.status, "error": f"the simulation stopped: {exc}"}
+                    self.broadcast("status", self.status)
             spare = FRAME_S - (time.perf_counter() - t0)
             if spare > 0:
                 self._stop.wait(spare)
+
+    def _frame(self, t0: float, last: float, next_poll: float) -> tuple[float, float]:
+        """One turn of the loop: a pending load, the file check, the steps owed to the wall clock."""
+        with self.lock:
+            if self.pending_open is not None:
+                self._open(*self.pending_open)
+            if self.pending_text is not None or self.reload_requested:
+                if self.pending_text is not None:
+                    self.session.text = self.pending_text[1]
+                self.pending_text, self.reload_requested = None, False
+                self.load()
+            elif t0 >= next_poll:
+                next_poll = t0 + POLL_S
+                moved = self.session.changed()
+                if moved:
+                    self.session.note_changes(moved)
+                    self.load()
+            now = time.perf_counter()
+            stepped = self.session.advance(now - last)
+            last = now
+            if stepped:
+                self.broadcast("poses", self._poses())
+        return last, next_poll
 
     # -- loading --------------------------------------------------------------------------------
 

@@ -293,7 +293,7 @@
 
   // ---------------------------------------------------------------- events from plx
   function onScene(scene) {
-    const first = !state.scene;
+    const first = !state.scene || state.scene.file !== scene.file;   // another file: frame it anew
     state.scene = scene;
     state.elements = buildElements(scene);
     state.poses = scene.poses;
