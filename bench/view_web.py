@@ -45,10 +45,27 @@ def _pct(xs: list[float], p: float) -> float:
     return xs[min(len(xs) - 1, int(round(p * (len(xs) - 1))))]
 
 
+def _gif(browser: Browser, web: PlxWeb, out: Path, tmp: Path) -> None:
+    """Frames of the page at 0.2 s steps of simulated time (seek: the same frames on any machine)."""
+    from PIL import Image
+
+    browser.eval("document.getElementById('frames').click()")
+    frames = []
+    for k in range(21):
+        web.post("api/control", {"action": "seek", "time": 0.2 * k})
+        browser.wait_for(f"Math.abs(plxPreview.state.time - {0.2 * k}) < 1e-6 && !plxPreview.state.dirty", timeout=30)
+        shot = browser.screenshot(tmp / f"frame{k:02d}.png")
+        frames.append(Image.open(shot).convert("RGB").resize((640, 400)).quantize(64))
+    browser.eval("document.getElementById('frames').click()")
+    frames[0].save(out, save_all=True, append_images=frames[1:], duration=200, loop=0, optimize=True)
+    print(f"gif: {out} ({len(frames)} frames, {out.stat().st_size // 1024} KiB)")
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--edits", type=int, default=10)
     ap.add_argument("--shots", help="write the page's screenshots (preview-*.png) into this folder")
+    ap.add_argument("--gif", help="write an animated GIF of the page (the truck driving 4 s, needs Pillow)")
     args = ap.parse_args()
     why = browser_missing()
     if why:
@@ -104,6 +121,8 @@ def main() -> int:
         if args.shots:
             browser.wait_for("!plxPreview.state.dirty")
             browser.screenshot(Path(args.shots) / "preview-driving.png")
+        if args.gif:
+            _gif(browser, web, Path(args.gif), tmp)
     finally:
         browser.close()
         web.stop()

@@ -100,15 +100,19 @@ class Preview {
         reject(e);
       });
     });
-    const external = await vscode.env.asExternalUri(vscode.Uri.parse(url));
+    // the token is added after asExternalUri: a port forwarder (code-server's /proxy/PORT/) may drop the query
+    const client = new PreviewClient(url);
+    const external = await vscode.env.asExternalUri(vscode.Uri.parse(`${client.base}/`));
+    const pageUrl = `${external.toString(true).replace(/\?.*$/, '')}?t=${encodeURIComponent(client.token)}`;
+    deps.log.info(`3D preview: the page is ${pageUrl.replace(/t=.*/, 't=...')}`);
     const panel = vscode.window.createWebviewPanel(
       'openplx.preview',
       `Preview ${path.basename(doc.uri.fsPath)}`,
       { viewColumn: vscode.ViewColumn.Beside, preserveFocus: true },
       { enableScripts: true, retainContextWhenHidden: true },
     );
-    panel.webview.html = pageHtml(external.toString(true));
-    const preview = new Preview(panel, proc, new PreviewClient(url), doc, deps.log);
+    panel.webview.html = pageHtml(pageUrl);
+    const preview = new Preview(panel, proc, client, doc, deps.log);
     preview.listen();
     if (doc.isDirty) preview.sendText(doc);
     return preview;

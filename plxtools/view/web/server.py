@@ -140,7 +140,9 @@ class _Handler(BaseHTTPRequestHandler):
         q = live.subscribe()
         self.send_response(200)
         self.send_header("Content-Type", "text/event-stream")
-        self.send_header("Cache-Control", "no-store")
+        # no-transform: a proxy on the way (code-server's /proxy/PORT/) must not compress, and so hold back, the stream
+        self.send_header("Cache-Control", "no-store, no-transform")
+        self.send_header("X-Accel-Buffering", "no")
         self.send_header("Connection", "close")
         self.end_headers()
         self.close_connection = True
