@@ -55,7 +55,7 @@ def _gif(browser: Browser, web: PlxWeb, out: Path, tmp: Path) -> None:
         web.post("api/control", {"action": "seek", "time": 0.2 * k})
         browser.wait_for(f"Math.abs(plxPreview.state.time - {0.2 * k}) < 1e-6 && !plxPreview.state.dirty", timeout=30)
         shot = browser.screenshot(tmp / f"frame{k:02d}.png")
-        frames.append(Image.open(shot).convert("RGB").resize((640, 400)).quantize(64))
+        frames.append(Image.open(shot).convert("RGB").resize((640, 400)).quantize(160, Image.Quantize.MEDIANCUT))
     browser.eval("document.getElementById('frames').click()")
     frames[0].save(out, save_all=True, append_images=frames[1:], duration=200, loop=0, optimize=True)
     print(f"gif: {out} ({len(frames)} frames, {out.stat().st_size // 1024} KiB)")
