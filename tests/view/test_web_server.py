@@ -256,3 +256,24 @@ def test_web_options_without_web_and_a_busy_port_are_usage_errors(served):
     port = web.base.rsplit(":", 1)[1]
     r = plx_here("view", "--web", str(model), "--no-open", "--port", port)
     assert r.returncode == 2 and f"cannot serve on 127.0.0.1:{port}" in r.stderr
+
+
+def test_the_keys_of_a_key_table_are_listed_and_drive_the_model(tmp_path):
+    viewer = BOXTRUCK.parents[1] / "viewer"
+    for f in viewer.iterdir():
+        if f.is_file():
+            shutil.copy(f, tmp_path / f.name)
+    web = PlxWeb(tmp_path / "truck.openplx", "--paused", "--keys", str(tmp_path / "truck.keys.toml"))
+    try:
+        st = web.wait_loaded()
+        assert st["status"]["ok"], st["status"]
+        bound = {key: code for _name, code, key in st["status"]["keys"]}
+        assert "Up" in bound
+        x0 = web.post("api/control", {"action": "seek", "time": 0.5})["q"]
+        assert web.post("api/key", {"code": bound["Up"], "down": True})["action"] == "bound"
+        x1 = web.post("api/control", {"action": "step", "steps": 1000})["q"]  # 2 s with Up held
+        web.post("api/key", {"code": bound["Up"], "down": False})
+        i = [b["path"] for b in web.get("scene")["bodies"]].index("box_truck.chassis")
+        assert abs(x1[7 * i] - x0[7 * i]) > 0.5  # it drove
+    finally:
+        web.stop()
