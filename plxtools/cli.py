@@ -136,6 +136,7 @@ def _add_view(sub) -> None:
                        description="Check and compile FILE as 'plx check' does and open it in MuJoCo's interactive "
                        "viewer. Saving the file (or anything it read) reloads it in the open window; 1 or F5 "
                        "reloads, E plays or pauses, G shows collision geometry instead of the visuals, R resets. "
+                       "--web serves the same live scene to a browser page instead, linked to the editor. "
                        "A file that does not load is reported and watched until it does. Keys and set-up: "
                        "docs/view.md.")
     p.add_argument("path", metavar="FILE", help="the .openplx file")
@@ -144,6 +145,13 @@ def _add_view(sub) -> None:
     p.add_argument("--controller", metavar="SCRIPT.py",
                    help="a Python script whose buildScene() binds keys with plxtools.view.KeyboardCallback")
     p.add_argument("--keys", metavar="KEYS.toml", help="a key-binding table: key -> input path -> value while held")
+    p.add_argument("--web", action="store_true",
+                   help="serve a live 3D preview page on 127.0.0.1 instead of opening a window (no display needed)")
+    p.add_argument("--port", type=int, default=0, metavar="N", help="with --web, the port (default: a free one)")
+    p.add_argument("--no-open", action="store_true", help="with --web, print the URL but open no browser")
+    p.add_argument("--editor-command", metavar="CMD",
+                   help="with --web, run CMD when a body, mate or connector is clicked; {file}, {line} and {column} "
+                   "are replaced (for example 'code -g {file}:{line}:{column}')")
     p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
                    help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the config")
     _add_bundle_options(p)

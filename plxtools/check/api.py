@@ -173,8 +173,10 @@ class Prepared:
 
 
 def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str] | tuple = (),
-            openplx_version: str | None = None) -> Prepared:
-    """Check, assemble and compile ``path`` (raises ModelError when it cannot be simulated)."""
+            openplx_version: str | None = None, text: str | None = None) -> Prepared:
+    """Check, assemble and compile ``path`` (raises ModelError when it cannot be simulated).
+
+    ``text``: the file's unsaved content (an editor's buffer), used instead of what is on disk."""
     from plxtools.check.mujoco import backend as mjb
     from plxtools.check.connector_frames import connector_frame
     from plxtools.check.convert import _source
@@ -192,7 +194,7 @@ def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str
         cfg = config_for(p)
     except (UsageError, ConfigError, ValueError) as exc:
         raise ModelError(f"{p}: {exc}") from None
-    fc = analyse(p, ws, cfg, model=model)
+    fc = analyse(p, ws, cfg, model=model, text=text)
     errors = [d for d in fc.diagnostics if d.severity == Severity.ERROR]
     if fc.scene is None or fc.assembly is None:
         raise ModelError(_why(fc, errors), sorted(fc.diagnostics, key=lambda d: -d.severity.rank))

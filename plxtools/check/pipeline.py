@@ -154,12 +154,13 @@ def _pick_root(program, unit, name: str | None, rep: Reporter) -> ModelSym | Non
     return found
 
 
-def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileCheck:
-    """Everything up to the scene IR (no MuJoCo)."""
+def analyse(path: Path, workspace, cfg, *, model: str | None = None, text: str | None = None) -> FileCheck:
+    """Everything up to the scene IR (no MuJoCo).  ``text``: the file's content as an editor holds
+    it (unsaved), checked in place of what is on disk (``plx view --web`` previews it)."""
     fc = FileCheck(str(path))
     t0 = time.perf_counter()
     try:
-        data = path.read_bytes()
+        data = path.read_bytes() if text is None else text.encode("utf-8", "surrogatepass")
     except OSError as exc:
         fc.diagnostics = [unreadable(str(path), exc)]
         fc.skip = Skip.UNREADABLE

@@ -589,6 +589,12 @@ def workspace_for_cli(bundle_paths: list[str], files: list[Path], use_cache: boo
     return workspace_for_set(bs, use_cache)
 
 
+def forget_cli_workspaces() -> None:
+    """Drop the workspaces kept for this process's runs: the next run loads the user bundles again
+    (a long-running command whose user bundle files changed on disk, ``plx view``)."""
+    _CLI_WORKSPACES.clear()
+
+
 def workspace_for_set(bs: BundleSet, use_cache: bool = True) -> Workspace:
     """One Workspace per bundle set and process: several sets (versions) can be loaded side by side."""
     key = (bs.key(), use_cache)

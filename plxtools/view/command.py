@@ -13,6 +13,17 @@ def run_view(args) -> int:
         if path is not None and not os.path.isfile(path):
             print(f"plx view: {what} {path}: no such file", file=sys.stderr)
             return 2
+    if getattr(args, "web", False):
+        from plxtools.view.web.command import run_web
+
+        return run_web(args)
+    for flag in ("no_open", "editor_command"):
+        if getattr(args, flag, None):
+            print(f"plx view: --{flag.replace('_', '-')} needs --web", file=sys.stderr)
+            return 2
+    if getattr(args, "port", 0):
+        print("plx view: --port needs --web", file=sys.stderr)
+        return 2
     if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY") and sys.platform.startswith("linux"):
         print("plx view: no display (DISPLAY is not set); for a headless machine use "
               "'plx check --simulate --video FILE.gif' or run under xvfb-run", file=sys.stderr)

@@ -56,6 +56,8 @@ class ViewSession:
         self.held: set[int] = set()
         self.owed = 0.0  # wall-clock time not yet stepped (less than one step, or a frame's cap)
         self._wall = self._simulated = 0.0
+        self.diagnostics: list = []  # the last load's findings (a failed load's located errors)
+        self.text: str | None = None  # the editor's unsaved content of ``path`` (plx view --web), else the disk's
 
     # -- loading ----------------------------------------------------------------------------------
 
@@ -71,7 +73,7 @@ class ViewSession:
         before = {os.path.abspath(p): deps.stamp(p) for p in watched}  # a save during the load reloads again
         try:
             prepared = prepare(self.path, self.model, bundle_path=self.bundle_path,
-                               openplx_version=self.openplx_version)
+                               openplx_version=self.openplx_version, text=self.text)
             sim = Simulation(prepared)
             watched += deps.files_read(prepared)
             KeyboardCallback.clear()
@@ -80,14 +82,17 @@ class ViewSession:
             if self.controller:
                 run_controller(self.controller, sim)
         except ModelError as exc:
+            self.diagnostics = list(exc.diagnostics)
             return self._failed(str(exc), [_line(d) for d in exc.diagnostics], watched, before, t0)
         except (KeymapError, ControllerError) as exc:
+            self.diagnostics = []
             return self._failed(str(exc).splitlines()[0], str(exc).splitlines()[1:], watched, before, t0)
         self._watch(watched + deps.config_candidates(self.path), before)
         self.sim = sim
         self.generation += 1
         self.error = None
         self.held.clear()
+        self.diagnostics = list(sim.diagnostics)
         findings = [_line(d) for d in sim.diagnostics]
         msg = f"loaded {sim.model_name} from {self.path}" + (f" ({len(findings)} finding(s))" if findings else "")
         self.say(msg)
@@ -115,12 +120,21 @@ class ViewSession:
         """Watched files whose content may have changed since the last load."""
         return [p for p, st in self.stamps.items() if deps.stamp(p) != st]
 
+    def note_changes(self, moved: list[str]) -> None:
+        """Before reloading for ``moved`` files: say which, and let go of what they make stale."""
+        self.say(f"changed: {', '.join(moved)}; reloading")
+        if any(p != os.path.abspath(self.path) for p in moved):
+            # a user bundle file (or a configuration) changed: the process's workspace holds the old one
+            from plxtools.model.workspace import forget_cli_workspaces
+
+            forget_cli_workspaces()
+
     def poll(self) -> LoadResult | None:
         """Reload when a watched file changed (None: nothing changed)."""
         moved = self.changed()
         if not moved:
             return None
-        self.say(f"changed: {', '.join(moved)}; reloading")
+        self.note_changes(moved)
         return self.load()
 
     # -- keys ------------------------------------------------------------------------------------

@@ -144,3 +144,22 @@ def test_check_names_only_the_signals_it_does_not_map():
         f"{RIG}:30:5: warning A040 my_force (Physics3D.Signals.Force3DOutput): not simulated by "
         f"the MuJoCo backend: Physics3D.Signals.Force3DOutput of a hinge is not mapped: "
         f"constraint forces of mates are not read: the bundle gives neither the point nor the frame"), r.stdout
+
+
+def test_prepare_checks_an_editors_unsaved_text_instead_of_the_file(tmp_path):
+    """What `plx view --web` does with the text VS Code sends: the text is checked, the disk is not
+    read for it (nor written), and a broken text gives located findings, not a scene."""
+    from plxtools.check.api import ModelError, prepare
+
+    model = tmp_path / "box.openplx"
+    written = ("Scene is Physics3D.System:\n    box is Physics3D.Bodies.RigidBody:\n        inertia.mass: 1\n"
+               "        geometry is Physics3D.Geometries.Box:\n            size: {1, 1, 1}\n")
+    model.write_text(written)
+    p = prepare(model, text=written.replace("{1, 1, 1}", "{3, 1, 1}"))
+    assert p.compiled.scene.body("box").geoms[0].size == (3.0, 1.0, 1.0)
+    assert prepare(model).compiled.scene.body("box").geoms[0].size == (1.0, 1.0, 1.0)
+    assert model.read_text() == written
+    with pytest.raises(ModelError) as exc:
+        prepare(model, text=written.replace("inertia.mass: 1", "inertia.mass: heavy"))
+    bad = [d for d in exc.value.diagnostics if d.code == "N003"]
+    assert bad and bad[0].span.start.line == 2 and bad[0].file == str(model)

@@ -219,3 +219,21 @@ def test_every_example_and_tutorial_step_loads_and_runs(model):
     assert r.ok, lines
     assert s.advance(0.05) == 25 and s.status()
     assert all(" = " in line or line.startswith("in ") for line in s.signals())
+
+
+def test_a_saved_edit_of_an_imported_bundle_file_shows(tmp_path):
+    """The process keeps its workspace between loads: a changed user bundle file must not be
+    answered from the old one (plx view and plx view --web reload what the model imports)."""
+    import shutil
+
+    shutil.copytree(Path(__file__).resolve().parents[2] / "examples" / "user_bundle", tmp_path / "ub")
+    s, _ = _session(tmp_path / "ub" / "cart_scene.openplx")
+    assert s.load().ok
+
+    def radii():
+        return {round(g.radius, 3) for b in s.sim.prepared.compiled.scene.bodies for g in b.geoms if g.radius}
+
+    assert radii() == {0.15}
+    _touch_edit(tmp_path / "ub" / "Parts" / "Wheels" / "SolidWheel.openplx", "radius is Real: 0.15", "radius is Real: 0.5")
+    r = s.poll()
+    assert r is not None and r.ok and radii() == {0.5}

@@ -36,6 +36,7 @@ const UI_TIMEOUT = 30_000;
 const started = Date.now();
 const secs = () => ((Date.now() - started) / 1000).toFixed(1);
 let page;
+let preview; // the frame of the 3D preview page
 let stepName = 'start';
 
 async function step(name, fn) {
@@ -259,6 +260,52 @@ async function main() {
       const lines = await renderedTokens();
       assert.ok(lines.some((l) => l.map((t) => t.text).join('').startsWith('RigidBody is ')), 'the bundle file shows its declaration');
       console.log(`      ${title}`);
+    });
+
+    await step('OpenPLX: Open 3D Preview draws truck.openplx beside the editor', async () => {
+      await page.keyboard.press('Control+P');
+      const input = page.locator('.quick-input-widget input');
+      await input.waitFor({ state: 'visible', timeout: UI_TIMEOUT });
+      await input.fill('truck.openplx');
+      await page.locator('.quick-input-list .monaco-list-row', { hasText: 'truck.openplx' }).first().waitFor({ timeout: UI_TIMEOUT });
+      await page.keyboard.press('Enter');
+      await waitFor('the truck.openplx tab', async () => (await activeTabName()) === 'truck.openplx');
+      await runCommand('OpenPLX: Open 3D Preview');
+      const frame = await waitFor('the preview page in a webview', async () =>
+        page.frames().find((f) => /[?&]t=[\w-]+/.test(f.url()) && f.url().startsWith('http')), SERVER_TIMEOUT);
+      console.log(`      the page: ${preview ? '' : frame.url().replace(/t=.*/, 't=...')}`);
+      preview = frame;
+      await waitFor('the truck drawn', () => frame.evaluate(() => window.plxPreview?.state.drawnGeneration >= 1).catch(() => false), SERVER_TIMEOUT);
+      const chassis = await frame.evaluate(() => plxPreview.state.scene.geoms.find((g) => g.path === 'box_truck.chassis.geometry').size[0]);
+      assert.equal(chassis, 1.65);
+      fs.mkdirSync(ARTIFACTS, { recursive: true });
+      await page.screenshot({ path: path.join(ARTIFACTS, 'preview.png') });
+    });
+
+    await step('typing in the editor (unsaved) changes the preview', async () => {
+      const gen = await preview.evaluate(() => plxPreview.state.drawnGeneration);
+      await goTo(52, 16); // in `x: 3.3` of the chassis' size
+      await page.keyboard.press('End');
+      await page.keyboard.press('Backspace');
+      await page.keyboard.press('Backspace');
+      await page.keyboard.press('Backspace');
+      await page.keyboard.type('5.0');
+      // each keystroke may give a scene of its own (x: 3, then x: 5...): wait for the last one, drawn
+      await waitFor('the 5 m chassis drawn', () => preview.evaluate((g) => plxPreview.state.drawnGeneration > g &&
+        plxPreview.state.scene.geoms.find((x) => x.path === 'box_truck.chassis.geometry').size[0] === 2.5, gen), SERVER_TIMEOUT);
+      assert.ok(fs.readFileSync(path.join(WORKSPACE, 'truck.openplx'), 'utf8').includes('x: 3.3'), 'the edit is not saved');
+    });
+
+    await step('a click on the chassis in the preview reveals its declaration in the editor', async () => {
+      const [x, y] = await preview.evaluate(() => plxPreview.screenOf('box_truck.chassis'));
+      const box = await (await preview.frameElement()).boundingBox();
+      await page.mouse.click(box.x + x, box.y + y);
+      await waitFor('the selection in the page', () => preview.evaluate(() => plxPreview.selectedPath() === 'box_truck.chassis'));
+      const line = fs.readFileSync(path.join(WORKSPACE, 'truck.openplx'), 'utf8').split('\n').indexOf('    chassis is Chassis:') + 1;
+      await waitFor(`the cursor at line ${line}`, async () =>
+        (await page.locator('#status\\.editor\\.selection').first().innerText().catch(() => '')).includes(`Ln ${line},`));
+      await page.screenshot({ path: path.join(ARTIFACTS, 'preview-selected.png') });
+      await page.keyboard.press('Control+Z'); // the edit above stays unsaved; undo it
     });
 
     assert.equal(fs.readFileSync(scene, 'utf8').includes('mas:'), false, 'the test does not save its edits');

@@ -110,6 +110,8 @@ Scene is Physics3D.System:
     chassis is Physics3D.Bodies.RigidBody:
         inertia.mass: 10
 EOF
+# the 3D preview step draws the BoxTruck example
+cp "$here/../examples/boxtruck/boxtruck.openplx" "$tmp/workspace/truck.openplx"
 server_setting=""
 if [[ "${E2E_SERVER_SETTING:-}" == "1" ]]; then
   server_setting="\"openplx.server.path\": \"$plx\","

@@ -7,6 +7,7 @@ import {
   type ServerOptions,
   TransportKind,
 } from 'vscode-languageclient/node';
+import { disposePreview, openPreview } from './preview';
 import { activePythonInterpreter, onPythonInterpreterChanged } from './python';
 import { discoverPlx, type DiscoveryResult, type PlxInvocation } from './serverDiscovery';
 import { checkArgs, type LaunchSettings, plxCommand, serverLaunch, viewArgs } from './serverLaunch';
@@ -303,6 +304,9 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     vscode.commands.registerCommand('openplx.checkScene', (uri?: vscode.Uri) => runCheck(false, uri)),
     vscode.commands.registerCommand('openplx.simulateScene', (uri?: vscode.Uri) => runCheck(true, uri)),
     vscode.commands.registerCommand('openplx.viewScene', (uri?: vscode.Uri) => runView(uri)),
+    vscode.commands.registerCommand('openplx.openPreview', (uri?: vscode.Uri) =>
+      openPreview({ plx: plxForCheck, settings: launchSettings, log }, uri)),
+    { dispose: disposePreview },
     vscode.tasks.registerTaskProvider(TASK_TYPE, taskProvider),
     vscode.workspace.onDidChangeConfiguration((e) => {
       if (RESTART_SETTINGS.some((s) => e.affectsConfiguration(s))) {

@@ -92,6 +92,7 @@ describe('manifest and language configuration', () => {
       'OpenPLX: Check this scene',
       'OpenPLX: Check and simulate this scene',
       'OpenPLX: View scene',
+      'OpenPLX: Open 3D Preview',
     ]);
     assert.deepEqual(Object.keys(pkg.contributes.configuration.properties).sort(), [
       'openplx.bundlePath',

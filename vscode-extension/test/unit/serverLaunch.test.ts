@@ -83,7 +83,7 @@ describe('check commands', () => {
 
 describe('module boundaries', () => {
   it('discovery and launch code do not import vscode (they run under plain Node)', () => {
-    for (const name of ['serverDiscovery.ts', 'serverLaunch.ts']) {
+    for (const name of ['serverDiscovery.ts', 'serverLaunch.ts', 'previewClient.ts']) {
       const source = fs.readFileSync(path.join(__dirname, '..', '..', '..', 'src', name), 'utf8');
       assert.ok(!/from ['"]vscode['"]|require\(['"]vscode['"]\)/.test(source), `${name} imports vscode`);
     }
