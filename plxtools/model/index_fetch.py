@@ -200,6 +200,7 @@ def download(project: str, version: str, folder: Path, *, timeout: float = 15.0,
     partial = folder / f".{target.name}.{os.getpid()}.part"
     folder.mkdir(parents=True, exist_ok=True)
     digest = hashlib.sha256()
+    done = 0
     try:
         with open(partial, "wb") as out:
             for chunk, total, done in _chunks(url, timeout):
@@ -207,6 +208,8 @@ def download(project: str, version: str, folder: Path, *, timeout: float = 15.0,
                 digest.update(chunk)
                 if progress is not None:
                     progress(done, total)
+        if progress is not None:
+            progress(done, done)  # complete: a bar of unknown size closes too
         if expected is not None and digest.hexdigest() != expected:
             raise FetchError(f"{target.name} from {url} does not match the index's sha256 (a broken download?)")
         os.replace(partial, target)

@@ -246,9 +246,12 @@ def _pip_download(version: str) -> Path:
     cmd = [sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:", "--disable-pip-version-check",
            "--no-input", "--timeout", os.environ.get("PLX_PIP_TIMEOUT", "15"), "--retries", "1",
            "-d", str(tmp), f"{PACKAGE}=={version}"]
+    from plxtools.progress import Bar
+
     try:
         try:
-            proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+            with Bar(None, f"fetching {PACKAGE} {version} with pip", unit="bytes"):
+                proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
         except (OSError, subprocess.TimeoutExpired) as exc:
             raise BundleSetError(f"cannot run pip to fetch {PACKAGE} {version}: {exc}") from None
         wheels = sorted(tmp.glob("openplx_bundles-*.whl"))

@@ -38,10 +38,11 @@ Scene is Physics3D.System:
 BAR = re.compile(r"\x1b\[|━|\d+/\d+")  # escape sequences, bar segments, "1/2"
 
 
-def _run(args, cwd: Path, *, terminal: str, delay: str = "0") -> tuple[int, str, str]:
+def _run(args, cwd: Path, *, terminal: str, delay: str = "0", python: tuple = ("-m", "plxtools"),
+         env: dict | None = None) -> tuple[int, str, str]:
     """(exit code, stdout, what the terminal got); terminal: "none", "stderr" or "both"."""
-    cmd = [sys.executable, "-m", "plxtools", *args]
-    env = {**os.environ, "PLX_PROGRESS_DELAY": delay, "COLUMNS": "100", "TERM": "xterm"}
+    cmd = [sys.executable, *python, *args]
+    env = {**os.environ, **(env or {}), "PLX_PROGRESS_DELAY": delay, "COLUMNS": "100", "TERM": "xterm"}
     for k in ("PLX_NO_PROGRESS", "NO_COLOR", "FORCE_COLOR"):
         env.pop(k, None)
     if terminal == "none":
@@ -122,3 +123,16 @@ def test_plx_test_draws_a_bar_on_a_terminal(project):
     code, out, term = _run(["test", "."], project, terminal="stderr")
     assert code == 0 and "2 passed" in out, out
     assert "plx test" in term and re.search(r"[12]/2", term), repr(term[-2000:])
+
+
+def test_bundles_install_draws_a_download_bar_on_a_terminal(tmp_path):
+    from tests.bundles.test_fetch_without_pip import NO_PIP, VERSION, _index
+
+    index = _index(tmp_path)
+    env = {"PIP_CONFIG_FILE": os.devnull, "PIP_INDEX_URL": index.as_uri() + "/", "PLX_CACHE_DIR": str(tmp_path / "c")}
+    code, out, term = _run(["bundles", "install", VERSION], tmp_path, terminal="stderr", python=("-c", NO_PIP), env=env)
+    assert code == 0 and out.startswith(f"openplx-bundles {VERSION}: "), (out, term)
+    assert f"downloading openplx-bundles {VERSION}" in term, repr(term)
+    code, out, term = _run(["bundles", "install", "--force", VERSION], tmp_path, terminal="none",
+                           python=("-c", NO_PIP), env=env)
+    assert code == 0 and term == "", repr(term)
