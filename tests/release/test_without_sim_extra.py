@@ -105,3 +105,12 @@ def test_the_language_server_starts_and_formats_without_numpy_and_mujoco(project
     edits = replies[2]["result"]
     assert edits and any("    inertia.mass: 20" in e["newText"] for e in edits), edits
     assert replies[3]["result"] is None
+
+
+def test_the_pytest_plugin_names_the_extra_for_scenario_files(project):
+    code = BLOCK + "import pytest; sys.exit(pytest.main(['-q', '-p', 'no:cacheprovider', 'drop.scenario.toml']))\n"
+    r = subprocess.run([sys.executable, "-c", code], cwd=project, capture_output=True, text=True, timeout=120,
+                       env={**os.environ, "PYTEST_ADDOPTS": ""})
+    assert r.returncode == 1, r.stdout + r.stderr
+    assert "scenario files need numpy and mujoco, not installed: pip install 'plxtools[sim]'" in r.stdout, r.stdout
+    assert "Traceback" not in r.stdout and "During handling" not in r.stdout
