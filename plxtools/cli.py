@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import sys
 
-from plxtools import __version__
+from plxtools import DOCS_BASE_URL, __version__
 
 OUTPUT_FORMATS = ("text", "json", "github", "sarif")
 
@@ -88,7 +88,7 @@ def _add_check(sub) -> None:
     p.add_argument("--render", metavar="FILE.png", help="save a picture of the assembled scene (offscreen)")
     p.add_argument("--export-mjcf", metavar="FILE.xml", help="write the compiled MuJoCo model")
     p.add_argument("--video", metavar="FILE.gif|FILE.mp4",
-                   help="with --simulate, record the run offscreen, the camera following the bodies (docs/view.md)")
+                   help=f"with --simulate, record the run offscreen, the camera following the bodies ({DOCS_BASE_URL}view/)")
     p.add_argument("--fps", type=float, default=25.0, metavar="N", help="frames per simulated second of --video (default 25)")
     p.add_argument("--trace", metavar="FILE.csv",
                    help="write the simulated motion (every body's pose and velocity, every mate's coordinate, "
@@ -137,8 +137,8 @@ def _add_view(sub) -> None:
                        "viewer. Saving the file (or anything it read) reloads it in the open window; 1 or F5 "
                        "reloads, E plays or pauses, G shows collision geometry instead of the visuals, R resets. "
                        "--web serves the same live scene to a browser page instead, linked to the editor. "
-                       "A file that does not load is reported and watched until it does. Keys and set-up: "
-                       "docs/view.md.")
+                       f"A file that does not load is reported and watched until it does. Keys and set-up: "
+                       f"{DOCS_BASE_URL}view/")
     p.add_argument("path", metavar="FILE", help="the .openplx file")
     p.add_argument("--model", metavar="NAME", help="the model to show alone (default: the last model in the file)")
     p.add_argument("-p", "--paused", action="store_true", help="start paused (E plays)")
@@ -195,7 +195,7 @@ def _add_lsp(sub) -> None:
 
 
 def _add_cache(sub) -> None:
-    p = sub.add_parser("cache", help="show or empty plx's cache (docs/caching.md)",
+    p = sub.add_parser("cache", help=f"show or empty plx's cache ({DOCS_BASE_URL}caching/)",
                        description="plx's cache: 'dir' prints its folder, 'info' what it holds, 'clean' empties it.")
     p.add_argument("action", choices=("dir", "info", "clean"))
     p.set_defaults(func=_run_cache)
@@ -309,7 +309,7 @@ def build_parser(only: str | None = None):
         prog="plx",
         description="plxtools: lint, format, check and simulate OpenPLX models, and an editor language server.",
         epilog="Run 'plx COMMAND --help' for a command's options and 'plx rule CODE' to explain a diagnostic. "
-        "Docs: docs/getting-started.md in the plxtools repository.",
+        f"Docs: {DOCS_BASE_URL}",
     )
     parser.add_argument("--version", action="version", version=f"plx {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
@@ -367,23 +367,57 @@ def _run_fmt(args) -> int:
     return run_fmt(args)
 
 
+# The `sim` extra (pyproject.toml): what `plx check`, `plx test` and `plx view` compute with. A plain
+# `pip install plxtools` has lint, fmt and the language server only.
+SIM_EXTRA = "pip install 'plxtools[sim]'"
+
+
+def _missing_sim(command: str, modules: tuple[str, ...]) -> int | None:
+    """Exit status 2 with the extra to install when one of `modules` is not installed (looked up
+    without importing it), else None."""
+    from importlib.util import find_spec
+
+    missing = []
+    for name in modules:
+        try:
+            if find_spec(name) is None:
+                missing.append(name)
+        except (ImportError, ValueError):  # a broken or half-removed install
+            missing.append(name)
+    if not missing:
+        return None
+    print(f"plx {command}: needs {' and '.join(missing)}, which {'is' if len(missing) == 1 else 'are'} not "
+          f"installed: this command comes with the simulation extra, {SIM_EXTRA}", file=sys.stderr)
+    return 2
+
+
 def _run_check(args) -> int:
     if getattr(args, "show_settings", False):
         from plxtools.bundles_cli import show_settings
 
         return show_settings("check", args)
+    backend = args.simulate or args.render or args.export_mjcf or args.video or args.trace
+    missing = _missing_sim("check", ("numpy", "mujoco") if backend else ("numpy",))
+    if missing is not None:
+        return missing
     from plxtools.check.cli import run_check
 
     return run_check(args)
 
 
 def _run_view(args) -> int:
+    missing = _missing_sim("view", ("numpy", "mujoco"))
+    if missing is not None:
+        return missing
     from plxtools.view.command import run_view
 
     return run_view(args)
 
 
 def _run_test(args) -> int:
+    missing = _missing_sim("test", ("numpy", "mujoco"))
+    if missing is not None:
+        return missing
     from plxtools.check.testrun import run_test
 
     return run_test(args)
@@ -421,14 +455,24 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     except BrokenPipeError:
         return 0
-    except Exception as exc:  # an internal error: say so plainly, never a bare traceback
-        import traceback
-
-        print(f"plx {args.command}: internal error: {type(exc).__name__}: {exc}", file=sys.stderr)
-        print("This is a bug in plxtools; please report it with the input that caused it.", file=sys.stderr)
-        if __import__("os").environ.get("PLX_DEBUG"):
-            traceback.print_exc()
+    except ImportError as exc:
+        if (exc.name or "").split(".")[0] not in ("numpy", "mujoco"):
+            return _internal_error(args, exc)
+        print(f"plx {args.command}: needs {exc.name}, which is not installed: {SIM_EXTRA}", file=sys.stderr)
         return 2
+    except Exception as exc:
+        return _internal_error(args, exc)
+
+
+def _internal_error(args, exc: BaseException) -> int:
+    """An internal error: said plainly, never a bare traceback (PLX_DEBUG=1 prints it)."""
+    import traceback
+
+    print(f"plx {args.command}: internal error: {type(exc).__name__}: {exc}", file=sys.stderr)
+    print("This is a bug in plxtools; please report it with the input that caused it.", file=sys.stderr)
+    if __import__("os").environ.get("PLX_DEBUG"):
+        traceback.print_exc()
+    return 2
 
 
 def entry() -> None:

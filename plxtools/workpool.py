@@ -47,12 +47,15 @@ def can_fork() -> bool:
 
 def map_ordered(fn: Callable[[T], R], items: Sequence[T], *, workers: int,
                 on_death: Callable[[T, str], R] | None = None, chunks_per_worker: int = 4,
-                meanwhile: Callable[[], object] | None = None) -> list[R]:
+                meanwhile: Callable[[], object] | None = None,
+                on_result: Callable[[int, R], object] | None = None) -> list[R]:
     """``[fn(x) for x in items]`` computed by ``workers`` forked processes.
 
     ``fn`` and ``items`` are inherited by the fork (neither needs to pickle); each result is pickled
     back.  An exception raised by ``fn`` is raised here, as in the serial loop.  ``meanwhile`` is
-    called in this process once the workers are started (work of its own that overlaps theirs)."""
+    called in this process once the workers are started (work of its own that overlaps theirs).
+    ``on_result(i, result)`` is called here as results come in, in order (the items of a worker that
+    died, once they are done again, at the end)."""
     global _TASK
     if not items:
         return []
@@ -62,19 +65,21 @@ def map_ordered(fn: Callable[[T], R], items: Sequence[T], *, workers: int,
         per = max(1, -(-n // (workers * max(1, chunks_per_worker))))  # a few chunks per worker: an even finish
         chunks = [range(i, min(i + per, n)) for i in range(0, n, per)]
         results: list = [None] * n
-        failed = _run(chunks, min(workers, len(chunks)), results, meanwhile)
+        failed = _run(chunks, min(workers, len(chunks)), results, meanwhile, on_result)
         for i in failed:  # their worker died: once more, one at a time, alone in a fresh worker
             if _run([range(i, i + 1)], 1, results):
                 why = "the worker process died (killed, or a crash in a native library)"
                 if on_death is None:
                     raise RuntimeError(f"item {i}: {why}")
                 results[i] = on_death(items[i], why)
+            if on_result is not None:
+                on_result(i, results[i])
         return results
     finally:
         _TASK = None
 
 
-def _run(chunks: list[range], workers: int, results: list, meanwhile=None) -> list[int]:
+def _run(chunks: list[range], workers: int, results: list, meanwhile=None, on_result=None) -> list[int]:
     """Run the chunks into ``results``; the indices of the items whose worker died."""
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
@@ -104,6 +109,10 @@ def _run(chunks: list[range], workers: int, results: list, meanwhile=None) -> li
                 results[c.start:c.stop] = fut.result()
             except BrokenProcessPool:
                 died.extend(c)
+                continue
+            if on_result is not None:
+                for i in c:
+                    on_result(i, results[i])
     except BaseException:  # Ctrl-C, or an exception of fn or meanwhile: no worker outlives the command
         _terminate(pool)
         raise

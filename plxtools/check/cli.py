@@ -45,13 +45,23 @@ def run_check(args) -> int:
         run = _Run(workspace, args.model, bool(args.simulate or args.render or args.export_mjcf),
                    bool(args.simulate), args.duration, bool(getattr(args, "trace", None)), timeout,
                    getattr(args, "integrator", None), getattr(args, "timestep", None))
-        results, status = _check_files(files, args, run)
+        from plxtools.progress import Bar
+
+        with Bar(len(files), "check --simulate" if run.simulate else "check",
+                 output_format=args.output_format) as bar:
+            report = _Streamed(args) if bar.on and _stdout_is_terminal() else None
+            results, status = _check_files(files, args, run, bar, report)
     except _UsageError as exc:
         print(f"plx check: {exc}", file=sys.stderr)
         return 2
     status = max(status, _artefacts(args, results))
     diags = [d for fc in results for d in fc.diagnostics]
-    _report(args, results, diags)
+    if report is not None:
+        from plxtools.check.output import render_summary
+
+        render_summary(results, diags, sys.stdout)
+    else:
+        _report(args, results, diags)
     if status:
         return status
     has_error = any(d.severity == Severity.ERROR for d in diags)
@@ -107,24 +117,50 @@ def _inputs(args) -> tuple[list[Path], Any]:
     return files, workspace
 
 
-def _check_files(files: list[Path], args, run: "_Run") -> tuple[list, int]:
+def _stdout_is_terminal() -> bool:
+    try:
+        return sys.stdout.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
+class _Streamed:
+    """On a terminal, each file's text report is printed as soon as the file is done (the summary
+    of all of them at the end)."""
+
+    def __init__(self, args):
+        self.simulate = bool(args.simulate)
+
+    def __call__(self, fc) -> None:
+        from plxtools.check.output import render_text
+
+        render_text([fc], list(fc.diagnostics), sys.stdout, simulate=self.simulate, summary=False)
+        sys.stdout.flush()
+
+
+def _check_files(files: list[Path], args, run: "_Run", bar=None, report=None) -> tuple[list, int]:
     """Every file's FileCheck, in order, by the pool of workers or one by one here; their messages
-    go to stderr as each comes.  A file's broken configuration stops the run (_UsageError)."""
+    go to stderr as each comes (and, with `report`, each file's report).  A file's broken
+    configuration stops the run (_UsageError)."""
     from plxtools.config import ConfigError, config_for
 
-    parallel = _in_parallel(files, args, run)
+    def done(entry: tuple, index: int) -> None:
+        _say(entry[1])
+        if report is not None:
+            report(entry[0])
+        if bar is not None:
+            bar.advance(files[index + 1].name if index + 1 < len(files) else "")
+
+    parallel = _in_parallel(files, args, run, done)
     if parallel is None:
         parallel = []
-        for f in files:
+        for i, f in enumerate(files):
             try:
                 cfg = config_for(f)
             except ConfigError as exc:
                 raise _UsageError(str(exc)) from None
             parallel.append(_check_one((f, cfg), run))
-            _say(parallel[-1][1])
-    else:
-        for _fc, messages, _st in parallel:
-            _say(messages)
+            done(parallel[-1], i)
     return [fc for fc, _m, _st in parallel], max((st for _fc, _m, st in parallel), default=0)
 
 
@@ -233,7 +269,7 @@ def _workers(args, files: list[Path], run: _Run) -> int:
     return min(workpool.cores(), len(files) - 1)
 
 
-def _in_parallel(files: list[Path], args, run: _Run) -> list | None:
+def _in_parallel(files: list[Path], args, run: _Run, done=None) -> list | None:
     """Every file's (FileCheck, messages, status) in file order, computed by a pool of workers, or
     None when the serial loop is to do it (too little work, an artefact to write, a broken config:
     the loop then reports it where a serial run does)."""
@@ -267,9 +303,16 @@ def _in_parallel(files: list[Path], args, run: _Run) -> list | None:
                 import plxtools.check.mujoco.backend  # noqa: F401
             except ImportError:  # reported per file, as in the serial loop
                 pass
+
+        def meanwhile() -> None:
+            first.append(_check_one(items[0], run, fc))
+            if done is not None:
+                done(first[0], 0)
+
         rest = workpool.map_ordered(_pool_item, items[1:], workers=workers,
                                     on_death=lambda item, why: _internal_error(item[0], why, why),
-                                    meanwhile=lambda: first.append(_check_one(items[0], run, fc)))
+                                    meanwhile=meanwhile,
+                                    on_result=None if done is None else lambda i, entry: done(entry, i + 1))
     finally:
         _RUN = None
     return [*first, *rest]

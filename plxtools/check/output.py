@@ -203,7 +203,10 @@ def _energy_gained(s) -> bool:
     return any(n.code == ENERGY_GAIN for n in s.notes)
 
 
-def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO, *, simulate: bool) -> None:
+def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO, *, simulate: bool,
+                summary: bool = True) -> None:
+    """The text report; `summary=False` leaves out the closing line (a file reported as soon as it is
+    done, the summary of all files printed at the end by render_summary)."""
     from plxtools.rules.reporters import render_text as lint_text
 
     rich = _use_rich(stream)
@@ -223,6 +226,16 @@ def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextI
         _line(stream, console, assembly_line(fc), "bold")
         if simulate:
             _render_simulation(fc, stream, console)
+    if summary:
+        render_summary(results, diags, stream)
+
+
+def render_summary(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO) -> None:
+    console = None
+    if _use_rich(stream):
+        from rich.console import Console
+
+        console = Console(file=stream, highlight=False, soft_wrap=True)
     if diags or results:
         stream.write("\n") if console is None else console.print()
     summary = _summary_text(results, diags)

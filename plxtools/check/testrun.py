@@ -339,25 +339,30 @@ def run_test(args) -> int:
     if not files:
         print(f"plx test: no scenario files (*.scenario.toml) under {' '.join(args.paths)}", file=sys.stderr)
         return 2
+    from plxtools.progress import Bar
+
     t0 = time.perf_counter()
     results = []
     status = 0
-    for f in files:
-        try:
-            results.append(run_scenario(f, bundle_path=args.bundle_path, openplx_version=args.openplx_version))
-        except Exception as exc:  # a bug in plxtools: say so, go on with the other files
-            import os
-            import traceback
+    with Bar(len(files), "plx test", output_format=args.output_format) as bar:
+        for f in files:
+            bar.advance(f.name, by=0)
+            try:
+                results.append(run_scenario(f, bundle_path=args.bundle_path, openplx_version=args.openplx_version))
+            except Exception as exc:  # a bug in plxtools: say so, go on with the other files
+                import os
+                import traceback
 
-            from plxtools import runmode
+                from plxtools import runmode
 
-            if runmode.interrupted():  # Ctrl-C, turned into another error by native code (MuJoCo)
-                raise KeyboardInterrupt from exc
+                if runmode.interrupted():  # Ctrl-C, turned into another error by native code (MuJoCo)
+                    raise KeyboardInterrupt from exc
 
-            print(f"plx test: internal error while running {f}: {type(exc).__name__}: {exc}", file=sys.stderr)
-            if os.environ.get("PLX_DEBUG"):
-                traceback.print_exc()
-            status = 2
+                print(f"plx test: internal error while running {f}: {type(exc).__name__}: {exc}", file=sys.stderr)
+                if os.environ.get("PLX_DEBUG"):
+                    traceback.print_exc()
+                status = 2
+            bar.advance()
     render(results, args.output_format, sys.stdout, time.perf_counter() - t0)
     c = _counts(results)
     if c[ERROR]:

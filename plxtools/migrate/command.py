@@ -65,9 +65,14 @@ def run_migrate(args) -> int:
         _say(f"plx migrate: {exc}")
         return 2
     tally = _Tally()
+    from plxtools.progress import Bar
+
     try:
-        for f in files:
-            _migrate_file(f, args, setup, tally)
+        with Bar(len(files), "plx migrate") as bar:
+            for f in files:
+                bar.advance(f.name, by=0)
+                _migrate_file(f, args, setup, tally)
+                bar.advance()
     except _Failed as exc:
         _say(f"plx migrate: {exc}")
         return 2

@@ -197,6 +197,43 @@ def install(version: str, force: bool = False) -> Path:
 
 
 def _download(version: str) -> Path:
+    """The wheel, by `python -m pip download` where this interpreter has pip (it knows every way pip
+    is configured), else from the configured index over HTTP (pipx, uv tool and uv venvs have no pip)."""
+    from importlib.util import find_spec
+
+    try:
+        has_pip = find_spec("pip") is not None
+    except (ImportError, ValueError):
+        has_pip = False
+    if has_pip and not os.environ.get("PLX_FETCH_WITHOUT_PIP"):
+        return _pip_download(version)
+    return _index_download(version)
+
+
+def _index_download(version: str) -> Path:
+    from plxtools.model import index_fetch
+
+    try:
+        return index_fetch.download(PACKAGE, version, _wheel_dir(),
+                                    timeout=float(os.environ.get("PLX_PIP_TIMEOUT", "15")),
+                                    progress=_progress_for(f"{PACKAGE} {version}"))
+    except index_fetch.FetchError as exc:
+        if exc.network:
+            raise BundleSetError(f"cannot fetch {PACKAGE} {version}: {exc}; install it once with network "
+                                 f"('plx bundles install {version}') or use --bundle-path") from None
+        raise BundleSetError(str(exc)) from None
+    except OSError as exc:
+        raise BundleSetError(f"cannot fetch {PACKAGE} {version}: {exc}") from None
+
+
+def _progress_for(label: str):
+    """A download progress bar on stderr (a terminal only), or None."""
+    from plxtools import progress
+
+    return progress.bytes_callback(label)
+
+
+def _pip_download(version: str) -> Path:
     import shutil
     import subprocess
 
@@ -209,9 +246,12 @@ def _download(version: str) -> Path:
     cmd = [sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:", "--disable-pip-version-check",
            "--no-input", "--timeout", os.environ.get("PLX_PIP_TIMEOUT", "15"), "--retries", "1",
            "-d", str(tmp), f"{PACKAGE}=={version}"]
+    from plxtools.progress import Bar
+
     try:
         try:
-            proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+            with Bar(None, f"fetching {PACKAGE} {version} with pip", unit="bytes"):
+                proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
         except (OSError, subprocess.TimeoutExpired) as exc:
             raise BundleSetError(f"cannot run pip to fetch {PACKAGE} {version}: {exc}") from None
         wheels = sorted(tmp.glob("openplx_bundles-*.whl"))

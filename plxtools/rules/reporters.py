@@ -140,18 +140,11 @@ def render_github(diags: list[Diagnostic], stream: TextIO) -> None:
         stream.write(f"::{level[d.severity]} {props}::{_gh_escape(d.code + ' ' + msg)}\n")
 
 
-def sarif_document(diags: list[Diagnostic], rules: Iterable[tuple[str, str, str]] = ()) -> dict:
-    """SARIF 2.1.0. `rules` gives (code, name, short description) for the codes that appear."""
+def sarif_document(diags: list[Diagnostic], rules: Iterable = ()) -> dict:
+    """SARIF 2.1.0. `rules` gives the rules (plxtools.rules.registry.Rule) of the codes that appear:
+    GitHub code scanning shows an alert's rule text from fullDescription and help."""
     level = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
-    rule_list = [
-        {
-            "id": code,
-            "name": name,
-            "shortDescription": {"text": desc},
-            "helpUri": DOCS_URL.format(code=code),
-        }
-        for code, name, desc in rules
-    ]
+    rule_list = [sarif_rule(r) for r in rules]
     results = []
     root = Path.cwd().resolve()
     for d in diags:
@@ -195,6 +188,21 @@ def sarif_document(diags: list[Diagnostic], rules: Iterable[tuple[str, str, str]
     }
 
 
+def sarif_rule(r) -> dict:
+    """A SARIF reportingDescriptor: the rule's summary, why it matters, its page as help, its docs URL."""
+    page = r.page()
+    return {
+        "id": r.code,
+        "name": r.name,
+        "shortDescription": {"text": r.summary},
+        "fullDescription": {"text": f"{r.summary} {r.why}".strip()},
+        "help": {"text": page, "markdown": page},
+        "helpUri": DOCS_URL.format(code=r.code),
+        "defaultConfiguration": {"level": {"error": "error", "warning": "warning"}.get(r.severity.value, "note")},
+        "properties": {"tags": [r.stage]},
+    }
+
+
 def _artifact_location(file: str, root: Path) -> dict:
     """A percent-encoded URI relative to %SRCROOT% (the current folder), or a file:// URI for a
     file outside it: SARIF viewers resolve either, whatever the path's spaces, '#' or accents."""
@@ -214,11 +222,12 @@ def render(diags: list[Diagnostic], fmt: str, stream: TextIO | None = None, *,
     elif fmt == "github":
         render_github(diags, stream)
     elif fmt == "sarif":
-        from plxtools.rules.registry import describe_codes
-
         import json
 
-        json.dump(sarif_document(diags, describe_codes({d.code for d in diags})), stream, indent=2)
+        from plxtools.rules.registry import get
+
+        rules = [r for r in (get(c) for c in sorted({d.code for d in diags})) if r is not None]
+        json.dump(sarif_document(diags, rules), stream, indent=2)
         stream.write("\n")
     else:
         render_text(diags, stream, files_checked=files_checked)

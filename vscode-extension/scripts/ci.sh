@@ -31,6 +31,15 @@ node scripts/build.mjs
 step "grammar tests (vscode-tmgrammar-test)"
 npx --no-install vscode-tmgrammar-test -g syntaxes/openplx.tmLanguage.json 'test/grammar/*.openplx'
 
+step "bundle the plxtools wheel (server/): what \"OpenPLX: Install plxtools\" installs until plxtools is on PyPI"
+rm -rf server && mkdir server
+builder="python3"
+if [[ -n "${PLX_SERVER_PATH:-}" && -x "$(dirname "$PLX_SERVER_PATH")/python" ]]; then
+  builder="$(dirname "$PLX_SERVER_PATH")/python"
+fi
+"$builder" -m pip wheel -q --no-deps -w server ..
+ls server/plxtools-*.whl
+
 step "unit tests (mocha)"
 if [[ -z "${OPENPLX_BUNDLES_DIR:-}" && -n "${PLX_SERVER_PATH:-}" ]]; then
   python="$(dirname "$PLX_SERVER_PATH")/python"
@@ -56,7 +65,8 @@ if grep -E '^(src|test|e2e|scripts|node_modules|out)/|\.map$|\.ts$' <<<"$files";
   echo "error: the files above must not be packaged (see .vscodeignore)" >&2
   exit 1
 fi
-for required in dist/extension.js syntaxes/openplx.tmLanguage.json language-configuration.json images/icon.png LICENSE README.md; do
+wheel="$(cd server && ls plxtools-*.whl)"
+for required in dist/extension.js syntaxes/openplx.tmLanguage.json language-configuration.json images/icon.png LICENSE README.md "server/$wheel"; do
   grep -qx "$required" <<<"$files" || { echo "error: $required is missing from the package" >&2; exit 1; }
 done
 npx --no-install vsce package --no-dependencies --allow-missing-repository -o openplx-vscode.vsix

@@ -10,6 +10,7 @@ import {
 import { disposePreview, openPreview } from './preview';
 import { activePythonInterpreter, onPythonInterpreterChanged } from './python';
 import { discoverPlx, type DiscoveryResult, type PlxInvocation } from './serverDiscovery';
+import { installRequirementOf, runInstall } from './install';
 import { checkArgs, type LaunchSettings, plxCommand, serverLaunch, viewArgs } from './serverLaunch';
 
 const LANGUAGE_ID = 'openplx';
@@ -33,6 +34,8 @@ let restartTimer: NodeJS.Timeout | undefined;
 let pythonListener: vscode.Disposable | undefined;
 /** Tells the server about .openplx files changed on disk (one watcher shared by all restarts). */
 let fileWatcher: vscode.FileSystemWatcher;
+/** Where the extension is installed (its bundled plxtools wheel is in `server/`). */
+let extensionPath = '';
 
 function workspaceFolder(resource?: vscode.Uri): string | undefined {
   const folder = resource ? vscode.workspace.getWorkspaceFolder(resource) : undefined;
@@ -57,6 +60,7 @@ async function discover(resource?: vscode.Uri): Promise<DiscoveryResult> {
     pythonExtensionInterpreter: () => activePythonInterpreter(resource),
     env: process.env,
     workspaceFolder: workspaceFolder(resource),
+    installRequirement: installRequirementOf(extensionPath),
   });
   for (const attempt of result.attempts) {
     log.info(`discovery [${attempt.source}] ${attempt.candidate}: ${attempt.outcome}`);
@@ -84,8 +88,10 @@ async function startServer(): Promise<void> {
     invocation = undefined;
     log.error(result.message);
     setStatus('plx not found', 'OpenPLX language server', vscode.LanguageStatusSeverity.Error);
-    void vscode.window.showErrorMessage(result.message, 'Open Settings', 'Show Log').then((choice) => {
-      if (choice === 'Open Settings') {
+    void vscode.window.showErrorMessage(result.message, 'Install plxtools', 'Open Settings', 'Show Log').then((choice) => {
+      if (choice === 'Install plxtools') {
+        void vscode.commands.executeCommand('openplx.installServer');
+      } else if (choice === 'Open Settings') {
         void vscode.commands.executeCommand('workbench.action.openSettings', 'openplx.');
       } else if (choice === 'Show Log') {
         log.show();
@@ -288,6 +294,7 @@ const taskProvider: vscode.TaskProvider = {
 };
 
 export async function activate(context: vscode.ExtensionContext): Promise<void> {
+  extensionPath = context.extensionPath;
   log = vscode.window.createOutputChannel('OpenPLX', { log: true });
   fileWatcher = vscode.workspace.createFileSystemWatcher('**/*.openplx');
   status = vscode.languages.createLanguageStatusItem('openplx.server', { language: LANGUAGE_ID });
@@ -301,6 +308,8 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     fileWatcher,
     vscode.commands.registerCommand('openplx.restartServer', () => restart()),
     vscode.commands.registerCommand('openplx.showServerLog', () => log.show()),
+    vscode.commands.registerCommand('openplx.installServer', () =>
+      runInstall(extensionPath, workspaceFolder(vscode.window.activeTextEditor?.document.uri), log, () => restart())),
     vscode.commands.registerCommand('openplx.checkScene', (uri?: vscode.Uri) => runCheck(false, uri)),
     vscode.commands.registerCommand('openplx.simulateScene', (uri?: vscode.Uri) => runCheck(true, uri)),
     vscode.commands.registerCommand('openplx.viewScene', (uri?: vscode.Uri) => runView(uri)),

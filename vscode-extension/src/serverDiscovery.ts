@@ -10,23 +10,114 @@
  *  2. `openplx.interpreter`: a Python interpreter. Use `plx` from that interpreter's scripts folder,
  *     else `<python> -m plxtools` when the package is importable there. Explicit, so no fallback.
  *  3. The Python extension's active interpreter (same two checks). Implicit: on failure, go on.
- *  4. `plx` on the PATH the editor was started with: the environment the extension host's parent
+ *  4. A virtual environment in the workspace: `.venv`, `venv`, `env` (`bin/plx`, `Scripts\plx.exe`).
+ *     The project's own environment wins over a `plx` installed globally, as ruff's extension does.
+ *  5. `plx` on the PATH the editor was started with: the environment the extension host's parent
  *     process (the code-server or VS Code server process) was started with, read from
  *     `/proc/<ppid>/environ` (Linux only). A VS Code server (code-server, Remote-SSH) replaces the
  *     extension host's PATH with the login shell's, so without this step the PATH of the shell that
  *     started code-server (say, with a virtual environment activated) is never searched.
  *     Skipped when it cannot be read or equals the extension host's PATH.
- *  5. `plx` on the PATH of the extension host process.
- *  6. `plx` on the PATH of the user's login shell (editors started from a desktop menu, or
+ *  6. `plx` on the PATH of the extension host process.
+ *  7. `plx` on the PATH of the user's login shell (editors started from a desktop menu, or
  *     code-server started by a service, may not have the shell's PATH). Not on Windows.
- *  7. A virtual environment in the workspace: `.venv`, `venv`, `env` (`bin/plx`, `Scripts\plx.exe`).
  */
 import * as fs from 'node:fs';
 import * as os from 'node:os';
 import * as path from 'node:path';
 import { execFile } from 'node:child_process';
 
-export const INSTALL_COMMAND = 'pip install plxtools';
+/**
+ * Whether `plxtools` is on PyPI under that name. Until it is, installing by name would fail, or
+ * install whatever someone else registered: the extension installs the wheel it carries instead
+ * (`server/plxtools-VERSION-py3-none-any.whl`, built from the same commit as the extension).
+ */
+export const PUBLISHED_ON_PYPI = false;
+
+/** The pip requirement for plxtools with its simulation extra (check and simulate need it). */
+export function installRequirement(bundledWheel: string | undefined): string | undefined {
+  if (bundledWheel) {
+    return `plxtools[sim] @ ${pathToFileUrl(bundledWheel)}`;
+  }
+  return PUBLISHED_ON_PYPI ? 'plxtools[sim]' : undefined;
+}
+
+function pathToFileUrl(p: string): string {
+  const forward = p.replace(/\\/g, '/');
+  return encodeURI(`file://${forward.startsWith('/') ? '' : '/'}${forward}`);
+}
+
+/** The wheel bundled in the extension (`<extension>/server/plxtools-*.whl`), or undefined. */
+export function findBundledWheel(extensionPath: string): string | undefined {
+  const dir = path.join(extensionPath, 'server');
+  try {
+    const wheel = fs.readdirSync(dir).filter((n) => /^plxtools-.*\.whl$/.test(n)).sort().pop();
+    return wheel ? path.join(dir, wheel) : undefined;
+  } catch {
+    return undefined;
+  }
+}
+
+/** The shell line that installs plxtools for `python` (`pip install ...` when no interpreter is known). */
+export function installCommandLine(requirement: string | undefined, python?: string): string {
+  const req = requirement ?? '<a plxtools wheel or checkout>';
+  const quoted = `"${req}"`;
+  return python ? `${quoteForShell(python)} -m pip install ${quoted}` : `pip install ${quoted}`;
+}
+
+/** How "OpenPLX: Install plxtools" installs: into which interpreter, creating a `.venv` first if needed. */
+export interface InstallPlan {
+  /** The interpreter pip runs in (created by the first step when `createVenv`). */
+  python: string;
+  /** `python3 -m venv <workspace>/.venv` first. */
+  createVenv?: { base: string; folder: string };
+  requirement: string;
+}
+
+/**
+ * Where to install: the workspace's existing virtual environment, else the Python extension's
+ * interpreter when it is a virtual environment, else a new `.venv` in the workspace (made with the
+ * Python extension's interpreter, else `python3`). Never a system interpreter: pip refuses those
+ * (PEP 668), and a global install would shadow nothing the workspace can see.
+ */
+export function planInstall(opts: {
+  requirement: string;
+  workspaceFolder?: string;
+  pythonExtensionInterpreter?: string;
+  platform?: NodeJS.Platform;
+}): InstallPlan | undefined {
+  const platform = opts.platform ?? process.platform;
+  const pythonIn = (venvDir: string) => platform === 'win32'
+    ? path.join(venvDir, 'Scripts', 'python.exe')
+    : path.join(venvDir, 'bin', 'python');
+  if (opts.workspaceFolder) {
+    for (const name of WORKSPACE_VENVS) {
+      const python = pythonIn(path.join(opts.workspaceFolder, name));
+      if (isExecutableFile(python, platform)) {
+        return { python, requirement: opts.requirement };
+      }
+    }
+  }
+  const ext = opts.pythonExtensionInterpreter;
+  if (ext && isVenvInterpreter(ext)) {
+    return { python: ext, requirement: opts.requirement };
+  }
+  if (!opts.workspaceFolder) {
+    return undefined;
+  }
+  const folder = path.join(opts.workspaceFolder, '.venv');
+  return {
+    python: pythonIn(folder),
+    createVenv: { base: ext ?? (platform === 'win32' ? 'python' : 'python3'), folder },
+    requirement: opts.requirement,
+  };
+}
+
+/** True when `python` belongs to a virtual environment (a `pyvenv.cfg` one or two folders up). */
+export function isVenvInterpreter(python: string): boolean {
+  const bin = path.dirname(python);
+  return [path.dirname(bin), bin].some((d) => fs.existsSync(path.join(d, 'pyvenv.cfg')));
+}
 
 export type PlxSource =
   | 'server.path'
@@ -76,6 +167,8 @@ export interface DiscoveryInput {
   startupPath?: () => Promise<string | undefined>;
   /** The PATH of the user's login shell (undefined when it cannot be read). Injectable for tests. */
   loginShellPath?: (env: Env) => Promise<string | undefined>;
+  /** What the "not found" message tells users to install (see {@link installRequirement}). */
+  installRequirement?: string;
 }
 
 /** Folders of a workspace where a virtual environment usually lives. */
@@ -280,14 +373,14 @@ function quoteForShell(p: string): string {
 }
 
 /** The "not found" message: what was tried, and how to install. */
-export function notFoundMessage(attempts: Attempt[], python?: string): string {
+export function notFoundMessage(attempts: Attempt[], python?: string, requirement?: string): string {
   const tried = attempts.length
     ? attempts.map((a) => `${a.candidate} [${a.source}]: ${a.outcome}`).join('; ')
     : 'nothing';
-  const install = python ? `${quoteForShell(python)} -m ${INSTALL_COMMAND}` : INSTALL_COMMAND;
   return (
     `The OpenPLX language server (plx) was not found. Tried: ${tried}. ` +
-    `Install it with \`${install}\` (in the Python environment you use for OpenPLX), ` +
+    'Run "OpenPLX: Install plxtools" (into the workspace\'s virtual environment), or install it yourself with ' +
+    `\`${installCommandLine(requirement, python)}\` (in the Python environment you use for OpenPLX), ` +
     'or set `openplx.server.path` to the plx executable, then run "OpenPLX: Restart server".'
   );
 }
@@ -327,7 +420,7 @@ export async function discoverPlx(input: DiscoveryInput): Promise<DiscoveryResul
       }
       attempts.push({ source: 'server.path', candidate: resolved, outcome: 'not found on PATH' });
     }
-    return { found: false, attempts, message: notFoundMessage(attempts) };
+    return { found: false, attempts, message: notFoundMessage(attempts, undefined, input.installRequirement) };
   }
 
   // 2. openplx.interpreter
@@ -339,7 +432,7 @@ export async function discoverPlx(input: DiscoveryInput): Promise<DiscoveryResul
     if (invocation) {
       return { found: true, attempts, invocation };
     }
-    return { found: false, attempts, message: notFoundMessage(attempts, python) };
+    return { found: false, attempts, message: notFoundMessage(attempts, python, input.installRequirement) };
   }
 
   // 3. The Python extension's active interpreter. Failing here is not final.
@@ -357,38 +450,7 @@ export async function discoverPlx(input: DiscoveryInput): Promise<DiscoveryResul
     }
   }
 
-  // 4. The PATH the editor was started with (before the extension host's own, which a VS Code
-  //    server sets to the login shell's PATH).
-  if (platform !== 'win32') {
-    const startupPath = await (input.startupPath ?? readStartupPath)();
-    if (startupPath && startupPath !== getEnv(input.env, 'PATH', platform)) {
-      const onStartupPath = findOnPath('plx', { ...input.env, PATH: startupPath }, platform);
-      if (onStartupPath) {
-        return plxFound(attempts, onStartupPath, 'startup-PATH', 'the PATH the editor was started with');
-      }
-      attempts.push({ source: 'startup-PATH', candidate: 'plx on the PATH the editor was started with', outcome: 'not found' });
-    }
-  }
-
-  // 5. The extension host's PATH
-  const onPath = findOnPath('plx', input.env, platform);
-  if (onPath) {
-    return plxFound(attempts, onPath, 'PATH', 'PATH');
-  }
-  attempts.push({ source: 'PATH', candidate: 'plx on PATH', outcome: 'not found' });
-
-  // 6. The login shell's PATH
-  if (platform !== 'win32') {
-    const shellPath = await (input.loginShellPath ?? readLoginShellPath)(input.env);
-    const onShellPath = shellPath ? findOnPath('plx', { ...input.env, PATH: shellPath }, platform) : undefined;
-    if (onShellPath) {
-      return plxFound(attempts, onShellPath, 'login-shell', "the login shell's PATH");
-    }
-    attempts.push({ source: 'login-shell', candidate: "plx on the login shell's PATH",
-                    outcome: shellPath ? 'not found' : 'could not be read' });
-  }
-
-  // 7. A virtual environment in the workspace
+  // 4. A virtual environment in the workspace: before any PATH, so a global plx does not shadow the project's
   if (input.workspaceFolder) {
     for (const name of WORKSPACE_VENVS) {
       const candidate = platform === 'win32'
@@ -401,5 +463,36 @@ export async function discoverPlx(input: DiscoveryInput): Promise<DiscoveryResul
       attempts.push({ source: 'workspace-venv', candidate, outcome: problem });
     }
   }
-  return { found: false, attempts, message: notFoundMessage(attempts, extPython) };
+  // 5. The PATH the editor was started with (before the extension host's own, which a VS Code
+  //    server sets to the login shell's PATH).
+  if (platform !== 'win32') {
+    const startupPath = await (input.startupPath ?? readStartupPath)();
+    if (startupPath && startupPath !== getEnv(input.env, 'PATH', platform)) {
+      const onStartupPath = findOnPath('plx', { ...input.env, PATH: startupPath }, platform);
+      if (onStartupPath) {
+        return plxFound(attempts, onStartupPath, 'startup-PATH', 'the PATH the editor was started with');
+      }
+      attempts.push({ source: 'startup-PATH', candidate: 'plx on the PATH the editor was started with', outcome: 'not found' });
+    }
+  }
+
+  // 6. The extension host's PATH
+  const onPath = findOnPath('plx', input.env, platform);
+  if (onPath) {
+    return plxFound(attempts, onPath, 'PATH', 'PATH');
+  }
+  attempts.push({ source: 'PATH', candidate: 'plx on PATH', outcome: 'not found' });
+
+  // 7. The login shell's PATH
+  if (platform !== 'win32') {
+    const shellPath = await (input.loginShellPath ?? readLoginShellPath)(input.env);
+    const onShellPath = shellPath ? findOnPath('plx', { ...input.env, PATH: shellPath }, platform) : undefined;
+    if (onShellPath) {
+      return plxFound(attempts, onShellPath, 'login-shell', "the login shell's PATH");
+    }
+    attempts.push({ source: 'login-shell', candidate: "plx on the login shell's PATH",
+                    outcome: shellPath ? 'not found' : 'could not be read' });
+  }
+
+  return { found: false, attempts, message: notFoundMessage(attempts, extPython, input.installRequirement) };
 }

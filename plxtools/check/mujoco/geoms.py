@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from plxtools import DOCS_BASE_URL
 from plxtools.check.checks import DUPLICATE_CONTACT_MODEL, INVALID_INERTIA, ZERO_MASS_DYNAMIC_BODY
 from plxtools.check.convert import MISSING_FILE
 from plxtools.check.coverage import NOT_SIMULATED
@@ -272,7 +273,7 @@ def add_contact_pairs(ctx: BuildContext) -> None:
                     ctx.bouncy_pairs.append((pair, float(cm.restitution)))
         if bouncy and made:
             ctx.note(INFO, "A137", f"{cm.path}: normal_restitution {cm.restitution:g} simulated by a contact "
-                     f"spring-damper with that restitution (MuJoCo solref in direct form; see docs/physics.md)", cm)
+                     f"spring-damper with that restitution (MuJoCo solref in direct form; see {DOCS_BASE_URL}physics/)", cm)
 
 
 def set_restitution(ctx: BuildContext) -> None:

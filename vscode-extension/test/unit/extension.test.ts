@@ -68,7 +68,8 @@ describe('extension bundle (with a stand-in vscode module)', () => {
   it('shows what was tried and the install command when plx is missing', () => {
     assert.equal(rec.errors.length, 1);
     assert.ok(rec.errors[0].includes(path.join(tmp, 'missing', 'plx')), rec.errors[0]);
-    assert.ok(rec.errors[0].includes('pip install plxtools'), rec.errors[0]);
+    assert.ok(rec.errors[0].includes('OpenPLX: Install plxtools'), rec.errors[0]);
+    assert.ok(/pip install "(plxtools\[sim\] @ file:\/\/.*\.whl|<a plxtools wheel or checkout>)"/.test(rec.errors[0]), rec.errors[0]);
     assert.ok(rec.logs.some((l) => l.includes('discovery [server.path]')), rec.logs.join('\n'));
   });
 

@@ -89,6 +89,7 @@ describe('manifest and language configuration', () => {
     assert.deepEqual(commands, [
       'OpenPLX: Restart server',
       'OpenPLX: Show server log',
+      'OpenPLX: Install plxtools (the language server)',
       'OpenPLX: Check this scene',
       'OpenPLX: Check and simulate this scene',
       'OpenPLX: View scene',

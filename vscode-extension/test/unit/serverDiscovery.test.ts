@@ -7,7 +7,10 @@ import {
   type DiscoveryInput,
   type DiscoveryResult,
   discoverPlx,
+  findBundledWheel,
   findOnPath,
+  installRequirement,
+  planInstall,
   getEnv,
   probePlxtoolsModule,
   readStartupPath,
@@ -119,7 +122,7 @@ posixOnly('discoverPlx: openplx.server.path', () => {
     assert.equal(r.attempts[0].candidate, missing);
     assert.equal(r.attempts[0].outcome, 'does not exist');
     assert.ok(r.message.includes(missing), r.message);
-    assert.ok(r.message.includes('pip install plxtools'), r.message);
+    assert.ok(r.message.includes('OpenPLX: Install plxtools'), r.message);
   });
 
   it('reports a file that is not executable', async () => {
@@ -178,7 +181,7 @@ posixOnly('discoverPlx: openplx.interpreter', () => {
     const { python } = venv('venv', false);
     const onPath = file('bin/plx');
     const r = expectNotFound(await discoverPlx(input({ interpreter: python, env: { PATH: path.dirname(onPath) } })));
-    assert.ok(r.message.includes(`${python} -m pip install plxtools`), r.message);
+    assert.ok(r.message.includes(`${python} -m pip install "`), r.message);
     assert.ok(r.message.includes('plxtools is not installed in this interpreter'), r.message);
     assert.ok(!r.attempts.some((a) => a.source === 'PATH'));
   });
@@ -291,14 +294,17 @@ posixOnly('discoverPlx: PATH and the not-found message', () => {
     assert.match(r.message, /^The OpenPLX language server \(plx\) was not found\. Tried: /);
     assert.ok(r.message.includes(path.join(tmp, 'active', 'bin', 'plx')), r.message);
     assert.ok(r.message.includes('plx on PATH [PATH]: not found'), r.message);
-    assert.ok(r.message.includes(`${python} -m pip install plxtools`), r.message);
+    assert.ok(r.message.includes(`${python} -m pip install "<a plxtools wheel or checkout>"`), r.message);
+    assert.ok(r.message.includes('OpenPLX: Install plxtools'), r.message);
     assert.ok(r.message.includes('openplx.server.path'), r.message);
     assert.ok(r.message.includes('OpenPLX: Restart server'), r.message);
   });
 
-  it('suggests plain `pip install plxtools` when no interpreter is known', async () => {
-    const r = expectNotFound(await discoverPlx(input({})));
-    assert.ok(r.message.includes('`pip install plxtools`'), r.message);
+  it('suggests the bundled wheel, never the unpublished name, when no interpreter is known', async () => {
+    const wheel = file('ext/server/plxtools-0.1.0-py3-none-any.whl', 'PK');
+    const r = expectNotFound(await discoverPlx(input({ installRequirement: installRequirement(wheel) })));
+    assert.ok(r.message.includes(`\`pip install "plxtools[sim] @ file://${wheel}"\``), r.message);
+    assert.ok(!/pip install "?plxtools(\[sim\])?"?`/.test(r.message), r.message);
   });
 });
 
@@ -337,8 +343,86 @@ posixOnly('discoverPlx: the login shell and the workspace', () => {
   it('lists every place it looked when nothing is found', async () => {
     const r = expectNotFound(await discoverPlx(input({ workspaceFolder: path.join(tmp, 'empty-ws') })));
     assert.deepEqual(r.attempts.map((a) => a.source),
-      ['PATH', 'login-shell', 'workspace-venv', 'workspace-venv', 'workspace-venv']);
+      ['workspace-venv', 'workspace-venv', 'workspace-venv', 'PATH', 'login-shell']);
     assert.ok(r.message.includes(path.join(tmp, 'empty-ws', '.venv', 'bin', 'plx')), r.message);
+  });
+});
+
+posixOnly("discoverPlx: the workspace's environment before any PATH (as ruff's extension)", () => {
+  it('prefers the workspace .venv over a global plx on every PATH', async () => {
+    const dotVenv = file('ws/.venv/bin/plx');
+    const global = file('usr-local-bin/plx');
+    const r = expectFound(await discoverPlx(input({
+      workspaceFolder: path.join(tmp, 'ws'),
+      env: { PATH: path.dirname(global) },
+      startupPath: async () => path.dirname(global),
+      loginShellPath: async () => { throw new Error('the login shell should not be asked'); },
+    })));
+    assert.equal(r.invocation.command, dotVenv);
+    assert.equal(r.invocation.source, 'workspace-venv');
+    assert.deepEqual(r.attempts.map((a) => a.source), ['workspace-venv']);
+  });
+
+  it('then venv/, and only then PATH', async () => {
+    const venvPlx = file('ws/venv/bin/plx');
+    const global = file('usr-local-bin/plx');
+    const r = expectFound(await discoverPlx(input({ workspaceFolder: path.join(tmp, 'ws'), env: { PATH: path.dirname(global) } })));
+    assert.equal(r.invocation.command, venvPlx);
+    fs.rmSync(path.join(tmp, 'ws', 'venv'), { recursive: true });
+    const r2 = expectFound(await discoverPlx(input({ workspaceFolder: path.join(tmp, 'ws'), env: { PATH: path.dirname(global) } })));
+    assert.equal(r2.invocation.command, global);
+    assert.deepEqual(r2.attempts.map((a) => a.source), ['workspace-venv', 'workspace-venv', 'workspace-venv', 'PATH']);
+  });
+
+  it("puts the Python extension's interpreter first: the user chose it", async () => {
+    const chosen = venv('elsewhere', true);
+    file('ws/.venv/bin/plx');
+    const r = expectFound(await discoverPlx(input({ workspaceFolder: path.join(tmp, 'ws'), pythonExtensionInterpreter: chosen.python })));
+    assert.equal(r.invocation.command, chosen.plx);
+    assert.equal(r.invocation.source, 'python-extension');
+  });
+
+  it("falls back to the workspace .venv when the Python extension's interpreter has no plxtools", async () => {
+    const global = venv('global-python', false);
+    const dotVenv = file('ws/.venv/bin/plx');
+    const r = expectFound(await discoverPlx(input({ workspaceFolder: path.join(tmp, 'ws'), pythonExtensionInterpreter: global.python })));
+    assert.equal(r.invocation.command, dotVenv);
+  });
+});
+
+posixOnly('install plan ("OpenPLX: Install plxtools")', () => {
+  const req = 'plxtools[sim] @ file:///ext/server/plxtools-0.1.0-py3-none-any.whl';
+
+  it('installs into the workspace .venv when there is one', () => {
+    const { python } = venv('ws/.venv', false);
+    assert.deepEqual(planInstall({ requirement: req, workspaceFolder: path.join(tmp, 'ws') }), { python, requirement: req });
+  });
+
+  it("else into the Python extension's interpreter when it is a virtual environment", () => {
+    const { python } = venv('proj-env', false);
+    file('proj-env/pyvenv.cfg', 'home = /usr/bin\n', 0o644);
+    const plan = planInstall({ requirement: req, workspaceFolder: path.join(tmp, 'ws'), pythonExtensionInterpreter: python });
+    assert.deepEqual(plan, { python, requirement: req });
+  });
+
+  it('else makes a .venv in the workspace (never pip into a system interpreter)', () => {
+    const system = file('usr/bin/python3');
+    const plan = planInstall({ requirement: req, workspaceFolder: path.join(tmp, 'ws'), pythonExtensionInterpreter: system });
+    assert.deepEqual(plan, {
+      python: path.join(tmp, 'ws', '.venv', 'bin', 'python'),
+      createVenv: { base: system, folder: path.join(tmp, 'ws', '.venv') },
+      requirement: req,
+    });
+    assert.equal(planInstall({ requirement: req }), undefined);
+  });
+
+  it('installs the wheel the extension carries; nothing by the unpublished name', () => {
+    assert.equal(installRequirement(undefined), undefined);
+    const wheel = file('ext dir/server/plxtools-0.1.0-py3-none-any.whl', 'PK');
+    file('ext dir/server/notes.txt', '', 0o644);
+    assert.equal(findBundledWheel(path.join(tmp, 'ext dir')), wheel);
+    assert.equal(findBundledWheel(path.join(tmp, 'nowhere')), undefined);
+    assert.equal(installRequirement(wheel), `plxtools[sim] @ file://${encodeURI(wheel)}`);
   });
 });
 
