@@ -394,11 +394,14 @@ rule("A135", "implausible-speed", W,
      "The message lists the parts of the bound. A runaway usually comes before a blow-up (A101).",
      stage=SIM)
 rule("A137", "restitution-approximated", I,
-     "A contact model's `normal_restitution` is simulated by a contact spring-damper per material pair "
-     "(MuJoCo `solref` in its direct stiffness/damping form) whose damping ratio gives that coefficient of "
-     "restitution; the contact lasts 10 time steps.",
-     "Rebound heights match e^2 within a few percent for e of 0.5 and more; with a low e gravity acting "
-     "during the 20 ms contact takes some speed from the rebound (see docs/physics.md).", stage=SIM)
+     "A contact model's `normal_restitution` e is simulated per material pair as a velocity target of "
+     "MuJoCo's contact: in the step an impact begins, the normal speed goes from -v to e v (MuJoCo `solref` "
+     "in its direct form, damping (1 + e) / h), solved with every other contact and joint. An info; a "
+     "warning when impacts slower than 1 m/s may rebound more than 3 % short of e at the scene's time step.",
+     "The impact law holds for every speed and mass ratio, but a step finds an impact up to v h deep, and "
+     "the rebound starts from there: (1 - e^2) times that depth comes off the rebound height, which matters "
+     "for slow impacts with a low e. The warning names the impact speed below which that can exceed 3 %; "
+     "a shorter `--timestep` lowers it (see docs/physics.md).", stage=SIM)
 rule("A138", "visual-mesh-skipped", I,
      "A visual-only mesh (`Visuals.Geometries...`) that MuJoCo cannot load (fewer than 4 vertices, a "
      "degenerate file) is left out of the MuJoCo scene.",
