@@ -428,6 +428,7 @@ class SignalRuntime:
     bindings: dict[str, Binding] = field(default_factory=dict)
     unbound: dict[str, str] = field(default_factory=dict)
     loads: dict[tuple[int, int], dict] = field(default_factory=dict)  # body loads (check/body_loads.py)
+    movers: dict[str, Any] = field(default_factory=dict)  # kinematic bodies of the run (attach_movers)
     _initial: Any = None
 
     @classmethod
@@ -582,10 +583,14 @@ class SignalRuntime:
             if info.direction == "input":
                 jname = self.compiled.names.name("joint", src, ":free")
                 sb = self.compiled.scene.body(src)
+                if sb is not None and self.compiled.names.name("joint", src, ":kinematic") is not None:
+                    b.write = self._kinematic_velocity(src, lin)
+                    return b
                 if sb is not None and not sb.is_dynamic:
-                    raise Unbindable(f"{src} is not dynamic (is_dynamic: false or kinematically controlled): it "
-                                      f"moves at its prescribed velocity, which the MuJoCo backend does not let an "
-                                      f"input change")
+                    raise Unbindable(f"{src} is not dynamic and does not move (is_dynamic: false without a velocity): "
+                                      f"plx simulates it as static, so no input can move it; give it an initial "
+                                      f"velocity (kinematics.initial_local_linear_velocity or _angular_velocity) to "
+                                      f"make it a kinematic body that velocity inputs drive")
                 if src not in self.compiled.free_roots or jname is None:
                     raise Unbindable(f"{src} is attached to other bodies by mates (only a free body's velocity "
                                       f"can be set)")
@@ -604,6 +609,26 @@ class SignalRuntime:
         else:  # pragma: no cover - the tables and this function are kept in step by tests
             raise Unbindable(f"quantity {q} has no binding")
         return b
+
+    def _kinematic_velocity(self, src: str, lin: bool) -> Any:
+        """The write of a kinematic body's velocity input: its new prescribed velocity (world frame)
+        from this step on, continuing from where it is (AGX drives kinematic bodies by velocity)."""
+
+        def write(m, d, v):
+            mover = self.movers.get(src)
+            if mover is None:  # pragma: no cover - every run that writes inputs attaches its stepper
+                raise RuntimeError(f"{src}: no kinematic mover attached to this run")
+            if lin:
+                mover.set_velocity(float(d.time), v=v)
+            else:
+                mover.set_velocity(float(d.time), w=v)
+            mover.place(d, float(d.time))
+
+        return write
+
+    def attach_movers(self, movers: list) -> None:
+        """The kinematic bodies' movers of the run this runtime writes to (see mujoco.kinematic)."""
+        self.movers = {mv.path: mv for mv in movers}
 
     # -- use --------------------------------------------------------------------------------------
 

@@ -276,6 +276,22 @@ CASES: list[Case] = [
     Case("kinematic platform: reported top speed", "kinematic_turntable.openplx", 1.0, "top speed (m/s)", 0.5,
          lambda r: next(iter(r.report["simulation"].values()))["bodies"]["platform"]["max_speed"], 1e-9,
          "A platform driven at 0.5 m/s: its top speed in the report is 0.5 m/s."),
+    Case("conveyor belt carries a box by friction", "conveyor_belt.openplx", 2.0, "distance in 2 s (m)",
+         0.5 * 2.0 - 0.5 ** 2 / (2 * 0.5 * G),
+         lambda r: float(r.trace["parcel.x"][-1] - r.trace["parcel.x"][0]), 0.02,
+         "A box (mu 0.5) at rest on a kinematic belt at v = 0.5 m/s: friction accelerates it at mu g until it "
+         "rides with the belt, x = v t - v^2 / (2 mu g). The belt is a free body of effectively infinite inertia "
+         "set to its prescribed velocity every step, so the contact sees how fast it moves (before: a mocap body, "
+         "and the box stayed where it was)."),
+    Case("turntable carries a box by friction", "turntable_carry.openplx", 3.0,
+         "speed / (w x distance from the axis) at the end", 1.0,
+         lambda r: float(np.hypot(r.trace["box.vx"][-1], r.trace["box.vy"][-1])
+                         / (1.0 * np.hypot(r.trace["box.x"][-1], r.trace["box.y"][-1]))), 0.02,
+         "A box (mu 0.5) 0.5 m off the axis of a kinematic turntable turning at w = 1 rad/s: after the slip "
+         "(mu g > w^2 r) it turns with the table, at w times its distance from the axis."),
+    Case("lifting platform carries a load", "lifting_platform.openplx", 1.5, "rise from 0.5 s to 1.5 s (m)", 0.5,
+         lambda r: at(r.trace.t, r.trace["load.z"], 1.5) - at(r.trace.t, r.trace["load.z"], 0.5), 0.02,
+         "A box resting on a kinematic platform rising at 0.5 m/s rises with it: 0.5 m a second."),
     Case("drive-train velocity motor: driven hinge after 10 ms", "gear_train.openplx", 0.2,
          "hinge speed at t = 0.01 s (rad/s)", 8.0 / 4.0,
          lambda r: at(r.trace.t, r.trace["wheel_drive.mate_3d.qdot"], 0.01),

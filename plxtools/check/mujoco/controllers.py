@@ -408,11 +408,12 @@ def add_keyframe(ctx: BuildContext, model: Any) -> None:
     qvel = np.zeros(model.nv)
     roots = set(ctx.out.free_roots)
     for path, body in ctx.bodies.items():
-        if not body.is_dynamic:
+        kinematic = ctx.names.name("joint", path, ":kinematic")
+        if not body.is_dynamic and kinematic is None:
             continue
         v, w = np.asarray(body.lin_vel, dtype=float), np.asarray(body.ang_vel, dtype=float)
-        if path in roots:
-            jid = model.joint(ctx.names.name("joint", path, ":free")).id
+        if kinematic is not None or path in roots:
+            jid = model.joint(kinematic or ctx.names.name("joint", path, ":free")).id
             adr = model.jnt_dofadr[jid]
             r = quat_to_mat(body.world_quat)
             qvel[adr : adr + 3] = v

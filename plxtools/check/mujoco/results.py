@@ -71,7 +71,7 @@ class CompiledScene:
     tree_mates: list[str] = field(default_factory=list)
     loop_mates: list[str] = field(default_factory=list)
     free_roots: list[str] = field(default_factory=list)  # body paths given a free joint
-    kinematic: list[str] = field(default_factory=list)  # body paths moved as prescribed (mocap bodies)
+    kinematic: list[str] = field(default_factory=list)  # body paths moved as prescribed (free bodies set every step)
     integrator: str = "implicitfast"  # the MuJoCo integrator the scene runs with (mujoco.integrator.choose)
     integrator_why: str = ""
     prescribed_cache: Any = None  # mujoco.kinematic.prescribed: (model, body id -> prescribed velocity)
