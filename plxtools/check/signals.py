@@ -383,33 +383,37 @@ def _ctrl_binding(b: Binding, aid: int) -> None:
     b.write = write_ctrl
 
 
-def _constraint_motor_binding(b: Binding, q: str, act: Any, model: Any, aid: int) -> Binding:
+def _constraint_motor_binding(b: Binding, q: str, act: Any, model: Any, aid: int, offsets: dict) -> Binding:
     """A motor run as a velocity constraint (mujoco.velocity_constraint): its target speed is its
-    reference's control, its effort the constraint's force, its effort range the tendon's
-    friction bound (symmetric only)."""
+    reference's control, its effort the constraint's force plus its offset, its effort range the
+    offset plus the tendon's friction bound around it (any range: ``split_range``)."""
     from plxtools.check.mujoco import velocity_constraint as vc
 
+    offsets.setdefault(act.path, float(act.offset))
     if q == "actuator_effort":
         dof = vc.reference_dof(model, act.reference)
-        b.read = lambda m, d: vc.effort(d, dof)
+        b.read = lambda m, d: vc.effort(d, dof, offsets[act.path])
     elif q == "effort_range":
         tid = int(model.tendon(act.tendon).id)
+        jdof = int(model.jnt_dofadr[model.joint(act.joint).id])
 
         def read_range(m, d):
-            e = float(m.tendon_frictionloss[tid])
-            return (-math.inf, math.inf) if e >= vc.BIG_EFFORT else (-e, e)
+            e, c = float(m.tendon_frictionloss[tid]), offsets[act.path]
+            return (-math.inf, math.inf) if e >= vc.BIG_EFFORT else (c - e, c + e)
 
         def refuse(v):
-            if vc.symmetric_bound(float(v[0]), float(v[1])) is None:
-                return (f"{b.info.path}: [{v[0]:g}, {v[1]:g}] is not symmetric; {act.path} runs as a velocity "
-                        "constraint whose effort range is a friction bound [-e, e] (give a symmetric range)")
+            if vc.split_range(float(v[0]), float(v[1])) is None:
+                return f"{b.info.path}: [{v[0]:g}, {v[1]:g}] is not a range (its minimum is above its maximum)"
             return None
 
         def write_range(m, d, v):
             why = refuse(v)
             if why is not None:
                 raise SignalValueError(why)
-            m.tendon_frictionloss[tid] = vc.symmetric_bound(float(v[0]), float(v[1]))
+            c, e = vc.split_range(float(v[0]), float(v[1]), act.span)
+            d.qfrc_applied[jdof] += float(act.gear) * (c - offsets[act.path])
+            offsets[act.path] = c
+            m.tendon_frictionloss[tid] = e
 
         b.read, b.write, b.refuse = read_range, write_range, refuse
     else:
@@ -429,6 +433,7 @@ class SignalRuntime:
     unbound: dict[str, str] = field(default_factory=dict)
     loads: dict[tuple[int, int], dict] = field(default_factory=dict)  # body loads (check/body_loads.py)
     movers: dict[str, Any] = field(default_factory=dict)  # kinematic bodies of the run (attach_movers)
+    offsets: dict[str, float] = field(default_factory=dict)  # constraint motors' effort offsets now, by path
     _initial: Any = None
 
     @classmethod
@@ -503,7 +508,7 @@ class SignalRuntime:
             raise Unbindable(f"its motor {src} is not simulated (see the check notes)")
         act, aid = acts[src]
         if act.reference is not None:
-            return _constraint_motor_binding(b, q, act, self.compiled.model, aid)
+            return _constraint_motor_binding(b, q, act, self.compiled.model, aid, self.offsets)
         if q == "actuator_effort":
             b.read = lambda m, d: float(d.actuator_force[aid])
         elif q == "effort_range":

@@ -311,7 +311,7 @@ CASES: list[Case] = [
          lambda r: float(np.mean(r.trace["slide.qdot"][r.trace.t >= 1.6])), 0.001,
          "Target 0.5 m/s against the weight m g = 490 N, effort range +-1000 N. A stiff motor with a symmetric "
          "range is a velocity constraint solved with the slide (as AGX's): it rises at exactly its target speed "
-         "(before: a servo of clamped gain that sagged by 3.9 %; an asymmetric range still runs as that servo, "
+         "(before: a servo of clamped gain that sagged by 3.9 %; any other range is a constraint too, an offset plus a friction bound, "
          "tests/physics/test_motor_load.py).",
          must_not_report=frozenset({"A101", "A134", "A135"})),
     Case("two motors, two ranges, two springs on one hinge", "crowded_hinge.openplx", 3.0, "balance angle (rad)",

@@ -26,6 +26,8 @@ from typing import Any, Callable
 
 import numpy as np
 
+from plxtools.check.mujoco.velocity_constraint import apply_offsets
+
 
 KINEMATIC_INERTIA = 1e6  # armature per unit of what the dynamic bodies weigh (kg, kg m^2)
 
@@ -192,6 +194,7 @@ class Stepper:
     def __init__(self, mujoco: Any, compiled: Any, model: Any, data: Any) -> None:
         self.mujoco, self.model, self.data = mujoco, model, data
         self.movers = kinematic_movers(compiled, model, data)
+        apply_offsets(model, data, compiled.actuators)  # velocity constraints' constant efforts
         self.h = float(model.opt.timestep)
         self.rk4 = int(model.opt.integrator) == int(mujoco.mjtIntegrator.mjINT_RK4)
 

@@ -46,6 +46,8 @@ class ActuatorInfo:
     # and the tendon whose friction force is the motor's effort; None for a servo or a motor
     reference: str | None = None
     tendon: str | None = None
+    offset: float = 0.0  # a velocity constraint's constant effort, the middle of its range (velocity_constraint)
+    span: float = 1.0  # and the half-width of a one-sided range given to it (velocity_constraint.one_sided_span)
 
 
 @dataclass(slots=True)

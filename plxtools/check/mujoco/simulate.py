@@ -897,6 +897,7 @@ class MotorTracking(Monitor):
                               dtype=int)
         self.c_gear = np.array([float(self.acts[k][0].gear) for k in self.constraint])
         self.c_ref = np.array([reference_dof(model, self.acts[k][0].reference) for k in self.constraint], dtype=int)
+        self.c_offset = np.array([float(self.acts[k][0].offset) for k in self.constraint])
         self.speed_sum = np.zeros(len(self.acts))
         self.force_sum = np.zeros(len(self.acts))
         self.count = 0
@@ -911,7 +912,7 @@ class MotorTracking(Monitor):
         force = b.actuator_force[rows][:, self.aid]
         if self.constraint:
             speed[:, self.constraint] = b.qvel[rows][:, self.c_dof] * self.c_gear
-            force[:, self.constraint] = -b.qfrc_constraint[rows][:, self.c_ref]
+            force[:, self.constraint] = -b.qfrc_constraint[rows][:, self.c_ref] + self.c_offset
         self.speed_sum = _running_sum(self.speed_sum, speed)
         self.force_sum = _running_sum(self.force_sum, force)
         self.count += int(rows.size)
@@ -983,6 +984,7 @@ class Energy(Monitor):
         self.is_constraint = np.array([a.reference is not None for a in acts], dtype=bool)
         self.c_ref = np.array([reference_dof(model, a.reference) if a.reference is not None else 0 for a in acts],
                               dtype=int)
+        self.c_offset = np.array([float(a.offset) for a in acts])  # a constraint motor's constant effort
         ids = [model.actuator(a.name).id for a in acts]
         self.aid = np.array(ids, dtype=int)
         self.limited = np.array([bool(model.actuator_forcelimited[i]) for i in ids], dtype=bool)
@@ -1017,7 +1019,7 @@ class Energy(Monitor):
         self._qv[k] = self._qvel
         self._ct[k] = self._ctrl_now
         if self._fc is not None:
-            self._fc[k] = -self._qfrc_c[self.c_ref]
+            self._fc[k] = -self._qfrc_c[self.c_ref] + self.c_offset
         self._rows = k + 1
 
     def _add_work(self) -> np.ndarray:

@@ -299,14 +299,14 @@ rule("A110", "mujoco-compile-error", E,
      "This is a model MuJoCo cannot represent (or a gap in the backend).", stage=SIM)
 rule("A111", "velocity-motor-gain-clamped", I,
      "A velocity motor runs as a velocity constraint of its gain, solved together with contacts and "
-     "limits as AGX's is (rigid with the bundle's default `gain`, 1e8), when its effort range is "
-     "symmetric or unlimited. "
-     "One with an asymmetric effort range cannot (the constraint's bound is a friction bound [-e, e]): it "
-     "runs as a MuJoCo velocity servo whose gain is clamped to 10 x the joint's effective inertia / timestep "
-     "(1 x with an effort limit, or on a drive train). An info for the bundle's default gain; a warning "
-     "naming your value and the one used when your files set the gain.",
+     "limits as AGX's is (rigid with the bundle's default `gain`, 1e8), whatever its effort range "
+     "(symmetric, asymmetric, one-sided or none: a constant offset plus a friction bound around it). "
+     "One with an inverted effort range (min above max) cannot: it runs as a MuJoCo velocity servo whose "
+     "gain is clamped to 10 x the joint's effective inertia / timestep (1 x with an effort limit, or on a "
+     "drive train). An info for the bundle's default gain; a warning naming your value and the one used "
+     "when your files set the gain.",
      "The clamped servo gets close to its target speed in a few steps and sags by load / kv under a load "
-     "(A106 says by how much); give the motor a symmetric effort range to have it run as a constraint.",
+     "(A106 says by how much); fix the effort range to have it run as a constraint.",
      stage=SIM)
 rule("A112", "spring-stiffness-clamped", W,
      "A spring is so stiff that even the shortest time step plxtools uses (1e-4 s) cannot integrate it; "
