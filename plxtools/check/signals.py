@@ -586,34 +586,38 @@ class SignalRuntime:
 
             b.read = read_vel
             if info.direction == "input":
-                jname = self.compiled.names.name("joint", src, ":free")
-                sb = self.compiled.scene.body(src)
-                if sb is not None and self.compiled.names.name("joint", src, ":kinematic") is not None:
-                    b.write = self._kinematic_velocity(src, lin)
-                    return b
-                if sb is not None and not sb.is_dynamic:
-                    raise Unbindable(f"{src} is not dynamic and does not move (is_dynamic: false without a velocity): "
-                                      f"plx simulates it as static, so no input can move it; give it an initial "
-                                      f"velocity (kinematics.initial_local_linear_velocity or _angular_velocity) to "
-                                      f"make it a kinematic body that velocity inputs drive")
-                if src not in self.compiled.free_roots or jname is None:
-                    raise Unbindable(f"{src} is attached to other bodies by mates (only a free body's velocity "
-                                      f"can be set)")
-                dadr = int(self.compiled.model.jnt_dofadr[self.compiled.model.joint(jname).id])
-
-                def write_vel(m, d, v):
-                    import numpy as np
-
-                    if lin:
-                        d.qvel[dadr:dadr + 3] = v
-                    else:
-                        r = np.asarray(d.xmat[bid]).reshape(3, 3)
-                        d.qvel[dadr + 3:dadr + 6] = r.T @ np.asarray(v)  # free-joint angular velocity: body frame
-
-                b.write = write_vel
+                b.write = self._velocity_input(src, lin, bid)
         else:  # pragma: no cover - the tables and this function are kept in step by tests
             raise Unbindable(f"quantity {q} has no binding")
         return b
+
+    def _velocity_input(self, src: str, lin: bool, bid: int) -> Any:
+        """The write of a body's velocity input: a free body's joint speed, a kinematic body's
+        prescribed velocity; refused (Unbindable) for a static or mated body."""
+        jname = self.compiled.names.name("joint", src, ":free")
+        sb = self.compiled.scene.body(src)
+        if sb is not None and self.compiled.names.name("joint", src, ":kinematic") is not None:
+            return self._kinematic_velocity(src, lin)
+        if sb is not None and not sb.is_dynamic:
+            raise Unbindable(f"{src} is not dynamic and does not move (is_dynamic: false without a velocity): "
+                              f"plx simulates it as static, so no input can move it; give it an initial "
+                              f"velocity (kinematics.initial_local_linear_velocity or _angular_velocity) to "
+                              f"make it a kinematic body that velocity inputs drive")
+        if src not in self.compiled.free_roots or jname is None:
+            raise Unbindable(f"{src} is attached to other bodies by mates (only a free body's velocity "
+                              f"can be set)")
+        dadr = int(self.compiled.model.jnt_dofadr[self.compiled.model.joint(jname).id])
+
+        def write_vel(m, d, v):
+            import numpy as np
+
+            if lin:
+                d.qvel[dadr:dadr + 3] = v
+            else:
+                r = np.asarray(d.xmat[bid]).reshape(3, 3)
+                d.qvel[dadr + 3:dadr + 6] = r.T @ np.asarray(v)  # free-joint angular velocity: body frame
+
+        return write_vel
 
     def _kinematic_velocity(self, src: str, lin: bool) -> Any:
         """The write of a kinematic body's velocity input: its new prescribed velocity (world frame)
