@@ -314,6 +314,12 @@ CASES: list[Case] = [
          "(before: a servo of clamped gain that sagged by 3.9 %; any other range is a constraint too, an offset plus a friction bound, "
          "tests/physics/test_motor_load.py).",
          must_not_report=frozenset({"A101", "A134", "A135"})),
+    Case("velocity motor lifting a weight, one-sided range", "motor_lift_one_sided.openplx", 2.0,
+         "steady speed (m/s)", 0.5, lambda r: float(np.mean(r.trace["slide.qdot"][r.trace.t >= 1.6])), 0.001,
+         "As above with the effort range [0, inf): the motor may only push up. Any range is a velocity "
+         "constraint: a constant offset (the range's middle) plus a friction bound around it, the same set "
+         "(a one-sided range gets the width that stops the driven inertia in one step and holds it against "
+         "gravity). Before: a servo that sagged by 3.9 %."),
     Case("two motors, two ranges, two springs on one hinge", "crowded_hinge.openplx", 3.0, "balance angle (rad)",
          (5.0 + 3.0 + 20.0 * 0.0 + 10.0 * 0.2) / 30.0, lambda r: float(r.trace["axle.q"][-1]), 0.005,
          "Both motors stall at their effort limits (5 + 3 N m) against the springs (20 N m/rad at 0, 10 N m/rad at "
