@@ -143,3 +143,15 @@ tolerance = 0.003
     with contextlib.redirect_stdout(buf):
         code = main(["test", str(tmp_path / "drive.scenario.toml"), "--output-format", "json"])
     assert code == 0, buf.getvalue()
+
+
+def test_a_plane_on_a_kinematic_body_is_left_out_with_a127():
+    """MuJoCo allows planes only on static bodies, and a kinematic body is a free one."""
+    from plxtools.check.mujoco.backend import compile_scene
+    from plxtools.check.scene import Body, Geom, Scene
+
+    deck = Body("deck", (0.0, 0.0, 0.0), is_dynamic=False, lin_vel=(0.5, 0.0, 0.0),
+                geoms=[Geom("deck.plane", "plane", size=(4.0, 4.0, 0.0)), Geom("deck.slab", "box", size=(1, 1, 0.1))])
+    compiled = compile_scene(Scene("Deck", [deck]))
+    assert compiled.ok, [n.message for n in compiled.notes]
+    assert [n.code for n in compiled.notes if n.path == "deck.plane"] == ["A127"]

@@ -91,7 +91,7 @@ def _shape(ctx: BuildContext, body: Body, g: Geom, kw: dict[str, Any]) -> Any:
         kw.update(type=kind, size=[g.radius, g.height / 2.0, 0])
         quat = quat_mul(quat, Z_TO_Y_QUAT)
     elif g.kind == "plane":
-        if body.is_dynamic:
+        if body.is_dynamic or body.kinematic:  # a kinematic body is a free MuJoCo body (mujoco.kinematic)
             ctx.note(WARNING, "A127", f"{g.path}: planes can only be static in MuJoCo; skipped", g)
             return None
         kw.update(type=mj.mjtGeom.mjGEOM_PLANE, size=[g.size[0] / 2.0, g.size[1] / 2.0, 1.0])
