@@ -32,6 +32,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from plxtools.check.api_inspect import (
+    ConnectorState,
+    ContactModelInfo,
+    GeometryInfo,
+    MaterialInfo,
+    connector_state,
+    contact_model,
+    geometries,
+)
 from plxtools.check.signals import (
     COMPONENTS,
     RPY_COMPONENTS,
@@ -44,8 +53,11 @@ from plxtools.check.signals import (
     did_you_mean,
 )
 
+MATE_CONNECTOR = "Physics3D.Interactions.MateConnector"
+
 __all__ = [
-    "BoolInputSignal", "IntInputSignal", "Input", "ModelError", "NotSimulatedError", "Output",
+    "BoolInputSignal", "ConnectorState", "ContactModelInfo", "GeometryInfo", "IntInputSignal", "Input",
+    "MaterialInfo", "ModelError", "NotSimulatedError", "Output",
     "RealInputSignal", "RealRangeInputSignal", "SceneObject", "SignalPathError", "SignalValueError",
     "Simulation", "Vec3InputSignal", "load",
 ]
@@ -297,6 +309,7 @@ class BodyState:
     rpy: tuple[float, float, float]  # roll, pitch, yaw (rad), R = Rz(yaw) Ry(pitch) Rx(roll)
     linear_velocity: tuple[float, float, float]
     angular_velocity: tuple[float, float, float]
+    geometries: tuple[GeometryInfo, ...] = ()  # with their materials (plxtools.check.api_inspect)
 
 
 class Simulation:
@@ -318,11 +331,13 @@ class Simulation:
         mujoco.mj_forward(self.model, self.data)
         self.runtime = SignalRuntime.bind(mujoco, c, prepared.signals)
         self._stepper = Stepper(mujoco, c, self.model, self.data)  # the step plx check and plx test take
+        self.runtime.attach_movers(self._stepper.movers)  # velocity inputs of kinematic bodies
         self.timestep = float(self.model.opt.timestep)
         self.steps = 0
         self._pending: list[tuple[str, Any]] = []
         self._stale = False
         self._scene = Scene(self)
+        self.frames: dict = {}  # systems moved by place(): their frame now (plxtools.check.api_place)
         self._queue = InputSignalQueue(self)
 
     # -- the runtime's names ------------------------------------------------------------------
@@ -452,7 +467,51 @@ class Simulation:
         bid = m.body(name).id
         v = body_velocity(mj, m, d, self.prepared.compiled, bid)
         t3 = lambda a: tuple(float(x) for x in a)  # noqa: E731
-        return BodyState(path, t3(d.xpos[bid]), t3(d.xquat[bid]), rpy_of_mat(d.xmat[bid]), t3(v[3:]), t3(v[:3]))
+        return BodyState(path, t3(d.xpos[bid]), t3(d.xquat[bid]), rpy_of_mat(d.xmat[bid]), t3(v[3:]), t3(v[:3]),
+                         geometries(self.prepared.compiled.scene, path))
+
+    def place(self, path: str = "", position: Any = None, rotation: Any = None) -> None:
+        """Move the root model (``""``), a system or a free body so that its frame is at
+        ``position`` (x, y, z) with orientation ``rotation`` (w, x, y, z), before or between steps;
+        everything under it moves with it, velocities turned with it (``plxtools.check.api_place``)."""
+        from plxtools.check.api_place import place
+
+        if not isinstance(path, str):
+            raise TypeError(f"a path is a dotted string, not {type(path).__name__}")
+        if path and path not in self.prepared.objects:
+            raise unknown_path(path, list(self.prepared.objects), "object", self.path)
+        self._fresh()
+        place(self, path, position, rotation)
+        self._stale = True
+
+    def contact_model(self, material1: str, material2: str) -> ContactModelInfo | None:
+        """The contact model between two materials (their ``unique_name``), as simulated: friction
+        coefficient and model, normal and tangential restitution; None when the scene has none."""
+        return contact_model(self.prepared.compiled.scene, material1, material2)
+
+    def connector(self, path: str) -> ConnectorState:
+        """A mate connector's world frame now (origin, orientation, main axis, normal)."""
+        from plxtools.check.connector_frames import connector_frame
+        from plxtools.check.connector_signals import _placed
+        from plxtools.check.signals import Unbindable
+
+        p = self.prepared
+        qtype = p.objects.get(path)
+        if qtype is None:
+            raise unknown_path(path, [o for o, t in p.objects.items() if t.endswith("MateConnector")], "connector",
+                               p.path)
+        obj = next((o for o in p.fc.assembly.owned if o.display == path), None)
+        if obj is None or not p.fc.kinds.isa(obj, MATE_CONNECTOR):
+            raise TypeError(f"{path} is a {qtype}, not a mate connector")
+        frame = connector_frame(p.fc.assembly, p.fc.evaluator, p.fc.kinds, obj)
+        if frame is None:
+            raise NotSimulatedError(f"{path} has a degenerate frame (see the check's findings)")
+        try:
+            placed = _placed(self.runtime, frame)
+        except Unbindable as exc:
+            raise NotSimulatedError(f"{path}: {exc}") from None
+        self._fresh()
+        return connector_state(self.data, path, placed, frame.body)
 
 
 def _kind_text(kind: str) -> str:

@@ -78,8 +78,8 @@ def _acceleration(rt: Any, m: Any, d: Any, bid: int, point: np.ndarray) -> tuple
     from plxtools.check.mujoco.kinematic import prescribed
 
     kin = prescribed(rt.compiled, m).get(bid)
-    if kin is not None:  # constant prescribed velocity: no angular acceleration, only the centripetal part
-        w = kin[2]
+    if kin is not None:  # prescribed velocity, constant between inputs: only the centripetal part
+        w, _ = _velocity(rt, m, d, bid, point)
         return np.zeros(3), np.cross(w, np.cross(w, point - np.asarray(d.xpos[bid])))
     mj = rt.mujoco
     mj.mj_forward(m, d)

@@ -383,33 +383,37 @@ def _ctrl_binding(b: Binding, aid: int) -> None:
     b.write = write_ctrl
 
 
-def _constraint_motor_binding(b: Binding, q: str, act: Any, model: Any, aid: int) -> Binding:
+def _constraint_motor_binding(b: Binding, q: str, act: Any, model: Any, aid: int, offsets: dict) -> Binding:
     """A motor run as a velocity constraint (mujoco.velocity_constraint): its target speed is its
-    reference's control, its effort the constraint's force, its effort range the tendon's
-    friction bound (symmetric only)."""
+    reference's control, its effort the constraint's force plus its offset, its effort range the
+    offset plus the tendon's friction bound around it (any range: ``split_range``)."""
     from plxtools.check.mujoco import velocity_constraint as vc
 
+    offsets.setdefault(act.path, float(act.offset))
     if q == "actuator_effort":
         dof = vc.reference_dof(model, act.reference)
-        b.read = lambda m, d: vc.effort(d, dof)
+        b.read = lambda m, d: vc.effort(d, dof, offsets[act.path])
     elif q == "effort_range":
         tid = int(model.tendon(act.tendon).id)
+        jdof = int(model.jnt_dofadr[model.joint(act.joint).id])
 
         def read_range(m, d):
-            e = float(m.tendon_frictionloss[tid])
-            return (-math.inf, math.inf) if e >= vc.BIG_EFFORT else (-e, e)
+            e, c = float(m.tendon_frictionloss[tid]), offsets[act.path]
+            return (-math.inf, math.inf) if e >= vc.BIG_EFFORT else (c - e, c + e)
 
         def refuse(v):
-            if vc.symmetric_bound(float(v[0]), float(v[1])) is None:
-                return (f"{b.info.path}: [{v[0]:g}, {v[1]:g}] is not symmetric; {act.path} runs as a velocity "
-                        "constraint whose effort range is a friction bound [-e, e] (give a symmetric range)")
+            if vc.split_range(float(v[0]), float(v[1])) is None:
+                return f"{b.info.path}: [{v[0]:g}, {v[1]:g}] is not a range (its minimum is above its maximum)"
             return None
 
         def write_range(m, d, v):
             why = refuse(v)
             if why is not None:
                 raise SignalValueError(why)
-            m.tendon_frictionloss[tid] = vc.symmetric_bound(float(v[0]), float(v[1]))
+            c, e = vc.split_range(float(v[0]), float(v[1]), act.span)
+            d.qfrc_applied[jdof] += float(act.gear) * (c - offsets[act.path])
+            offsets[act.path] = c
+            m.tendon_frictionloss[tid] = e
 
         b.read, b.write, b.refuse = read_range, write_range, refuse
     else:
@@ -428,6 +432,8 @@ class SignalRuntime:
     bindings: dict[str, Binding] = field(default_factory=dict)
     unbound: dict[str, str] = field(default_factory=dict)
     loads: dict[tuple[int, int], dict] = field(default_factory=dict)  # body loads (check/body_loads.py)
+    movers: dict[str, Any] = field(default_factory=dict)  # kinematic bodies of the run (attach_movers)
+    offsets: dict[str, float] = field(default_factory=dict)  # constraint motors' effort offsets now, by path
     _initial: Any = None
 
     @classmethod
@@ -502,7 +508,7 @@ class SignalRuntime:
             raise Unbindable(f"its motor {src} is not simulated (see the check notes)")
         act, aid = acts[src]
         if act.reference is not None:
-            return _constraint_motor_binding(b, q, act, self.compiled.model, aid)
+            return _constraint_motor_binding(b, q, act, self.compiled.model, aid, self.offsets)
         if q == "actuator_effort":
             b.read = lambda m, d: float(d.actuator_force[aid])
         elif q == "effort_range":
@@ -580,30 +586,58 @@ class SignalRuntime:
 
             b.read = read_vel
             if info.direction == "input":
-                jname = self.compiled.names.name("joint", src, ":free")
-                sb = self.compiled.scene.body(src)
-                if sb is not None and not sb.is_dynamic:
-                    raise Unbindable(f"{src} is not dynamic (is_dynamic: false or kinematically controlled): it "
-                                      f"moves at its prescribed velocity, which the MuJoCo backend does not let an "
-                                      f"input change")
-                if src not in self.compiled.free_roots or jname is None:
-                    raise Unbindable(f"{src} is attached to other bodies by mates (only a free body's velocity "
-                                      f"can be set)")
-                dadr = int(self.compiled.model.jnt_dofadr[self.compiled.model.joint(jname).id])
-
-                def write_vel(m, d, v):
-                    import numpy as np
-
-                    if lin:
-                        d.qvel[dadr:dadr + 3] = v
-                    else:
-                        r = np.asarray(d.xmat[bid]).reshape(3, 3)
-                        d.qvel[dadr + 3:dadr + 6] = r.T @ np.asarray(v)  # free-joint angular velocity: body frame
-
-                b.write = write_vel
+                b.write = self._velocity_input(src, lin, bid)
         else:  # pragma: no cover - the tables and this function are kept in step by tests
             raise Unbindable(f"quantity {q} has no binding")
         return b
+
+    def _velocity_input(self, src: str, lin: bool, bid: int) -> Any:
+        """The write of a body's velocity input: a free body's joint speed, a kinematic body's
+        prescribed velocity; refused (Unbindable) for a static or mated body."""
+        jname = self.compiled.names.name("joint", src, ":free")
+        sb = self.compiled.scene.body(src)
+        if sb is not None and self.compiled.names.name("joint", src, ":kinematic") is not None:
+            return self._kinematic_velocity(src, lin)
+        if sb is not None and not sb.is_dynamic:
+            raise Unbindable(f"{src} is not dynamic and does not move (is_dynamic: false without a velocity): "
+                              f"plx simulates it as static, so no input can move it; give it an initial "
+                              f"velocity (kinematics.initial_local_linear_velocity or _angular_velocity) to "
+                              f"make it a kinematic body that velocity inputs drive")
+        if src not in self.compiled.free_roots or jname is None:
+            raise Unbindable(f"{src} is attached to other bodies by mates (only a free body's velocity "
+                              f"can be set)")
+        dadr = int(self.compiled.model.jnt_dofadr[self.compiled.model.joint(jname).id])
+
+        def write_vel(m, d, v):
+            import numpy as np
+
+            if lin:
+                d.qvel[dadr:dadr + 3] = v
+            else:
+                r = np.asarray(d.xmat[bid]).reshape(3, 3)
+                d.qvel[dadr + 3:dadr + 6] = r.T @ np.asarray(v)  # free-joint angular velocity: body frame
+
+        return write_vel
+
+    def _kinematic_velocity(self, src: str, lin: bool) -> Any:
+        """The write of a kinematic body's velocity input: its new prescribed velocity (world frame)
+        from this step on, continuing from where it is (AGX drives kinematic bodies by velocity)."""
+
+        def write(m, d, v):
+            mover = self.movers.get(src)
+            if mover is None:  # pragma: no cover - every run that writes inputs attaches its stepper
+                raise RuntimeError(f"{src}: no kinematic mover attached to this run")
+            if lin:
+                mover.set_velocity(float(d.time), v=v)
+            else:
+                mover.set_velocity(float(d.time), w=v)
+            mover.place(d, float(d.time))
+
+        return write
+
+    def attach_movers(self, movers: list) -> None:
+        """The kinematic bodies' movers of the run this runtime writes to (see mujoco.kinematic)."""
+        self.movers = {mv.path: mv for mv in movers}
 
     # -- use --------------------------------------------------------------------------------------
 

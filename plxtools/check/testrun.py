@@ -135,7 +135,8 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
     errors = bind(sc, prep.signals, prep.bodies, set(runtime.bindings), runtime.unbound, model_file,
                   scene_counts(prep.compiled.scene))
     errors += [ScenarioError(why, step.loc) for step in sc.inputs
-               if step.signal in runtime.bindings and (why := runtime.refusal(step.signal, step.coerced))]
+               if step.signal in runtime.bindings and step.coerced is not None
+               and (why := runtime.refusal(step.signal, step.coerced))]
     if errors:
         _error(res, errors)
         return

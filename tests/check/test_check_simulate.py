@@ -35,7 +35,7 @@ def test_boxtruck_drives_straight(check_file):
 def test_mirrored_motors_turn_instead_of_driving(check_file):
     fc = check_file(BROKEN / "mirrored_motors.openplx", simulate=True, duration=3.0)
     ch = fc.simulation.bodies["box_truck.chassis"]
-    assert ch.horizontal_distance < 0.35  # it does not get far (0.25 m in 3 s; 0.78 m driving straight) ...
+    assert ch.horizontal_distance < 0.55  # it does not get far (0.42 m in 3 s; 0.78 m driving straight) ...
     assert ch.heading_change < -math.radians(0.1)  # ... it turns clockwise, front wheels slipping
 
 

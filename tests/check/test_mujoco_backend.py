@@ -253,8 +253,9 @@ def test_boxtruck_tutorial_motors_spin_the_truck_clockwise() -> None:
     # settles ~0.1 m: wheel bottoms start 0.1488 above z 0, the ground top is at 0.05
     assert ch.final_pos[2] == pytest.approx(1.001, abs=0.005)
     assert -0.3 < ch.heading_change < -0.05  # clockwise
-    # it turns, the front wheels slipping, and gets 0.45 m in 5 s (0.26 m/s when driving straight)
-    assert ch.horizontal_distance < 0.6
+    # it turns, the front wheels slipping, and gets 0.73 m in 5 s (1.3 m when driving straight; 0.45 m
+    # on MuJoCo's default soft contact, before normal_restitution 0 became a plastic, nearly hard one)
+    assert ch.horizontal_distance < 1.0
     for m in res.motors.values():
         # the two motors fight through the ground; as velocity constraints without an effort
         # limit (as AGX's), they hold 1 rad/s and the front wheels slip

@@ -51,7 +51,7 @@ def test_a_kinematic_body_without_mates_is_refused_as_not_dynamic(yard, signal):
     with pytest.raises(NotSimulatedError) as exc:
         yard.set(f"conveyor.{signal}", [1.0, 0.0, 0.0])
     msg = str(exc.value)
-    assert "conveyor is not dynamic" in msg
+    assert "conveyor is not dynamic and does not move" in msg
     assert "mates" not in msg
 
 

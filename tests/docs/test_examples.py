@@ -118,8 +118,9 @@ def test_clean_examples_simulate_and_drive():
         assert abs(moved_x(step[n], "boxTruck.chassis")) < 0.05, n  # on its wheels, no motors yet
     for n in ("step09", "step10", "step11"):
         # equal speeds on mirrored hubs: the front wheels fight (A023) and slip at their target speed (velocity
-        # constraints): the truck turns where it stands, its centre moving 0.25 m in 3 s (driving: 0.78 m)
-        assert abs(moved_x(step[n], "boxTruck.chassis")) < 0.35, n
+        # constraints): the truck turns where it stands, its centre moving 0.25 m in 3 s (0.42 m on the plastic
+        # contact of normal_restitution 0, steps 10 and 11; driving: 0.78 m)
+        assert abs(moved_x(step[n], "boxTruck.chassis")) < 0.55, n
         assert abs(height(step[n], "boxTruck.chassis") - 1.0) < 0.05, n
     a023 = [d for d in doc["diagnostics"] if d["code"] == "A023"]
     assert {d["file"] for d in a023} == {step["step09"], step["step10"], step["step11"]}

@@ -84,11 +84,74 @@ def test_api_moves_kinematic_bodies_as_plx_check_does():
     assert t.position == pytest.approx((tr["table.x"][-1], tr["table.y"][-1], tr["table.z"][-1]), abs=1e-12)
 
 
-def test_velocity_input_on_a_kinematic_body_is_refused_for_the_right_reason():
-    from plxtools.check.api import NotSimulatedError, load
+def test_velocity_inputs_drive_a_kinematic_body():
+    """AGX drives kinematic bodies by velocity signals: a new velocity acts from the next step on,
+    the body continuing from where it is; the outputs read it."""
+    from plxtools.check.api import load
 
     sim = load(MODEL)
+    sim.step(0.5)
+    x0 = sim.body("platform").position[0]
+    sim.set("platform.linear_velocity_world_input", [-1.0, 0.25, 0.0])
+    sim.set("table.angular_velocity_world_input", [0.0, 0.0, -3.0])
+    sim.step(1.0)
+    p = sim.body("platform")
+    assert p.position[0] - x0 == pytest.approx(-1.0, abs=1e-9)
+    assert p.position[1] == pytest.approx(0.25, abs=1e-9)
+    assert p.linear_velocity == pytest.approx((-1.0, 0.25, 0.0), abs=1e-9)
+    assert sim.read("platform.linear_velocity_world_output") == pytest.approx((-1.0, 0.25, 0.0), abs=1e-9)
+    t = sim.body("table")
+    assert t.angular_velocity == pytest.approx((0.0, 0.0, -3.0), abs=1e-9)
+    assert math.hypot(*t.linear_velocity) == pytest.approx(3.0 * R, rel=1e-9)
+
+
+def test_velocity_input_on_a_static_body_says_how_to_drive_it(tmp_path):
+    from plxtools.check.api import NotSimulatedError, load
+
+    f = tmp_path / "still.openplx"
+    f.write_text(MODEL.read_text(encoding="utf-8").replace("kinematics.initial_local_linear_velocity: {0.5, 0, 0}",
+                                                           "kinematics.initial_local_linear_velocity: {0, 0, 0}"))
+    sim = load(f)
     with pytest.raises(NotSimulatedError) as exc:
         sim.set("platform.linear_velocity_world_input", [1.0, 0.0, 0.0])
-    assert "not dynamic" in str(exc.value)
+    assert "not dynamic and does not move" in str(exc.value) and "initial velocity" in str(exc.value)
     assert "mates" not in str(exc.value)
+
+
+def test_a_scenario_drives_a_kinematic_body_by_its_velocity_input(tmp_path):
+    from plxtools.cli import main
+
+    (tmp_path / "kin.openplx").write_text(MODEL.read_text(encoding="utf-8"), encoding="utf-8")
+    (tmp_path / "drive.scenario.toml").write_text("""model = "kin.openplx"
+duration = 1.0
+[[input]]
+at = 0.5
+signal = "platform.linear_velocity_world_input"
+value = [0.0, 0.0, 0.2]
+[[expect]]
+at = 1.0
+of = "platform.vz"
+equals = 0.2
+tolerance = 1e-9
+[[expect]]
+at = 1.0
+of = "platform.z"
+equals = 0.6
+tolerance = 0.003
+""", encoding="utf-8")
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        code = main(["test", str(tmp_path / "drive.scenario.toml"), "--output-format", "json"])
+    assert code == 0, buf.getvalue()
+
+
+def test_a_plane_on_a_kinematic_body_is_left_out_with_a127():
+    """MuJoCo allows planes only on static bodies, and a kinematic body is a free one."""
+    from plxtools.check.mujoco.backend import compile_scene
+    from plxtools.check.scene import Body, Geom, Scene
+
+    deck = Body("deck", (0.0, 0.0, 0.0), is_dynamic=False, lin_vel=(0.5, 0.0, 0.0),
+                geoms=[Geom("deck.plane", "plane", size=(4.0, 4.0, 0.0)), Geom("deck.slab", "box", size=(1, 1, 0.1))])
+    compiled = compile_scene(Scene("Deck", [deck]))
+    assert compiled.ok, [n.message for n in compiled.notes]
+    assert [n.code for n in compiled.notes if n.path == "deck.plane"] == ["A127"]

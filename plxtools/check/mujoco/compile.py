@@ -34,6 +34,7 @@ from plxtools.check.assemble import CONNECTOR_COUNT, MATE_SAME_BODY, ZERO_MAIN_A
 from plxtools.check.coverage import NOT_SIMULATED
 from plxtools.check.mujoco.context import BuildContext, CompileFailed
 from plxtools.check.mujoco.controllers import add_controllers, add_keyframe
+from plxtools.check.mujoco.kinematic import add_kinematic_joint, exclude_kinematic_contacts, set_kinematic_inertia
 from plxtools.check.mujoco.geoms import add_contact_pairs, add_excludes, add_geoms, set_inertials, set_restitution
 from plxtools.check.mujoco.integrator import choose as choose_integrator
 from plxtools.check.frames import mat_to_quat_wxyz
@@ -150,6 +151,7 @@ def build(ctx: BuildContext) -> None:
     spec.compiler.boundinertia = 1e-12
     model = ctx.compile("mass-properties")
     set_inertials(ctx, model)
+    set_kinematic_inertia(ctx, model)
     spec.compiler.boundmass = 0.0
     spec.compiler.boundinertia = 0.0
     # pass 2: effective joint inertias for gains / stiffness caps
@@ -338,16 +340,17 @@ def add_static_bodies(ctx: BuildContext) -> None:
         )
         ctx.mj_bodies[path] = mb
         if body.kinematic:
-            mb.mocap = True
-            ctx.out.kinematic.append(path)
+            add_kinematic_joint(ctx, path, body, mb)
             ctx.note(
                 INFO,
                 "A121",
-                f"{path} is kinematic: it moves with its velocity whatever hits it (a MuJoCo mocap body; "
-                "contacts see where it is, not how fast it moves, so friction does not carry things on it)",
+                f"{path} is kinematic: it moves with its velocity whatever hits it (a free body of effectively "
+                "infinite inertia set to its prescribed pose and velocity every step, so contacts see how fast "
+                "it moves and friction carries what rests on it)",
                 body,
             )
         add_geoms(ctx, mb, body)
+    exclude_kinematic_contacts(ctx)
 
 
 def add_dynamic_bodies(ctx: BuildContext, parents: dict[str, tuple[str, Mate]], roots: list[str]) -> None:

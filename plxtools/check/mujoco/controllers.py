@@ -1,7 +1,8 @@
 """Controllers (motors, ranges, springs) and the initial keyframe (steps of the MjSpec build, on a :class:`BuildContext`).
 
-Velocity motors: one with a symmetric or no effort range is a velocity constraint of its gain
-(``mujoco.velocity_constraint``), solved with the contacts.  Any other is a servo,
+Velocity motors: one with any effort range (an offset plus a friction bound) is a velocity
+constraint of its gain (``mujoco.velocity_constraint``), solved with the contacts.  One with an
+inverted range (an error, A024, when not suppressed) or a gain too soft for it is a servo,
 ``kv = min(gain, KV_STEPS * I_eff / timestep)`` with ``I_eff = 1 / dof_invweight0``;
 ``KV_STEPS`` is 10 for unlimited motors (a servo time constant of a tenth of a step: tight tracking)
 and 1 when an effort limit is finite (MuJoCo drops the implicit damping of a saturated actuator, and
@@ -186,19 +187,21 @@ def add_velocity_motor(ctx: BuildContext, model: Any, ctl: Controller, mate: Mat
     limited = math.isfinite(ctl.min_effort) or math.isfinite(ctl.max_effort)
     steps = KV_STEPS_LIMITED if limited or stopped else KV_STEPS
     cap = steps * ieff / h
-    bound = velocity_constraint.symmetric_bound(float(ctl.min_effort), float(ctl.max_effort))
+    g = float(np.linalg.norm(np.asarray(ctx.spec.option.gravity, dtype=float)))
+    span = velocity_constraint.one_sided_span(ieff, ctl.target_speed, h, g)
+    split = velocity_constraint.split_range(float(ctl.min_effort), float(ctl.max_effort), span)
     d = velocity_constraint.impedance(ctl.gain, h, velocity_constraint.tendon_invweight(model, joint, float(sign), ieff))
-    if bound is not None and d is not None:
-        name, ref = velocity_constraint.add(ctx, ctl.path, ctl.source, joint, float(sign), ieff, bound, d)
+    if split is not None and d is not None:
+        name, ref = velocity_constraint.add(ctx, ctl.path, ctl.source, joint, float(sign), ieff, split[1], d)
         ctx.out.actuators.append(ActuatorInfo(ctl.path, name, ctl.kind, mate.path, joint, float(sign),
                                               float(ctl.target_speed), velocity_constraint.honoured_gain(ctl.gain, d),
                                               float(ctl.target_speed), reference=ref,
-                                              tendon=ctx.names.name("tendon", ctl.path)))
+                                              tendon=ctx.names.name("tendon", ctl.path), offset=split[0], span=span))
         return
     kv = min(float(ctl.gain), cap)
     if kv < ctl.gain:
         why = (
-            "its effort range is not symmetric, so it cannot run as a velocity constraint (a friction bound [-e, e]); "
+            "its effort range is inverted (min above max), so it cannot run as a velocity constraint; "
             "as an effort-limited servo, a larger kv would chatter between the effort limits (MuJoCo ignores the "
             "implicit damping of a saturated actuator)"
             if limited
@@ -408,11 +411,12 @@ def add_keyframe(ctx: BuildContext, model: Any) -> None:
     qvel = np.zeros(model.nv)
     roots = set(ctx.out.free_roots)
     for path, body in ctx.bodies.items():
-        if not body.is_dynamic:
+        kinematic = ctx.names.name("joint", path, ":kinematic")
+        if not body.is_dynamic and kinematic is None:
             continue
         v, w = np.asarray(body.lin_vel, dtype=float), np.asarray(body.ang_vel, dtype=float)
-        if path in roots:
-            jid = model.joint(ctx.names.name("joint", path, ":free")).id
+        if kinematic is not None or path in roots:
+            jid = model.joint(kinematic or ctx.names.name("joint", path, ":free")).id
             adr = model.jnt_dofadr[jid]
             r = quat_to_mat(body.world_quat)
             qvel[adr : adr + 3] = v

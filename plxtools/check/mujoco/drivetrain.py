@@ -23,12 +23,12 @@ quarter of the angle error per step: solved with the motor's velocity constraint
 contacts, a train driving two wheels is at its input speed after one step too (before, with a
 time constant of two steps, 42 %).
 
-A **1D velocity motor** with a symmetric or no effort range is a velocity constraint of its gain
+A **1D velocity motor** with any effort range is a velocity constraint of its gain
 (rigid with the default gain) on its shaft's coordinate (``mujoco.velocity_constraint``: a friction-loss
 tendon against a reference turning at the target speed), solved together with contacts, limits and
 the couplings, so the shaft is at its target speed after one step as with AGX's velocity
 constraint (tests/check/test_drivetrain_one_step.py, also on a cart driven over the ground).  With
-an asymmetric effort range it is a ``<velocity>`` servo (``gear`` = the shaft's speed ratio, so the
+an inverted effort range it is a ``<velocity>`` servo (``gear`` = the shaft's speed ratio, so the
 actuator's length, speed and force are the shaft's) of ``kv = min(gain, I / h)``, ``I`` the inertia
 the shaft sees, which gets half way to a new target per step.  A **1D torque motor** is a
 ``<motor>`` whose control is its torque input (0 until a signal sets it).
@@ -48,7 +48,7 @@ from plxtools.check.mujoco.results import ActuatorInfo, ShaftCoordinate
 
 SHAFT_BODY_MASS = 1e-6  # kg: a point (its inertia 1e-9 kg m^2 beside the armature), so the MJCF export reloads
 COUPLING_ANGLE_RATE = 0.25  # a coupled train's equalities remove this share of their angle error per step
-SERVO_GAIN_STEPS = 1.0  # a servo (an asymmetric effort range): kv = this x the inertia it drives / timestep
+SERVO_GAIN_STEPS = 1.0  # a servo (an inverted effort range): kv = this x the inertia it drives / timestep
 
 Edge = tuple[str, float]  # (other node, its coordinate per this node's coordinate)
 
@@ -216,25 +216,28 @@ def _effort_range(ctx: BuildContext, act: Any, lo: float, hi: float) -> None:
 
 def _velocity_motor(ctx: BuildContext, model: Any, m: Any, coord: ShaftCoordinate, lo: float, hi: float) -> None:
     """A velocity constraint (mujoco.velocity_constraint) of the motor's gain when the effort range
-    is symmetric (or none); otherwise a servo of gain ``min(gain, inertia / h)``."""
+    is a range (any, or none); otherwise a servo of gain ``min(gain, inertia / h)``."""
     h = float(ctx.spec.option.timestep)
     joint, ratio = coord.joint, coord.factor
     ieff = _joint_inertia(model, joint) / (ratio * ratio) if coord.rigid else chain_inertia(ctx, model, m.shaft)
     cap = SERVO_GAIN_STEPS * ieff / h
-    bound = velocity_constraint.symmetric_bound(lo, hi)
+    g = float(np.linalg.norm(np.asarray(ctx.spec.option.gravity, dtype=float)))
+    span = velocity_constraint.one_sided_span(ieff, m.target_speed, h, g)
+    split = velocity_constraint.split_range(lo, hi, span)
     target = float(m.target_speed)
     d = velocity_constraint.impedance(m.gain, h, velocity_constraint.tendon_invweight(model, joint, ratio, ieff))
-    if bound is not None and d is not None:
-        name, ref = velocity_constraint.add(ctx, m.path, m.source, joint, ratio, ieff, bound, d)
+    if split is not None and d is not None:
+        name, ref = velocity_constraint.add(ctx, m.path, m.source, joint, ratio, ieff, split[1], d)
         ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, target,
                                               velocity_constraint.honoured_gain(m.gain, d), target,
-                                              reference=ref, tendon=ctx.names.name("tendon", m.path)))
+                                              reference=ref, tendon=ctx.names.name("tendon", m.path),
+                                              offset=split[0], span=span))
         return
     kv = min(float(m.gain), cap)
     if kv < m.gain:
         note_gain_clamped(ctx, INFO, f"{m.path}: the default gain {m.gain:g} is far too stiff for a MuJoCo servo; kv "
                           f"clamped to {kv:.4g} (= the inertia it drives through the drive train, {ieff:.4g}, / "
-                          f"timestep {h:g}): its effort range [{lo:g}, {hi:g}] is not symmetric, so it cannot be "
+                          f"timestep {h:g}): its effort range [{lo:g}, {hi:g}] is inverted, so it cannot be "
                           "solved as a velocity constraint; integrated implicitly, half way to its target speed "
                           "per step", m)
     name = ctx.names.add("actuator", m.path, m.source)

@@ -14,7 +14,7 @@ from plxtools.check.coverage import NOT_SIMULATED
 from plxtools.check.mujoco.context import BuildContext
 from plxtools.check.mujoco.poses import Z_TO_Y_QUAT, quat_mul, quat_normalize
 from plxtools.check.mujoco.notes import INFO, WARNING
-from plxtools.check.mujoco.restitution import restitution_solref
+from plxtools.check.mujoco.restitution import restitution_solref, slowest_exact_impact, speed_ratio_error
 from plxtools.check.mujoco.results import VISUAL_GROUP
 from plxtools.check.scene import GEOM_KINDS, Body, Geom
 from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NON_POSITIVE_SIZE
@@ -92,7 +92,7 @@ def _shape(ctx: BuildContext, body: Body, g: Geom, kw: dict[str, Any]) -> Any:
         kw.update(type=kind, size=[g.radius, g.height / 2.0, 0])
         quat = quat_mul(quat, Z_TO_Y_QUAT)
     elif g.kind == "plane":
-        if body.is_dynamic:
+        if body.is_dynamic or body.kinematic:  # a kinematic body is a free MuJoCo body (mujoco.kinematic)
             ctx.note(WARNING, "A127", f"{g.path}: planes can only be static in MuJoCo; skipped", g)
             return None
         kw.update(type=mj.mjtGeom.mjGEOM_PLANE, size=[g.size[0] / 2.0, g.size[1] / 2.0, 1.0])
@@ -242,7 +242,7 @@ def add_contact_pairs(ctx: BuildContext) -> None:
                     cm,
                 )
             # other models: Coulomb mu is used; the static checks own that finding (A040)
-        bouncy = cm.restitution is not None and 0.0 < cm.restitution <= 1.0
+        bouncy = cm.restitution is not None and 0.0 <= cm.restitution <= 1.0
         g1 = ctx.geoms_by_material.get(cm.material1, [])
         g2 = ctx.geoms_by_material.get(cm.material2, [])
         if not g1 or not g2:
@@ -271,17 +271,34 @@ def add_contact_pairs(ctx: BuildContext) -> None:
                 )
                 if bouncy:
                     ctx.bouncy_pairs.append((pair, float(cm.restitution)))
-        if bouncy and made:
-            ctx.note(INFO, "A137", f"{cm.path}: normal_restitution {cm.restitution:g} simulated by a contact "
-                     f"spring-damper with that restitution (MuJoCo solref in direct form; see {DOCS_BASE_URL}physics/)", cm)
+        if bouncy and made and cm.restitution > 0.0:  # e = 0 stops an impact exactly: nothing to note
+            ctx.bouncy_models.append(cm)
+
+
+FRICTION_SOLREF = (0.02, 1.0)  # MuJoCo's default contact softness, kept for friction
+MIN_CHECKED_IMPACT = 1.0  # m/s: a drop of 5 cm; slower impacts are not promised the 3 %
 
 
 def set_restitution(ctx: BuildContext) -> None:
-    """The contact springs of pairs with a normal restitution, for the final time step (a stiff
-    spring may have shortened it after the pairs were made)."""
+    """The contact velocity targets of pairs with a normal restitution, for the final time step (a
+    stiff spring may have shortened it after the pairs were made), and what each one promises (A137)."""
     h = float(ctx.spec.option.timestep)
     for pair, e in ctx.bouncy_pairs:
         pair.solref, pair.solimp = restitution_solref(e, h)
+        pair.solreffriction = list(FRICTION_SOLREF)  # 0 would give the friction rows the impact's target
+    g = float(np.linalg.norm(np.asarray(ctx.spec.option.gravity, dtype=float)))
+    for cm in ctx.bouncy_models:
+        e = float(cm.restitution)
+        slow = slowest_exact_impact(e, h, g)
+        said = (f"{cm.path}: normal_restitution {e:g}: each impact leaves at {e:g} x its normal speed "
+                f"(MuJoCo contact with the velocity target -{e:g} v in the step it begins; see {DOCS_BASE_URL}physics/)")
+        if slow <= MIN_CHECKED_IMPACT:
+            ctx.note(INFO, "A137", said, cm)
+            continue
+        err = 100.0 * speed_ratio_error(e, h, g, MIN_CHECKED_IMPACT)
+        ctx.note(WARNING, "A137", f"{said}; but the impact is resolved at the depth the {h:g} s step finds it "
+                 f"(up to v h), so an impact slower than {slow:.2g} m/s may rebound more than 3 % short of "
+                 f"{e:g} in speed (at 1 m/s by about {err:.0f} %): a shorter time step (--timestep) lowers that", cm)
 
 
 # -- mass properties -------------------------------------------------------------------------

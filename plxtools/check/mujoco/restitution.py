@@ -1,60 +1,60 @@
-"""Normal restitution on MuJoCo's soft contacts.
+"""Normal restitution as a velocity target of MuJoCo's contact, the same for every impact speed.
 
-A MuJoCo contact is a spring-damper on the penetration x: with ``solref = (-K, -B)`` (the
-"direct" form, both per unit of effective mass) and a constant impedance ``solimp = (d, d, ...)``,
-the contact pushes with ``x'' = -K x - B x'`` while it is active, and lets go when that push would
-pull (it is unilateral).  A body hitting it at speed v leaves at ``e v``, where e depends only on
-the damping ratio ``zeta = B / (2 sqrt K)`` (not on the mass, the speed or K).  For a two-sided
-spring-damper that is ``e = exp(-pi zeta / sqrt(1 - zeta^2))``; a unilateral contact lets go
-before the spring is back at x = 0, so e is a little lower. :func:`damping_ratio` inverts the
-unilateral e(zeta) numerically (bisection over a fine integration of the unit oscillator).
+An impact law says the normal speed after the impact is ``e`` times the speed before it, whatever
+that speed, the masses or the step.  MuJoCo's soft contact is solved at the velocity level: in the
+step it is active it accelerates the contact towards ``aref = -B v - K r`` (``v`` the normal speed,
+``r`` the penetration, ``solref = (-K, -B)`` in the direct form, divided by the impedance ``d``),
+and reaches ``d aref + (1 - d) a0`` (``a0`` the acceleration without the contact).  With
+``B = (1 + e) / h`` and ``d`` at MuJoCo's largest, 0.9999, one step takes the normal speed from
+``-v`` to ``+e v``: the impact law itself, solved together with every other contact, joint and
+motor (two bodies of any mass ratio, a box landing on four corners).  In the next step the contact
+would have to pull to reverse the speed again, and a contact cannot, so the body flies off; with
+``e = 0`` it stays (a plastic impact).  The impact law holds for any speed by construction; the
+spring-damper it replaces (a contact of 10 steps with a damping ratio for ``e``) lost a share of the
+rebound to gravity acting during the contact, a share that grew as the impact speed fell.
 
-K sets how long the contact lasts: half a period ``pi / sqrt(K)`` is ``CONTACT_STEPS`` time
-steps (10 steps = 20 ms at the default 2 ms step, about as soft as MuJoCo's default contact,
-time constant 20 ms).  Shorter contacts are resolved too coarsely by the step; longer ones let
-gravity act during the contact, which takes speed from the rebound (both measured: 10 steps gives
-the rebound height within 3 % for e = 0.5 and 0.8; for e = 0.2 gravity during the contact costs
-about 20 % of the rebound height)."""
+``K`` pushes a body out of what it sank into by an impact (the step that finds a contact finds it
+already penetrating, by up to ``v h``): ``K h^2 = STIFFNESS_H2 max(e, 0.1)`` recovers it in tens of
+steps and adds at most 1 % of ``e v`` to a rebound.  What is left is where the impact happens: at the
+depth the step found, not at the surface, so a body that sank ``x`` rebounds ``(1 - e^2) x`` lower
+than ``e^2`` times its drop (exact for ``e = 1``); :func:`slowest_exact_impact` is the impact speed
+below which that can take more than 3 % off the rebound speed ratio (docs/physics.md, A137)."""
 
 from __future__ import annotations
 
-import functools
-import math
-
-CONTACT_STEPS = 10.0  # half a period of the contact spring, in time steps
-IMPEDANCE = 0.99  # solimp d0 = dmax: the contact follows the spring-damper to 1 %
-
-
-def unilateral_restitution(zeta: float, dt: float = 1e-3) -> float:
-    """Rebound speed / impact speed of the unit oscillator ``x'' = -x - 2 zeta x'`` whose force
-    cannot pull (a contact): from x = 0, x' = 1 until x is back at 0."""
-    x, v = 0.0, 1.0
-    while True:
-        f = x + 2.0 * zeta * v
-        v -= (f if f > 0.0 else 0.0) * dt
-        x += v * dt
-        if x <= 0.0:
-            return -v
-
-
-@functools.lru_cache(maxsize=256)
-def damping_ratio(e: float) -> float:
-    """The damping ratio whose unilateral contact gives restitution ``e`` (0 < e <= 1)."""
-    if e >= 1.0:
-        return 0.0
-    lo, hi = 0.0, 1.0
-    for _ in range(30):
-        mid = 0.5 * (lo + hi)
-        if unilateral_restitution(mid) > e:
-            lo = mid
-        else:
-            hi = mid
-    return 0.5 * (lo + hi)
+STIFFNESS_H2 = 0.01  # K h^2: the push out of a penetration, per step, for e >= 1 (scaled by e, at least 0.1 of it)
+IMPEDANCE = 0.9999  # MuJoCo's largest: the contact reaches its velocity target to 0.01 %
+# e = 0 needs no exact speed: 1 % of an impact left for the next step is still no rebound, and a
+# softer contact leaves stiff motors on wheels their 0.1 % (a BoxTruck turning on the spot: 0.995 at 0.9999)
+PLASTIC_IMPEDANCE = 0.99
+RATIO_TOLERANCE = 0.03  # the rebound speed ratio promised within 3 % of e
+# the largest error measured over drops of 0.05-5 m, e 0.2-1 and steps 0.5-5 ms (bench/restitution.py),
+# as a share of the bound (1 - e^2) g h / (e^2 v) (0.66 seen): the step finds a body less than a step deep,
+# and K pushes it back out
+MEASURED_SHARE = 0.7
 
 
 def restitution_solref(e: float, timestep: float) -> tuple[list[float], list[float]]:
-    """(solref, solimp) of a contact pair with normal restitution ``e`` at ``timestep``."""
-    omega = math.pi / (CONTACT_STEPS * timestep)
-    stiffness = omega * omega
-    damping = 2.0 * damping_ratio(e) * omega
-    return [-stiffness, -damping], [IMPEDANCE, IMPEDANCE, 0.001, 0.5, 2.0]
+    """(solref, solimp) of a contact pair with normal restitution ``e`` (0 <= e <= 1) at ``timestep``."""
+    h = float(timestep)
+    k = STIFFNESS_H2 * max(float(e), 0.1) / (h * h)  # adds at most 1 % of e v (0.1 % of v below e = 0.1)
+    d = IMPEDANCE if e > 0.0 else PLASTIC_IMPEDANCE
+    return [-k, -(1.0 + float(e)) / h], [d, d, 0.001, 0.5, 2.0]
+
+
+def slowest_exact_impact(e: float, timestep: float, gravity: float) -> float:
+    """The impact speed (m/s) below which a rebound against ``gravity`` may be more than 3 % short
+    of ``e`` in speed ratio: the impact is resolved up to ``v h`` deep, which takes up to
+    ``(1 - e^2) v h`` off a rebound height of ``e^2 v^2 / 2g``, a speed-ratio error of at most
+    ``(1 - e^2) g h / (e^2 v)``, of which MEASURED_SHARE was seen.  0 for e = 1 and for no gravity, and for e = 0 (a plastic impact
+    has no rebound to be short of: it stops the body, which the step does exactly)."""
+    if e >= 1.0 or e <= 0.0 or gravity <= 0.0:
+        return 0.0
+    return speed_ratio_error(e, timestep, gravity, 1.0) / RATIO_TOLERANCE
+
+
+def speed_ratio_error(e: float, timestep: float, gravity: float, speed: float) -> float:
+    """The largest rebound speed-ratio error (a share of e) expected for an impact at ``speed``."""
+    if e >= 1.0 or e <= 0.0 or gravity <= 0.0:
+        return 0.0
+    return MEASURED_SHARE * (1.0 - e * e) * gravity * timestep / (e * e * speed)

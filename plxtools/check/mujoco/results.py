@@ -46,6 +46,8 @@ class ActuatorInfo:
     # and the tendon whose friction force is the motor's effort; None for a servo or a motor
     reference: str | None = None
     tendon: str | None = None
+    offset: float = 0.0  # a velocity constraint's constant effort, the middle of its range (velocity_constraint)
+    span: float = 1.0  # and the half-width of a one-sided range given to it (velocity_constraint.one_sided_span)
 
 
 @dataclass(slots=True)
@@ -71,7 +73,7 @@ class CompiledScene:
     tree_mates: list[str] = field(default_factory=list)
     loop_mates: list[str] = field(default_factory=list)
     free_roots: list[str] = field(default_factory=list)  # body paths given a free joint
-    kinematic: list[str] = field(default_factory=list)  # body paths moved as prescribed (mocap bodies)
+    kinematic: list[str] = field(default_factory=list)  # body paths moved as prescribed (free bodies set every step)
     integrator: str = "implicitfast"  # the MuJoCo integrator the scene runs with (mujoco.integrator.choose)
     integrator_why: str = ""
     prescribed_cache: Any = None  # mujoco.kinematic.prescribed: (model, body id -> prescribed velocity)

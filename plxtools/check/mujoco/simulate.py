@@ -11,7 +11,7 @@ import numpy as np
 
 from plxtools.check.mujoco.compile import VISUAL_GROUP, CompiledScene, MateMonitor
 from plxtools.check.mujoco.integrator import not_conservative
-from plxtools.check.mujoco.kinematic import KinematicMover, Stepper, body_velocity
+from plxtools.check.mujoco.kinematic import KinematicMover, Stepper, body_velocity, kinematic_dofs
 from plxtools.check.mujoco.poses import angle_between
 from plxtools.check.mujoco.velocity_constraint import reference_dof, reference_energy
 from plxtools.check.mujoco.notes import ERROR, INFO, WARNING, BackendNote
@@ -561,10 +561,6 @@ class BodyMotion(Monitor):
         self.max_speed = np.zeros(n)
         self.ke_max = np.zeros(n)
         self.vel6 = np.zeros(6)
-        kin = {m.path: m for m in run.movers}
-        self.kin_cols = np.array([k for k, p in enumerate(self.paths) if p in kin], dtype=int)
-        self.kin_v = np.array([kin[self.paths[k]].v for k in self.kin_cols], dtype=float).reshape(-1, 3)
-        self.kin_w = np.array([kin[self.paths[k]].w for k in self.kin_cols], dtype=float).reshape(-1, 3)
         self._motion(run, Samples.now(data), first=True)
         run.batch_speed = None
 
@@ -602,13 +598,6 @@ class BodyMotion(Monitor):
         cvel = b.cvel[:s, self.ids].reshape(-1, 6)
         w = cvel[:, :3]
         lin = cvel[:, 3:] - _cross((b.xipos[:s, self.ids] - b.subtree_com[:s, self.roots]).reshape(-1, 3), w)
-        if self.kin_cols.size:  # MuJoCo gives a mocap body no velocity: the prescribed one
-            w = w.reshape(s, n, 3).copy()
-            lin = lin.reshape(s, n, 3)
-            arm = b.xipos[:s, self.ids[self.kin_cols]] - b.xpos[:s, self.ids[self.kin_cols]]
-            w[:, self.kin_cols] = self.kin_w
-            lin[:, self.kin_cols] = self.kin_v + np.cross(self.kin_w, arm)
-            w, lin = w.reshape(-1, 3), lin.reshape(-1, 3)
         v2 = (lin * lin).sum(axis=1)
         sp = np.sqrt(v2).reshape(s, n)
         rot = b.ximat[:s, self.ids].reshape(-1, 3, 3)
@@ -908,6 +897,7 @@ class MotorTracking(Monitor):
                               dtype=int)
         self.c_gear = np.array([float(self.acts[k][0].gear) for k in self.constraint])
         self.c_ref = np.array([reference_dof(model, self.acts[k][0].reference) for k in self.constraint], dtype=int)
+        self.c_offset = np.array([float(self.acts[k][0].offset) for k in self.constraint])
         self.speed_sum = np.zeros(len(self.acts))
         self.force_sum = np.zeros(len(self.acts))
         self.count = 0
@@ -922,7 +912,7 @@ class MotorTracking(Monitor):
         force = b.actuator_force[rows][:, self.aid]
         if self.constraint:
             speed[:, self.constraint] = b.qvel[rows][:, self.c_dof] * self.c_gear
-            force[:, self.constraint] = -b.qfrc_constraint[rows][:, self.c_ref]
+            force[:, self.constraint] = -b.qfrc_constraint[rows][:, self.c_ref] + self.c_offset
         self.speed_sum = _running_sum(self.speed_sum, speed)
         self.force_sum = _running_sum(self.force_sum, force)
         self.count += int(rows.size)
@@ -969,8 +959,9 @@ class Energy(Monitor):
     def __init__(self, run: SimRun) -> None:
         data, model = run.data, run.model
         # velocity constraints' references (mujoco.velocity_constraint): their motion is not the scene's
+        # and the kinematic bodies' armature (mujoco.kinematic): only their own mass's motion counts
         self.ref_dofs = np.array([reference_dof(model, a.reference) for a in run.compiled.actuators
-                                  if a.reference is not None], dtype=int)
+                                  if a.reference is not None] + kinematic_dofs(run.compiled, model), dtype=int)
         self.initial = self._total(run)
         self.max_kinetic = float(data.energy[1]) - reference_energy(model, data.qvel, self.ref_dofs)
         self.work = 0.0
@@ -993,6 +984,7 @@ class Energy(Monitor):
         self.is_constraint = np.array([a.reference is not None for a in acts], dtype=bool)
         self.c_ref = np.array([reference_dof(model, a.reference) if a.reference is not None else 0 for a in acts],
                               dtype=int)
+        self.c_offset = np.array([float(a.offset) for a in acts])  # a constraint motor's constant effort
         ids = [model.actuator(a.name).id for a in acts]
         self.aid = np.array(ids, dtype=int)
         self.limited = np.array([bool(model.actuator_forcelimited[i]) for i in ids], dtype=bool)
@@ -1027,7 +1019,7 @@ class Energy(Monitor):
         self._qv[k] = self._qvel
         self._ct[k] = self._ctrl_now
         if self._fc is not None:
-            self._fc[k] = -self._qfrc_c[self.c_ref]
+            self._fc[k] = -self._qfrc_c[self.c_ref] + self.c_offset
         self._rows = k + 1
 
     def _add_work(self) -> np.ndarray:
@@ -1230,6 +1222,9 @@ def _set_up(mujoco: Any, compiled: CompiledScene, res: SimulationResult, opt: Si
     run = SimRun(mujoco, compiled, model, data, res, opt, duration, bodies)
     stepper = Stepper(mujoco, compiled, model, data)
     run.movers = stepper.movers
+    attach = getattr(getattr(controller, "runtime", None), "attach_movers", None)
+    if attach is not None:  # a scenario's inputs may drive kinematic bodies
+        attach(stepper.movers)
     run.controlled = controller is not None
     return run, stepper
 

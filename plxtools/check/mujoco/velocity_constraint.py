@@ -20,8 +20,8 @@ driven coordinate to the target speed, within the effort range, in the constrain
   solve the reference's predicted speed at the end of the step is exactly that control (an
   explicit step of ``kv (ctrl - v) / armature`` covers the whole difference), whatever the
   integrator then does to the reference itself;
-* the tendon's friction loss is the effort limit (symmetric: ``[-e, e]``; ``BIG_EFFORT`` when
-  unlimited), with a direct ``solreffriction`` whose damping removes the whole speed error in one
+* the tendon's friction loss is the effort limit (``[-e, e]`` around the range's middle, see
+  below; ``BIG_EFFORT`` when unlimited), with a direct ``solreffriction`` whose damping removes the whole speed error in one
   step, and the impedance below.
 
 A finite gain is honoured exactly.  MuJoCo's soft constraint pushes with ``(aref - a) / R``, where
@@ -36,8 +36,14 @@ cart of examples/user_bundle hop, A134.)
 The motor's effort is the constraint's force on the tendon: the reference's ``qfrc_constraint``
 with its sign flipped (:func:`effort`), which the signals, the motor report and the energy monitor
 read instead of an actuator force.  The reference's kinetic energy is not the scene's: the energy
-monitor subtracts it (:func:`reference_energy`).  An asymmetric effort range cannot be a friction
-bound, so such a motor stays a servo (``mujoco.drivetrain`` / ``mujoco.controllers``).
+monitor subtracts it (:func:`reference_energy`).
+
+Any effort range is a friction bound around a constant effort: ``[lo, hi]`` is the offset
+``(lo + hi) / 2`` plus ``[-(hi - lo) / 2, (hi - lo) / 2]`` (:func:`split_range`).  The offset is a
+generalized force on the driven coordinate (``qfrc_applied``, set when a run starts and when a range
+input changes it), and the motor's effort is the constraint's force plus it, so an asymmetric or
+one-sided range (a lift that may only push up, [-50, 300] N) keeps the velocity constraint's
+exactness instead of falling back to a servo that sags under load.
 """
 
 from __future__ import annotations
@@ -58,15 +64,48 @@ SOLIMP = [MAX_IMPEDANCE, MAX_IMPEDANCE, 0.001, 0.5, 2.0]  # nearly hard (also th
 _POINT_MASS = 1e-6  # kg: the reference body (its inertia 1e-9 kg m^2 beside the armature)
 
 
-def symmetric_bound(lo: float, hi: float) -> float | None:
-    """The friction bound for an effort range, or None when it is not symmetric (then a servo)."""
-    if lo > hi:
+def split_range(lo: float, hi: float, span: float = 1.0) -> tuple[float, float] | None:
+    """(offset, bound): the effort range ``[lo, hi]`` as a constant effort ``offset`` plus a friction
+    bound ``[-bound, bound]`` around it, the same set; None when it is inverted.  A one-sided range
+    ``[lo, inf)`` is ``[lo, lo + 2 S]``, ``S = span + |lo|`` (:func:`one_sided_span`): the friction
+    force is what the load needs minus the offset, and the constraint's softness leaves a speed
+    error in proportion to it, so the offset must not be far from the loads (measured: a 50 kg lift
+    at 0.5 m/s is 1e-4 off with S = 1.3e4 N, 5 % off with S = 6e6 N)."""
+    if not lo <= hi:
         return None
-    if not math.isfinite(lo) and not math.isfinite(hi):
-        return BIG_EFFORT
-    if math.isfinite(lo) and math.isfinite(hi) and abs(lo + hi) <= 1e-12 * max(abs(lo), abs(hi), 1.0):
-        return min(hi, BIG_EFFORT)
-    return None
+    lo_f, hi_f = math.isfinite(lo), math.isfinite(hi)
+    if not lo_f and not hi_f:
+        return 0.0, BIG_EFFORT
+    if lo_f and hi_f:
+        c, b = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        if abs(c) <= 1e-12 * max(abs(lo), abs(hi), 1.0):
+            c = 0.0
+        return c, min(b, BIG_EFFORT)
+    span = float(span) + abs(lo if lo_f else hi)
+    return (lo + span, span) if lo_f else (hi - span, span)
+
+
+def one_sided_span(inertia: float, target: float, h: float, gravity: float) -> float:
+    """The half-width a one-sided range is given: what stops the driven inertia's target speed in
+    one step and holds it against gravity (N or N m, at least 1)."""
+    return max(float(inertia) * (abs(float(target)) / h + gravity), 1.0)
+
+
+def offset_dofs(model: Any, actuators: list) -> tuple[np.ndarray, np.ndarray]:
+    """(dof, generalized force) of every constraint motor's effort offset (for ``qfrc_applied``)."""
+    dofs, forces = [], []
+    for a in actuators:
+        if a.reference is not None and a.offset != 0.0:
+            dofs.append(int(model.jnt_dofadr[model.joint(a.joint).id]))
+            forces.append(float(a.gear) * float(a.offset))
+    return np.array(dofs, dtype=int), np.array(forces, dtype=float)
+
+
+def apply_offsets(model: Any, data: Any, actuators: list) -> None:
+    """Set the effort offsets of a fresh run (MuJoCo keeps ``qfrc_applied`` between steps)."""
+    dofs, forces = offset_dofs(model, actuators)
+    for dof, f in zip(dofs, forces):
+        data.qfrc_applied[dof] += f
 
 
 def impedance(gain: float, h: float, invweight: float) -> float | None:
@@ -137,9 +176,10 @@ def reference_dof(model: Any, ref_joint: str) -> int:
     return int(model.jnt_dofadr[model.joint(ref_joint).id])
 
 
-def effort(data: Any, ref_dof: int) -> float:
-    """The motor's effort now: the constraint's force on its tendon (the reference takes minus it)."""
-    return -float(data.qfrc_constraint[ref_dof])
+def effort(data: Any, ref_dof: int, offset: float = 0.0) -> float:
+    """The motor's effort now: the constraint's force on its tendon (the reference takes minus it)
+    plus its constant offset."""
+    return -float(data.qfrc_constraint[ref_dof]) + offset
 
 
 def reference_energy(model: Any, qvel: np.ndarray, ref_dofs: np.ndarray) -> np.ndarray | float:

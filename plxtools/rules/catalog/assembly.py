@@ -299,14 +299,14 @@ rule("A110", "mujoco-compile-error", E,
      "This is a model MuJoCo cannot represent (or a gap in the backend).", stage=SIM)
 rule("A111", "velocity-motor-gain-clamped", I,
      "A velocity motor runs as a velocity constraint of its gain, solved together with contacts and "
-     "limits as AGX's is (rigid with the bundle's default `gain`, 1e8), when its effort range is "
-     "symmetric or unlimited. "
-     "One with an asymmetric effort range cannot (the constraint's bound is a friction bound [-e, e]): it "
-     "runs as a MuJoCo velocity servo whose gain is clamped to 10 x the joint's effective inertia / timestep "
-     "(1 x with an effort limit, or on a drive train). An info for the bundle's default gain; a warning "
-     "naming your value and the one used when your files set the gain.",
+     "limits as AGX's is (rigid with the bundle's default `gain`, 1e8), whatever its effort range "
+     "(symmetric, asymmetric, one-sided or none: a constant offset plus a friction bound around it). "
+     "One with an inverted effort range (min above max) cannot: it runs as a MuJoCo velocity servo whose "
+     "gain is clamped to 10 x the joint's effective inertia / timestep (1 x with an effort limit, or on a "
+     "drive train). An info for the bundle's default gain; a warning naming your value and the one used "
+     "when your files set the gain.",
      "The clamped servo gets close to its target speed in a few steps and sags by load / kv under a load "
-     "(A106 says by how much); give the motor a symmetric effort range to have it run as a constraint.",
+     "(A106 says by how much); fix the effort range to have it run as a constraint.",
      stage=SIM)
 rule("A112", "spring-stiffness-clamped", W,
      "A spring is so stiff that even the shortest time step plxtools uses (1e-4 s) cannot integrate it; "
@@ -340,10 +340,10 @@ rule("A120", "initial-velocity-ignored", I,
      "Free bodies (the roots of the MuJoCo tree) take their whole initial velocity.", stage=SIM)
 rule("A121", "kinematic-body", I,
      "A kinematic body (`is_dynamic: false`, or listed in a system's `kinematically_controlled`) with a "
-     "velocity moves at that constant velocity, whatever hits it, as a MuJoCo mocap body.",
-     "Contacts see where the body is, not how fast it moves: it pushes what is in its way, but friction "
-     "does not carry objects resting on it along (a conveyor belt), and bodies hinged to it do not feel "
-     "its rotation.", stage=SIM)
+     "velocity moves at that velocity, whatever hits it: a free MuJoCo body of effectively infinite inertia "
+     "set to its prescribed pose and velocity every step. Its velocity inputs set a new velocity.",
+     "Contacts see how fast it moves, so friction carries what rests on it (a conveyor belt, a turntable, a "
+     "lifting platform: within 0.1 % of the closed form after the slip, docs/physics.md).", stage=SIM)
 rule("A122", "controller-reversed", I,
      "A controller lists its mate's connectors in the opposite order, so its coordinate is the negated "
      "mate coordinate.", "A positive target speed then turns the other way; usually unintended.", stage=SIM)
@@ -394,11 +394,14 @@ rule("A135", "implausible-speed", W,
      "The message lists the parts of the bound. A runaway usually comes before a blow-up (A101).",
      stage=SIM)
 rule("A137", "restitution-approximated", I,
-     "A contact model's `normal_restitution` is simulated by a contact spring-damper per material pair "
-     "(MuJoCo `solref` in its direct stiffness/damping form) whose damping ratio gives that coefficient of "
-     "restitution; the contact lasts 10 time steps.",
-     "Rebound heights match e^2 within a few percent for e of 0.5 and more; with a low e gravity acting "
-     "during the 20 ms contact takes some speed from the rebound (see docs/physics.md).", stage=SIM)
+     "A contact model's `normal_restitution` e is simulated per material pair as a velocity target of "
+     "MuJoCo's contact: in the step an impact begins, the normal speed goes from -v to e v (MuJoCo `solref` "
+     "in its direct form, damping (1 + e) / h), solved with every other contact and joint. An info; a "
+     "warning when impacts slower than 1 m/s may rebound more than 3 % short of e at the scene's time step.",
+     "The impact law holds for every speed and mass ratio, but a step finds an impact up to v h deep, and "
+     "the rebound starts from there: (1 - e^2) times that depth comes off the rebound height, which matters "
+     "for slow impacts with a low e. The warning names the impact speed below which that can exceed 3 %; "
+     "a shorter `--timestep` lowers it (see docs/physics.md).", stage=SIM)
 rule("A138", "visual-mesh-skipped", I,
      "A visual-only mesh (`Visuals.Geometries...`) that MuJoCo cannot load (fewer than 4 vertices, a "
      "degenerate file) is left out of the MuJoCo scene.",
