@@ -10,6 +10,7 @@ import bisect
 
 from plxtools.config import Config
 from plxtools.diagnostics import Diagnostic
+from plxtools.rules.engine import FileFacts, apply_severity, run_file_rules
 from plxtools.syntax import ast
 from plxtools.syntax.source import BINARY_FILE
 
@@ -23,7 +24,6 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
     from plxtools.model.workspace import FileAnalysis
     from plxtools.rules.completeness import completeness_diagnostics
     from plxtools.rules.literals import literal_diagnostics
-    from plxtools.rules.mates import shared_connector_diagnostics
     from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements
 
     snap = previous.snapshot if previous is not None else None
@@ -42,7 +42,7 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
         extra += style_of_file(workspace.program, fa.unit, used, root)
         checked = [o for i in sorted(plan.dirty) for o in parts[i].occs]
         extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, checked, tree.path, plan.dirty))
-    extra += shared_connector_diagnostics(workspace.program, fa.unit)  # (whole file: cheap, never re-used)
+    extra += run_file_rules(FileFacts(workspace.program, fa, tree, root))
     for d in extra:
         d.file = tree.path
     return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.lazy_occurrences, fa.snapshot, fa.plan)
@@ -137,14 +137,14 @@ def final_diagnostics(tree: ast.File, cfg: Config, analysis) -> list[Diagnostic]
 
 
 def finalize(tree: ast.File, diags: list[Diagnostic], cfg: Config) -> list[Diagnostic]:
-    """Config selection, follow-on findings dropped, inline suppressions and ordering (syntax first):
-    shared by lint, check and the server."""
+    """The registry's severities, config selection, follow-on findings dropped, inline suppressions
+    and ordering (syntax first): shared by lint, check and the server."""
     from plxtools.rules.consequences import drop_consequences, report_order
     from plxtools.rules.suppress import UNUSED_SUPPRESSION, apply
 
     for d in diags:
         d.file = tree.path
-    diags = [d for d in diags if cfg.rule_enabled(d.code, tree.path)]
+    diags = [d for d in apply_severity(diags) if cfg.rule_enabled(d.code, tree.path)]
     diags = apply(tree, drop_consequences(diags), report_unused=cfg.rule_enabled(UNUSED_SUPPRESSION, tree.path))
     diags.sort(key=report_order)
     return diags

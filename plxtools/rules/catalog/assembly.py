@@ -230,25 +230,7 @@ rule("A041", "non-finite-value", E,
 
 # ---------------------------------------------------------------- simulation (MuJoCo backend)
 
-rule("A043", "connector-used-by-two-mates", E,
-     "Two mates in one model name the same connector: the second can only close by moving the body "
-     "the first one places. Reported by `plx lint` at the mate that is most likely wrong: when another "
-     "body of the same type has that connector unused and the mate's name is closer to that body, that "
-     "mate, with the connector it probably meant; otherwise the later mate.",
-     "A connector is one frame on one body, and a mate ties two frames together. Copying a hinge line "
-     "and changing only one side leaves a wheel held by two hinges (at two places) and another wheel "
-     "held by none: `plx check` then reports the consequences elsewhere (A016 on the other hinge, A037 "
-     "for the loose wheel) and the simulation drags the body away. Motors, springs and ranges use a "
-     "mate's connectors on purpose; they are not mates and are not counted.",
-     example="front_left_hinge is Physics3D.Interactions.Hinge:\n"
-             "    connectors: [chassis.front_left_connector, front_right_wheel.connector]\n"
-             "front_right_hinge is Physics3D.Interactions.Hinge:\n"
-             "    connectors: [chassis.front_right_connector, front_right_wheel.connector]",
-     use_instead="front_left_hinge is Physics3D.Interactions.Hinge:\n"
-                 "    connectors: [chassis.front_left_connector, front_left_wheel.connector]\n"
-                 "front_right_hinge is Physics3D.Interactions.Hinge:\n"
-                 "    connectors: [chassis.front_right_connector, front_right_wheel.connector]",
-     fix="unsafe")
+# A043 connector-used-by-two-mates: plxtools/rules/assembly/shared_connector.py
 rule("A044", "collision-pair-without-effect", I,
      "A `DisableCollisionPair` whose body pairs are all either joined by a mate or apart at the start: "
      "it changes nothing at the start of the simulation.",
