@@ -29,6 +29,8 @@ from typing import Any
 
 import numpy as np
 
+from plxtools.check.bindings import Binding, Unbindable, rpy_of_mat
+
 CONNECTOR_QUANTITIES = ("connector_position", "connector_rpy", "connector_linear_velocity",
                         "connector_angular_velocity", "connector_acceleration", "connector_angular_acceleration")
 _MOTION = CONNECTOR_QUANTITIES[2:]
@@ -36,8 +38,6 @@ _MOTION = CONNECTOR_QUANTITIES[2:]
 
 def _placed(rt: Any, frame: Any) -> tuple[int | None, np.ndarray, np.ndarray]:
     """(MuJoCo body id or None for the world, rotation and origin of the frame in that body)."""
-    from plxtools.check.signals import Unbindable
-
     r0, p0 = frame.pose()
     if frame.body is None:
         return None, r0, p0
@@ -98,8 +98,6 @@ def _t3(v: Any) -> tuple[float, float, float]:
 
 def bind_connector(rt: Any, info: Any) -> Any:
     """The Binding of a connector output (``rt`` is the SignalRuntime)."""
-    from plxtools.check.signals import Binding, Unbindable, rpy_of_mat
-
     q = info.quantity
     if info.frame is None:
         raise Unbindable(f"the frame of its connector {info.source} is undefined (see the check's findings)")

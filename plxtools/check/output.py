@@ -9,6 +9,7 @@ from typing import Any, TextIO
 from plxtools.check.checks import STATIC_MOTION_CODES
 from plxtools.check.pipeline import FileCheck, Skip
 from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.rules import registry
 
 
 def _r(x: float, nd: int = 6) -> float:
@@ -187,20 +188,18 @@ def findings(fc: FileCheck) -> list[str]:
 
 
 # diagnostics that explain how the scene moves (or fails to): the summary lists them with the findings
-MOTION_CODES = STATIC_MOTION_CODES  # and the run's MOTOR_OFF_TARGET
+MOTION_CODES = STATIC_MOTION_CODES  # and the run's registry.MOTOR_OFF_TARGET
 
 
 def motion_diagnostics(fc: FileCheck) -> list[Diagnostic]:
-    from plxtools.check.mujoco.simulate import MOTOR_OFF_TARGET
 
-    return [d for d in fc.diagnostics if d.code in MOTION_CODES or d.code == MOTOR_OFF_TARGET]
+    return [d for d in fc.diagnostics if d.code in MOTION_CODES or d.code == registry.MOTOR_OFF_TARGET]
 
 
 def _energy_gained(s) -> bool:
     """The run reported energy that no motor supplied (its finding, not a threshold of ours)."""
-    from plxtools.check.mujoco.simulate import ENERGY_GAIN
 
-    return any(n.code == ENERGY_GAIN for n in s.notes)
+    return any(n.code == registry.ENERGY_GAIN for n in s.notes)
 
 
 def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO, *, simulate: bool) -> None:

@@ -22,6 +22,7 @@ from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity
 from plxtools.syntax.incremental import IncrementalParser
 from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import ast, parse_text
+from plxtools.rules import registry
 
 
 def is_file_path(path: str) -> bool:
@@ -531,7 +532,7 @@ class AnalysisHost:
         ws = self._ws
         if ws is None:
             diags = list(tree.diagnostics)
-            diags.append(Diagnostic("B000", f"OpenPLX bundles unavailable: {self.workspace_error}", EMPTY_SPAN,
+            diags.append(Diagnostic(registry.BUNDLES_UNAVAILABLE, f"OpenPLX bundles unavailable: {self.workspace_error}", EMPTY_SPAN,
                                     Severity.WARNING, file=tree.path))
             return diags
         return final_diagnostics(tree, cfg, analysis)

@@ -20,7 +20,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from plxtools.model.workspace import VERSION_CODES
+from plxtools.rules import registry
 
 log = logging.getLogger("plxtools.lsp")  # the language server's log, where these run
 
@@ -41,7 +41,7 @@ def wanted(only: list[str] | None) -> bool:
 
 def has_version_diagnostics(diagnostics) -> bool:
     """Whether any diagnostic names something of an older OpenPLX version (U001/U002)."""
-    return any(d.code in VERSION_CODES for d in diagnostics)
+    return any(d.code in registry.tagged("version") for d in diagnostics)
 
 
 def _available(version: str) -> bool:
@@ -64,7 +64,7 @@ def source_version(path: str, diagnostics, to_v: str) -> str | None:
             pinned = None
         if pinned and version_key(pinned) < version_key(to_v):
             return pinned
-    found = [d.older_version for d in diagnostics if d.code in VERSION_CODES and d.older_version]
+    found = [d.older_version for d in diagnostics if d.code in registry.tagged("version") and d.older_version]
     found = [v for v in found if version_key(v) < version_key(to_v)]
     return min(found, key=version_key) if found else None
 

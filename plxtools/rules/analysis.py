@@ -12,7 +12,7 @@ from plxtools.config import Config
 from plxtools.diagnostics import Diagnostic
 from plxtools.rules.engine import FileFacts, apply_severity, run_file_rules
 from plxtools.syntax import ast
-from plxtools.syntax.source import BINARY_FILE
+from plxtools.rules import registry
 
 
 def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previous=None, keep: bool = False):
@@ -125,7 +125,7 @@ def analyse_tree(tree: ast.File, cfg: Config, workspace=None) -> list[Diagnostic
 
 def is_binary(tree: ast.File) -> bool:
     """S001: the file is not text, so there is nothing to analyse beyond saying so."""
-    return any(d.code == BINARY_FILE for d in tree.diagnostics)
+    return any(d.code == registry.BINARY_FILE for d in tree.diagnostics)
 
 
 def final_diagnostics(tree: ast.File, cfg: Config, analysis) -> list[Diagnostic]:
@@ -140,11 +140,11 @@ def finalize(tree: ast.File, diags: list[Diagnostic], cfg: Config) -> list[Diagn
     """The registry's severities, config selection, follow-on findings dropped, inline suppressions
     and ordering (syntax first): shared by lint, check and the server."""
     from plxtools.rules.consequences import drop_consequences, report_order
-    from plxtools.rules.suppress import UNUSED_SUPPRESSION, apply
+    from plxtools.rules.suppress import apply
 
     for d in diags:
         d.file = tree.path
     diags = [d for d in apply_severity(diags) if cfg.rule_enabled(d.code, tree.path)]
-    diags = apply(tree, drop_consequences(diags), report_unused=cfg.rule_enabled(UNUSED_SUPPRESSION, tree.path))
+    diags = apply(tree, drop_consequences(diags), report_unused=cfg.rule_enabled(registry.UNUSED_SUPPRESSION, tree.path))
     diags.sort(key=report_order)
     return diags

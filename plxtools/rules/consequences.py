@@ -13,11 +13,10 @@ nothing below them can be trusted until they are fixed, and the first line print
 from __future__ import annotations
 
 from plxtools.diagnostics import Diagnostic, Severity
-from plxtools.syntax.lexer import TAB_INDENTATION
-from plxtools.syntax.parser import INDENTATION_BETWEEN_LEVELS
+from plxtools.rules import registry
 
-# layout errors that decide which block a line is read into
-_LAYOUT = frozenset({TAB_INDENTATION, INDENTATION_BETWEEN_LEVELS})
+# layout errors that decide which block a line is read into (tagged so in the registry)
+_LAYOUT = registry.tagged("layout")
 # the model's findings that depend on the block a name stands in (names and structure)
 _BLOCK_DEPENDENT = ("N", "M")
 

@@ -41,6 +41,7 @@ from plxtools.check.mujoco.simulate import (
     simulate_compiled,
 )
 from plxtools.check.scene import Scene
+from plxtools.rules import registry
 
 __all__ = [
     "ActuatorInfo",
@@ -107,7 +108,7 @@ def export_mjcf(compiled: CompiledScene, path: str | None = None) -> str:
             mujoco.MjModel.from_xml_path(tmp)
         except ValueError as exc:
             note = note_from_compile_error(exc, compiled.names)
-            note.code = "A132"
+            note.code = registry.MJCF_EXPORT_UNLOADABLE
             note.message = note.message.replace("MuJoCo rejected the model", "MuJoCo cannot load the exported MJCF", 1)
             raise ExportError(note) from None
 
