@@ -31,6 +31,15 @@ def drop_consequences(diags: list[Diagnostic]) -> list[Diagnostic]:
             if not (d.code.startswith(_BLOCK_DEPENDENT) and (d.file, d.span.start.line) in lines)]
 
 
+def drop_owned(diags: list[Diagnostic]) -> list[Diagnostic]:
+    """`diags` without a finding whose code another finding on the same line owns (the registry's
+    `owns`): one fault seen by a lint rule and a check rule is reported once, by its owner."""
+    owned = {(d.file, d.span.start.line, code) for d in diags for code in registry.owned_by((d.code,))}
+    if not owned:
+        return diags
+    return [d for d in diags if (d.file, d.span.start.line, d.code) not in owned]
+
+
 def report_order(d: Diagnostic) -> tuple:
     """Sort key: per file, syntax and layout findings first, then the rest, each by position."""
     return (d.file, not d.code.startswith("S"), d.span.start.offset, d.code)

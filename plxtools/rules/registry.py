@@ -2,10 +2,10 @@
 
 Every code any layer emits (syntax, semantic model, assembly checks, simulation) is registered
 here, so docs, SARIF rule tables, `select`/`ignore` and the severity every command prints all come
-from one list. A rule in the module form (`docs/architecture.md`, "The rule engine") is one line
-in `MODULE_RULES` below: its code, name, severity, stage and module; its documentation is that
-module's docstring and its findings are made by that module's `check`. The older form (a `rule()`
-call with its documentation in `catalog/`) is being moved into that table one family at a time.
+from one list: the table below, the only place a code is written (`docs/architecture.md`, "The rule
+engine"). A rule in the module form names its module there; its documentation is that module's
+docstring and its findings are made by that module's `check`. The pages of the other rules are in
+`catalog/`, keyed by their constant here.
 """
 
 from __future__ import annotations
@@ -186,6 +186,8 @@ BODY_NOT_IN_SYSTEM = entry("A039", "body-not-in-system", W, stage="check")
 NOT_SIMULATED = entry("A040", "unsupported-feature", W, stage="check")
 RANGE_STARTS_VIOLATED = entry("A045", "range-starts-violated", W, stage="check")
 IMPORTED_FILE_NOT_ANALYSED = entry("A042", "imported-file-not-analysed", I, stage="check")
+CONNECTOR_USED_BY_TWO_MATES = entry("A043", "connector-used-by-two-mates", E, fix="unsafe",
+                                    module="assembly.shared_connector")
 NON_FINITE_VALUE = entry("A041", "non-finite-value", E, stage="check")
 COLLISION_PAIR_WITHOUT_EFFECT = entry("A044", "collision-pair-without-effect", I, stage="check")
 SIMULATION_BLOWUP = entry("A101", "simulation-blowup", E, stage="simulate")
@@ -228,9 +230,6 @@ MJCF_EXPORT_UNLOADABLE = entry("A132", "mjcf-export-unloadable", E, stage="simul
 EXPECTATION_FAILED = entry("A140", "expectation-failed", E, stage="test")
 INVALID_SCENARIO = entry("A141", "invalid-scenario", E, stage="test")
 SCENARIO_MODEL_NOT_SIMULATED = entry("A142", "scenario-model-not-simulated", E, stage="test")
-# ---------------------------------------------------------------- in the module form
-CONNECTOR_USED_BY_TWO_MATES = entry("A043", "connector-used-by-two-mates",
-                                    E, fix="unsafe", module="assembly.shared_connector")
 
 _loaded = False
 
