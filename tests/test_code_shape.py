@@ -45,7 +45,8 @@ def written_codes(path: Path) -> list[tuple[int, str]]:
 
 def test_a_code_is_written_only_in_the_registry():
     constants = code_constants()
-    assert {r.code for r in all_rules()} == set(constants), "every registered code has its constant"
+    without = sorted(r.code for r in all_rules() if r.module is None and r.code not in constants)
+    assert not without, f"codes of the older form without their constant in the registry: {without}"
     offenders = []
     for path in sorted(PACKAGE.rglob("*.py")):
         if path == REGISTRY or any(top in path.parents for top in BELOW_RULES):
@@ -69,7 +70,7 @@ def test_every_registered_code_is_raised_somewhere():
         used.update(n for n in re.findall(r"\b([A-Z][A-Z0-9_]+)\b", text) if n in constants.values())
         if any(top in path.parents for top in BELOW_RULES):
             used.update(constants[c] for _line, c in written_codes(path) if c in constants)
-    missing = sorted(r.code for r in all_rules() if r.module is None and constants[r.code] not in used)
+    missing = sorted(r.code for r in all_rules() if r.module is None and constants.get(r.code) not in used)
     assert not missing, f"registered codes that nothing raises (no use of their registry constant): {missing}"
 
 
