@@ -24,6 +24,7 @@ from plxtools.check.instance import Obj
 from plxtools.check.report import Reporter
 from plxtools.syntax import ast
 from plxtools.rules import registry
+from plxtools.check.signals import classify
 
 # The codes this module raises (their home).  The MuJoCo build names them when it meets a scene these
 # checks should have rejected (BuildContext.invariant); `plx check`'s summary lists the motion ones.
@@ -173,7 +174,6 @@ class StaticChecks:
     def _unmapped_signal(self, obj: Obj, qn: str) -> str | None:
         """The A040 text for a signal declared in the file that the MuJoCo run cannot map (None when
         it maps: plxtools/check/signals.py)."""
-        from plxtools.check.signals import classify
 
         info = classify(obj, self.ev, self.k)
         if info is not None and info.mapped:

@@ -30,6 +30,8 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.bindings import Binding, Unbindable, rpy_of_mat
+from plxtools.check.mujoco.kinematic import body_velocity
+from plxtools.check.mujoco.kinematic import prescribed
 
 CONNECTOR_QUANTITIES = ("connector_position", "connector_rpy", "connector_linear_velocity",
                         "connector_angular_velocity", "connector_acceleration", "connector_angular_acceleration")
@@ -67,16 +69,12 @@ def _moves(rt: Any, placed: tuple, path: str) -> bool:
 
 
 def _velocity(rt: Any, m: Any, d: Any, bid: int, point: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    from plxtools.check.mujoco.kinematic import body_velocity
-
     res = body_velocity(rt.mujoco, m, d, rt.compiled, bid)
     w = res[:3].copy()
     return w, res[3:] + np.cross(w, point - np.asarray(d.xipos[bid]))
 
 
 def _acceleration(rt: Any, m: Any, d: Any, bid: int, point: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    from plxtools.check.mujoco.kinematic import prescribed
-
     kin = prescribed(rt.compiled, m).get(bid)
     if kin is not None:  # constant prescribed velocity: no angular acceleration, only the centripetal part
         w = kin[2]

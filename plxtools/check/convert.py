@@ -22,6 +22,8 @@ from plxtools.check.instance import Obj
 from plxtools.check.mapped_types import GEOMS, scene_geom_kind
 from plxtools.check.report import Reporter, span_of
 from plxtools.rules import registry
+from plxtools.check import drivetrain
+from plxtools.model.imports import read_obj
 
 # The one home of A031 (missing-file): a mesh file here, a path string in check's scan_strings.
 
@@ -302,7 +304,6 @@ class Collector:
 
     def _obj_bounds(self, g: "GeomRec", obj: Obj, written: str, visual: bool) -> None:
         """An OBJ file's bounds (model/imports.py reads it), so the geometry has extents."""
-        from plxtools.model.imports import read_obj
 
         info = read_obj(g.mesh_file)
         if info.lo is not None:
@@ -417,7 +418,6 @@ def to_scene(asm: Assembly, col: Collector, rep: Reporter, base_dir: str | None)
                                            cr.restitution, cr.tangential_restitution, cr.enabled, _source(rep, cr.obj))
                             for cr in col.contacts if cr.key1 is not None and cr.key2 is not None]
     scene.excludes = _excludes(col, rep)
-    from plxtools.check import drivetrain
 
     scene.shafts, scene.shaft_couplings, scene.shaft_motors = drivetrain.collect(
         asm, col, rep, _source, {m.path for m in scene.mates if m.kind in ("hinge", "cylindrical")})

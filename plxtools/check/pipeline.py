@@ -27,6 +27,10 @@ from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import ast, parse_bytes
 from plxtools.syntax.source import unreadable
 from plxtools.rules import registry
+from plxtools.check import aftersim
+from plxtools.check.mujoco import backend as mjb  # (imports MuJoCo only when it compiles)
+from plxtools.rules.analysis import finalize
+from plxtools.rules.completeness import root_model
 
 
 class Skip(enum.Enum):
@@ -131,8 +135,6 @@ class FileCheck:
 
 
 def _pick_root(program, unit, name: str | None, rep: Reporter) -> ModelSym | None:
-    from plxtools.rules.completeness import root_model
-
     if not name:
         root = root_model(program, unit)
         if root is None:
@@ -260,10 +262,6 @@ def blocking_reason(fc: FileCheck) -> str | None:
 def run_backend(fc: FileCheck, *, simulate: bool, duration: float, compile_only: bool = False,
                 record: bool = False, timeout: float | None = None, deadline: float | None = None) -> None:
     """Compile (and simulate) the file's scene; backend notes become diagnostics."""
-    # here, not at the top: they import MuJoCo, which only a run that compiles pays for
-    from plxtools.check import aftersim
-    from plxtools.check.mujoco import backend as mjb
-
     t0 = time.perf_counter()
     fc.compiled = mjb.compile_scene(fc.scene)
     fc.timings["compile"] = time.perf_counter() - t0
@@ -322,6 +320,5 @@ def _merge(lint: list[Diagnostic], check: list[Diagnostic]) -> list[Diagnostic]:
 
 def _finish(tree: ast.File, diags: list[Diagnostic], cfg) -> list[Diagnostic]:
     """Lint's own config filtering and suppressions, over lint's and check's findings together."""
-    from plxtools.rules.analysis import finalize
 
     return finalize(tree, diags, cfg)

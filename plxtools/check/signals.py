@@ -28,6 +28,7 @@ from typing import Any, Callable
 
 from plxtools.check.bindings import Binding, Unbindable, rpy_of_mat  # noqa: F401 (rpy_of_mat: read from here too)
 from plxtools.check.mapped_types import CONTROLLERS, MATES
+from plxtools.model.resolve import linearize
 
 INPUT = "Physics.Signals.Input"
 OUTPUT = "Physics.Signals.Output"
@@ -268,7 +269,6 @@ def _by_carried_type(obj: Any, ev: Any, kinds: Any, skind: str | None) -> str | 
 
 def _lineage(obj: Any, kinds: Any) -> list[str]:
     """The qualified names of an object's model and its bases, nearest first."""
-    from plxtools.model.resolve import linearize
 
     return [m.qname for m in reversed(linearize(kinds.p, kinds.p.concrete(obj.model)))]
 

@@ -20,6 +20,10 @@ from typing import Any, TextIO
 from plxtools.check.scenario import SUFFIX, Expect, Loc, Scenario, ScenarioError, bind, display_path, parse
 from plxtools.diagnostics import Diagnostic, Pos, Severity, Span
 from plxtools.rules import registry
+from plxtools.check.api import ModelError, prepare
+from plxtools.check.scenario import discover
+from plxtools.check.scenecounts import scene_counts
+from plxtools.check.signals import SignalRuntime
 
 PASSED, FAILED, ERROR = "passed", "failed", "error"
 FORMATS = ("text", "json", "github", "sarif", "junit")
@@ -122,8 +126,6 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
     import mujoco
 
     from plxtools.check.mujoco.simulate import simulate_compiled
-    from plxtools.check.scenecounts import scene_counts
-    from plxtools.check.signals import SignalRuntime
 
     assert sc.model_file is not None
     model_file = display_path(sc.model_file)
@@ -155,7 +157,6 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
 def _prepare(sc: Scenario, res: ScenarioResult, model_file: str, bundle_path, openplx_version) -> Any:
     """The model compiled for MuJoCo, or None when it cannot be (``res`` then says why: a root that
     is not in the file is the scenario's error, anything else a failure of the model)."""
-    from plxtools.check.api import ModelError, prepare
     from plxtools.check.pipeline import NO_SUCH_ROOT, TRAIT_AS_ROOT
 
     try:
@@ -329,8 +330,6 @@ def junit(results: list[ScenarioResult], wall: float) -> str:
 
 
 def run_test(args) -> int:
-    from plxtools.check.scenario import discover
-
     try:
         files = discover(args.paths)
     except FileNotFoundError as exc:

@@ -42,6 +42,8 @@ from plxtools.check.mujoco.simulate import (
 )
 from plxtools.check.scene import Scene
 from plxtools.rules import registry
+from plxtools.check.mujoco.notes import note_from_compile_error
+from plxtools.fileio import write_output
 
 __all__ = [
     "ActuatorInfo",
@@ -94,14 +96,11 @@ def export_mjcf(compiled: CompiledScene, path: str | None = None) -> str:
     :class:`ExportError` names the element and its OpenPLX source."""
     import mujoco
 
-    from plxtools.check.mujoco.notes import note_from_compile_error
-
     if compiled.spec is None:
         raise ValueError("nothing to export: the scene has no MjSpec")
     xml = compiled.spec.to_xml()
     if path is None:
         return xml
-    from plxtools.fileio import write_output
 
     def loads_back(tmp: str) -> None:
         try:

@@ -15,6 +15,7 @@ from plxtools.ide.runtime.collector import no_gc
 from plxtools.lsp.convert import Positions
 from plxtools.lsp.protocol import RequestFailed
 from plxtools.rules import registry
+from plxtools.ide.signature import param_label_offsets
 
 if TYPE_CHECKING:
     from plxtools.lsp.server import PlxServer
@@ -100,7 +101,6 @@ def register(server, server_feature) -> None:
             return None
         offsets = ls.cap("text_document.signature_help.signature_information.parameter_information."
                          "label_offset_support")
-        from plxtools.ide.signature import param_label_offsets
 
         sigs = []
         for s in res.signatures:
