@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from plxtools.check.api_errors import ModelError, NotSimulatedError, PlxApiError, SignalPathError
 from plxtools.check.api_inspect import (
     ConnectorState,
     ContactModelInfo,
@@ -52,6 +53,14 @@ from plxtools.check.signals import (
     collect,
     did_you_mean,
 )
+from plxtools.check.scenecounts import scene_counts
+from plxtools.check.scenecounts import scene_paths
+from plxtools.check.signals import KIND_TEXT
+from plxtools.check.signals import rpy_of_mat
+from plxtools.config import ConfigError, config_for
+from plxtools.diagnostics import Severity
+from plxtools.discovery import UsageError
+from plxtools.model.workspace import workspace_for_cli
 
 MATE_CONNECTOR = "Physics3D.Interactions.MateConnector"
 
@@ -61,34 +70,6 @@ __all__ = [
     "RealInputSignal", "RealRangeInputSignal", "SceneObject", "SignalPathError", "SignalValueError",
     "Simulation", "Vec3InputSignal", "load",
 ]
-
-
-class PlxApiError(Exception):
-    """Base of the API's errors."""
-
-
-class ModelError(PlxApiError):
-    """The model cannot be simulated: ``diagnostics`` holds the located findings (errors first)."""
-
-    def __init__(self, message: str, diagnostics: list | None = None):
-        super().__init__(message)
-        self.diagnostics = diagnostics or []
-
-
-class SignalPathError(PlxApiError, KeyError):
-    """No object with that dotted path; ``suggestion`` is the nearest existing one, if any."""
-
-    def __init__(self, message: str, suggestion: str | None = None):
-        super().__init__(message)
-        self.message = message
-        self.suggestion = suggestion
-
-    def __str__(self) -> str:  # KeyError would quote the message
-        return self.message
-
-
-class NotSimulatedError(PlxApiError):
-    """The signal exists but the MuJoCo backend does not map it (the message says why)."""
 
 
 # ----------------------------------------------------------------------------- scene objects
@@ -193,10 +174,6 @@ def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str
     from plxtools.check.connector_frames import connector_frame
     from plxtools.check.convert import _source
     from plxtools.check.pipeline import analyse, blocking_reason
-    from plxtools.config import ConfigError, config_for
-    from plxtools.diagnostics import Severity
-    from plxtools.discovery import UsageError
-    from plxtools.model.workspace import workspace_for_cli
 
     p = Path(path)
     if not p.is_file():
@@ -281,20 +258,17 @@ class Scene:
 
     def bodies(self) -> list[str]:
         """The dotted paths of the assembled scene's rigid bodies (what the run simulates)."""
-        from plxtools.check.scenecounts import scene_paths
 
         return scene_paths(self._sim.prepared.compiled.scene)["bodies"]
 
     def mates(self) -> list[str]:
         """The dotted paths of the assembled scene's mates."""
-        from plxtools.check.scenecounts import scene_paths
 
         return scene_paths(self._sim.prepared.compiled.scene)["mates"]
 
     def counts(self) -> dict[str, int]:
         """How many bodies, mates, controllers and drive-train parts, in all and per kind
         (`{"bodies": 3, "mates": 2, "mates.hinge": 2, ...}`)."""
-        from plxtools.check.scenecounts import scene_counts
 
         return scene_counts(self._sim.prepared.compiled.scene)
 
@@ -455,7 +429,6 @@ class Simulation:
     def body(self, path: str) -> BodyState:
         """The world state of a rigid body."""
         from plxtools.check.mujoco.kinematic import body_velocity
-        from plxtools.check.signals import rpy_of_mat
 
         if path not in self.prepared.bodies:
             raise unknown_path(path, self.prepared.bodies, "body", self.path)
@@ -515,8 +488,6 @@ class Simulation:
 
 
 def _kind_text(kind: str) -> str:
-    from plxtools.check.signals import KIND_TEXT
-
     return KIND_TEXT.get(kind, kind)
 
 

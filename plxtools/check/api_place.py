@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from plxtools.check.api_errors import NotSimulatedError
 from plxtools.check.mujoco.kinematic import quat_mul, quat_to_mat
 
 
@@ -77,8 +78,6 @@ def place(sim: Any, path: str, position: Any = None, rotation: Any = None) -> No
 def _carried(sim: Any, path: str, under: list[str], kin: dict) -> tuple[set[int], list[int]]:
     """(free root body ids, static body ids) that carry the bodies under ``path``; refused when
     one hangs from a body outside it."""
-    from plxtools.check.api import NotSimulatedError
-
     p, m = sim.prepared, sim.model
     names = p.compiled.names
     roots: set[int] = set()

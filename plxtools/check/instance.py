@@ -36,6 +36,7 @@ from plxtools.model.program import Program
 from plxtools.model.resolve import opaque_import, replaces
 from plxtools.model.symbols import FileUnit, ModelSym, Ty
 from plxtools.syntax import ast
+from plxtools.rules import registry
 
 DECL, VALUE, WITH = 0, 1, 2
 MAX_DEPTH = 48  # nesting of owned objects from which a model met again among the owners contains itself
@@ -294,7 +295,7 @@ class Builder:
             return False
         self.too_deep.append(obj)
         if self.report is not None:
-            self.report("A009", _too_deep_message(obj, depth, loop), obj)
+            self.report(registry.INSTANTIATION_TOO_DEEP, _too_deep_message(obj, depth, loop), obj)
         return True
 
     def _member(self, obj: Obj, name: str, e: Eff, flags: list, ce: list, path: str, depth: int) -> None:

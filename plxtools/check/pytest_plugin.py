@@ -11,6 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from plxtools.check.testrun import PASSED, run_scenario
 
 SUFFIX = ".scenario.toml"
 

@@ -1,41 +1,66 @@
-"""A043: a connector that two mates use, found from the source alone (issue 32.3).
+"""Two mates in one model name the same connector: the second can only close by moving the body
+the first one places. Reported by `plx lint` at the mate that is most likely wrong: when another
+body of the same type has that connector unused and the mate's name is closer to that body, that
+mate, with the connector it probably meant; otherwise the later mate.
 
-A mate connector is one frame on one body; a mate ties two of them together. When a second mate
-names a connector that another mate already uses, the body behind it is placed by the first mate,
-and the second can only close by moving that placed body: the assembly check then blames some
-other mate (A016, A037) and the simulation drags the body away. Which of the two mates is the
-mistake is decided by names, as a reader would: when another body of the same type has the same
-connector unused, and one mate's name is closer to that body's name than to the one it uses, that
-mate is blamed, with the connector it most likely meant. Otherwise the later mate is.
+## Why it matters
 
-The mates are the declarations whose type is a Physics3D.Interactions.Mate (Hinge, Prismatic,
-Lock, ...) with a `connectors: [a, b]` list in their block, compared within one model's block.
-Motors, springs and ranges reuse a mate's connectors on purpose and are not mates.
+A connector is one frame on one body, and a mate ties two frames together. Copying a hinge line
+and changing only one side leaves a wheel held by two hinges (at two places) and another wheel
+held by none: `plx check` then reports the consequences elsewhere (A016 on the other hinge, A037
+for the loose wheel) and the simulation drags the body away. Motors, springs and ranges use a
+mate's connectors on purpose; they are not mates and are not counted.
+
+## Example
+
+```openplx
+front_left_hinge is Physics3D.Interactions.Hinge:
+    connectors: [chassis.front_left_connector, front_right_wheel.connector]
+front_right_hinge is Physics3D.Interactions.Hinge:
+    connectors: [chassis.front_right_connector, front_right_wheel.connector]
+```
+
+## Use instead
+
+```openplx
+front_left_hinge is Physics3D.Interactions.Hinge:
+    connectors: [chassis.front_left_connector, front_left_wheel.connector]
+front_right_hinge is Physics3D.Interactions.Hinge:
+    connectors: [chassis.front_right_connector, front_right_wheel.connector]
+```
 """
+
+# How the blame is decided (issue 32.3). A mate connector is one frame on one body; a mate ties
+# two of them together. When a second mate names a connector another mate already uses, the body
+# behind it is placed by the first mate. Which of the two mates is the mistake is decided by names,
+# as a reader would: when another body of the same type has the same connector unused, and one
+# mate's name is closer to that body's name than to the one it uses, that mate is blamed, with the
+# connector it most likely meant. Otherwise the later mate is. The mates are the declarations whose
+# type is a Physics3D.Interactions.Mate with a `connectors: [a, b]` list in their block, compared
+# within one model's block. Whole file on every analysis: cheap, so the server never re-uses it.
 
 from __future__ import annotations
 
 import difflib
 
-from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity
+from plxtools.diagnostics import Edit, Fix
 from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast
 
 MATE = ("Physics3D", "Interactions", "Mate")
 
 
-def shared_connector_diagnostics(program, unit) -> list[Diagnostic]:
+def check(facts, report) -> None:
+    program, unit = facts.program, facts.unit
     mate = program.lookup_outside_visibility(list(MATE))
     if not isinstance(mate, ModelSym):
-        return []
-    out: list[Diagnostic] = []
+        return
     stack = [s for s in unit.tree.statements if isinstance(s, ast.Declaration) and s.body]
     while stack:
         owner = stack.pop()
         body = owner.body or []
-        _one_block(program, unit, mate, body, out)
+        _one_block(program, unit, mate, body, report)
         stack.extend(s for s in body if isinstance(s, ast.Declaration) and s.body)
-    return out
 
 
 def _text(unit, node) -> str:
@@ -50,7 +75,7 @@ def _connectors(stmt: ast.Declaration) -> list[ast.Expr] | None:
     return None
 
 
-def _one_block(program, unit, mate: ModelSym, body: list, out: list[Diagnostic]) -> None:
+def _one_block(program, unit, mate: ModelSym, body: list, report) -> None:
     mates: list[tuple[ast.Declaration, list[ast.Expr]]] = []
     types: dict[str, str] = {}  # attribute name -> its type as written (to find same-typed siblings)
     for s in body:
@@ -84,11 +109,9 @@ def _one_block(program, unit, mate: ModelSym, body: list, out: list[Diagnostic])
                                    "should hold")
             fix = (Fix(f"use '{meant}.{member}'", (Edit(e.span.start.offset, e.span.end.offset,
                                                           f"{meant}.{member}"),), safe=False) if meant else None)
-            d = Diagnostic("A043", f"'{conn}' is already used by mate '{other.path.text}' (line {line}): this mate "
-                           f"can only close by moving '{holder}', which that mate places",
-                           e.span, Severity.ERROR, file=unit.path, help=help_, fix=fix)
-            d.related.append((unit.path, other.header, f"'{conn}' is also used by '{other.path.text}'"))
-            out.append(d)
+            report(f"'{conn}' is already used by mate '{other.path.text}' (line {line}): this mate "
+                   f"can only close by moving '{holder}', which that mate places", e.span, help=help_, fix=fix,
+                   related=[(unit.path, other.header, f"'{conn}' is also used by '{other.path.text}'")])
 
 
 def _blame(uses, holder: str, spare: list[str]):
