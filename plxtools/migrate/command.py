@@ -37,6 +37,7 @@ class _Tally:
 
     def __init__(self):
         self.changed = self.refused = self.edits = self.partial = 0
+        self.failing: list = []  # (file, errors left, the version it was migrated from) of files left with errors
 
 
 @dataclass
@@ -60,44 +61,99 @@ def run_migrate(args) -> int:
         files = discover(args.paths)
         if getattr(args, "show_settings", False):
             return _show_settings(files, args)
-        setup = _setup(files, args) if files else None
+        setups = _Setups(files, args) if files else None
     except (UsageError, ConfigError, ValueError) as exc:
         _say(f"plx migrate: {exc}")
         return 2
     tally = _Tally()
     try:
         for f in files:
-            _migrate_file(f, args, setup, tally)
+            _migrate_file(f, args, setups.for_file(f), tally)
     except _Failed as exc:
         _say(f"plx migrate: {exc}")
         return 2
-    return _summary(args, tally, len(files))
+    except (UsageError, ConfigError, ValueError) as exc:
+        _say(f"plx migrate: {exc}")
+        return 2
+    return _summary(args, tally, len(files), setups)
 
 
 def _ends(files, args, check: bool = True):
     """The source and target ends (raises EndpointError with what to pass)."""
     from plxtools.migrate import endpoints
 
-    src = endpoints.source(files, args.from_version)
-    dst = endpoints.target(files, args.to)
+    paths = getattr(args, "bundle_path", None) or []
+    src = endpoints.source(files, args.from_version, bundle_paths=paths)
+    dst = endpoints.target(files, args.to, bundle_paths=paths)
     if check:
         endpoints.check_direction(files, src, dst)
     return src, dst
 
 
-def _setup(files, args) -> _Setup:
-    """The ends, the plan between them (the stored index for two releases, else indexes built from
-    the bundle folders) and a workspace per end."""
+def _setup_of(src, dst) -> _Setup:
+    """The plan between two ends (the stored index for two releases, else indexes built from the
+    bundle folders) and a workspace per end."""
     from plxtools.migrate.endpoints import plan_between
     from plxtools.model.workspace import workspace_for_set
 
-    src, dst = _ends(files, args)
     return _Setup(src, dst, plan_between(src, dst), workspace_for_set(src.bundle_set),
                   workspace_for_set(dst.bundle_set))
 
 
+class _Setups:
+    """The run's ends; per file, the end it starts from. With no `--from` and nothing that pins a
+    version (flag, config, dependency), a file whose content fits an older release better than the
+    bundles in use is migrated from that release (model/written_for.py, lint's own inference)."""
+
+    def __init__(self, files, args):
+        self.args = args
+        src, dst = _ends(files, args)
+        self.default = _setup_of(src, dst)
+        self.by_version: dict[str, _Setup] = {}
+        self.infer = args.from_version is None and not src.bundle_set.pinned
+        self.inferred: dict = {}  # file -> Inference, for the closing line
+
+    def for_file(self, f) -> _Setup:
+        if not self.infer:
+            return self.default
+        found = written_for(f, self.default)
+        if found is None:
+            return self.default
+        from plxtools.migrate import endpoints
+        from plxtools.model.apiindex import version_key
+
+        dst = self.default.dst
+        if version_key(found.version) >= version_key(dst.version):
+            return self.default
+        self.inferred[f] = found
+        if found.version not in self.by_version:
+            why = found.why(self.default.src.version)
+            src = endpoints.inferred([f], found.version, why, getattr(self.args, "bundle_path", None) or [])
+            self.by_version[found.version] = _setup_of(src, dst)
+        _say(f"{f}: written for OpenPLX {found.version} ({found.why(self.default.src.version)})")
+        return self.by_version[found.version]
+
+
+def written_for(f, setup: _Setup):
+    """The release a file's content says it was written for (None: the bundles in use fit it)."""
+    from plxtools.model.written_for import infer
+    from plxtools.rules.analysis import analyse_file
+    from plxtools.syntax import parse_text
+
+    try:
+        text = f.read_bytes().decode("utf-8-sig")
+    except (OSError, UnicodeDecodeError):
+        return None  # reported when the file is migrated
+    tree = parse_text(text, str(f))
+    if tree.has_errors_of_syntax():
+        return None
+    fa = analyse_file(setup.from_ws, tree)
+    return infer(text, fa.diagnostics, fa.occurrences, setup.src.version)
+
+
 def _show_settings(files, args) -> int:
-    """`plx migrate --show-settings`: the bundles of both ends and why (nothing is migrated)."""
+    """`plx migrate --show-settings`: the bundles of both ends and why, and for each file whose
+    content says it was written for another release, that release (nothing is migrated)."""
     from plxtools.bundles_cli import print_set
 
     from plxtools.migrate.endpoints import check_direction
@@ -106,6 +162,14 @@ def _show_settings(files, args) -> int:
     for title, end in (("from", src), ("to", dst)):
         print(f"migrate {title}: {end.describe()}")
         print_set(end.bundle_set, indent="  ")
+    if args.from_version is None and not src.bundle_set.pinned:
+        from plxtools.model.workspace import workspace_for_set
+
+        setup = _Setup(src, dst, None, workspace_for_set(src.bundle_set), None)
+        for f in files:
+            found = written_for(f, setup)
+            if found is not None:
+                print(f"written for: {f}: OpenPLX {found.version} ({found.why(src.version)})")
     check_direction(files, src, dst)  # shown first: the settings are what explains a refusal
     return 0
 
@@ -130,6 +194,8 @@ def _migrate_file(f, args, setup: _Setup, tally: _Tally) -> None:
     cfg, data, text = _inputs(f)
     to_v = setup.dst.version
     fm = migrate_text(f, text, setup.plan, cfg, setup.from_ws, setup.to_ws)
+    if not fm.refused and fm.errors_after:
+        tally.failing.append((f, fm.errors_after, setup.src.label))
     if fm.refused:
         tally.refused += 1
         _say(f"{f}: not migrated from {setup.src.label} to {setup.dst.label}: {fm.refused}")
@@ -172,8 +238,8 @@ def _write(f, args, fm, data: bytes, step: str, remain: str) -> None:
         _say(f"migrated {f} ({_plural(fm.edits, 'change')}, {step}){remain}")
 
 
-def _summary(args, tally: _Tally, n_files: int) -> int:
-    """The closing line; the exit code."""
+def _summary(args, tally: _Tally, n_files: int, setups: "_Setups | None" = None) -> int:
+    """The closing line; the exit code (1 when nothing changed while files still fail: said why)."""
     changed, refused, partial = tally.changed, tally.refused, tally.partial
     verb = "would migrate" if (args.check or args.diff) else "migrated"
     _say(f"{verb.capitalize()} {_plural(changed, 'file')} ({_plural(tally.edits, 'change')}); "
@@ -182,7 +248,27 @@ def _summary(args, tally: _Tally, n_files: int) -> int:
          + (f"; {_plural(refused, 'file')} refused" if refused else "") + ".")
     if refused:
         return 2 if not changed else 1
+    if not changed and tally.failing and setups is not None:
+        _nothing_done(tally, setups)
+        return 1
     return 1 if (args.check and changed) or partial else 0
+
+
+def _nothing_done(tally: _Tally, setups: _Setups) -> None:
+    """Nothing was rewritten, yet files have errors under the target version: say why and what to pass."""
+    from plxtools.model.written_for import VERSION_SENSITIVE  # noqa: F401 - the kinds lint infers from
+
+    dst = setups.default.dst.label
+    f, n, frm = tally.failing[0]
+    more = f" (and {len(tally.failing) - 1} more files)" if len(tally.failing) > 1 else ""
+    if frm == dst:
+        why = (f"they were taken as written for {frm}, the version they are migrated to, so there was nothing to "
+               f"rewrite; if they were written for an older OpenPLX, pass it: plx migrate --from VERSION --to {dst} "
+               f"{f} (`plx migrate --explain VERSION {dst}` lists what changed)")
+    else:
+        why = (f"no rename or move between {frm} and {dst} applies to them; what is left needs a person "
+               f"(listed above), or they were written for another version: pass --from VERSION")
+    _say(f"plx migrate: nothing was migrated, but {f}{more} still has {_plural(n, 'error')} under {dst}: {why}")
 
 
 def add_arguments(p) -> None:
@@ -191,12 +277,17 @@ def add_arguments(p) -> None:
                    "the AGX installation's bundles (e.g. 0.20.1)")
     p.add_argument("--from", dest="from_version", metavar="VERSION",
                    help="the version the files were written for (default: the bundles plx lints them with: "
-                        "openplx-version in the config, a dependency's version, an AGX installation, else the "
-                        "installed bundles)")
+                        "openplx-version in the config, a dependency's version, else the release each file's "
+                        "content fits best (when it fits one better than the bundles in use), an AGX "
+                        "installation, else the installed bundles)")
     p.add_argument("--diff", action="store_true", help="print the changes as a unified diff; write nothing")
     p.add_argument("--check", action="store_true", help="write nothing; exit 1 when a file would change")
     p.add_argument("--show-settings", action="store_true",
-                   help="print the bundles of both versions (AGX installation, OpenPLX version, why) and exit")
+                   help="print the bundles of both versions (AGX installation, OpenPLX version, why), and the "
+                        "version inferred for each file that fits an older release better, and exit")
+    p.add_argument("--bundle-path", action="append", default=[], metavar="DIR",
+                   help="a bundle folder, or a folder of bundle folders (repeatable); adds to bundle-path in the "
+                        "config, for both versions")
 
 
 def run(args) -> int:

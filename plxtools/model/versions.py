@@ -301,6 +301,7 @@ class BundleSet:
     notes: list[str] = field(default_factory=list)  # said once by --show-settings / the server
     agx: object | None = None  # the AGX installation found (model/agx.AgxInstall), used or not
     agx_used: bool = False  # its bundles are the official base
+    pinned: bool = True  # a flag, the config, a dependency or a folder of official bundles chose the version
 
     def key(self) -> tuple:
         return (str(self.official_root), tuple(str(s.path) for s in self.sources))
@@ -617,7 +618,8 @@ def resolve_bundle_set(
         folders.add_agx_bundle(agx)
     folders.add_found(found, official[0], workspace_root)
     bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources,
-                   choice.notes, agx, choice.agx_official is not None)
+                   choice.notes, agx, choice.agx_official is not None,
+                   pinned=bool(cli_version or cfg_version or pins or replacing))
     if bs.official_root is None and not _has_math(sources):
         raise BundleSetError("cannot find the OpenPLX bundles: install openplx-bundles, set openplx-version, "
                              "OPENPLX_BUNDLE_PATH, or pass --bundle-path")

@@ -445,7 +445,7 @@ class Workspace:
         for d in diags:
             d.file = tree.path
         self._help_for_unloaded_bundles(tree, diags)
-        self._help_for_other_versions(tree, diags)
+        self._help_for_other_versions(tree, diags, occurrences)
         return FileAnalysis(unit, diags, occurrences, snap, plan)
 
     def _help_for_unloaded_bundles(self, tree: ast.File, diags: list[Diagnostic]) -> None:
@@ -468,7 +468,7 @@ class Workspace:
                 d.help = (f"'{name}' is a dependency in {home.root / 'config.openplx'} but no bundle of that "
                           f"name is loaded: add its folder with --bundle-path or bundle-path in plx.toml")
 
-    def _help_for_other_versions(self, tree: ast.File, diags: list[Diagnostic]) -> None:
+    def _help_for_other_versions(self, tree: ast.File, diags: list[Diagnostic], occurrences=None) -> None:
         """An unknown type that another official OpenPLX version has. When the API index says it
         moved or was renamed one to one by the version in use, it is U001 with a safe fix to the new
         name; otherwise the help says which versions have it, so the user migrates (or chooses that
@@ -478,7 +478,11 @@ class Workspace:
         using = getattr(bs, "official_version", None)
         if not using:
             return
-        self._renamed_attributes(tree, [d for d in diags if d.code == UNKNOWN_ATTRIBUTE], using)
+        from plxtools.model.written_for import MigrateHint
+
+        path = tree.path if tree.path and not is_editor_buffer(tree.path) else None
+        hint = MigrateHint(path, tree.text, diags, occurrences, using, getattr(bs, "pinned", True))
+        self._renamed_attributes(tree, [d for d in diags if d.code == UNKNOWN_ATTRIBUTE], using, hint)
         if not unknown:
             return
         from plxtools.model.apiindex import UnknownVersion, spans, version_key, where_defined
@@ -499,14 +503,16 @@ class Workspace:
                 continue
             older = [v for v in found if version_key(v) < version_key(using)]
             try:
-                new = _moved_to(written, older[-1], using) if older else None
+                moved = _moved_to(written, older[-1], using) if older else None
             except UnknownVersion:
-                new = None
+                moved = None
+            new = moved.new if moved is not None else None
             if new is not None and self._resolves(new, tree):
                 d.code = OLDER_NAME
                 d.message = f"'{written}' was renamed '{new}' (OpenPLX {older[-1]} -> {using})"
                 d.older_version = older[-1]
-                d.help = f"write '{new}'; `plx migrate --to {using}` updates whole files"
+                declared = " (a rename OpenPLX's own migration list declares)" if moved.handling == "declared" else ""
+                d.help = f"write '{new}'{declared}; {hint.command(older[-1])} updates whole files"
                 d.fix = Fix(f"replace with '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=True)
                 continue
             note = (f"'{written}' exists in OpenPLX {spans(found)}, not in {using} (the version in use): "
@@ -514,25 +520,47 @@ class Workspace:
                     f"plx.toml chooses another version")
             d.help = f"{note}; {d.help}" if d.help else note
 
-    def _renamed_attributes(self, tree: ast.File, unknown: list[Diagnostic], using: str) -> None:
+    def _renamed_attributes(self, tree: ast.File, unknown: list[Diagnostic], using: str, hint) -> None:
         """An unknown attribute that official versions before `using` renamed (`charges` ->
         `connectors`): U002 with the new name. The fix is unsafe: the index knows which models
         renamed it, and the user confirms that this is one of them."""
         if not unknown:
             return
         renamed = _renamed_attributes_before(using, self.use_cache)
+        converted = []
         for d in unknown:
             written = tree.text[d.span.start.offset:d.span.end.offset]
-            targets = renamed.get(written)
-            if not targets or len({new for new, _, _ in targets}) != 1:
+            targets = [t for t in renamed.get(written, ()) if self._may_own(d, t[3] if len(t) > 3 else None)]
+            if not targets or len({t[0] for t in targets}) != 1:
                 continue
-            new, model, since = targets[0]
-            owners = ", ".join(sorted({m for _, m, _ in targets})[:3])
+            new, model, since = targets[0][:3]
+            owners = ", ".join(sorted({t[1] for t in targets})[:3])
             d.code = RENAMED_ATTRIBUTE
             d.message = f"'{written}' was renamed '{new}' in OpenPLX {since} (in {owners})"
             d.older_version = _version_before(since)
-            d.help = f"write '{new}' if this is one of those models; `plx migrate --to {using}` updates whole files"
             d.fix = Fix(f"rename to '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=False)
+            converted.append((d, new))
+        for d, new in converted:  # (after all: the command may infer the version from every U002)
+            d.help = (f"write '{new}' if this is one of those models; "
+                      f"{hint.command(d.older_version)} updates whole files")
+
+    def _may_own(self, d: Diagnostic, model: str | None) -> bool:
+        """Whether the object the unknown attribute is set on (named by N002's message) may be one of
+        the models that renamed it (`model`, by its name in the version in use): itself or a subtype,
+        so that `body:` on an unrelated model keeps its did-you-mean. Unsure (no name): yes."""
+        from plxtools.model.symbols import ModelSym
+
+        owner = d.message.rsplit(" is not an attribute of ", 1)
+        if model is None or len(owner) != 2:
+            return True
+        try:
+            sym = self.program.lookup(owner[1].split("."), None)
+            want = self.program.lookup(model.split("."), None)
+        except Exception:  # noqa: BLE001 - a lookup for a hint must never break the analysis
+            return True
+        if not isinstance(sym, ModelSym) or not isinstance(want, ModelSym):
+            return not isinstance(want, ModelSym) or sym is None
+        return any(a is want for a in self.program.ancestors(sym))
 
     def _resolves(self, qname: str, tree: ast.File) -> bool:
         from plxtools.model.symbols import ModelSym
@@ -628,14 +656,11 @@ def describe_bundle_set(ws: Workspace) -> list[dict]:
     return out
 
 
-def _moved_to(qname: str, old_v: str, new_v: str) -> str | None:
-    """The new name of a model that moved or was renamed one to one between two versions."""
-    from plxtools.model.apichanges import AUTO, TABLE, changes
+def _moved_to(qname: str, old_v: str, new_v: str):
+    """The change that moved or renamed a model one to one between two versions (apichanges.renamed_model)."""
+    from plxtools.model.apichanges import renamed_model
 
-    for c in changes(old_v, new_v):
-        if c.kind in ("model-moved", "model-renamed") and c.old == qname and c.handling in (AUTO, TABLE):
-            return c.new
-    return None
+    return renamed_model(qname, old_v, new_v)
 
 
 @functools.lru_cache(maxsize=8)
@@ -650,13 +675,13 @@ def _version_before(version: str) -> str | None:
 
 @functools.lru_cache(maxsize=8)
 def _renamed_attributes_before(using: str, use_cache: bool = True) -> dict[str, list[tuple[str, str, str]]]:
-    """old attribute name -> [(new name, model, first version)] for renames from the oldest indexed
+    """old attribute name -> [(new name, model, first version, the model's name in `using`)] for renames from the oldest indexed
     version up to `using`, one to one (from the index or the reviewed table).
 
     Composing the changes diffs every pair of consecutive indexed versions (about 1.5 s of CPU), so
     the answer is kept per process and in plx's cache folder, keyed by the index's files and the
     code that diffs them (shared: callers only read it)."""
-    from plxtools.model.apichanges import AUTO, TABLE, changes
+    from plxtools.model.apichanges import MECHANICAL, changes
     from plxtools.model.apiindex import versions
 
     out: dict[str, list[tuple[str, str, str]]] = {}
@@ -672,9 +697,11 @@ def _renamed_attributes_before(using: str, use_cache: bool = True) -> dict[str, 
         got = store.get_json("renames", name)
         if isinstance(got, dict):
             return {k: [tuple(t) for t in v] for k, v in got.items()}
-    for c in changes(first, using):
-        if c.kind == "attr-renamed" and c.handling in (AUTO, TABLE) and c.old and c.new:
-            out.setdefault(c.old, []).append((c.new, c.model, c.since))
+    cs = changes(first, using)
+    moved = {c.old: c.new for c in cs if c.kind in ("model-moved", "model-renamed") and c.handling in MECHANICAL}
+    for c in cs:
+        if c.kind == "attr-renamed" and c.handling in MECHANICAL and c.old and c.new:
+            out.setdefault(c.old, []).append((c.new, c.model, c.since, moved.get(c.model, c.model)))
     if name is not None:
         store.put_json("renames", name, out)
     return out
