@@ -28,6 +28,22 @@ def _left_for_a_person(path, fm, to_v: str) -> None:
         _say(f"  ... and {len(fm.left) - len(shown)} more (plx lint --openplx-version {to_v} {path})")
 
 
+BRICK = ".brick"  # the extension of model files before OpenPLX 0.15
+
+
+def _refuse_brick(f, dst_label: str, tally: _Tally) -> None:
+    """A .brick file: from before OpenPLX 0.15, whose bundles no release offers (openplx-bundles
+    starts at 0.15.0), so plx cannot tell what its names meant. Refused at its first line, with
+    what to do."""
+    tally.refused += 1
+    new = f.with_suffix(".openplx")
+    _say(f"{f}:1:1: not migrated: a .brick file is written for OpenPLX before 0.15 (0.15.0 renamed the "
+         f"extension to .openplx, as OpenPLX's own migration list declares), and plx has no bundles older than "
+         f"0.15.0 (the oldest openplx-bundles release) to read it with; rename it to {new.name} and run "
+         f"plx migrate --from 0.15.0 --to {dst_label} {new}, then review what lint reports (the renames OpenPLX "
+         f"declares before 0.15 are listed in plx's migration guide, docs/migration.md)")
+
+
 class _Failed(Exception):
     """A user-facing failure (bad version, config, unreadable file): `plx migrate: <message>`, exit 2."""
 
@@ -58,7 +74,7 @@ class _Setup:
 
 def run_migrate(args) -> int:
     try:
-        files = discover(args.paths)
+        files = discover(args.paths, suffixes=(".openplx", BRICK))
         if getattr(args, "show_settings", False):
             return _show_settings(files, args)
         setups = _Setups(files, args) if files else None
@@ -114,7 +130,7 @@ class _Setups:
         self.inferred: dict = {}  # file -> Inference, for the closing line
 
     def for_file(self, f) -> _Setup:
-        if not self.infer:
+        if not self.infer or f.suffix == BRICK:
             return self.default
         found = written_for(f, self.default)
         if found is None:
@@ -191,6 +207,9 @@ def _migrate_file(f, args, setup: _Setup, tally: _Tally) -> None:
     """Migrate one file (or show or check what would change) and say what happened."""
     from plxtools.migrate.rewrite import migrate_text
 
+    if f.suffix == BRICK:
+        _refuse_brick(f, setup.dst.label, tally)
+        return
     cfg, data, text = _inputs(f)
     to_v = setup.dst.version
     fm = migrate_text(f, text, setup.plan, cfg, setup.from_ws, setup.to_ws)
@@ -262,11 +281,11 @@ def _nothing_done(tally: _Tally, setups: _Setups) -> None:
     f, n, frm = tally.failing[0]
     more = f" (and {len(tally.failing) - 1} more files)" if len(tally.failing) > 1 else ""
     if frm == dst:
-        why = (f"they were taken as written for {frm}, the version they are migrated to, so there was nothing to "
+        why = (f"the files were taken as written for {frm}, the version they are migrated to, so there was nothing to "
                f"rewrite; if they were written for an older OpenPLX, pass it: plx migrate --from VERSION --to {dst} "
                f"{f} (`plx migrate --explain VERSION {dst}` lists what changed)")
     else:
-        why = (f"no rename or move between {frm} and {dst} applies to them; what is left needs a person "
+        why = (f"no rename or move between {frm} and {dst} applies to the files; what is left needs a person "
                f"(listed above), or they were written for another version: pass --from VERSION")
     _say(f"plx migrate: nothing was migrated, but {f}{more} still has {_plural(n, 'error')} under {dst}: {why}")
 

@@ -467,6 +467,23 @@ class Workspace:
             elif name in wanted:
                 d.help = (f"'{name}' is a dependency in {home.root / 'config.openplx'} but no bundle of that "
                           f"name is loaded: add its folder with --bundle-path or bundle-path in plx.toml")
+            elif name == "AGX":
+                d.help = self._agx_bundle_help()
+
+    def _agx_bundle_help(self) -> str:
+        """Where `AGX.*` names come from: AGX's own bundle, which no openplx-bundles release has."""
+        from plxtools.model.agx import AGX_BUNDLE, ENV_VARS
+
+        agx = getattr(getattr(self, "bundle_set", None), "agx", None)
+        folder = "/".join(AGX_BUNDLE)
+        if agx is not None and agx.agx_bundle is not None:
+            return (f"'AGX' is AGX Dynamics' own bundle; the installation plx found ({agx.describe()}) has it at "
+                    f"{agx.agx_bundle}, loaded only when its bundles are in use: drop openplx-version or pass "
+                    f"--bundle-path {agx.agx_bundle}")
+        return (f"'AGX' is AGX Dynamics' own bundle: it ships with an AGX installation (<AGX_DIR>/{folder}), not "
+                f"with openplx-bundles; plx loads it with that installation's bundles when it finds one ("
+                f"agx-dir in plx.toml, {', '.join(ENV_VARS)}, the agx Python package, the usual install "
+                f"folders), or pass its folder with --bundle-path")
 
     def _help_for_other_versions(self, tree: ast.File, diags: list[Diagnostic], occurrences=None) -> None:
         """An unknown type that another official OpenPLX version has. When the API index says it
