@@ -304,7 +304,8 @@ class BundleSet:
     pinned: bool = True  # a flag, the config, a dependency or a folder of official bundles chose the version
 
     def key(self) -> tuple:
-        return (str(self.official_root), tuple(str(s.path) for s in self.sources))
+        # `pinned` decides lint's migrate hints (model/written_for.py), so it is part of what a result depends on
+        return (str(self.official_root), tuple(str(s.path) for s in self.sources), self.pinned)
 
     def announcement(self) -> str | None:
         """A line to print when the version was chosen for the user rather than by them."""

@@ -178,7 +178,7 @@ def _set_key(bs: BundleSet) -> str:
     from plxtools.cache import records
     from plxtools.cache.stamp import code_stamp
 
-    return records.set_key(code_stamp(), bs.key(), bs.official_version)
+    return records.set_key(code_stamp(), bs.key()[:2], bs.official_version)  # (the program does not depend on `pinned`)
 
 
 def _parse_path(path) -> ast.File:

@@ -1,0 +1,176 @@
+"""Migrations that work as printed (issue 39): the version a file was written for inferred from its
+content on an unpinned tree, lint's hint run exactly as printed, a migrate that changes nothing
+while files fail, `--bundle-path`, `.brick` files and `AGX.*` names. The models are plxtools' own."""
+
+from __future__ import annotations
+
+import re
+import shlex
+from pathlib import Path
+
+import pytest
+
+from tests.bundles.conftest import fetched  # noqa: F401 - the fixture that provides old versions
+from tests.conftest import plx_here
+
+ERA_017 = {
+    "frame.openplx": """\
+# A small 0.17-era tree written for plxtools' tests: a frame with two plates on a hinge.
+Frame is Physics3D.System:
+    base is Physics3D.Bodies.RigidBody:
+        shape is Physics3D.Charges.Box:
+            size: Math.Vec3.from_xyz(0.4, 0.4, 0.05)
+        pivot is Physics3D.Charges.MateConnector:
+            position: Math.Vec3.from_xyz(0, 0, 0.05)
+    plate is Physics3D.Bodies.RigidBody:
+        shape is Physics3D.Charges.Box:
+            size: Math.Vec3.from_xyz(0.3, 0.05, 0.3)
+        pivot is Physics3D.Charges.MateConnector
+    joint is Physics3D.Interactions.Hinge:
+        charges: [base.pivot, plate.pivot]
+""",
+    "wheel.openplx": """\
+# A wheel on a spinning motor, 0.17-era names.
+Wheel is Physics3D.System:
+    hub is Physics3D.Bodies.RigidBody:
+        rim is Physics3D.Charges.Cylinder:
+            radius: 0.3
+            height: 0.1
+        axle is Physics3D.Charges.MateConnector
+    ground is Physics3D.Bodies.RigidBody:
+        axle is Physics3D.Charges.MateConnector
+    spin is Physics3D.Interactions.RotationalVelocityMotor:
+        charges: [hub.axle, ground.axle]
+        target_speed: 2.0
+""",
+    "notes.openplx": """\
+# Clean under every version: nothing to infer or migrate here.
+Notes is Physics3D.System:
+    block is Physics3D.Bodies.RigidBody
+""",
+}
+
+HINT = re.compile(r"`(plx migrate [^`]+)`")
+
+
+def _tree(tmp_path: Path, files: dict[str, str]) -> Path:
+    for name, text in files.items():
+        (tmp_path / name).write_text(text, encoding="utf-8")
+    return tmp_path
+
+
+def _run_hint(hint: str, cwd: Path):
+    words = shlex.split(hint)
+    assert words[:2] == ["plx", "migrate"], hint
+    return plx_here(*words[1:], cwd=cwd)
+
+
+def test_lints_hint_migrates_an_unpinned_0_17_tree_as_printed(tmp_path, fetched):  # noqa: F811
+    fetched("0.18.10")
+    root = _tree(tmp_path, ERA_017)
+    lint = plx_here("lint", ".", cwd=root)
+    assert lint.returncode == 1
+    hints = {h for h in HINT.findall(lint.stdout) if "--explain" not in h}
+    # no pin: plx infers the version, so the printed command needs no --from
+    assert hints == {"plx migrate --to 0.19.0 frame.openplx", "plx migrate --to 0.19.0 wheel.openplx"}, lint.stdout
+    for hint in sorted(hints):
+        r = _run_hint(hint, root)
+        assert r.returncode == 0, r.stderr
+        assert "written for OpenPLX 0.18.10 (inferred from the file's content" in r.stderr
+    after = plx_here("lint", ".", cwd=root)
+    assert after.returncode == 0, after.stdout
+    text = (root / "frame.openplx").read_text(encoding="utf-8")
+    assert "connectors: [base.pivot, plate.pivot]" in text and "Physics3D.Geometries.Box" in text
+    assert text.startswith("# A small 0.17-era tree")  # comments kept
+    assert (root / "notes.openplx").read_text(encoding="utf-8") == ERA_017["notes.openplx"]
+
+
+def test_show_settings_shows_the_inferred_version_per_file(tmp_path):
+    root = _tree(tmp_path, ERA_017)
+    r = plx_here("migrate", "--show-settings", "--to", "0.19.0", ".", cwd=root)
+    assert r.returncode == 0, r.stderr
+    lines = [ln for ln in r.stdout.splitlines() if ln.startswith("written for:")]
+    assert [ln.split(":")[1].strip() for ln in lines] == ["frame.openplx", "wheel.openplx"], r.stdout
+    assert all("OpenPLX 0.18.10 (inferred from the file's content" in ln for ln in lines)
+
+
+def test_a_pinned_tree_gets_a_hint_with_from_and_it_works(tmp_path, fetched):  # noqa: F811
+    fetched("0.18.10")
+    root = _tree(tmp_path, {"frame.openplx": ERA_017["frame.openplx"]})
+    (root / "plx.toml").write_text('openplx-version = "0.19.0"\n', encoding="utf-8")
+    lint = plx_here("lint", "frame.openplx", cwd=root)
+    hints = {h for h in HINT.findall(lint.stdout) if "--explain" not in h}
+    assert hints == {"plx migrate --from 0.18.10 --to 0.19.0 frame.openplx"}, lint.stdout
+    r = _run_hint(hints.pop(), root)
+    assert r.returncode == 0, r.stderr
+    assert plx_here("lint", "frame.openplx", cwd=root).returncode == 0
+
+
+def test_a_migrate_that_changes_nothing_while_files_fail_exits_1_and_says_why(tmp_path):
+    root = _tree(tmp_path, {"typo.openplx": "Scene is Physics3D.System:\n    b is Physics3D.Bodies.RigidBdy\n"})
+    r = plx_here("migrate", "--to", "0.19.0", "typo.openplx", cwd=root)
+    assert r.returncode == 1, r.stderr
+    assert "nothing was migrated, but typo.openplx still has 1 error under 0.19.0" in r.stderr
+    assert "--from VERSION" in r.stderr
+    assert (root / "typo.openplx").read_text(encoding="utf-8").endswith("RigidBdy\n")
+
+
+def test_a_clean_tree_migrates_to_its_own_version_with_exit_0(tmp_path):
+    root = _tree(tmp_path, {"notes.openplx": ERA_017["notes.openplx"]})
+    r = plx_here("migrate", "--to", "0.19.0", ".", cwd=root)
+    assert r.returncode == 0 and "Migrated 0 files (0 changes); 1 file unchanged." in r.stderr
+
+
+def test_the_inference_reads_nothing_for_a_file_without_version_sensitive_errors():
+    from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity
+    from plxtools.model.written_for import infer
+
+    other = [Diagnostic("T001", "a type mismatch", EMPTY_SPAN, Severity.ERROR)]
+    assert infer("x is Physics3D.Charges.Box\n", other, [], "0.19.0") is None
+    unknown = [Diagnostic("N001", "unknown type", EMPTY_SPAN, Severity.ERROR)]
+    got = infer("x is Physics3D.Charges.Box\n", unknown, [], "0.19.0")
+    assert got is not None and got.version == "0.18.10" and got.missing == 0 and got.missing_in_use == 1
+
+
+def test_bundle_path_is_used_by_both_ends(tmp_path, fetched):  # noqa: F811
+    fetched("0.18.10")
+    shelf = tmp_path / "lib" / "Shelf"
+    shelf.mkdir(parents=True)
+    (shelf / "config.openplx").write_text('config:\n    name: "Shelf"\n    version: "1.0"\n'
+                                          '    dependencies: ["Physics3D"]\n', encoding="utf-8")
+    (shelf / "Board.openplx").write_text("Board is Physics3D.Bodies.RigidBody\n", encoding="utf-8")
+    models = tmp_path / "models"
+    models.mkdir()
+    (models / "rack.openplx").write_text(
+        "Rack is Physics3D.System:\n    board is Shelf.Board:\n        shape is Physics3D.Charges.Box\n",
+        encoding="utf-8")
+    without = plx_here("migrate", "--from", "0.18.10", "--to", "0.19.0", "models", cwd=tmp_path)
+    assert "N001 unknown type 'Shelf.Board'" in without.stderr  # the bundle is not loaded: left for a person
+    (models / "rack.openplx").write_text(
+        "Rack is Physics3D.System:\n    board is Shelf.Board:\n        shape is Physics3D.Charges.Box\n",
+        encoding="utf-8")
+    r = plx_here("migrate", "--bundle-path", "lib", "--from", "0.18.10", "--to", "0.19.0", "models", cwd=tmp_path)
+    assert r.returncode == 0 and "Shelf.Board" not in r.stderr, r.stderr
+    assert "Physics3D.Geometries.Box" in (models / "rack.openplx").read_text(encoding="utf-8")
+    assert plx_here("lint", "--bundle-path", "lib", "models", cwd=tmp_path).returncode == 0
+
+
+def test_brick_files_are_refused_with_a_located_line(tmp_path):
+    (tmp_path / "sub").mkdir()
+    old = tmp_path / "sub" / "old.brick"
+    old.write_text("Scene is Physics3D.System:\n    b is Physics3D.Bodies.RigidBody\n", encoding="utf-8")
+    r = plx_here("migrate", "--to", "0.19.0", ".", cwd=tmp_path)
+    assert r.returncode == 2
+    assert re.search(r"^sub/old\.brick:1:1: not migrated: a \.brick file is written for OpenPLX before 0\.15", r.stderr,
+                     re.M), r.stderr
+    assert "--from 0.15.0 --to 0.19.0 sub/old.openplx" in r.stderr
+    assert old.is_file() and not (tmp_path / "sub" / "old.openplx").exists()
+
+
+@pytest.mark.parametrize("env", [{"AGX_DIR": "", "AGX_DATA_DIR": "", "AGX_PLUGIN_PATH": ""}])
+def test_agx_names_say_where_agxs_bundle_comes_from(tmp_path, env):
+    f = tmp_path / "a.openplx"
+    f.write_text("Scene is Physics3D.System:\n    t is AGX.Something\n", encoding="utf-8")
+    (tmp_path / "plx.toml").write_text('agx-dir = ""\n', encoding="utf-8")
+    r = plx_here("lint", str(f), env=env)
+    assert "N001" in r.stdout and "ships with an AGX installation" in r.stdout and "--bundle-path" in r.stdout
