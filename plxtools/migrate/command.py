@@ -152,19 +152,9 @@ class _Setups:
 
 def written_for(f, setup: _Setup):
     """The release a file's content says it was written for (None: the bundles in use fit it)."""
-    from plxtools.model.written_for import infer
-    from plxtools.rules.analysis import analyse_file
-    from plxtools.syntax import parse_text
+    from plxtools.model.written_for import infer_file
 
-    try:
-        text = f.read_bytes().decode("utf-8-sig")
-    except (OSError, UnicodeDecodeError):
-        return None  # reported when the file is migrated
-    tree = parse_text(text, str(f))
-    if tree.has_errors_of_syntax():
-        return None
-    fa = analyse_file(setup.from_ws, tree)
-    return infer(text, fa.diagnostics, fa.occurrences, setup.src.version)
+    return infer_file(setup.from_ws, f)
 
 
 def _show_settings(files, args) -> int:

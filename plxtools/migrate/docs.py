@@ -56,7 +56,8 @@ nothing more.
 
 - `plx migrate --to VERSION FILE` migrates each such file from the release inferred for it (and
   says so: `scene.openplx: written for OpenPLX 0.18.10 (inferred from the file's content: ...)`);
-  `plx migrate --show-settings` lists the inferred release per file (`written for: ...`).
+  `plx migrate --show-settings` and `plx lint --show-settings` list the inferred release per file
+  (`written for: FILE: OpenPLX VERSION (why)`).
 - Lint's help lines print `plx migrate --to VERSION FILE` when plx infers the release, and
   `plx migrate --from OLD --to VERSION FILE` when a pin says the version or the content cannot tell.
 - A migration that rewrites nothing while files still have errors under the target version exits 1

@@ -114,6 +114,23 @@ def infer(text: str, diagnostics, occurrences, using: str | None) -> Inference |
     return Inference(best, total, missing[best], in_use)
 
 
+def infer_file(ws, path) -> Inference | None:
+    """`infer` for a file on disk, analysed in workspace `ws` (None: unreadable or not parsed: the
+    command reports that itself)."""
+    from plxtools.syntax import parse_text
+
+    try:
+        text = path.read_bytes().decode("utf-8-sig")
+    except (OSError, UnicodeDecodeError):
+        return None
+    tree = parse_text(text, str(path))
+    if tree.has_errors_of_syntax():
+        return None
+    fa = ws.analyse(tree)
+    using = getattr(getattr(ws, "bundle_set", None), "official_version", None)
+    return infer(text, fa.diagnostics, fa.occurrences, using)
+
+
 class MigrateHint:
     """The `plx migrate` command lint's help lines print for one file: one that works as printed.
 

@@ -92,6 +92,8 @@ def test_show_settings_shows_the_inferred_version_per_file(tmp_path):
     lines = [ln for ln in r.stdout.splitlines() if ln.startswith("written for:")]
     assert [ln.split(":")[1].strip() for ln in lines] == ["frame.openplx", "wheel.openplx"], r.stdout
     assert all("OpenPLX 0.18.10 (inferred from the file's content" in ln for ln in lines)
+    lint = plx_here("lint", "--show-settings", ".", cwd=root)  # lint shows the same inference
+    assert [ln for ln in lint.stdout.splitlines() if ln.startswith("written for:")] == lines, lint.stdout
 
 
 def test_a_pinned_tree_gets_a_hint_with_from_and_it_works(tmp_path, fetched):  # noqa: F811
