@@ -265,8 +265,6 @@ def _summary(args, tally: _Tally, n_files: int, setups: "_Setups | None" = None)
 
 def _nothing_done(tally: _Tally, setups: _Setups) -> None:
     """Nothing was rewritten, yet files have errors under the target version: say why and what to pass."""
-    from plxtools.model.written_for import VERSION_SENSITIVE  # noqa: F401 - the kinds lint infers from
-
     dst = setups.default.dst.label
     f, n, frm = tally.failing[0]
     more = f" (and {len(tally.failing) - 1} more files)" if len(tally.failing) > 1 else ""

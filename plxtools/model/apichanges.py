@@ -254,11 +254,7 @@ def _attr_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, table: list[Tabl
     o_all, n_all = old.all_attrs(q), new.all_attrs(n)
     gone = [a for a in o_own if a not in n_all]
     fresh = [a for a in n_own if a not in o_all]
-    found: dict[str, tuple[str, str, str]] = {}
-    for e in table:
-        mine = e.old_model == q if e.old_model else e.model == n
-        if e.kind == "attribute" and mine and e.old in gone and e.new in n_all and e.old not in found:
-            found[e.old] = (e.new, e.handling, e.note)
+    found = _listed_attr_renames(table, q, n, gone, n_all)
     rest_gone = [a for a in gone if a not in found]
     rest_fresh = [a for a in fresh if a not in {x[0] for x in found.values()}]
     dep = old.models[q].get("dep", {})
@@ -276,6 +272,18 @@ def _attr_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, table: list[Tabl
             found[a] = (b, AUTO, "same type, flags and documentation")
             rest_gone, rest_fresh = [], []
     return found, (rest_gone, rest_fresh)
+
+
+def _listed_attr_renames(table: list[TableEntry], q: str, n: str, gone: list[str],
+                         n_all: dict) -> dict[str, tuple[str, str, str]]:
+    """A model's attribute renames that a list names: the reviewed table (by the model's new name) or
+    OpenPLX's declared list (by its old one)."""
+    found: dict[str, tuple[str, str, str]] = {}
+    for e in table:
+        mine = e.old_model == q if e.old_model else e.model == n
+        if e.kind == "attribute" and mine and e.old in gone and e.new in n_all and e.old not in found:
+            found[e.old] = (e.new, e.handling, e.note)
+    return found
 
 
 def _follow_base_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, found: dict, renames: dict,

@@ -573,6 +573,11 @@ def _has_math(sources: list[BundleSource]) -> bool:
                (s.path / "config.openplx").is_file() and _config_name(s.path) == "Math" for s in sources)
 
 
+def _pinned(*choices) -> bool:
+    """Whether the user chose the version: a flag, the config, a dependency, official bundles of their own."""
+    return any(bool(c) for c in choices)
+
+
 def resolve_bundle_set(
     targets: list[Path],
     cli_paths: list[str | Path] = (),
@@ -620,7 +625,7 @@ def resolve_bundle_set(
     folders.add_found(found, official[0], workspace_root)
     bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources,
                    choice.notes, agx, choice.agx_official is not None,
-                   pinned=bool(cli_version or cfg_version or pins or replacing))
+                   pinned=_pinned(cli_version, cfg_version, pins, replacing))
     if bs.official_root is None and not _has_math(sources):
         raise BundleSetError("cannot find the OpenPLX bundles: install openplx-bundles, set openplx-version, "
                              "OPENPLX_BUNDLE_PATH, or pass --bundle-path")

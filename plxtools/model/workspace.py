@@ -489,53 +489,59 @@ class Workspace:
         """An unknown type that another official OpenPLX version has. When the API index says it
         moved or was renamed one to one by the version in use, it is U001 with a safe fix to the new
         name; otherwise the help says which versions have it, so the user migrates (or chooses that
-        version) instead of hunting for a typo."""
-        unknown = [d for d in diags if d.code == UNRESOLVED_TYPE]
+        version) instead of hunting for a typo. Help lines that say to migrate print a `plx migrate`
+        command that works as printed for this file (model/written_for.py)."""
         bs = getattr(self, "bundle_set", None)
         using = getattr(bs, "official_version", None)
-        if not using:
+        attrs = [d for d in diags if d.code == UNKNOWN_ATTRIBUTE]
+        unknown = [d for d in diags if d.code == UNRESOLVED_TYPE]
+        if not using or not (attrs or unknown):
             return
         from plxtools.model.written_for import MigrateHint
 
         path = tree.path if tree.path and not is_editor_buffer(tree.path) else None
         hint = MigrateHint(path, tree.text, diags, occurrences, using, getattr(bs, "pinned", True))
-        self._renamed_attributes(tree, [d for d in diags if d.code == UNKNOWN_ATTRIBUTE], using, hint)
-        if not unknown:
-            return
+        self._renamed_attributes(tree, attrs, using, hint)
+        for d in unknown:
+            self._older_type(tree, d, using, hint)
+
+    def _older_type(self, tree: ast.File, d: Diagnostic, using: str, hint) -> None:
+        """One unknown type: U001 when a release before `using` had it and it was renamed one to one,
+        else a note of the versions that have it (or of newer bundles that might)."""
         from plxtools.model.apiindex import UnknownVersion, spans, version_key, where_defined
 
-        for d in unknown:
-            written = tree.text[d.span.start.offset:d.span.end.offset]
-            if "." not in written or not written.replace(".", "").replace("_", "").isalnum():
-                continue
-            found = [v for v in where_defined(written) if v != using]
-            if not found:
-                if not where_defined(written) and written.split(".", 1)[0] in self.bundles:
-                    from plxtools.model.agx import newer_bundles_help
-                    from plxtools.model.apiindex import versions
+        bs = getattr(self, "bundle_set", None)
+        written = tree.text[d.span.start.offset:d.span.end.offset]
+        if "." not in written or not written.replace(".", "").replace("_", "").isalnum():
+            return
+        found = [v for v in where_defined(written) if v != using]
+        if not found:
+            if not where_defined(written) and written.split(".", 1)[0] in self.bundles:
+                from plxtools.model.agx import newer_bundles_help
+                from plxtools.model.apiindex import versions
 
-                    newer = newer_bundles_help(written, bs, versions()[-1], typo=d.fix is not None)
-                    if newer:
-                        d.help = f"{newer}; {d.help}" if d.help else newer
-                continue
-            older = [v for v in found if version_key(v) < version_key(using)]
-            try:
-                moved = _moved_to(written, older[-1], using) if older else None
-            except UnknownVersion:
-                moved = None
-            new = moved.new if moved is not None else None
-            if new is not None and self._resolves(new, tree):
-                d.code = OLDER_NAME
-                d.message = f"'{written}' was renamed '{new}' (OpenPLX {older[-1]} -> {using})"
-                d.older_version = older[-1]
-                declared = " (a rename OpenPLX's own migration list declares)" if moved.handling == "declared" else ""
-                d.help = f"write '{new}'{declared}; {hint.command(older[-1])} updates whole files"
-                d.fix = Fix(f"replace with '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=True)
-                continue
-            note = (f"'{written}' exists in OpenPLX {spans(found)}, not in {using} (the version in use): "
-                    f"`plx migrate --explain {found[-1]} {using}` lists what changed; `openplx-version` in "
-                    f"plx.toml chooses another version")
-            d.help = f"{note}; {d.help}" if d.help else note
+                newer = newer_bundles_help(written, bs, versions()[-1], typo=d.fix is not None)
+                if newer:
+                    d.help = f"{newer}; {d.help}" if d.help else newer
+            return
+        older = [v for v in found if version_key(v) < version_key(using)]
+        try:
+            moved = _moved_to(written, older[-1], using) if older else None
+        except UnknownVersion:
+            moved = None
+        new = moved.new if moved is not None else None
+        if new is not None and self._resolves(new, tree):
+            d.code = OLDER_NAME
+            d.message = f"'{written}' was renamed '{new}' (OpenPLX {older[-1]} -> {using})"
+            d.older_version = older[-1]
+            declared = " (a rename OpenPLX's own migration list declares)" if moved.handling == "declared" else ""
+            d.help = f"write '{new}'{declared}; {hint.command(older[-1])} updates whole files"
+            d.fix = Fix(f"replace with '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=True)
+            return
+        note = (f"'{written}' exists in OpenPLX {spans(found)}, not in {using} (the version in use): "
+                f"`plx migrate --explain {found[-1]} {using}` lists what changed; `openplx-version` in "
+                f"plx.toml chooses another version")
+        d.help = f"{note}; {d.help}" if d.help else note
 
     def _renamed_attributes(self, tree: ast.File, unknown: list[Diagnostic], using: str, hint) -> None:
         """An unknown attribute that official versions before `using` renamed (`charges` ->

@@ -12,8 +12,15 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-# the codes a version change explains: an unknown type or attribute, a name of an older version
-VERSION_SENSITIVE = ("N001", "N002", "U001", "U002")
+
+
+def version_sensitive() -> tuple[str, ...]:
+    """The codes a version change explains: an unknown type or attribute, a name of an older version
+    (their homes: model/checker.py and model/workspace.py)."""
+    from plxtools.model.checker import UNKNOWN_ATTRIBUTE, UNRESOLVED_TYPE
+    from plxtools.model.workspace import OLDER_NAME, RENAMED_ATTRIBUTE
+
+    return (UNRESOLVED_TYPE, UNKNOWN_ATTRIBUTE, OLDER_NAME, RENAMED_ATTRIBUTE)
 
 
 @dataclass(frozen=True)
@@ -83,14 +90,15 @@ def _official_names(text: str, occurrences) -> dict[str, list[str]]:
 def infer(text: str, diagnostics, occurrences, using: str | None) -> Inference | None:
     """The release the text was written for when it is not `using` (None: no version-sensitive
     error, nothing official in the text, or `using` fits it at least as well)."""
-    if not any(d.code in VERSION_SENSITIVE for d in diagnostics):
+    sensitive = version_sensitive()
+    if not any(d.code in sensitive for d in diagnostics):
         return None
     from plxtools.model.apiindex import version_key, versions
 
     allv = versions()
     names = _official_names(text, occurrences)
     # an attribute an older version renamed (U002): absent from the version of the rename on
-    renamed_since = [d.older_version for d in diagnostics if d.code == "U002" and d.older_version]
+    renamed_since = [d.older_version for d in diagnostics if d.code == sensitive[3] and d.older_version]
     if not names and not renamed_since:
         return None
     missing = {v: 0 for v in allv}
