@@ -78,7 +78,7 @@ def run_migrate(args) -> int:
         if getattr(args, "show_settings", False):
             return _show_settings(files, args)
         setups = _Setups(files, args) if files else None
-    except (UsageError, ConfigError, ValueError) as exc:
+    except (UsageError, ConfigError, ValueError, _Failed) as exc:
         _say(f"plx migrate: {exc}")
         return 2
     tally = _Tally()
@@ -86,9 +86,6 @@ def run_migrate(args) -> int:
         for f in files:
             _migrate_file(f, args, setups.for_file(f), tally)
     except _Failed as exc:
-        _say(f"plx migrate: {exc}")
-        return 2
-    except (UsageError, ConfigError, ValueError) as exc:
         _say(f"plx migrate: {exc}")
         return 2
     return _summary(args, tally, len(files), setups)
@@ -126,27 +123,32 @@ class _Setups:
         src, dst = _ends(files, args)
         self.default = _setup_of(src, dst)
         self.by_version: dict[str, _Setup] = {}
-        self.infer = args.from_version is None and not src.bundle_set.pinned
-        self.inferred: dict = {}  # file -> Inference, for the closing line
+        self.of_file: dict = {}
+        if args.from_version is None and not src.bundle_set.pinned:
+            for f in files:  # all first: a release that cannot be loaded stops the run before any write
+                self.of_file[f] = self._inferred(f)
 
     def for_file(self, f) -> _Setup:
-        if not self.infer or f.suffix == BRICK:
-            return self.default
-        found = written_for(f, self.default)
-        if found is None:
-            return self.default
+        return self.of_file.get(f) or self.default
+
+    def _inferred(self, f) -> _Setup | None:
         from plxtools.migrate import endpoints
         from plxtools.model.apiindex import version_key
 
+        found = written_for(f, self.default) if f.suffix != BRICK else None
         dst = self.default.dst
-        if version_key(found.version) >= version_key(dst.version):
-            return self.default
-        self.inferred[f] = found
+        if found is None or version_key(found.version) >= version_key(dst.version):
+            return None
+        why = found.why(self.default.src.version)
         if found.version not in self.by_version:
-            why = found.why(self.default.src.version)
-            src = endpoints.inferred([f], found.version, why, getattr(self.args, "bundle_path", None) or [])
+            try:
+                src = endpoints.inferred([f], found.version, f"the file's content: {why.split(': ', 1)[-1]}",
+                                         getattr(self.args, "bundle_path", None) or [])
+            except ValueError as exc:
+                raise _Failed(f"{f}: written for OpenPLX {found.version} (inferred from its content), whose bundles "
+                              f"plx cannot load: {exc}; pass --from VERSION to choose the version") from None
             self.by_version[found.version] = _setup_of(src, dst)
-        _say(f"{f}: written for OpenPLX {found.version} ({found.why(self.default.src.version)})")
+        _say(f"{f}: written for OpenPLX {found.version} ({why})")
         return self.by_version[found.version]
 
 

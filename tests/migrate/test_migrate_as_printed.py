@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from tests.bundles.conftest import fetched  # noqa: F401 - the fixture that provides old versions
-from tests.conftest import plx_here
+from tests.conftest import plx_here, run_plx
 
 ERA_017 = {
     "frame.openplx": """\
@@ -54,6 +54,7 @@ HINT = re.compile(r"`(plx migrate [^`]+)`")
 
 
 def _tree(tmp_path: Path, files: dict[str, str]) -> Path:
+    tmp_path.mkdir(parents=True, exist_ok=True)
     for name, text in files.items():
         (tmp_path / name).write_text(text, encoding="utf-8")
     return tmp_path
@@ -176,3 +177,15 @@ def test_agx_names_say_where_agxs_bundle_comes_from(tmp_path, env):
     (tmp_path / "plx.toml").write_text('agx-dir = ""\n', encoding="utf-8")
     r = plx_here("lint", str(f), env=env)
     assert "N001" in r.stdout and "ships with an AGX installation" in r.stdout and "--bundle-path" in r.stdout
+
+
+def test_an_inferred_release_that_cannot_be_fetched_stops_the_run_before_any_write(tmp_path, warm_cache):
+    from tests.bundles.conftest import offline_env
+
+    root = _tree(tmp_path / "tree", ERA_017)
+    # a warm 0.19.0 program, no other release in the cache, and no network
+    r = run_plx("migrate", "--to", "0.19.0", ".", cwd=root, env={**offline_env(warm_cache), "PIP_NO_INDEX": "1"})
+    assert r.returncode == 2, r.stderr
+    assert "frame.openplx: written for OpenPLX 0.18.10" in r.stderr and "whose bundles plx cannot load" in r.stderr
+    assert "pass --from VERSION" in r.stderr
+    assert all((root / n).read_text(encoding="utf-8") == t for n, t in ERA_017.items())
