@@ -28,20 +28,7 @@ def _left_for_a_person(path, fm, to_v: str) -> None:
         _say(f"  ... and {len(fm.left) - len(shown)} more (plx lint --openplx-version {to_v} {path})")
 
 
-BRICK = ".brick"  # the extension of model files before OpenPLX 0.15
-
-
-def _refuse_brick(f, dst_label: str, tally: _Tally) -> None:
-    """A .brick file: from before OpenPLX 0.15, whose bundles no release offers (openplx-bundles
-    starts at 0.15.0), so plx cannot tell what its names meant. Refused at its first line, with
-    what to do."""
-    tally.refused += 1
-    new = f.with_suffix(".openplx")
-    _say(f"{f}:1:1: not migrated: a .brick file is written for OpenPLX before 0.15 (0.15.0 renamed the "
-         f"extension to .openplx, as OpenPLX's own migration list declares), and plx has no bundles older than "
-         f"0.15.0 (the oldest openplx-bundles release) to read it with; rename it to {new.name} and run "
-         f"plx migrate --from 0.15.0 --to {dst_label} {new}, then review what lint reports (the renames OpenPLX "
-         f"declares before 0.15 are listed in plx's migration guide, docs/migration.md)")
+BRICK = ".brick"  # the extension of model files before OpenPLX 0.15 (plxtools/migrate/brick.py)
 
 
 class _Failed(Exception):
@@ -124,9 +111,19 @@ class _Setups:
         self.default = _setup_of(src, dst)
         self.by_version: dict[str, _Setup] = {}
         self.of_file: dict = {}
+        bricks = [f for f in files if f.suffix == BRICK]
+        if bricks:  # read as the oldest release plx has, after OpenPLX's renames before it (migrate/brick.py)
+            from plxtools.model.apiindex import version_key, versions
+
+            first = versions()[0]
+            if version_key(first) < version_key(dst.version):
+                brick_setup = self._release(bricks[0], first, "the oldest release plx has, for a .brick file "
+                                            "(written before OpenPLX 0.15)")
+                self.of_file.update({f: brick_setup for f in bricks})
         if args.from_version is None and not src.bundle_set.pinned:
             for f in files:  # all first: a release that cannot be loaded stops the run before any write
-                self.of_file[f] = self._inferred(f)
+                if f.suffix != BRICK:
+                    self.of_file[f] = self._inferred(f)
 
     def for_file(self, f) -> _Setup:
         return self.of_file.get(f) or self.default
@@ -135,21 +132,27 @@ class _Setups:
         from plxtools.migrate import endpoints
         from plxtools.model.apiindex import version_key
 
-        found = written_for(f, self.default) if f.suffix != BRICK else None
+        found = written_for(f, self.default)
         dst = self.default.dst
         if found is None or version_key(found.version) >= version_key(dst.version):
             return None
         why = found.why(self.default.src.version)
-        if found.version not in self.by_version:
-            try:
-                src = endpoints.inferred([f], found.version, f"the file's content: {why.split(': ', 1)[-1]}",
-                                         getattr(self.args, "bundle_path", None) or [])
-            except ValueError as exc:
-                raise _Failed(f"{f}: written for OpenPLX {found.version} (inferred from its content), whose bundles "
-                              f"plx cannot load: {exc}; pass --from VERSION to choose the version") from None
-            self.by_version[found.version] = _setup_of(src, dst)
+        setup = self._release(f, found.version, f"the file's content: {why.split(': ', 1)[-1]}")
         _say(f"{f}: written for OpenPLX {found.version} ({why})")
-        return self.by_version[found.version]
+        return setup
+
+    def _release(self, f, version: str, why: str) -> _Setup:
+        """The setup from a release the run chose for a file (not the user): loaded once per release."""
+        from plxtools.migrate import endpoints
+
+        if version not in self.by_version:
+            try:
+                src = endpoints.inferred([f], version, why, getattr(self.args, "bundle_path", None) or [])
+            except ValueError as exc:
+                raise _Failed(f"{f}: written for OpenPLX {version} ({why.split(':')[0]}), whose bundles plx cannot "
+                              f"load: {exc}; pass --from VERSION to choose the version") from None
+            self.by_version[version] = _setup_of(src, self.default.dst)
+        return self.by_version[version]
 
 
 def written_for(f, setup: _Setup):
@@ -200,7 +203,7 @@ def _migrate_file(f, args, setup: _Setup, tally: _Tally) -> None:
     from plxtools.migrate.rewrite import migrate_text
 
     if f.suffix == BRICK:
-        _refuse_brick(f, setup.dst.label, tally)
+        _migrate_brick(f, args, setup, tally)
         return
     cfg, data, text = _inputs(f)
     to_v = setup.dst.version
@@ -221,6 +224,50 @@ def _migrate_file(f, args, setup: _Setup, tally: _Tally) -> None:
         tally.edits += fm.edits
         _write(f, args, fm, data, setup.step, _remaining(fm, setup.src.label))
     _left_for_a_person(f, fm, to_v)
+
+
+def _migrate_brick(f, args, setup: _Setup, tally: _Tally) -> None:
+    """A .brick file: OpenPLX's renames before 0.15, then the migration from the oldest release plx
+    has; written as the .openplx file of the same name (the .brick file is renamed, then rewritten)."""
+    from plxtools.fileio import unified_diff, write_atomic
+    from plxtools.migrate.brick import pre_015_text
+    from plxtools.migrate.rewrite import migrate_text
+
+    new_path = f.with_suffix(".openplx")
+    if new_path.exists():
+        tally.refused += 1
+        _say(f"{f}:1:1: not migrated: {new_path} already exists (a .brick file becomes the .openplx file of the "
+             f"same name); move one of them away")
+        return
+    cfg, data, text = _inputs(f)
+    pre, n_pre, notes = pre_015_text(str(new_path), text)
+    fm = migrate_text(new_path, pre, setup.plan, cfg, setup.from_ws, setup.to_ws)
+    if fm.refused:
+        tally.refused += 1
+        _say(f"{f}:1:1: not migrated (a .brick file, read as {setup.src.label}): {fm.refused}")
+        return
+    for note in notes + fm.notes:
+        _say(f"{f}: {note}")
+    new_text = fm.new_text if fm.new_text is not None else pre
+    edits = n_pre + fm.edits + 1  # the extension is one change
+    tally.changed += 1
+    tally.edits += edits
+    if fm.errors_after:
+        tally.failing.append((new_path, fm.errors_after, setup.src.label))
+    step = f"before 0.15 -> {setup.dst.label}, as {new_path.name}"
+    remain = _remaining(fm, setup.src.label)
+    if args.diff:
+        sys.stdout.write(unified_diff(str(f), text, new_text).replace(f"+++ b/{f}", f"+++ b/{new_path}", 1))
+    elif args.check:
+        _say(f"would migrate {f} ({_plural(edits, 'change')}, {step}){remain}")
+    else:
+        try:
+            f.rename(new_path)  # first the name: should the write fail, the file is whole under its new name
+            write_atomic(new_path, new_text, data.startswith(b"\xef\xbb\xbf"), expected=data)
+        except OSError as exc:
+            raise _Failed(f"{f}: {exc.strerror or exc}") from exc
+        _say(f"migrated {f} ({_plural(edits, 'change')}, {step}){remain}")
+    _left_for_a_person(new_path, fm, setup.dst.version)
 
 
 def _remaining(fm, from_v: str) -> str:
@@ -281,7 +328,8 @@ def _nothing_done(tally: _Tally, setups: _Setups) -> None:
 
 
 def add_arguments(p) -> None:
-    p.add_argument("paths", nargs="*", metavar="PATH", help="files or folders to migrate (with --to)")
+    p.add_argument("paths", nargs="*", metavar="PATH",
+                   help="files or folders to migrate (with --to): .openplx files, and .brick files of before 0.15")
     p.add_argument("--to", metavar="VERSION", help="the OpenPLX version to migrate the files to: a release (e.g. 0.19.0) or the version of "
                    "the AGX installation's bundles (e.g. 0.20.1)")
     p.add_argument("--from", dest="from_version", metavar="VERSION",

@@ -104,11 +104,16 @@ with syntax errors is refused as a whole.
   left for a person that it did not have under its old version (its safe rewrites are applied),
   when nothing was rewritten while files still have errors under the target version, or when some
   files were refused; 2 for a usage error or when no file could be migrated.
-- `.brick` files (the extension before OpenPLX 0.15, found in folders too) are refused, each with
-  a located line (`old.brick:1:1: not migrated: ...`) saying what to do: no `openplx-bundles`
-  release is older than 0.15.0 (`pip index versions openplx-bundles` lists 0.15.0 to 0.19.0), so
-  plx cannot read what their names meant; rename the file to `.openplx` and migrate it
-  `--from 0.15.0`. The renames OpenPLX declares before 0.15 are listed at the end of this page.
+- `.brick` files (the extension before OpenPLX 0.15) are migrated too, also when found in a folder.
+  No `openplx-bundles` release is older than 0.15.0 (`pip index versions openplx-bundles` lists
+  0.15.0 to 0.19.0, 81 versions), so plx first applies the renames OpenPLX declares before 0.15
+  (listed at the end of this page: moved models and `Math.Vec3.fromXYZ` -> `from_xyz` style method
+  renames) where the old name cannot mean anything else (a name 0.15 has again, `DriveTrain.Gear`,
+  is left as it is, with a note), then migrates the file from 0.15.0 like any other, and writes it
+  as the `.openplx` file of the same name (the `.brick` file is renamed, then rewritten). Attribute
+  renames before 0.15 need the old bundles; what they leave is listed like any error. A `.brick`
+  file whose `.openplx` name is taken is refused with a located line (`old.brick:1:1: not
+  migrated: old.openplx already exists ...`).
 
 `AGX.*` names (AGX Dynamics' own bundle, `<AGX_DIR>/data/openplx/agxBundle`) are in no
 `openplx-bundles` release: when no AGX installation is in use, lint's `N001` for them says that the
@@ -236,8 +241,9 @@ def _before_the_index(first: str) -> str:
 
     old = [d for d in declared_renames() if version_key(d.after) < version_key(first)]
     out = [f"\n## Renames OpenPLX declares before {first}\n\nNo `openplx-bundles` release is older than "
-           f"{first}, so plx cannot apply these; they are OpenPLX's own migration list "
-           f"(`plxtools/model/apiindex/declared_renames.toml`), for a person migrating an older file.\n"]
+           f"{first}: OpenPLX's own migration list (`plxtools/model/apiindex/declared_renames.toml`) is all plx "
+           f"knows of these. `plx migrate` applies the model and method renames to `.brick` files where the old "
+           f"name is in no release plx has; the rest is for a person.\n"]
     step = None
     for d in old:
         if (d.after, d.to) != step:

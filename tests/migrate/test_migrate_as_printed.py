@@ -158,16 +158,43 @@ def test_bundle_path_is_used_by_both_ends(tmp_path, fetched):  # noqa: F811
     assert plx_here("lint", "--bundle-path", "lib", "models", cwd=tmp_path).returncode == 0
 
 
-def test_brick_files_are_refused_with_a_located_line(tmp_path):
+BRICK = """\
+# A model of before OpenPLX 0.15 (plxtools' own), with the old extension.
+Old is Physics3D.System:
+    body is Physics3D.Bodies.RigidBody:
+        shape is Physics3D.Charges.Box:
+            size: Math.Vec3.fromXYZ(1, 2, 3)
+    gear is DriveTrain.Gear
+"""
+
+
+def test_a_brick_file_gets_the_renames_before_0_15_then_the_migration_and_the_new_extension(tmp_path, fetched):  # noqa: F811
+    fetched("0.15.0")
     (tmp_path / "sub").mkdir()
     old = tmp_path / "sub" / "old.brick"
-    old.write_text("Scene is Physics3D.System:\n    b is Physics3D.Bodies.RigidBody\n", encoding="utf-8")
-    r = plx_here("migrate", "--to", "0.19.0", ".", cwd=tmp_path)
-    assert r.returncode == 2
-    assert re.search(r"^sub/old\.brick:1:1: not migrated: a \.brick file is written for OpenPLX before 0\.15", r.stderr,
-                     re.M), r.stderr
-    assert "--from 0.15.0 --to 0.19.0 sub/old.openplx" in r.stderr
-    assert old.is_file() and not (tmp_path / "sub" / "old.openplx").exists()
+    old.write_text(BRICK, encoding="utf-8")
+    r = plx_here("migrate", "--to", "0.19.0", ".", cwd=tmp_path)  # found in the folder
+    assert r.returncode == 0, r.stderr
+    assert "migrated sub/old.brick (3 changes, before 0.15 -> 0.19.0, as old.openplx)" in r.stderr
+    # 0.13.2 renamed DriveTrain.Gear, but 0.15 has one again: a person decides
+    assert "'DriveTrain.Gear' is written here" in r.stderr and "check which one is meant" in r.stderr
+    new = tmp_path / "sub" / "old.openplx"
+    assert not old.exists() and new.is_file()
+    text = new.read_text(encoding="utf-8")
+    assert "Math.Vec3.from_xyz(1, 2, 3)" in text and "Physics3D.Geometries.Box" in text
+    assert "gear is DriveTrain.Gear" in text and text.startswith("# A model of before OpenPLX 0.15")
+    assert plx_here("lint", str(new)).returncode == 0
+
+
+def test_a_brick_file_whose_openplx_name_is_taken_is_refused_with_a_located_line(tmp_path, fetched):  # noqa: F811
+    fetched("0.15.0")
+    (tmp_path / "old.brick").write_text(BRICK, encoding="utf-8")
+    (tmp_path / "old.openplx").write_text("Other is Physics3D.System\n", encoding="utf-8")
+    r = plx_here("migrate", "--to", "0.19.0", "old.brick", cwd=tmp_path)
+    assert r.returncode == 2, r.stderr
+    assert re.search(r"^old\.brick:1:1: not migrated: old\.openplx already exists", r.stderr, re.M), r.stderr
+    assert (tmp_path / "old.brick").read_text(encoding="utf-8") == BRICK
+    assert (tmp_path / "old.openplx").read_text(encoding="utf-8") == "Other is Physics3D.System\n"
 
 
 @pytest.mark.parametrize("env", [{"AGX_DIR": "", "AGX_DATA_DIR": "", "AGX_PLUGIN_PATH": ""}])
