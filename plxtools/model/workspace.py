@@ -697,9 +697,10 @@ def _version_before(version: str) -> str | None:
 
 
 @functools.lru_cache(maxsize=8)
-def _renamed_attributes_before(using: str, use_cache: bool = True) -> dict[str, list[tuple[str, str, str]]]:
-    """old attribute name -> [(new name, model, first version, the model's name in `using`)] for renames from the oldest indexed
-    version up to `using`, one to one (from the index or the reviewed table).
+def _renamed_attributes_before(using: str, use_cache: bool = True) -> dict[str, list[tuple]]:
+    """old attribute name -> [(new name, model, first version, the model's name in `using`)] for
+    renames from the oldest indexed version up to `using`, one to one (from the index, the reviewed
+    table or OpenPLX's declared list).
 
     Composing the changes diffs every pair of consecutive indexed versions (about 1.5 s of CPU), so
     the answer is kept per process and in plx's cache folder, keyed by the index's files and the

@@ -168,7 +168,8 @@ Old is Physics3D.System:
 """
 
 
-def test_a_brick_file_gets_the_renames_before_0_15_then_the_migration_and_the_new_extension(tmp_path, fetched):  # noqa: F811
+def test_a_brick_file_gets_the_renames_before_0_15_then_the_migration_and_its_extension(tmp_path,
+                                                                                    fetched):  # noqa: F811
     fetched("0.15.0")
     (tmp_path / "sub").mkdir()
     old = tmp_path / "sub" / "old.brick"
