@@ -106,39 +106,44 @@ class _Setups:
     bundles in use is migrated from that release (model/written_for.py, lint's own inference)."""
 
     def __init__(self, files, args):
+        from plxtools.migrate.endpoints import check_direction
+        from plxtools.model.workspace import workspace_for_set
+
         self.args = args
-        src, dst = _ends(files, args)
-        self.default = _setup_of(src, dst)
+        self.src, self.dst = _ends(files, args, check=False)
+        self.src_ws = workspace_for_set(self.src.bundle_set)
         self.by_version: dict[str, _Setup] = {}
         self.of_file: dict = {}
+        self.default: _Setup | None = None
         bricks = [f for f in files if f.suffix == BRICK]
         if bricks:  # read as the oldest release plx has, after OpenPLX's renames before it (migrate/brick.py)
             from plxtools.model.apiindex import version_key, versions
 
             first = versions()[0]
-            if version_key(first) < version_key(dst.version):
+            if version_key(first) < version_key(self.dst.version):
                 brick_setup = self._release(bricks[0], first, "the oldest release plx has, for a .brick file "
                                             "(written before OpenPLX 0.15)")
                 self.of_file.update({f: brick_setup for f in bricks})
-        if args.from_version is None and not src.bundle_set.pinned:
+        if args.from_version is None and not self.src.bundle_set.pinned:
             for f in files:  # all first: a release that cannot be loaded stops the run before any write
                 if f.suffix != BRICK:
                     self.of_file[f] = self._inferred(f)
+        rest = [f for f in files if self.of_file.get(f) is None]
+        if rest:  # (a file taken as newer than --to is refused, with what to pass, before any write)
+            check_direction(rest, self.src, self.dst)
+            self.default = _setup_of(self.src, self.dst)
 
     def for_file(self, f) -> _Setup:
         return self.of_file.get(f) or self.default
 
     def _inferred(self, f) -> _Setup | None:
-        from plxtools.migrate import endpoints
-        from plxtools.model.apiindex import version_key
-
-        found = written_for(f, self.default)
-        dst = self.default.dst
-        if found is None or version_key(found.version) >= version_key(dst.version):
+        found = infer_for(f, self.src_ws)
+        version = found.newest_fit(self.dst.version) if found is not None else None
+        if version is None:
             return None
-        why = found.why(self.default.src.version)
-        setup = self._release(f, found.version, f"the file's content: {why.split(': ', 1)[-1]}")
-        _say(f"{f}: written for OpenPLX {found.version} ({why})")
+        why = found.why(self.src.version).replace(f"OpenPLX {found.version}", f"OpenPLX {version}", 1)
+        setup = self._release(f, version, f"the file's content: {why.split(': ', 1)[-1]}")
+        _say(f"{f}: written for OpenPLX {version} ({why})")
         return setup
 
     def _release(self, f, version: str, why: str) -> _Setup:
@@ -151,15 +156,15 @@ class _Setups:
             except ValueError as exc:
                 raise _Failed(f"{f}: written for OpenPLX {version} ({why.split(':')[0]}), whose bundles plx cannot "
                               f"load: {exc}; pass --from VERSION to choose the version") from None
-            self.by_version[version] = _setup_of(src, self.default.dst)
+            self.by_version[version] = _setup_of(src, self.dst)
         return self.by_version[version]
 
 
-def written_for(f, setup: _Setup):
+def infer_for(f, ws):
     """The release a file's content says it was written for (None: the bundles in use fit it)."""
     from plxtools.model.written_for import infer_file
 
-    return infer_file(setup.from_ws, f)
+    return infer_file(ws, f)
 
 
 def _show_settings(files, args) -> int:
@@ -173,15 +178,20 @@ def _show_settings(files, args) -> int:
     for title, end in (("from", src), ("to", dst)):
         print(f"migrate {title}: {end.describe()}")
         print_set(end.bundle_set, indent="  ")
+    rest = list(files)
     if args.from_version is None and not src.bundle_set.pinned:
         from plxtools.model.workspace import workspace_for_set
 
-        setup = _Setup(src, dst, None, workspace_for_set(src.bundle_set), None)
+        ws = workspace_for_set(src.bundle_set)
         for f in files:
-            found = written_for(f, setup)
-            if found is not None:
-                print(f"written for: {f}: OpenPLX {found.version} ({found.why(src.version)})")
-    check_direction(files, src, dst)  # shown first: the settings are what explains a refusal
+            found = infer_for(f, ws) if f.suffix != BRICK else None
+            version = found.newest_fit(dst.version) if found is not None else None
+            if version is not None:
+                why = found.why(src.version).replace(f"OpenPLX {found.version}", f"OpenPLX {version}", 1)
+                print(f"written for: {f}: OpenPLX {version} ({why})")
+                rest.remove(f)
+    if rest:
+        check_direction(rest, src, dst)  # shown first: the settings are what explains a refusal
     return 0
 
 
@@ -314,7 +324,7 @@ def _summary(args, tally: _Tally, n_files: int, setups: "_Setups | None" = None)
 
 def _nothing_done(tally: _Tally, setups: _Setups) -> None:
     """Nothing was rewritten, yet files have errors under the target version: say why and what to pass."""
-    dst = setups.default.dst.label
+    dst = setups.dst.label
     f, n, frm = tally.failing[0]
     more = f" (and {len(tally.failing) - 1} more files)" if len(tally.failing) > 1 else ""
     if frm == dst:

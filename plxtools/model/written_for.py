@@ -31,6 +31,14 @@ class Inference:
     names: int  # distinct official names the file uses, of any indexed version
     missing: int  # of them, absent in `version`
     missing_in_use: int  # absent in the version in use
+    fits: tuple[str, ...] = ()  # every release that fits as well as `version` (it is the newest)
+
+    def newest_fit(self, at_most: str) -> str | None:
+        """The newest release that fits the file best and is not newer than `at_most`."""
+        from plxtools.model.apiindex import version_key
+
+        ok = [v for v in self.fits if version_key(v) <= version_key(at_most)]
+        return ok[-1] if ok else None
 
     def why(self, using: str) -> str:
         have = self.names - self.missing
@@ -73,6 +81,8 @@ def _official_names(text: str, occurrences) -> dict[str, list[str]]:
             if have:
                 found[name] = have
                 break
+    if occurrences is not None and not isinstance(occurrences, list) and hasattr(occurrences, "all"):
+        occurrences = occurrences.all()  # the language server's re-used analysis: built on first read
     if isinstance(occurrences, list):
         from plxtools.model.symbols import MemberSym
 
@@ -119,7 +129,7 @@ def infer(text: str, diagnostics, occurrences, using: str | None) -> Inference |
     in_use = missing[using] if using else total
     if best == using or missing[best] >= in_use:
         return None
-    return Inference(best, total, missing[best], in_use)
+    return Inference(best, total, missing[best], in_use, tuple(v for v in allv if missing[v] == missing[best]))
 
 
 def infer_file(ws, path) -> Inference | None:

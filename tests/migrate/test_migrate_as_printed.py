@@ -133,6 +133,9 @@ def test_the_inference_reads_nothing_for_a_file_without_version_sensitive_errors
     unknown = [Diagnostic("N001", "unknown type", EMPTY_SPAN, Severity.ERROR)]
     got = infer("x is Physics3D.Charges.Box\n", unknown, [], "0.19.0")
     assert got is not None and got.version == "0.18.10" and got.missing == 0 and got.missing_in_use == 1
+    # migrating to 0.18.5, the file is taken as written for 0.18.5 (it fits it as well): nothing to do
+    assert got.newest_fit("0.18.5") == "0.18.5" and got.newest_fit("0.19.0") == "0.18.10"
+    assert got.fits[0] == "0.15.0"
 
 
 def test_bundle_path_is_used_by_both_ends(tmp_path, fetched):  # noqa: F811
