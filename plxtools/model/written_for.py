@@ -97,6 +97,21 @@ def _official_names(text: str, occurrences) -> dict[str, list[str]]:
     return found
 
 
+def _missing(allv, names: dict[str, list[str]], renamed_since: list[str]) -> dict[str, int]:
+    """Per release, how many of the file's official names it lacks."""
+    from plxtools.model.apiindex import version_key
+
+    missing = {v: 0 for v in allv}
+    for have in names.values():
+        have_set = set(have)
+        for v in allv:
+            missing[v] += v not in have_set
+    for before in renamed_since:
+        for v in allv:
+            missing[v] += version_key(v) > version_key(before)
+    return missing
+
+
 def infer(text: str, diagnostics, occurrences, using: str | None) -> Inference | None:
     """The release the text was written for when it is not `using` (None: no version-sensitive
     error, nothing official in the text, or `using` fits it at least as well)."""
@@ -111,16 +126,7 @@ def infer(text: str, diagnostics, occurrences, using: str | None) -> Inference |
     renamed_since = [d.older_version for d in diagnostics if d.code == sensitive[3] and d.older_version]
     if not names and not renamed_since:
         return None
-    missing = {v: 0 for v in allv}
-    for have in names.values():
-        have_set = set(have)
-        for v in allv:
-            if v not in have_set:
-                missing[v] += 1
-    for before in renamed_since:
-        for v in allv:
-            if version_key(v) > version_key(before):
-                missing[v] += 1
+    missing = _missing(allv, names, renamed_since)
     total = len(names) + len(renamed_since)
     best = min(allv, key=lambda v: (missing[v], [-x for x in version_key(v)]))
     if using is not None and using not in missing:  # AGX's bundles: compare with the release before them
