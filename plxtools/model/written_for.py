@@ -13,7 +13,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 
-
 def version_sensitive() -> tuple[str, ...]:
     """The codes a version change explains: an unknown type or attribute, a name of an older version
     (their homes: model/checker.py and model/workspace.py)."""
