@@ -52,7 +52,8 @@ errors of the kinds a version explains (unknown types and attributes, `U001`, `U
 the release it was written for from its content: the release in which the most of the official
 names it uses exist (its qualified types, and `Model.attr` for the attributes it sets), ties going
 to the newest. Only the stored index's name summary is read, so a file that lints clean costs
-nothing more.
+nothing more (paired whole-process runs of `plx lint` on a clean file: no difference; the inference
+itself takes about 2 ms of CPU for the first such file of a run, 0.5 ms for each next one).
 
 - `plx migrate --to VERSION FILE` migrates each such file from the release inferred for it (and
   says so: `scene.openplx: written for OpenPLX 0.18.10 (inferred from the file's content: ...)`);
