@@ -120,7 +120,7 @@ class _Setups:
             from plxtools.model.apiindex import version_key, versions
 
             first = versions()[0]
-            if version_key(first) < version_key(self.dst.version):
+            if version_key(first) <= version_key(self.dst.version):
                 brick_setup = self._release(bricks[0], first, "the oldest release plx has, for a .brick file "
                                             "(written before OpenPLX 0.15)")
                 self.of_file.update({f: brick_setup for f in bricks})
@@ -267,7 +267,8 @@ def _migrate_brick(f, args, setup: _Setup, tally: _Tally) -> None:
     step = f"before 0.15 -> {setup.dst.label}, as {new_path.name}"
     remain = _remaining(fm, setup.src.label)
     if args.diff:
-        sys.stdout.write(unified_diff(str(f), text, new_text).replace(f"+++ b/{f}", f"+++ b/{new_path}", 1))
+        diff = unified_diff(str(f), text, new_text) or f"--- a/{f}\n+++ b/{f}\n"  # (a rename alone: the headers)
+        sys.stdout.write(diff.replace(f"+++ b/{f}", f"+++ b/{new_path}", 1))
     elif args.check:
         _say(f"would migrate {f} ({_plural(edits, 'change')}, {step}){remain}")
     else:
