@@ -553,7 +553,7 @@ class Workspace:
         converted = []
         for d in unknown:
             written = tree.text[d.span.start.offset:d.span.end.offset]
-            targets = [t for t in renamed.get(written, ()) if self._may_own(d, t[3] if len(t) > 3 else None)]
+            targets = [t for t in renamed.get(written, ()) if self._may_own(tree, d, t[3] if len(t) > 3 else None)]
             if not targets or len({t[0] for t in targets}) != 1:
                 continue
             new, model, since = targets[0][:3]
@@ -567,7 +567,7 @@ class Workspace:
             d.help = (f"write '{new}' if this is one of those models; "
                       f"{hint.command(d.older_version)} updates whole files")
 
-    def _may_own(self, d: Diagnostic, model: str | None) -> bool:
+    def _may_own(self, tree: ast.File, d: Diagnostic, model: str | None) -> bool:
         """Whether the object the unknown attribute is set on (named by N002's message) may be one of
         the models that renamed it (`model`, by its name in the version in use): itself or a subtype,
         so that `body:` on an unrelated model keeps its did-you-mean. Unsure (no name): yes."""
@@ -576,9 +576,11 @@ class Workspace:
         owner = d.message.rsplit(" is not an attribute of ", 1)
         if model is None or len(owner) != 2:
             return True
+        unit = self.program.units.get(tree.path) if tree.path else None
         try:
-            sym = self.program.lookup(owner[1].split("."), None)
-            want = self.program.lookup(model.split("."), None)
+            sym = (self.program.lookup(owner[1].split("."), unit) if unit is not None else None) \
+                or self.program.lookup_outside_visibility(owner[1].split("."))
+            want = self.program.lookup_outside_visibility(model.split("."))
         except Exception:  # noqa: BLE001 - a lookup for a hint must never break the analysis
             return True
         if not isinstance(sym, ModelSym) or not isinstance(want, ModelSym):

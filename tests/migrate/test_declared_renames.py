@@ -117,3 +117,15 @@ def test_lint_suggests_the_declared_target_not_a_look_alike(tmp_path):
     found = renamed_model("Physics3D.Signals.HingeAngularVelocityOutput", "0.15.1", LAST)
     assert found is not None and found.new == "Physics.Signals.AngularVelocity1DOutput"
     assert found.handling == DECLARED
+
+
+def test_a_declared_attribute_rename_is_suggested_only_where_its_model_can_be(tmp_path):
+    """`motor` -> `source` is a rename of some signal models' attribute: on a rigid body `motor:`
+    stays an unknown attribute (N002, with its own did-you-mean), on a velocity motor
+    `desired_speed:` is U002."""
+    f = tmp_path / "m.openplx"
+    f.write_text("Scene is Physics3D.System:\n    b is Physics3D.Bodies.RigidBody:\n        motor: 1\n"
+                 "    m is Physics3D.Interactions.RotationalVelocityMotor:\n        desired_speed: 1\n", encoding="utf-8")
+    diags = json.loads(plx_here("lint", "--output-format", "json", str(f)).stdout)
+    assert [(d["code"], d["range"]["start"]["line"]) for d in diags] == [("N002", 3), ("U002", 5)], diags
+    assert "'target_speed'" in diags[1]["message"] and "Physics3D.Interactions.VelocityMotor" in diags[1]["message"]
