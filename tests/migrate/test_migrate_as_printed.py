@@ -71,6 +71,8 @@ def test_lints_hint_migrates_an_unpinned_0_17_tree_as_printed(tmp_path, fetched)
     root = _tree(tmp_path, ERA_017)
     lint = plx_here("lint", ".", cwd=root)
     assert lint.returncode == 1
+    # the release inferred from the index is one the tree lints clean under (the index was enough)
+    assert plx_here("lint", "--openplx-version", "0.18.10", ".", cwd=root).returncode == 0
     hints = {h for h in HINT.findall(lint.stdout) if "--explain" not in h}
     # no pin: plx infers the version, so the printed command needs no --from
     assert hints == {"plx migrate --to 0.19.0 frame.openplx", "plx migrate --to 0.19.0 wheel.openplx"}, lint.stdout
