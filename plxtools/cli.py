@@ -43,7 +43,8 @@ def _add_lint(sub) -> None:
     p.add_argument("-q", "--quiet", action="store_true", help="print diagnostics only, no summary line")
     _add_bundle_options(p)
     p.add_argument("--show-settings", action="store_true",
-                   help="print the bundles in use (name, version, folder, why) and exit")
+                   help="print the bundles in use (name, version, folder, why) and, when nothing pins the "
+                        "OpenPLX version, the version inferred for each file that fits an older release, and exit")
     p.set_defaults(func=_run_lint)
 
 
@@ -213,8 +214,9 @@ def _add_migrate(sub) -> None:
                        "or were renamed and renamed attributes, as plx's built-in API index of every version says. "
                        "A file is rewritten only when the result parses and lints with no more errors under the "
                        "new version than before. With --explain, print the API changes between two versions. "
-                       "Exit 0 when done, 1 with --check when a file would change (or when some files were "
-                       "refused), 2 on usage errors or when nothing could be migrated.")
+                       "Exit 0 when done, 1 with --check when a file would change, when nothing was rewritten "
+                       "while files still fail, or when some files were refused, 2 on usage errors or when "
+                       "nothing could be migrated.")
     if isinstance(p, _Stub):
         return
     from plxtools.migrate.command import add_arguments

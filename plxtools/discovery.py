@@ -13,8 +13,9 @@ class UsageError(Exception):
     """Bad command-line input (exit code 2)."""
 
 
-def discover(paths: list[str], *, use_exclude: str = "lint") -> list[Path]:
-    """Expand folders into their .openplx files; explicit files are always taken."""
+def discover(paths: list[str], *, use_exclude: str = "lint", suffixes: tuple[str, ...] = (".openplx",)) -> list[Path]:
+    """Expand folders into their .openplx files (`suffixes`: `plx migrate` also finds the .brick
+    files of before OpenPLX 0.15); explicit files are always taken."""
     out: list[Path] = []
     seen: set[Path] = set()
     for raw in paths:
@@ -32,7 +33,7 @@ def discover(paths: list[str], *, use_exclude: str = "lint") -> list[Path]:
         for dirpath, dirnames, filenames in os.walk(p):
             dirnames[:] = sorted(d for d in dirnames if d not in DEFAULT_EXCLUDE and not d.startswith("."))
             for name in sorted(filenames):
-                if not name.endswith(".openplx"):
+                if not name.endswith(suffixes):
                     continue
                 f = Path(dirpath) / name
                 cfg = config_for(f)

@@ -53,11 +53,26 @@ def _run_lint(args) -> int:
         if getattr(args, "show_settings", False):
             from plxtools.bundles_cli import print_settings
 
-            return _guarded(lambda: print_settings(run.workspace()))
+            return _guarded(lambda: print_settings(run.workspace()) or _print_written_for(run))
         return run.run()
     except _Failed as exc:
         print(f"plx lint: {exc}", file=sys.stderr)
         return 2
+
+
+def _print_written_for(run) -> int:
+    """`--show-settings` on a tree nothing pins: each file whose content fits an older release better
+    than the bundles in use, and that release (model/written_for.py; what `plx migrate` starts from)."""
+    if run.bundle_set.pinned or run.stdin:
+        return 0
+    from plxtools.model.written_for import infer_file
+
+    ws = run.workspace()
+    for f in run.files:
+        found = infer_file(ws, f)
+        if found is not None:
+            print(f"written for: {f}: OpenPLX {found.version} ({found.why(run.bundle_set.official_version)})")
+    return 0
 
 
 class _LintRun:

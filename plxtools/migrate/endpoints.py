@@ -100,9 +100,9 @@ def _check_loadable(version: str, files: list[Path], flag: str) -> None:
                         f"plx's API index ({known[0]} to {known[-1]}) nor the version of AGX's bundles ({there})")
 
 
-def _end(files: list[Path], version: str | None, flag: str) -> End:
+def _end(files: list[Path], version: str | None, flag: str, bundle_paths=()) -> End:
     try:
-        bs = resolve_bundle_set(files, [], version, version_why=flag)
+        bs = resolve_bundle_set(files, list(bundle_paths), version, version_why=flag)
     except BundleSetError as exc:
         raise EndpointError(str(exc)) from None
     if bs.official_version is None or not VERSION_RE.match(bs.official_version):
@@ -111,17 +111,22 @@ def _end(files: list[Path], version: str | None, flag: str) -> End:
     return End(bs.official_version, bs)
 
 
-def source(files: list[Path], from_flag: str | None, flag: str = "--from") -> End:
+def source(files: list[Path], from_flag: str | None, flag: str = "--from", bundle_paths=()) -> End:
     """The end the files start from: --from, else the bundles `plx lint` uses for them."""
     if from_flag is not None:
         _check_loadable(from_flag, files, flag)
-    return _end(files, from_flag, flag)
+    return _end(files, from_flag, flag, bundle_paths)
 
 
-def target(files: list[Path], to_v: str, flag: str = "--to") -> End:
+def inferred(files: list[Path], version: str, why: str, bundle_paths=()) -> End:
+    """The end a file starts from when its content says which release it was written for."""
+    return _end(files, version, why, bundle_paths)
+
+
+def target(files: list[Path], to_v: str, flag: str = "--to", bundle_paths=()) -> End:
     """The end asked for with --to: a release, or the version of the AGX installation found."""
     _check_loadable(to_v, files, flag)
-    return _end(files, to_v, flag)
+    return _end(files, to_v, flag, bundle_paths)
 
 
 def check_direction(files: list[Path], src: End, dst: End) -> None:

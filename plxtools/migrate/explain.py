@@ -5,14 +5,15 @@ from __future__ import annotations
 import json
 import sys
 
-from plxtools.model.apichanges import AUTO, INFO, KIND_ORDER, KIND_TITLES, PERSON, TABLE, Change, between, changes, summary
+from plxtools.model.apichanges import AUTO, DECLARED, INFO, KIND_ORDER, KIND_TITLES, PERSON, TABLE, Change, between, changes, summary
 from plxtools.migrate import endpoints
 from plxtools.model.apichanges import RenameTableError
 from plxtools.model.apichanges import changes_over
 from plxtools.model.apiindex import UnknownVersion
 from plxtools.model.apiindex import versions, version_key
 
-HANDLING_TEXT = {AUTO: "automatic", TABLE: "reviewed table", PERSON: "needs a person", INFO: "nothing to migrate"}
+HANDLING_TEXT = {AUTO: "automatic", TABLE: "reviewed table", DECLARED: "declared by OpenPLX", PERSON: "needs a person",
+                 INFO: "nothing to migrate"}
 
 
 def describe(c: Change) -> str:
@@ -40,18 +41,19 @@ def render_text(from_v: str, to_v: str, cs: list[Change], apart: int | None = No
     counts = summary(cs)
     apart = len(between(from_v, to_v)) - 1 if apart is None else apart
     lines = [f"OpenPLX API changes from {from_v} to {to_v} ({apart} indexed versions apart)",
-             f"{counts[AUTO]} automatic, {counts[TABLE]} from the reviewed table, {counts[PERSON]} need a person, "
+             f"{counts[AUTO]} automatic, {counts[TABLE]} from the reviewed table, {counts[DECLARED]} declared by "
+             f"OpenPLX's own migration list, {counts[PERSON]} need a person, "
              f"{counts[INFO]} additions or notes. [V] is the first version with the change."]
     for kind in KIND_ORDER:
         group = [c for c in cs if c.kind == kind]
         if not group:
             continue
         handling = {c.handling for c in group}
-        how = ", ".join(HANDLING_TEXT[h] for h in (AUTO, TABLE, PERSON, INFO) if h in handling)
+        how = ", ".join(HANDLING_TEXT[h] for h in (AUTO, TABLE, DECLARED, PERSON, INFO) if h in handling)
         lines.append("")
         lines.append(f"{KIND_TITLES[kind]} ({len(group)}; {how}):")
         for c in group:
-            mark = " (table)" if c.handling == TABLE else ""
+            mark = " (table)" if c.handling == TABLE else f" ({c.detail})" if c.handling == DECLARED else ""
             lines.append(f"  {describe(c)}{mark}")
     if not cs:
         lines.append("")

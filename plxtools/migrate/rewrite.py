@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from plxtools.diagnostics import Edit, Severity, apply_edits
-from plxtools.model.apichanges import AUTO, TABLE, changes
+from plxtools.model.apichanges import MECHANICAL, changes
 from plxtools.syntax import ast, parse_text
 from plxtools.fmt import format_text
 from plxtools.model.symbols import MemberSym
@@ -48,7 +48,7 @@ def plan_of(from_label: str, to_label: str, cs) -> Plan:
     types: dict[str, str] = {}
     attrs: dict[tuple[str, str], str] = {}
     for c in cs:
-        if c.handling not in (AUTO, TABLE):
+        if c.handling not in MECHANICAL:
             continue
         if c.kind in ("model-moved", "model-renamed") and c.old and c.new:
             types[c.old] = c.new

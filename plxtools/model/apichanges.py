@@ -3,8 +3,10 @@
 A step compares two consecutive indexed versions. Models that vanish and reappear with the same
 simple name elsewhere are *moved*; an attribute replaced by exactly one new attribute of the same
 type (after moves), the same flags and the same documentation, or named by a deprecation note, is
-*renamed*. Anything the data cannot prove comes from the reviewed table `apiindex/renames.toml`
-(each entry cites the bundle files and lines in both versions) or is reported as needing a person.
+*renamed*. Renames that OpenPLX itself declares (`apiindex/declared_renames.toml`, facts of the
+official migration tool's list) are applied where the bundles show them; anything else the data
+cannot prove comes from the reviewed table `apiindex/renames.toml` (each entry cites the bundle files
+and lines in both versions) or is reported as needing a person.
 `changes(a, b)` composes the steps between a and b (a rename followed by a move is one change).
 """
 
@@ -19,12 +21,15 @@ from pathlib import Path
 from plxtools.model.apiindex import ApiIndex, check_version, load, version_key, versions
 
 RENAMES = Path(__file__).resolve().parent / "apiindex" / "renames.toml"
+DECLARED_RENAMES = Path(__file__).resolve().parent / "apiindex" / "declared_renames.toml"
 
 # how a change is handled when migrating a model
 AUTO = "automatic"  # inferred from the index, one to one
 TABLE = "table"  # from the reviewed table
+DECLARED = "declared"  # declared by OpenPLX's own migration list
 PERSON = "person"  # a person must decide
 INFO = "info"  # nothing to migrate (an addition, a deprecation note)
+MECHANICAL = (AUTO, TABLE, DECLARED)  # what `plx migrate` rewrites
 
 KIND_TITLES = {
     "model-moved": "Moved models",
@@ -76,6 +81,25 @@ class TableEntry:
     model: str | None
     evidence: list[str]
     note: str
+    handling: str = TABLE
+    old_model: str | None = None  # a declared attribute: its model's name before the step
+
+
+@dataclass(frozen=True, slots=True)
+class DeclaredRename:
+    """One rename or move of OpenPLX's own migration list (see declared_renames.toml)."""
+
+    kind: str  # "model" | "attribute" | "method" | "extension"
+    after: str  # the step it is declared for: from `after` ...
+    to: str  # ... to `to`
+    old: str
+    new: str
+    model: str | None  # attribute / method: the model that has it under the old name
+    operation: str
+
+    def source(self) -> str:
+        fn = self.operation.partition(": ")[0]
+        return f"declared by OpenPLX: openplx.migrations.{fn}, {self.after} -> {self.to}"
 
 
 class RenameTableError(ValueError):
@@ -102,6 +126,37 @@ def rename_table() -> tuple[TableEntry, ...]:
     return tuple(out)
 
 
+@lru_cache(maxsize=1)
+def declared_renames() -> tuple[DeclaredRename, ...]:
+    """OpenPLX's declared renames, oldest step first; a malformed file is an error, never skipped."""
+    try:
+        data = tomllib.loads(DECLARED_RENAMES.read_text(encoding="utf-8"))
+    except (OSError, tomllib.TOMLDecodeError) as exc:
+        raise RenameTableError(f"{DECLARED_RENAMES}: {exc}") from exc
+    out = []
+    for kind in ("model", "attribute", "method", "extension"):
+        for i, e in enumerate(data.get(kind, [])):
+            need = ("from", "to", "operation", "old", "new") + (("model",) if kind in ("attribute", "method") else ())
+            missing = [k for k in need if k not in e]
+            if missing:
+                raise RenameTableError(f"{DECLARED_RENAMES}: [[{kind}]] #{i + 1} lacks {', '.join(missing)}")
+            out.append(DeclaredRename(kind, e["from"], e["to"], e["old"], e["new"], e.get("model"), e["operation"]))
+    return tuple(sorted(out, key=lambda d: version_key(d.after)))
+
+
+def _declared_for(old_v: str) -> list[TableEntry]:
+    """The declared model and attribute renames a step from `old_v` may show: every one declared at
+    or before it (placed where the bundles show the old name gone and the new one there)."""
+    lo = version_key(old_v)
+    out = []
+    for d in declared_renames():
+        if d.kind not in ("model", "attribute") or version_key(d.after) > lo:
+            continue
+        out.append(TableEntry(d.kind, d.to, d.old, d.new, d.model if d.kind == "attribute" else None, [],
+                              d.source(), DECLARED, d.model if d.kind == "attribute" else None))
+    return out
+
+
 def _where(idx: ApiIndex, qname: str, attr: str | None = None) -> str:
     rec = idx.models[qname]
     line = rec["l"]
@@ -126,15 +181,16 @@ def diff(old: ApiIndex, new: ApiIndex) -> list[Change]:
     Models first (renamed by the table, moved, removed, added), then per model that exists in both:
     its attribute renames (all models first, so a subtype can follow its base's rename), then what
     else changed in its attributes, base, functions and deprecation notes."""
-    table = _table_for(old.version, new.version)
+    table = _table_for(old.version, new.version) + _declared_for(old.version)
     out, full_map = _model_changes(old, new, table)
-    renames, pending = {}, {}
+    own, renames, pending = {}, {}, {}  # own: by old model; renames: by new model (several old may merge)
     for q, n in sorted(full_map.items()):
-        renames[n], pending[q] = _attr_renames(old, new, q, n, table, full_map)
+        own[q], pending[q] = _attr_renames(old, new, q, n, table, full_map)
+        renames.setdefault(n, {}).update(own[q])
     for q, n in sorted(full_map.items()):
         rest_gone, rest_fresh = pending[q]
-        _follow_base_renames(old, new, q, n, renames, rest_gone, rest_fresh, full_map)
-        out += _attr_changes(old, new, q, n, renames, rest_gone, rest_fresh, full_map)
+        _follow_base_renames(old, new, q, n, own[q], renames, rest_gone, rest_fresh, full_map)
+        out += _attr_changes(old, new, q, n, own[q], renames, rest_gone, rest_fresh, full_map)
         out += _model_body_changes(old, new, q, n, full_map)
     return out
 
@@ -147,9 +203,11 @@ def _model_changes(old: ApiIndex, new: ApiIndex, table: list[TableEntry]) -> tup
     added = sorted(set(new.models) - set(old.models))
     mapping: dict[str, str] = {}
     for e in table:
-        if e.kind == "model" and e.old in removed and e.new in new.models:  # the new one may already exist
-            mapping[e.old] = e.new
-            out.append(Change("model-renamed", v, e.old, TABLE, old=e.old, new=e.new, detail=e.note,
+        if e.kind == "model" and e.old in removed and e.new in new.models and e.old not in mapping:
+            mapping[e.old] = e.new  # (the new one may already exist)
+            simple = e.old.rsplit(".", 1)[-1] == e.new.rsplit(".", 1)[-1]
+            out.append(Change("model-moved" if simple and e.handling == DECLARED else "model-renamed", v, e.old,
+                              e.handling, old=e.old, new=e.new, detail=e.note,
                               where=[_where(old, e.old), _where(new, e.new)]))
     for o, n in _moved_models(old, new, removed, added, mapping):
         mapping[o] = n
@@ -196,10 +254,7 @@ def _attr_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, table: list[Tabl
     o_all, n_all = old.all_attrs(q), new.all_attrs(n)
     gone = [a for a in o_own if a not in n_all]
     fresh = [a for a in n_own if a not in o_all]
-    found: dict[str, tuple[str, str, str]] = {}
-    for e in table:
-        if e.kind == "attribute" and e.model == n and e.old in gone and e.new in n_all:
-            found[e.old] = (e.new, TABLE, e.note)
+    found = _listed_attr_renames(table, q, n, gone, n_all)
     rest_gone = [a for a in gone if a not in found]
     rest_fresh = [a for a in fresh if a not in {x[0] for x in found.values()}]
     dep = old.models[q].get("dep", {})
@@ -219,11 +274,23 @@ def _attr_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, table: list[Tabl
     return found, (rest_gone, rest_fresh)
 
 
-def _follow_base_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, renames: dict, rest_gone: list[str],
-                         rest_fresh: list[str], full_map: dict[str, str]) -> None:
+def _listed_attr_renames(table: list[TableEntry], q: str, n: str, gone: list[str],
+                         n_all: dict) -> dict[str, tuple[str, str, str]]:
+    """A model's attribute renames that a list names: the reviewed table (by the model's new name) or
+    OpenPLX's declared list (by its old one)."""
+    found: dict[str, tuple[str, str, str]] = {}
+    for e in table:
+        mine = e.old_model == q if e.old_model else e.model == n
+        if e.kind == "attribute" and mine and e.old in gone and e.new in n_all and e.old not in found:
+            found[e.old] = (e.new, e.handling, e.note)
+    return found
+
+
+def _follow_base_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, found: dict, renames: dict,
+                         rest_gone: list[str], rest_fresh: list[str], full_map: dict[str, str]) -> None:
     """A subtype redeclaring (`becomes`) an attribute its base renamed follows the base's rename:
-    whether it redeclares the new name or drops the redeclaration (inherited under the new name)."""
-    found = renames[n]
+    whether it redeclares the new name or drops the redeclaration (inherited under the new name).
+    `found`: the model's own renames (added to); `renames`: every model's, by its new name."""
     n_all = new.all_attrs(n)
     for a in list(rest_gone):
         hit = _base_rename(old, new, q, n, a, full_map, renames)
@@ -231,7 +298,7 @@ def _follow_base_renames(old: ApiIndex, new: ApiIndex, q: str, n: str, renames: 
             continue
         b, how, anc = hit
         if b in rest_fresh or ("b" in old.models[q]["a"][a][1] and b in n_all):
-            found[a] = (b, how, f"follows {anc}.{a}")
+            found[a] = renames.setdefault(n, {})[a] = (b, how, f"follows {anc}.{a}")
             rest_gone.remove(a)
             if b in rest_fresh:
                 rest_fresh.remove(b)
@@ -250,12 +317,11 @@ def _base_rename(old: ApiIndex, new: ApiIndex, q: str, n: str, a: str, full_map:
     return None
 
 
-def _attr_changes(old: ApiIndex, new: ApiIndex, q: str, n: str, renames: dict, rest_gone: list[str],
+def _attr_changes(old: ApiIndex, new: ApiIndex, q: str, n: str, found: dict, renames: dict, rest_gone: list[str],
                   rest_fresh: list[str], full_map: dict[str, str]) -> list[Change]:
     """A model's attributes renamed, removed, added, retyped or newly required."""
     v = new.version
     out: list[Change] = []
-    found = renames[n]
     o_all, n_all = old.all_attrs(q), new.all_attrs(n)
     for a, (b, how, why) in sorted(found.items()):
         out.append(Change("attr-renamed", v, q, how, attr=a, old=a, new=b, detail=why,
@@ -279,7 +345,8 @@ def _attr_changes(old: ApiIndex, new: ApiIndex, q: str, n: str, renames: dict, r
         if a not in o_all or b not in n_all or b not in n_own:
             continue
         t_new = n_all[b][0]
-        if _map_type(o_all[a][0], full_map) != t_new:
+        t_old = _map_type(o_all[a][0], full_map)
+        if t_old != t_new and not (a != b and _widened(new, t_old, t_new)):
             out.append(Change("attr-type-changed", v, q, PERSON, attr=a, old=o_all[a][0], new=t_new,
                               where=[_where(old, q, a), _where(new, n, b)]))
         if "d" in o_all[a][1] and "d" not in n_all[b][1] and "o" not in n_all[b][1]:
@@ -287,12 +354,22 @@ def _attr_changes(old: ApiIndex, new: ApiIndex, q: str, n: str, renames: dict, r
     return out
 
 
+def _widened(new: ApiIndex, t_old: str, t_new: str) -> bool:
+    """A renamed attribute whose new type is a base or trait of its old one (Hinge's `hinge` became
+    `source`, an AngularVelocity1DOutputTrait that Hinge has): every value it held still fits."""
+    if t_old.endswith("[]") != t_new.endswith("[]") or " " in t_old or " " in t_new:
+        return False
+    return t_new.removesuffix("[]") in new.ancestors(t_old.removesuffix("[]"))
+
+
 def _model_body_changes(old: ApiIndex, new: ApiIndex, q: str, n: str, full_map: dict[str, str]) -> list[Change]:
     """A model's base, its functions and its new deprecation notes."""
     v = new.version
     out: list[Change] = []
     ob, nb = old.base(q), new.base(n)
-    if (ob and _map_type(ob, full_map)) != nb and old.models[q]["k"] != "g":
+    mapped_base = ob and _map_type(ob, full_map)
+    # (a model renamed into its own base, TorqueDriveTrain -> FlexibleJointDriveTrain, changed no base)
+    if mapped_base != nb and mapped_base != n and old.models[q]["k"] != "g":
         out.append(Change("base-changed", v, q, PERSON, old=ob, new=nb))
     o_fn, n_fn = old.models[q].get("fn", {}), new.models[n].get("fn", {})
     for f in sorted(set(o_fn) | set(n_fn)):
@@ -329,8 +406,10 @@ def steps(from_v: str, to_v: str) -> list[tuple[str, str, tuple[Change, ...]]]:
 
 def _joined(e: Change, c: Change, **kw) -> Change:
     """`e` then `c` as one change: from e's first place to c's last, a table's answer if either needs one."""
-    return replace(e, new=c.new, where=[e.where[0], c.where[-1]],
-                   handling=TABLE if TABLE in (e.handling, c.handling) else AUTO, **kw)
+    hs = (e.handling, c.handling)
+    handling = DECLARED if DECLARED in hs else TABLE if TABLE in hs else AUTO
+    detail = c.detail if c.handling == DECLARED and e.handling != DECLARED else e.detail
+    return replace(e, new=c.new, where=[e.where[0], c.where[-1]], handling=handling, detail=detail, **kw)
 
 
 class _Composer:
@@ -444,7 +523,17 @@ def _compose(steps_changes) -> list[Change]:
 
 
 def summary(cs: list[Change]) -> dict[str, int]:
-    counts = {AUTO: 0, TABLE: 0, PERSON: 0, INFO: 0}
+    counts = {AUTO: 0, TABLE: 0, DECLARED: 0, PERSON: 0, INFO: 0}
     for c in cs:
         counts[c.handling] += 1
     return counts
+
+
+def renamed_model(qname: str, old_v: str, new_v: str) -> Change | None:
+    """The rename or move of model `qname` (its name in `old_v`) by `new_v`, one to one: from OpenPLX's
+    declared list, the reviewed table or the index (`handling` and `detail` say which). The one
+    lookup behind lint's U001 and a suggestion ranking: a declared target beats a look-alike name."""
+    for c in changes(old_v, new_v):
+        if c.kind in ("model-moved", "model-renamed") and c.old == qname and c.handling in MECHANICAL:
+            return c
+    return None

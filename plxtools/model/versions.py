@@ -341,9 +341,11 @@ class BundleSet:
     notes: list[str] = field(default_factory=list)  # said once by --show-settings / the server
     agx: object | None = None  # the AGX installation found (model/agx.AgxInstall), used or not
     agx_used: bool = False  # its bundles are the official base
+    pinned: bool = True  # a flag, the config, a dependency or a folder of official bundles chose the version
 
     def key(self) -> tuple:
-        return (str(self.official_root), tuple(str(s.path) for s in self.sources))
+        # `pinned` decides lint's migrate hints (model/written_for.py), so it is part of what a result depends on
+        return (str(self.official_root), tuple(str(s.path) for s in self.sources), self.pinned)
 
     def announcement(self) -> str | None:
         """A line to print when the version was chosen for the user rather than by them."""
@@ -611,6 +613,11 @@ def _has_math(sources: list[BundleSource]) -> bool:
                (s.path / "config.openplx").is_file() and _config_name(s.path) == "Math" for s in sources)
 
 
+def _pinned(*choices) -> bool:
+    """Whether the user chose the version: a flag, the config, a dependency, official bundles of their own."""
+    return any(bool(c) for c in choices)
+
+
 def resolve_bundle_set(
     targets: list[Path],
     cli_paths: list[str | Path] = (),
@@ -657,7 +664,8 @@ def resolve_bundle_set(
         folders.add_agx_bundle(agx)
     folders.add_found(found, official[0], workspace_root)
     bs = BundleSet(official[0].resolve() if official[0] else None, official[1], official[2], sources,
-                   choice.notes, agx, choice.agx_official is not None)
+                   choice.notes, agx, choice.agx_official is not None,
+                   pinned=_pinned(cli_version, cfg_version, pins, replacing))
     if bs.official_root is None and not _has_math(sources):
         raise BundleSetError("cannot find the OpenPLX bundles: install openplx-bundles, set openplx-version, "
                              "OPENPLX_BUNDLE_PATH, or pass --bundle-path")

@@ -178,7 +178,7 @@ def _set_key(bs: BundleSet) -> str:
     from plxtools.cache import records
     from plxtools.cache.stamp import code_stamp
 
-    return records.set_key(code_stamp(), bs.key(), bs.official_version)
+    return records.set_key(code_stamp(), bs.key()[:2], bs.official_version)  # (the program does not depend on `pinned`)
 
 
 def _parse_path(path) -> ast.File:
@@ -445,7 +445,7 @@ class Workspace:
         for d in diags:
             d.file = tree.path
         self._help_for_unloaded_bundles(tree, diags)
-        self._help_for_other_versions(tree, diags)
+        self._help_for_other_versions(tree, diags, occurrences)
         return FileAnalysis(unit, diags, occurrences, snap, plan)
 
     def _help_for_unloaded_bundles(self, tree: ast.File, diags: list[Diagnostic]) -> None:
@@ -467,72 +467,125 @@ class Workspace:
             elif name in wanted:
                 d.help = (f"'{name}' is a dependency in {home.root / 'config.openplx'} but no bundle of that "
                           f"name is loaded: add its folder with --bundle-path or bundle-path in plx.toml")
+            elif name == "AGX":
+                d.help = self._agx_bundle_help()
 
-    def _help_for_other_versions(self, tree: ast.File, diags: list[Diagnostic]) -> None:
+    def _agx_bundle_help(self) -> str:
+        """Where `AGX.*` names come from: AGX's own bundle, which no openplx-bundles release has."""
+        from plxtools.model.agx import AGX_BUNDLE, ENV_VARS
+
+        agx = getattr(getattr(self, "bundle_set", None), "agx", None)
+        folder = "/".join(AGX_BUNDLE)
+        if agx is not None and agx.agx_bundle is not None:
+            return (f"'AGX' is AGX Dynamics' own bundle; the installation plx found ({agx.describe()}) has it at "
+                    f"{agx.agx_bundle}, loaded only when its bundles are in use: drop openplx-version or pass "
+                    f"--bundle-path {agx.agx_bundle}")
+        return (f"'AGX' is AGX Dynamics' own bundle: it ships with an AGX installation (<AGX_DIR>/{folder}), not "
+                f"with openplx-bundles; plx loads it with that installation's bundles when it finds one ("
+                f"agx-dir in plx.toml, {', '.join(ENV_VARS)}, the agx Python package, the usual install "
+                f"folders), or pass its folder with --bundle-path")
+
+    def _help_for_other_versions(self, tree: ast.File, diags: list[Diagnostic], occurrences=None) -> None:
         """An unknown type that another official OpenPLX version has. When the API index says it
         moved or was renamed one to one by the version in use, it is U001 with a safe fix to the new
         name; otherwise the help says which versions have it, so the user migrates (or chooses that
-        version) instead of hunting for a typo."""
-        unknown = [d for d in diags if d.code == UNRESOLVED_TYPE]
+        version) instead of hunting for a typo. Help lines that say to migrate print a `plx migrate`
+        command that works as printed for this file (model/written_for.py)."""
         bs = getattr(self, "bundle_set", None)
         using = getattr(bs, "official_version", None)
-        if not using:
+        attrs = [d for d in diags if d.code == UNKNOWN_ATTRIBUTE]
+        unknown = [d for d in diags if d.code == UNRESOLVED_TYPE]
+        if not using or not (attrs or unknown):
             return
-        self._renamed_attributes(tree, [d for d in diags if d.code == UNKNOWN_ATTRIBUTE], using)
-        if not unknown:
-            return
+        from plxtools.model.written_for import MigrateHint
+
+        path = tree.path if tree.path and not is_editor_buffer(tree.path) else None
+        hint = MigrateHint(path, tree.text, diags, occurrences, using, getattr(bs, "pinned", True))
+        self._renamed_attributes(tree, attrs, using, hint)
+        for d in unknown:
+            self._older_type(tree, d, using, hint)
+
+    def _older_type(self, tree: ast.File, d: Diagnostic, using: str, hint) -> None:
+        """One unknown type: U001 when a release before `using` had it and it was renamed one to one,
+        else a note of the versions that have it (or of newer bundles that might)."""
         from plxtools.model.apiindex import UnknownVersion, spans, version_key, where_defined
 
-        for d in unknown:
-            written = tree.text[d.span.start.offset:d.span.end.offset]
-            if "." not in written or not written.replace(".", "").replace("_", "").isalnum():
-                continue
-            found = [v for v in where_defined(written) if v != using]
-            if not found:
-                if not where_defined(written) and written.split(".", 1)[0] in self.bundles:
-                    from plxtools.model.agx import newer_bundles_help
-                    from plxtools.model.apiindex import versions
+        bs = getattr(self, "bundle_set", None)
+        written = tree.text[d.span.start.offset:d.span.end.offset]
+        if "." not in written or not written.replace(".", "").replace("_", "").isalnum():
+            return
+        found = [v for v in where_defined(written) if v != using]
+        if not found:
+            if not where_defined(written) and written.split(".", 1)[0] in self.bundles:
+                from plxtools.model.agx import newer_bundles_help
+                from plxtools.model.apiindex import versions
 
-                    newer = newer_bundles_help(written, bs, versions()[-1], typo=d.fix is not None)
-                    if newer:
-                        d.help = f"{newer}; {d.help}" if d.help else newer
-                continue
-            older = [v for v in found if version_key(v) < version_key(using)]
-            try:
-                new = _moved_to(written, older[-1], using) if older else None
-            except UnknownVersion:
-                new = None
-            if new is not None and self._resolves(new, tree):
-                d.code = OLDER_NAME
-                d.message = f"'{written}' was renamed '{new}' (OpenPLX {older[-1]} -> {using})"
-                d.older_version = older[-1]
-                d.help = f"write '{new}'; `plx migrate --to {using}` updates whole files"
-                d.fix = Fix(f"replace with '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=True)
-                continue
-            note = (f"'{written}' exists in OpenPLX {spans(found)}, not in {using} (the version in use): "
-                    f"`plx migrate --explain {found[-1]} {using}` lists what changed; `openplx-version` in "
-                    f"plx.toml chooses another version")
-            d.help = f"{note}; {d.help}" if d.help else note
+                newer = newer_bundles_help(written, bs, versions()[-1], typo=d.fix is not None)
+                if newer:
+                    d.help = f"{newer}; {d.help}" if d.help else newer
+            return
+        older = [v for v in found if version_key(v) < version_key(using)]
+        try:
+            moved = _moved_to(written, older[-1], using) if older else None
+        except UnknownVersion:
+            moved = None
+        new = moved.new if moved is not None else None
+        if new is not None and self._resolves(new, tree):
+            d.code = OLDER_NAME
+            d.message = f"'{written}' was renamed '{new}' (OpenPLX {older[-1]} -> {using})"
+            d.older_version = older[-1]
+            declared = " (a rename OpenPLX's own migration list declares)" if moved.handling == "declared" else ""
+            d.help = f"write '{new}'{declared}; {hint.command(older[-1])} updates whole files"
+            d.fix = Fix(f"replace with '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=True)
+            return
+        note = (f"'{written}' exists in OpenPLX {spans(found)}, not in {using} (the version in use): "
+                f"`plx migrate --explain {found[-1]} {using}` lists what changed; `openplx-version` in "
+                f"plx.toml chooses another version")
+        d.help = f"{note}; {d.help}" if d.help else note
 
-    def _renamed_attributes(self, tree: ast.File, unknown: list[Diagnostic], using: str) -> None:
+    def _renamed_attributes(self, tree: ast.File, unknown: list[Diagnostic], using: str, hint) -> None:
         """An unknown attribute that official versions before `using` renamed (`charges` ->
         `connectors`): U002 with the new name. The fix is unsafe: the index knows which models
         renamed it, and the user confirms that this is one of them."""
         if not unknown:
             return
         renamed = _renamed_attributes_before(using, self.use_cache)
+        converted = []
         for d in unknown:
             written = tree.text[d.span.start.offset:d.span.end.offset]
-            targets = renamed.get(written)
-            if not targets or len({new for new, _, _ in targets}) != 1:
+            targets = [t for t in renamed.get(written, ()) if self._may_own(tree, d, t[3] if len(t) > 3 else None)]
+            if not targets or len({t[0] for t in targets}) != 1:
                 continue
-            new, model, since = targets[0]
-            owners = ", ".join(sorted({m for _, m, _ in targets})[:3])
+            new, model, since = targets[0][:3]
+            owners = ", ".join(sorted({t[1] for t in targets})[:3])
             d.code = RENAMED_ATTRIBUTE
             d.message = f"'{written}' was renamed '{new}' in OpenPLX {since} (in {owners})"
             d.older_version = _version_before(since)
-            d.help = f"write '{new}' if this is one of those models; `plx migrate --to {using}` updates whole files"
             d.fix = Fix(f"rename to '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=False)
+            converted.append((d, new))
+        for d, new in converted:  # (after all: the command may infer the version from every U002)
+            d.help = (f"write '{new}' if this is one of those models; "
+                      f"{hint.command(d.older_version)} updates whole files")
+
+    def _may_own(self, tree: ast.File, d: Diagnostic, model: str | None) -> bool:
+        """Whether the object the unknown attribute is set on (named by N002's message) may be one of
+        the models that renamed it (`model`, by its name in the version in use): itself or a subtype,
+        so that `body:` on an unrelated model keeps its did-you-mean. Unsure (no name): yes."""
+        from plxtools.model.symbols import ModelSym
+
+        owner = d.message.rsplit(" is not an attribute of ", 1)
+        if model is None or len(owner) != 2:
+            return True
+        unit = self.program.units.get(tree.path) if tree.path else None
+        try:
+            sym = (self.program.lookup(owner[1].split("."), unit) if unit is not None else None) \
+                or self.program.lookup_outside_visibility(owner[1].split("."))
+            want = self.program.lookup_outside_visibility(model.split("."))
+        except Exception:  # noqa: BLE001 - a lookup for a hint must never break the analysis
+            return True
+        if not isinstance(sym, ModelSym) or not isinstance(want, ModelSym):
+            return not isinstance(want, ModelSym) or sym is None
+        return any(a is want for a in self.program.ancestors(sym))
 
     def _resolves(self, qname: str, tree: ast.File) -> bool:
         from plxtools.model.symbols import ModelSym
@@ -634,14 +687,11 @@ def describe_bundle_set(ws: Workspace) -> list[dict]:
     return out
 
 
-def _moved_to(qname: str, old_v: str, new_v: str) -> str | None:
-    """The new name of a model that moved or was renamed one to one between two versions."""
-    from plxtools.model.apichanges import AUTO, TABLE, changes
+def _moved_to(qname: str, old_v: str, new_v: str):
+    """The change that moved or renamed a model one to one between two versions (apichanges.renamed_model)."""
+    from plxtools.model.apichanges import renamed_model
 
-    for c in changes(old_v, new_v):
-        if c.kind in ("model-moved", "model-renamed") and c.old == qname and c.handling in (AUTO, TABLE):
-            return c.new
-    return None
+    return renamed_model(qname, old_v, new_v)
 
 
 @functools.lru_cache(maxsize=8)
@@ -655,14 +705,15 @@ def _version_before(version: str) -> str | None:
 
 
 @functools.lru_cache(maxsize=8)
-def _renamed_attributes_before(using: str, use_cache: bool = True) -> dict[str, list[tuple[str, str, str]]]:
-    """old attribute name -> [(new name, model, first version)] for renames from the oldest indexed
-    version up to `using`, one to one (from the index or the reviewed table).
+def _renamed_attributes_before(using: str, use_cache: bool = True) -> dict[str, list[tuple]]:
+    """old attribute name -> [(new name, model, first version, the model's name in `using`)] for
+    renames from the oldest indexed version up to `using`, one to one (from the index, the reviewed
+    table or OpenPLX's declared list).
 
     Composing the changes diffs every pair of consecutive indexed versions (about 1.5 s of CPU), so
     the answer is kept per process and in plx's cache folder, keyed by the index's files and the
     code that diffs them (shared: callers only read it)."""
-    from plxtools.model.apichanges import AUTO, TABLE, changes
+    from plxtools.model.apichanges import MECHANICAL, changes
     from plxtools.model.apiindex import versions
 
     out: dict[str, list[tuple[str, str, str]]] = {}
@@ -678,9 +729,11 @@ def _renamed_attributes_before(using: str, use_cache: bool = True) -> dict[str, 
         got = store.get_json("renames", name)
         if isinstance(got, dict):
             return {k: [tuple(t) for t in v] for k, v in got.items()}
-    for c in changes(first, using):
-        if c.kind == "attr-renamed" and c.handling in (AUTO, TABLE) and c.old and c.new:
-            out.setdefault(c.old, []).append((c.new, c.model, c.since))
+    cs = changes(first, using)
+    moved = {c.old: c.new for c in cs if c.kind in ("model-moved", "model-renamed") and c.handling in MECHANICAL}
+    for c in cs:
+        if c.kind == "attr-renamed" and c.handling in MECHANICAL and c.old and c.new:
+            out.setdefault(c.old, []).append((c.new, c.model, c.since, moved.get(c.model, c.model)))
     if name is not None:
         store.put_json("renames", name, out)
     return out

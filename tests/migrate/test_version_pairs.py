@@ -1,8 +1,8 @@
 """One test per pair of consecutive official versions whose API changed in a way `plx migrate`
-handles (automatically or by the reviewed table): a usage of every such change is built from the
-API index (a declaration of each moved or renamed model, a read of each renamed attribute), the
-file is migrated, and the result must use only the new names and lint with no more errors under
-the new version than the original had under the old one.
+handles (automatically, by the reviewed table or by OpenPLX's declared list): a usage of every such
+change is built from the API index (a declaration of each moved or renamed model, a read of each
+renamed attribute), the file is migrated, and the result must use only the new names and lint with
+no more errors under the new version than the original had under the old one.
 
 Needs both versions' bundles: run with `PLX_ALL_VERSIONS=1` (.ci/run does), which fetches the wheels
 once into plx's cache."""
@@ -18,7 +18,7 @@ from plxtools.model import apichanges
 from tests.bundles.conftest import fetched  # noqa: F401 - the fixture that provides old versions
 from tests.conftest import run_plx
 
-HANDLED = ("automatic", "table")
+HANDLED = ("automatic", "table", "declared")
 MODEL_KINDS = ("model-moved", "model-renamed")
 
 
