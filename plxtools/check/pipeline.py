@@ -159,7 +159,10 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     fc = FileCheck(str(path))
     t0 = time.perf_counter()
     try:
-        data = path.read_bytes()
+        from plxtools.cache import reads
+        from plxtools.config import DEFAULT_MAX_FILE_MB
+
+        data = reads.read_bytes(path, cfg.max_file_bytes if cfg is not None else DEFAULT_MAX_FILE_MB << 20)
     except OSError as exc:
         fc.diagnostics = [unreadable(str(path), exc)]
         fc.skip = Skip.UNREADABLE

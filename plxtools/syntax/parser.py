@@ -1042,8 +1042,9 @@ def parse_bytes(data: bytes, path: str = "") -> ast.File:
 
 
 def parse_file(path: str | Path) -> ast.File:
-    p = Path(path)
-    return parse_bytes(p.read_bytes(), str(path))
+    from plxtools.cache import reads
+
+    return parse_bytes(reads.read_bytes(path), str(path))
 
 
 def _parse_decoded(text: str, path: str, diags: list[Diagnostic], had_bom: bool, newline: str) -> ast.File:
