@@ -77,7 +77,7 @@ class FileTooLarge(OSError):
     """A file above the size limit the caller gave: refused before it is read."""
 
     def __init__(self, size: int, limit: int):
-        message = (f"it is {size / 2**20:.1f} MB, above the limit of {limit / 2**20:g} MB: not read "
+        message = (f"it is {size / 2**20:.3g} MB, above the limit of {limit / 2**20:.3g} MB: not read "
                    "(raise it with max-file-size in plx.toml)")
         super().__init__(message)
         self.strerror = message
