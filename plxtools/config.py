@@ -15,7 +15,10 @@ from pathlib import Path
 
 DEFAULT_EXCLUDE = (".git", ".hg", ".venv", "venv", "node_modules", "__pycache__", ".tox", "build", "dist")
 KNOWN_KEYS = {"select", "ignore", "extend-select", "per-file-ignores", "exclude", "extend-exclude",
-              "bundle-path", "openplx-version", "agx-dir", "fmt", "check"}
+              "bundle-path", "openplx-version", "agx-dir", "fmt", "check", "max-file-size"}
+# the largest .openplx file lint, fmt and check read (MB); docs/reliability.md gives memory per byte
+DEFAULT_MAX_FILE_MB = 16
+MAX_FILE_MB_CEILING = 1024
 INTEGRATORS = ("auto", "implicitfast", "implicit", "rk4", "euler")  # `plx check --integrator`, check.integrator
 
 
@@ -38,6 +41,11 @@ class Config:
     fmt_exclude: list[str] = field(default_factory=list)
     check_integrator: str | None = None  # [check] integrator: one of INTEGRATORS; None = auto
     check_timestep: float | None = None  # [check] timestep in seconds; None = the backend's default
+    max_file_mb: float = DEFAULT_MAX_FILE_MB  # max-file-size: larger source files are refused unread
+
+    @property
+    def max_file_bytes(self) -> int:
+        return int(self.max_file_mb * 2**20)
 
     def rule_enabled(self, code: str, path: str | None = None) -> bool:
         if code.startswith("S"):
@@ -165,6 +173,12 @@ def parse_config(path: Path, table: dict) -> Config:
         if not isinstance(agx_dir, str):
             raise ConfigError(f"{path}: 'agx-dir' must be a folder (a string; \"\" turns the AGX search off)")
         cfg.agx_dir = str((path.parent / agx_dir).resolve()) if agx_dir else ""
+    mfs = table.get("max-file-size")
+    if mfs is not None:
+        if isinstance(mfs, bool) or not isinstance(mfs, (int, float)) or not 0 < mfs <= MAX_FILE_MB_CEILING:
+            raise ConfigError(f"{path}: 'max-file-size' must be a number of megabytes in (0, {MAX_FILE_MB_CEILING}]; "
+                              f"got {mfs!r}")
+        cfg.max_file_mb = float(mfs)
     fmt = table.get("fmt", {})
     if not isinstance(fmt, dict):
         raise ConfigError(f"{path}: 'fmt' must be a table")

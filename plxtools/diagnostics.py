@@ -6,6 +6,7 @@ adds one when printing and the LSP layer converts columns to the client's encodi
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from enum import Enum
 from typing import NamedTuple
@@ -111,3 +112,20 @@ def apply_edits(text: str, edits: list[Edit]) -> str:
         out = out[: e.start] + e.text + out[e.end :]
         last_start = e.start
     return out
+
+
+# C0 controls (tab and line feed aside: messages may hold several lines), DEL, C1 controls, and the bidirectional overrides that reorder a line
+# as it is shown (Trojan Source): what a file name or an `@"..."` path can carry to a terminal
+_UNPRINTABLE = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+
+
+def _escape(m: re.Match) -> str:
+    c = ord(m.group())
+    return f"\\x{c:02x}" if c < 0x100 else f"\\u{c:04x}"
+
+
+def printable(text: str) -> str:
+    """`text` with every character a terminal or a CI log would act on (escape sequences, line
+    returns, bidirectional overrides) written as a Python-style escape: what text and GitHub output
+    print, so a message can never move the cursor, erase lines above it or start a new annotation."""
+    return _UNPRINTABLE.sub(_escape, text) if _UNPRINTABLE.search(text) else text

@@ -9,7 +9,9 @@ carry its own valid entries.
 
 from __future__ import annotations
 
+import errno
 import os
+import stat
 import sys
 
 _checked: dict[str, str | None] = {}  # cache folder -> itself when usable, None when not
@@ -21,6 +23,29 @@ def location() -> str:
     base = os.environ.get("PLX_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME") or os.path.join(
         os.path.expanduser("~"), ".cache")
     return os.path.join(base, "plxtools")
+
+
+def _home_missing(path: str) -> str | None:
+    """When `path` lies under the home folder by default (no PLX_CACHE_DIR / XDG_*_HOME) and the
+    home folder does not exist: a sentence saying so. Service accounts have HOME=/nonexistent so
+    that nothing is created there; plx then runs uncached rather than create it."""
+    home = os.path.expanduser("~")
+    if not path.startswith(os.path.join(home, "")):
+        return None
+    if os.path.isdir(home):
+        return None
+    return f"the home folder {home} does not exist"
+
+
+def _make_folders(path: str, default_home: bool) -> None:
+    """Create `path` private (0700). Under the default home-based location only the parts below
+    an existing home folder are created (`.cache/plxtools`, `.config/plxtools`), never the home
+    folder itself."""
+    if default_home:
+        why = _home_missing(path)
+        if why is not None:
+            raise FileNotFoundError(errno.ENOENT, why)
+    os.makedirs(path, mode=0o700, exist_ok=True)
 
 
 def warn(message: str) -> None:
@@ -46,7 +71,7 @@ def root(create: bool = True) -> str | None:
         return _checked[path]
     try:
         if create:
-            os.makedirs(path, mode=0o700, exist_ok=True)
+            _make_folders(path, not (os.environ.get("PLX_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME")))
         st = os.stat(path)
     except OSError as exc:
         if not create:
@@ -87,8 +112,11 @@ def secret() -> bytes | None:
 
 
 def _read_secret(path: str) -> bytes | None:
+    # O_NONBLOCK: a FIFO put at the secret's path must not block the open; fstat then refuses
+    # anything that is not a regular file (a folder, a FIFO, a device) before a byte is read
+    flags = os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0)
     try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+        fd = os.open(path, flags)
     except FileNotFoundError:
         return None
     except OSError as exc:
@@ -96,7 +124,13 @@ def _read_secret(path: str) -> bytes | None:
         return b""
     try:
         st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode):
+            warn(f"cannot read the cache secret {path}: it is not a regular file")
+            return b""
         data = os.read(fd, _SECRET_SIZE + 1)
+    except OSError as exc:
+        warn(f"cannot read the cache secret {path}: {exc.strerror}")
+        return b""
     finally:
         os.close(fd)
     if hasattr(os, "getuid") and (st.st_uid != os.getuid() or st.st_mode & 0o077):
@@ -116,7 +150,8 @@ def _make_secret(path: str) -> bytes | None:
         return None
     tmp = f"{path}.{os.getpid()}.tmp"
     try:
-        os.makedirs(os.path.dirname(path), mode=0o700, exist_ok=True)
+        _make_folders(os.path.dirname(path), not (os.environ.get("PLX_CACHE_SECRET_FILE")
+                                                  or os.environ.get("XDG_CONFIG_HOME")))
         fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
         try:
             os.write(fd, os.urandom(_SECRET_SIZE))

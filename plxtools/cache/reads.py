@@ -63,22 +63,99 @@ def _sig(st, data: bytes) -> list:
     return [st.st_size, st.st_mtime_ns, st.st_ctime_ns, st.st_ino, st.st_dev, digest(data), time.time_ns()]
 
 
-def read_bytes(path) -> bytes:
-    """The bytes of a file, noted by content (the stat is taken from the open file, before reading).
-    Raises OSError as open() does; a missing file is noted as missing."""
+class NotRegularFile(OSError):
+    """A path that is not a regular file (a FIFO, a device, a folder, a socket): it is not read,
+    since reading it could block forever (a FIFO) or never end (`/dev/zero`). `strerror` says what
+    it is."""
+
+    def __init__(self, what: str):
+        super().__init__(f"it is {what}, not a regular file: not read")
+        self.strerror = f"it is {what}, not a regular file: not read"
+
+
+class FileTooLarge(OSError):
+    """A file above the size limit the caller gave: refused before it is read."""
+
+    def __init__(self, size: int, limit: int):
+        message = (f"it is {size / 2**20:.3g} MB, above the limit of {limit / 2**20:.3g} MB: not read "
+                   "(raise it with max-file-size in plx.toml)")
+        super().__init__(message)
+        self.strerror = message
+        self.size, self.limit = size, limit
+
+
+_WHAT = ((_stat.S_ISDIR, "a folder"), (_stat.S_ISCHR, "a character device"), (_stat.S_ISBLK, "a block device"),
+         (_stat.S_ISFIFO, "a FIFO (named pipe)"), (_stat.S_ISSOCK, "a socket"))
+
+
+def what_is(mode: int) -> str:
+    """What a non-regular file is, in words."""
+    for test, name in _WHAT:
+        if test(mode):
+            return name
+    return "a special file"
+
+
+# O_NONBLOCK: opening a FIFO for reading blocks until a writer comes; with it the open returns at
+# once, and the fstat below refuses the FIFO before any read. A regular file ignores the flag.
+_OPEN_FLAGS = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0)
+
+
+def open_regular(path) -> tuple[int, os.stat_result]:
+    """An open descriptor on a regular file and its stat; raises OSError (`NotRegularFile` for a
+    FIFO, a device, a folder or a socket, also behind a symlink) without ever blocking."""
+    fd = os.open(path, _OPEN_FLAGS)
+    try:
+        st = os.fstat(fd)
+        if not _stat.S_ISREG(st.st_mode):
+            raise NotRegularFile(what_is(st.st_mode))
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd, st
+
+
+def read_regular(path, limit: int | None = None) -> tuple[os.stat_result, bytes]:
+    """A regular file's stat (taken from the open file, before reading) and its bytes: never
+    blocks, and never reads more than the size it had when opened plus one chunk (a file that
+    grows meanwhile is read to where it was), nor anything above `limit` bytes (`FileTooLarge`)."""
+    fd, st = open_regular(path)
+    try:
+        if limit is not None and st.st_size > limit:
+            raise FileTooLarge(st.st_size, limit)
+        chunks = []
+        left = st.st_size + 1  # one byte more than the stat said: a file that grew is still read whole up to it
+        while left > 0:
+            chunk = os.read(fd, min(max(left, 65536), 1 << 24))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            left -= len(chunk)
+    finally:
+        os.close(fd)
+    return st, chunks[0] if len(chunks) == 1 else b"".join(chunks)
+
+
+def read_stream(stream, limit: int) -> bytes:
+    """Standard input, read up to `limit` bytes: more is `FileTooLarge` (`cat /dev/zero | plx lint -`
+    must stop, not fill the memory)."""
+    data = stream.read(limit + 1)
+    if len(data) > limit:
+        raise FileTooLarge(len(data), limit)
+    return data
+
+
+def read_bytes(path, limit: int | None = None) -> bytes:
+    """The bytes of a regular file, noted by content (the stat is taken from the open file, before
+    reading). Raises OSError as open() does, `NotRegularFile` (never blocking, never reading it) for
+    anything else, `FileTooLarge` above `limit`; a missing file is noted as missing."""
     p = os.fspath(path)
     try:
-        fd = os.open(p, os.O_RDONLY)
+        st, data = read_regular(p, limit)
     except OSError:
         if _frames:
             note(["k", p, _kind(p)])
         raise
-    try:
-        st = os.fstat(fd)
-        with os.fdopen(fd, "rb", closefd=False) as fh:
-            data = fh.read()
-    finally:
-        os.close(fd)
     if _frames:
         note(["f", p, _sig(st, data)])
     return data
@@ -189,8 +266,7 @@ def _file_holds(p: str, sig) -> bool:
             and not is_racy(sig)):
         return True
     try:
-        with open(p, "rb") as fh:
-            return digest(fh.read()) == want
+        return digest(read_regular(p, size + 1)[1]) == want
     except OSError:
         return False
 

@@ -15,7 +15,9 @@ most once a minute, to keep hits cheap).
 
 from __future__ import annotations
 
+import errno
 import os
+import stat as _stat
 
 from plxtools.cache import folder
 
@@ -64,9 +66,11 @@ def entry_path(kind: str, key: str) -> str | None:
 def read_whole(path, flags: int = 0) -> tuple[os.stat_result, bytes]:
     """A file's stat (taken from the open file, before reading) and its bytes, in a few system
     calls (a cold run reads hundreds of files this way). Raises OSError."""
-    fd = os.open(path, os.O_RDONLY | flags)
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | flags)  # a FIFO planted here never blocks
     try:
         st = os.fstat(fd)
+        if not _stat.S_ISREG(st.st_mode):
+            raise OSError(errno.EINVAL, "not a regular file")
         chunks = []
         while True:
             chunk = os.read(fd, max(st.st_size + 1, 65536))

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from plxtools import runmode
-from plxtools.diagnostics import Severity
+from plxtools.diagnostics import Severity, printable
 
 
 MAX_DURATION = 3600.0  # s of simulated time; a longer run is a usage error, not an hour-long job
@@ -166,7 +166,7 @@ def _check_files(files: list[Path], args, run: "_Run", bar=None, report=None) ->
 
 def _say(messages: list[str]) -> None:
     for m in messages:
-        sys.stderr.write(m)
+        sys.stderr.write(printable(m))
 
 
 def _report(args, results: list, diags: list) -> None:

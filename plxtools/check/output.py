@@ -8,7 +8,7 @@ from typing import Any, TextIO
 
 from plxtools.check.checks import STATIC_MOTION_CODES
 from plxtools.check.pipeline import FileCheck, Skip
-from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.diagnostics import Diagnostic, Severity, printable
 from plxtools.rules import registry
 from plxtools.check.frames import quat_xyzw_to_mat
 from plxtools.rules.registry import get
@@ -289,9 +289,9 @@ def _render_motion_table(rows: list[tuple[str, ...]], stream: TextIO, console) -
         return
     widths = [max(len(c), *(len(r[i]) for r in rows)) if rows else len(c) for i, c in enumerate(cols)]
     fmt = "  " + "  ".join(f"{{:{'>' if i >= 3 else '<'}{w}}}" for i, w in enumerate(widths))
-    stream.write(fmt.format(*cols) + "\n")
+    stream.write(printable(fmt.format(*cols)) + "\n")
     for r in rows:
-        stream.write(fmt.format(*r) + "\n")
+        stream.write(printable(fmt.format(*r)) + "\n")
 
 
 def _summary_text(results: list[FileCheck], diags: list[Diagnostic]) -> str:
@@ -327,6 +327,6 @@ def _line(stream: TextIO, console, text: str, style: str | None) -> None:
     if console is not None:
         from rich.text import Text
 
-        console.print(Text(text, style=style or ""))
+        console.print(Text(printable(text), style=style or ""))
     else:
-        stream.write(text + "\n")
+        stream.write(printable(text) + "\n")

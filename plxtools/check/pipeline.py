@@ -162,7 +162,11 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None, text: str |
     fc = FileCheck(str(path))
     t0 = time.perf_counter()
     try:
-        data = path.read_bytes() if text is None else text.encode("utf-8", "surrogatepass")
+        from plxtools.cache import reads
+        from plxtools.config import DEFAULT_MAX_FILE_MB
+
+        data = (reads.read_bytes(path, cfg.max_file_bytes if cfg is not None else DEFAULT_MAX_FILE_MB << 20)
+                if text is None else text.encode("utf-8", "surrogatepass"))
     except OSError as exc:
         fc.diagnostics = [unreadable(str(path), exc)]
         fc.skip = Skip.UNREADABLE

@@ -272,8 +272,11 @@ def parse(path: Path) -> tuple[Scenario | None, list[ScenarioError]]:
 
 def _read(path: Path, file: str) -> tuple[str, dict | None, ScenarioError | None]:
     """The file's text and TOML document, or the error that stops everything."""
-    try:
-        text = path.read_bytes().decode("utf-8")
+    from plxtools.cache import reads
+    from plxtools.config import DEFAULT_MAX_FILE_MB
+
+    try:  # a regular file only, bounded: a FIFO named as a scenario must not block
+        text = reads.read_bytes(path, DEFAULT_MAX_FILE_MB << 20).decode("utf-8")
     except OSError as exc:
         return "", None, ScenarioError(f"cannot read the scenario: {exc.strerror or exc}", Loc(file, 1))
     except UnicodeDecodeError:

@@ -14,7 +14,7 @@ from plxtools.fmt.brackets import LayoutError
 from plxtools.fmt.document import Layout, layout
 from plxtools.fmt.safety import same_lint_results, same_meaning
 from plxtools.syntax import ast, parse_bytes, parse_text
-from plxtools.syntax.lexer import lex
+from plxtools.syntax.lexer import Lexer
 
 BOM = "\ufeff"
 
@@ -44,7 +44,7 @@ def syntax_errors(tree: ast.File) -> list[Diagnostic]:
 
 def layout_tree(tree: ast.File) -> Layout:
     """Lay out an error-free tree (raises LayoutError on a shape the printer cannot handle)."""
-    return layout(tree.text, tree, lex(tree.text), tree.newline)
+    return layout(tree.text, tree, Lexer(tree.text).run(), tree.newline)  # (not kept: see lexer.lex)
 
 
 def format_tree(tree: ast.File) -> str:

@@ -12,6 +12,7 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+from plxtools.diagnostics import printable
 from plxtools.config import ConfigError, config_for
 from plxtools.fileio import write_atomic
 from plxtools.discovery import UsageError, discover
@@ -26,7 +27,7 @@ class _Tally:
 
 
 def _say(msg: str) -> None:
-    print(msg, file=sys.stderr)
+    print(printable(msg), file=sys.stderr)
 
 
 def _excluded(path: Path) -> bool:
@@ -69,9 +70,9 @@ def _format_file(path: Path, args, tally: _Tally, formatted: bool = False) -> No
 
     name = str(path)
     try:
-        data = reads.read_bytes(path)
-    except OSError as exc:
-        _say(f"{name}: cannot read: {exc.strerror}")
+        data = reads.read_bytes(path, config_for(path).max_file_bytes)
+    except (OSError, ConfigError) as exc:
+        _say(f"{name}: cannot read: {getattr(exc, 'strerror', None) or exc}")
         tally.failed += 1
         return
     key = None
@@ -144,8 +145,15 @@ def _exit_code(tally: _Tally, check: bool) -> int:
 
 
 def _run_stdin(args) -> int:
+    from plxtools.cache import reads
+
     name = args.stdin_filename or "-"
-    data = sys.stdin.buffer.read()
+    try:
+        cfg = config_for(Path(args.stdin_filename)) if args.stdin_filename else config_for(Path.cwd() / "-")
+        data = reads.read_stream(sys.stdin.buffer, cfg.max_file_bytes)
+    except (OSError, ConfigError) as exc:
+        _say(f"{name}: cannot read: {getattr(exc, 'strerror', None) or exc}")
+        return 2
     if args.stdin_filename and _excluded(Path(args.stdin_filename)):
         if not (args.check or args.diff):
             sys.stdout.buffer.write(data)

@@ -30,7 +30,7 @@ def same_meaning(before: ast.File, after: ast.File) -> str | None:
         first = next(d for d in after.diagnostics if d.severity.value == "error")
         line = first.span.start.line + 1
         return f"the output does not parse (line {line}: {first.code} {first.message})"
-    if ast.structure(before.statements) != ast.structure(after.statements):
+    if not ast.same_structure(before.statements, after.statements):
         return "the output's syntax tree differs from the input's"
     if comment_texts(before) != comment_texts(after):
         return "the output's comments differ from the input's"

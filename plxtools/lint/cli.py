@@ -159,7 +159,7 @@ class _LintRun:
         data = None
         if not self.stdin:  # read once: the bytes keyed are the bytes linted
             try:
-                data = reads.read_bytes(f)
+                data = reads.read_bytes(f, cfg.max_file_bytes)
             except OSError:
                 pass  # lint_file reads again and reports why it cannot
         key = results.key(f, data, cfg) if results is not None and data is not None else None
@@ -312,7 +312,7 @@ def _lint_in_parallel(files: list[Path], args, results, workspace, bundle_set) -
             cfg = _config(f, False, args)
             from plxtools.cache import reads
 
-            data = reads.read_bytes(f)  # read once: the bytes keyed are the bytes linted
+            data = reads.read_bytes(f, cfg.max_file_bytes)  # read once: the bytes keyed are the bytes linted
             key = results.key(f, data, cfg) if results is not None else None
             if key is not None and results.get(key) is not None:
                 continue
@@ -366,10 +366,16 @@ def _lint_one(item: tuple) -> tuple[list, list]:
 
 
 def _lint_stdin(name: Path, cfg: Config, workspace):
-    data = sys.stdin.buffer.read()
+    from plxtools.cache import reads
     from plxtools.lint.runner import FileResult
     from plxtools.rules.analysis import analyse_tree
     from plxtools.syntax import parse_bytes
+    from plxtools.syntax.source import unreadable
+
+    try:
+        data = reads.read_stream(sys.stdin.buffer, cfg.max_file_bytes)
+    except OSError as exc:
+        return FileResult(name, None, [unreadable(str(name), exc)])
 
     tree = parse_bytes(data, str(name))
     return FileResult(name, tree, analyse_tree(tree, cfg, workspace))

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from plxtools.cache import reads
 from plxtools.config import Config, config_for
 from plxtools.diagnostics import Diagnostic, Edit, Severity, apply_edits  # noqa: F401 - lint's name for it
 from plxtools.discovery import UsageError, discover  # noqa: F401 - the lint command's names for them
@@ -29,7 +30,7 @@ def lint_file(path: Path, cfg: Config | None = None, workspace=None, data: bytes
     cfg = cfg or config_for(path)
     try:
         if data is None:
-            data = path.read_bytes()
+            data = reads.read_bytes(path, cfg.max_file_bytes)
     except OSError as exc:
         return FileResult(path, None, [unreadable(str(path), exc)])
     tree = None

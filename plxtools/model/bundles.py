@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import re
+import stat as _stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -76,7 +77,11 @@ def _walk(root: str, folder: str, out: list[str]) -> None:
                 subs.append(os.path.join(folder, n))
         elif n.endswith(".openplx") and not (folder == root and n == "config.openplx"):
             p = os.path.join(folder, n)
-            if not os.path.isdir(p):  # (a link to a folder named *.openplx: not a file)
+            try:  # regular files only: a link to a folder named *.openplx, a FIFO or a device is not read
+                regular = _stat.S_ISREG(os.stat(p).st_mode)
+            except (OSError, ValueError):
+                regular = False
+            if regular:
                 out.append(p)
     for p in subs:
         _walk(root, p, out)

@@ -170,12 +170,15 @@ def read_obj(path: str, limit: int = 64 << 20) -> MeshInfo:
     info = MeshInfo()
     lo = [float("inf")] * 3
     hi = [float("-inf")] * 3
+    from plxtools.cache.reads import open_regular
+
     try:
-        size = os.path.getsize(path)
-        if size > limit:
+        fd, st = open_regular(path)  # a FIFO or a device (also behind a link) is refused, never read
+        if st.st_size > limit:
+            os.close(fd)
             info.problem = f"larger than {limit >> 20} MB: not read"
             return info
-        with open(path, "rb") as fh:
+        with os.fdopen(fd, "rb") as fh:
             for n, raw in enumerate(fh, 1):
                 if raw.startswith(b"v "):
                     try:

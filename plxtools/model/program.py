@@ -252,8 +252,11 @@ class Program:
 
     def _anon(self, owner: ModelSym, decl: ast.Declaration, unit: FileUnit) -> ModelSym:
         name = decl.path.text
+        texpr = decl.type  # its first alternative is the base: the declaration's own node when it has one
+        base_ref = texpr if len(texpr.alternatives) == 1 else ast.TypeExpr(texpr.span, texpr.alternatives[:1],
+                                                                           texpr.traits)
         anon = ModelSym(name, f"{owner.qname}.{name}", "model", decl, unit, owner.namespace, anonymous=True,
-                        base_ref=ast.TypeExpr(decl.type.span, decl.type.alternatives[:1], decl.type.traits))
+                        base_ref=base_ref)
         self._fill_model(anon, decl.body, unit)
         return anon
 

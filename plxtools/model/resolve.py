@@ -106,8 +106,10 @@ def _compute(m: ModelSym, parents: list[ModelSym]) -> None:
         # them: parents still in progress (a cycle through `m`) were left out by `ensure`.
         first = parents[0]
         lin = list(first._lin)
-        inherited = dict(first._all)
-        methods = dict(first._methods)
+        # one parent: its tables are shared, not copied (the tables are never changed once
+        # computed; a big file's thousands of `b is RigidBody:` blocks would each copy them twice)
+        inherited = dict(first._all) if len(parents) > 1 else first._all
+        methods = dict(first._methods) if len(parents) > 1 or m.methods else first._methods
     else:
         lin, inherited, methods = [], {}, {}
     if len(parents) > 1:
@@ -121,9 +123,13 @@ def _compute(m: ModelSym, parents: list[ModelSym]) -> None:
                 _apply(inherited, layer.members)
                 methods.update(layer.methods)
     lin.append(m)
-    full = dict(inherited)
-    _apply(full, m.members)
-    methods.update(m.methods)
+    if m.members:
+        full = dict(inherited)
+        _apply(full, m.members)
+    else:
+        full = inherited
+    if m.methods:
+        methods.update(m.methods)
     m._inherited = inherited
     m._all = full
     m._methods = methods

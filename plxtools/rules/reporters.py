@@ -12,7 +12,7 @@ if TYPE_CHECKING:
     from typing import Iterable, TextIO
 
 from plxtools import DOCS_BASE_URL, __version__
-from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.diagnostics import Diagnostic, Severity, printable
 
 FORMATS = ("text", "json", "github", "sarif")
 DOCS_URL = DOCS_BASE_URL + "rules/{code}/"  # mkdocs serves docs/rules/CODE.md at rules/CODE/
@@ -42,9 +42,9 @@ def render_text(diags: list[Diagnostic], stream: TextIO, *, show_fix_hint: bool 
         return
     for d in diags:
         fixable = " [*]" if d.fix is not None and d.fix.safe and show_fix_hint else ""
-        stream.write(f"{text_line(d)}{fixable} {d.message}\n")
+        stream.write(printable(f"{text_line(d)}{fixable} {d.message}") + "\n")
         if d.help:
-            stream.write(f"  help: {d.help}\n")
+            stream.write(printable(f"  help: {d.help}") + "\n")
     if summary:
         stream.write(_summary_line(diags, files_checked) + "\n")
 
@@ -74,15 +74,15 @@ def _render_rich(diags: list[Diagnostic], stream: TextIO, *, summary: bool, file
     styles = {Severity.ERROR: "bold red", Severity.WARNING: "bold yellow", Severity.INFO: "bold blue"}
     for d in diags:
         t = Text()
-        t.append(_loc(d), style="bold")
+        t.append(printable(_loc(d)), style="bold")
         t.append(": ")
         t.append(f"{d.severity.value} {d.code}", style=styles[d.severity])
         if d.fix is not None and d.fix.safe:
             t.append(" [*]", style="cyan")
-        t.append(" " + d.message)
+        t.append(" " + printable(d.message))
         console.print(t)
         if d.help:
-            console.print(Text("  help: ", style="cyan") + Text(d.help))
+            console.print(Text("  help: ", style="cyan") + Text(printable(d.help)))
     if summary:
         console.print(_summary_line(diags, files_checked), style="bold" if diags else "green")
 
@@ -95,7 +95,7 @@ def render_json(diags: list[Diagnostic], stream: TextIO) -> None:
 
 
 def _gh_escape(s: str, prop: bool = False) -> str:
-    s = s.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    s = printable(s).replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
     if prop:
         s = s.replace(":", "%3A").replace(",", "%2C")
     return s

@@ -6,6 +6,7 @@ Statements are one logical line each (a header), optionally owning an indented b
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields, is_dataclass
+from itertools import zip_longest
 from typing import Iterator, Union
 
 from plxtools.diagnostics import Diagnostic, Span
@@ -268,23 +269,33 @@ def structure(node: object) -> tuple:
     Flat (pre-order, with open and close markers) and built without recursion, so two renderings
     of a file nested hundreds of levels deep compare at Python's default recursion limit.
     """
-    out: list[object] = []
+    return tuple(iter_structure(node))
+
+
+def same_structure(a: object, b: object) -> bool:
+    """`structure(a) == structure(b)`, compared as both are walked: neither rendering is ever held
+    whole (on a big file each would take several times the memory of its tree)."""
+    end = object()
+    return all(x == y for x, y in zip_longest(iter_structure(a), iter_structure(b), fillvalue=end))
+
+
+def iter_structure(node: object) -> Iterator[object]:
+    """The items of `structure(node)`, one by one."""
     stack: list[object] = [node]
     while stack:
         n = stack.pop()
         if n is _CLOSE:
-            out.append(")")
+            yield ")"
         elif isinstance(n, list):
-            out.append("[")
+            yield "["
             stack.append(_CLOSE)
             stack.extend(reversed(n))
         elif is_dataclass(n) and isinstance(n, Node):
-            out.append(type(n).__name__)
+            yield type(n).__name__
             stack.append(_CLOSE)
             stack.extend(reversed([getattr(n, f.name) for f in fields(n) if f.name not in ("span", "header")]))
         else:
-            out.append(repr(n))
-    return tuple(out)
+            yield repr(n)
 
 
 _CLOSE = object()

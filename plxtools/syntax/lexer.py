@@ -8,7 +8,9 @@ parses one logical line at a time, so a broken line costs one diagnostic and not
 from __future__ import annotations
 
 import re
+from sys import intern
 from dataclasses import dataclass, field
+from typing import Iterator
 
 from plxtools.diagnostics import Diagnostic, Pos, Severity, Span
 
@@ -196,14 +198,23 @@ class Lexer:
         self.line_start = end
 
     def run(self) -> LexResult:
-        """One pass over the text: the common tokens (names, punctuation) are built inline, in
-        locals; line starts, brackets, line breaks inside brackets and the rarer tokens are handled
-        by the helpers below."""
+        """Every logical line, the comments and the diagnostics of the whole text."""
+        lines = list(self.iter_lines())
+        return LexResult(lines, self.comments, self.diagnostics)
+
+    def iter_lines(self) -> Iterator[LogicalLine]:
+        """One pass over the text, yielding each logical line as soon as it is complete, so a parser
+        that consumes them one by one never holds the tokens of the whole file (they take more memory
+        than the tree built from them). `self.comments` and `self.diagnostics` are complete once
+        the iteration ends. The common tokens (names, punctuation) are built inline, in locals;
+        line starts, brackets, line breaks inside brackets and the rarer tokens are handled by the
+        helpers below."""
         text = self.text
         n = len(text)
-        lines: list[LogicalLine] = []
+        lines: list[LogicalLine] = []  # finished lines not yet yielded (one at most, between yields)
         comments: list[tuple[int, int, int, int, str, bool]] = []
         diagnostics: list[Diagnostic] = []
+        self.comments, self.diagnostics = comments, diagnostics
 
         tokens: list[Token] = []
         line_error: Diagnostic | None = None
@@ -312,7 +323,7 @@ class Lexer:
                 start, end = m.span(kind)
                 if kind == _NAME:
                     # a Token built without its constructor's argument handling (the hot path)
-                    word = text[start:end]
+                    word = intern(text[start:end])  # names repeat: the tree and the symbols share one copy
                     tok = new(Token, word)
                     tok.type = keyword(word, "NAME")
                     tok.value = word
@@ -347,6 +358,9 @@ class Lexer:
                     else:
                         finish()
                         at_line_start = True
+                    if lines:
+                        yield from lines
+                        lines.clear()
                     continue
                 if kind == _NUMBER:
                     word = text[start:end]
@@ -381,7 +395,8 @@ class Lexer:
             fail(_never_closed(brackets[-1]))
         finish()
         self.pos, self.line, self.line_start = pos, line, line_start
-        return LexResult(lines, comments, diagnostics)
+        yield from lines
+        lines.clear()
 
     def _next_line_kind(self, indent: int) -> int:
         """Inside brackets at a line break: can the next code line still continue the statement?

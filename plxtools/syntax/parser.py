@@ -5,13 +5,13 @@ from __future__ import annotations
 import threading
 from pathlib import Path
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Iterable
 
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Severity, Span
 from plxtools.syntax import ast
 from plxtools.syntax.depth import MAX_EXPR_DEPTH, too_deep
 from plxtools.syntax.keywords import closest_keyword
-from plxtools.syntax.lexer import TAB_INDENTATION, LogicalLine, Token, ambiguous_tab, lex
+from plxtools.syntax.lexer import TAB_INDENTATION, Lexer, LogicalLine, Token, ambiguous_tab
 from plxtools.syntax.lexer import too_deep as nesting_too_deep
 
 if TYPE_CHECKING:  # lark is imported when the LALR fallback is first needed (_get_parser)
@@ -41,6 +41,8 @@ def _cover(children) -> Span:
     for last in reversed(children):
         if last is not None:
             break
+    if first is last and type(first) is not Token:
+        return first.span  # one child: its span, shared (spans are immutable; a big file has millions)
     start = _new(Pos, (first.start_pos, first.line, first.column)) if type(first) is Token else first.span.start
     end = _new(Pos, (last.end_pos, last.end_line, last.end_column)) if type(last) is Token else last.span.end
     return _new(Span, (start, end))
@@ -390,6 +392,8 @@ def _qname(tokens: list[Token], i: int) -> tuple[ast.QName | None, int]:
     while i + 1 < n and tokens[i].type == "DOT" and tokens[i + 1].type in _NAMEISH:
         parts.append(_ident(tokens[i + 1]))
         i += 2
+    if len(parts) == 1:
+        return _QName(parts[0].span, parts), i
     return _QName(_new(Span, (parts[0].span.start, parts[-1].span.end)), parts), i
 
 
@@ -883,7 +887,7 @@ def _close_spans(stmts: list[ast.Stmt]) -> None:
         s.span = Span(s.header.start, last.span.end)
 
 
-def parse_lines(text: str, lines: list[LogicalLine], diags: list[Diagnostic]) -> list[ast.Stmt]:
+def parse_lines(text: str, lines: Iterable[LogicalLine], diags: list[Diagnostic]) -> list[ast.Stmt]:
     parser = _PARSER  # None until a line needs it: see _parse_line
     root = _Frame(-1, None, [], None)
     stack = [root]
@@ -1042,8 +1046,9 @@ def parse_bytes(data: bytes, path: str = "") -> ast.File:
 
 
 def parse_file(path: str | Path) -> ast.File:
-    p = Path(path)
-    return parse_bytes(p.read_bytes(), str(path))
+    from plxtools.cache import reads
+
+    return parse_bytes(reads.read_bytes(path), str(path))
 
 
 def _parse_decoded(text: str, path: str, diags: list[Diagnostic], had_bom: bool, newline: str) -> ast.File:
@@ -1060,13 +1065,14 @@ def _parse_decoded(text: str, path: str, diags: list[Diagnostic], had_bom: bool,
 
 
 def _parse_decoded_inner(text: str, path: str, diags: list[Diagnostic], had_bom: bool, newline: str) -> ast.File:
-    diags = list(diags)
-    lexed = lex(text)
-    diags.extend(lexed.diagnostics)
-    statements = parse_lines(text, lexed.lines, diags)
+    # the lines are parsed as the lexer finishes them: only one line's tokens live at a time
+    lexer = Lexer(text)
+    parsed: list[Diagnostic] = []
+    statements = parse_lines(text, lexer.iter_lines(), parsed)
+    diags = [*diags, *lexer.diagnostics, *parsed]  # (the order the stable sort below keeps for ties)
     comments = [
         ast.Comment(Span(Pos(s, ln, col), Pos(e, ln, col + (e - s))), body, own)
-        for (s, ln, col, e, body, own) in lexed.comments
+        for (s, ln, col, e, body, own) in lexer.comments
     ]
     ambiguous_tabs = {d.span.start.line for d in diags if d.code == TAB_INDENTATION and d.severity is Severity.ERROR}
     if ambiguous_tabs:  # the error replaces the lexer's warning on the same line

@@ -142,8 +142,8 @@ def test_a_save_while_plx_runs_does_not_poison_the_cache(tmp_path, monkeypatch):
     real = reads.read_bytes
     saved = []
 
-    def read_then_save(path):
-        data = real(path)
+    def read_then_save(path, *args, **kwargs):  # (read_bytes also takes the size limit)
+        data = real(path, *args, **kwargs)
         if not saved and os.path.abspath(os.fspath(path)) == str(f):
             saved.append(1)
             _write(f, b)
