@@ -33,6 +33,8 @@ from typing import Any
 
 import numpy as np
 
+from plxtools.rules.controller_mates import CONNECTOR_COUNT
+from plxtools.rules.mates import MATE_SAME_BODY
 from plxtools.check.evaluate import Evaluator, Unavailable, report_non_finite
 from plxtools.check.frames import (IDENTITY, Pose, angle_between, compose, from_transform, inverse, orthogonal_unit,
                                    rot_z, rotation_angle)
@@ -44,8 +46,6 @@ from plxtools.model.program import Program
 # The codes this module raises (their home); the MuJoCo build names them when a hand-built scene
 # breaks what the assembler guarantees, the pipeline knows A016's scene is as written.
 ZERO_MAIN_AXIS = "A010"
-CONNECTOR_COUNT = "A013"
-MATE_SAME_BODY = "A015"
 MATE_NOT_COINCIDENT = "A016"
 
 SYSTEM = "Physics3D.System"

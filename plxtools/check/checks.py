@@ -13,6 +13,7 @@ from itertools import combinations
 
 import numpy as np
 
+from plxtools.rules.angle_units import ANGLE_PROBABLY_DEGREES
 from plxtools import envpath
 from plxtools.check.broadphase import first_overlaps
 from plxtools.check import coverage, drivetrain
@@ -267,7 +268,7 @@ class StaticChecks:
             if not m.usable or not m.enabled:
                 continue
             if m.kind in ("hinge", "cylindrical") and abs(m.initial_angle) > TWO_PI:
-                self.add_at("A022", f"{m.path}: initial_angle {m.initial_angle:g} is more than 2 pi: is it in "
+                self.add_at(ANGLE_PROBABLY_DEGREES, f"{m.path}: initial_angle {m.initial_angle:g} is more than 2 pi: is it in "
                             f"degrees? Angles are radians", m.obj, "initial_angle",
                             help=f"Math.Functions.deg_to_rad({m.initial_angle:g})")
             movers = [self.asm.mover(c) for c in m.conns]
@@ -298,7 +299,7 @@ class StaticChecks:
             if c.kind == "velocity_motor" and c.dof == "rotational":
                 v = self.a.real(obj, "target_speed", 0.0)
                 if abs(v) > TWO_PI:
-                    self.add_at("A022", f"{c.path}: target_speed {v:g} rad/s is more than 2 pi: is it in degrees "
+                    self.add_at(ANGLE_PROBABLY_DEGREES, f"{c.path}: target_speed {v:g} rad/s is more than 2 pi: is it in degrees "
                                 f"per second?", obj, "target_speed",
                                 help=f"Math.Functions.deg_to_rad({v:g}) if it is")
             if c.kind == "range":
@@ -309,7 +310,7 @@ class StaticChecks:
                 elif math.isfinite(start) and math.isfinite(end) and c.mate is not None and c.mate.enabled:
                     self._range_start(c, start, end)
                 if c.dof == "rotational" and any(math.isfinite(x) and abs(x) > TWO_PI for x in (start, end)):
-                    self.add_at("A022", f"{c.path}: range [{start:g}, {end:g}] goes beyond 2 pi: is it in degrees?",
+                    self.add_at(ANGLE_PROBABLY_DEGREES, f"{c.path}: range [{start:g}, {end:g}] goes beyond 2 pi: is it in degrees?",
                                 obj, "start")
             lo = self.a.real(obj, "min_effort", -math.inf)
             hi = self.a.real(obj, "max_effort", math.inf)

@@ -67,6 +67,8 @@ class Checker:
         # same few functions many times: Vec3.from_xyz); the program does not change during a check
         self._signatures: dict[int, tuple[MethodSym, list[Ty], Ty | None]] = {}
         self._found: dict[tuple[str, ...], object] = {}  # dotted name -> what it names from this file
+        # attribute paths set as if they had `becomes` (N002 with that help): the subtype meant
+        self._becomes_blocks: dict[tuple[int, tuple[str, ...]], ModelSym] = {}
 
     # ------------------------------------------------------------------ reporting
 
@@ -449,8 +451,19 @@ class Checker:
                     self._unknown(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span, part.name,
                                   list(mems))
                 else:
-                    self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span,
-                                suggest=self._closest(part.name, list(mems)))
+                    meant = self._becomes_blocks.get((id(self.outer), path))
+                    if meant is not None and part.name in self.p.all_members(meant):
+                        return UNKNOWN, None  # follows from the missing `becomes` reported above
+                    kind = self._subtype_with(cur.model, part.name) if cur.model is not None else None
+                    if kind is not None:
+                        self._becomes_blocks[(id(self.outer), path)] = kind
+                        self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}, but of "
+                                    f"{kind.name}, a kind of it", part.span,
+                                    help=f"use becomes to make '{'.'.join(path)}' a {kind.name}: write "
+                                         f"'{path[-1] if path else 'it'} becomes {kind.qname}:' above")
+                    else:
+                        self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span,
+                                    suggest=self._closest(part.name, list(mems)))
                 return UNKNOWN, None
             mem = found
             self.occ(part.span, mem, "attribute")
@@ -458,6 +471,15 @@ class Checker:
             cur = self.p.member_type(mem)
             path = path + (part.name,)
         return cur, mem
+
+    def _subtype_with(self, model: ModelSym, name: str) -> ModelSym | None:
+        """The one named model that is a kind of `model` and has an attribute `name` (None: none or
+        several), for the help of an attribute set on the declared type instead of `becomes`."""
+        self._suggests = True  # the answer depends on every model in the program (model/reuse.py)
+        found = [m for m in self.p.all_models() if not m.anonymous and not m.is_trait and m is not model
+                 and name in self.p.all_members(m) and self.p.is_subtype(m, model)]
+        found = [m for m in found if not any(o is not m and self.p.is_subtype(m, o) for o in found)]
+        return found[0] if len(found) == 1 else None
 
     def _deprecated_check(self, mem: MemberSym, span: Span) -> None:
         for owner in (mem.owner,):
@@ -481,7 +503,8 @@ class Checker:
             return
         got = self._expr(expr, expected)
         if not isinstance(got, Ty):
-            self._not_a_value(TYPE_MISMATCH, got, expr.span)
+            if not self._becomes_meant(got, expected, expr.span):
+                self._not_a_value(TYPE_MISMATCH, got, expr.span)
             return
         verdict = self.p.assignable(got, expected)
         if verdict == "no":
@@ -529,6 +552,20 @@ class Checker:
         if isinstance(v, MethodRef):
             return f"method '{v.method.name}' must be called: it"
         return "this"
+
+    def _becomes_meant(self, v, expected: Ty, span: Span) -> bool:
+        """`friction: Physics...DryConstantNormalForceFriction`: a model that is a kind of the
+        attribute's type, given as its value, where `becomes` was meant (T001 with that fix)."""
+        sym = v.sym if isinstance(v, TypeObj) else None
+        want = expected.model if not expected.array and not expected.alts else None
+        if not isinstance(sym, ModelSym) or sym.is_trait or sym.const or want is None or sym is want \
+                or not self.p.is_subtype(sym, want):
+            return False
+        self.report(TYPE_MISMATCH, f"'{sym.qname}' is a model, not a value; it is a kind of "
+                    f"{self.p.concrete(want).qname}, the attribute's type", span,
+                    help=f"use becomes to make the attribute a {sym.name}: write '<attribute> becomes {sym.qname}' "
+                         "(its settings in an indented block below)")
+        return True
 
     def _not_a_value(self, code: str, v, span: Span) -> None:
         """A type, namespace or method where a value is needed. A model named as a value most often

@@ -150,6 +150,17 @@ class Program:
             yield ns
             stack.extend(ns.children.values())
 
+    def all_models(self) -> Iterable[ModelSym]:
+        """Every named model and trait of the program (bundles' namespaces, then loose files')."""
+        for ns in self._all_namespaces():
+            for sym in ns.symbols.values():
+                if isinstance(sym, ModelSym):
+                    yield sym
+        for unit in self.units.values():
+            for sym in unit.locals.values():
+                if isinstance(sym, ModelSym):
+                    yield sym
+
     def _register(self, unit: FileUnit, name: str, sym, stmt: ast.Stmt) -> None:
         table = unit.locals if unit.bundle is None else unit.namespace.symbols
         if unit.bundle is not None and name in unit.locals:  # a bundle file's own import of that name

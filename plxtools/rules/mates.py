@@ -50,9 +50,11 @@ def _connectors(stmt: ast.Declaration) -> list[ast.Expr] | None:
     return None
 
 
-def _one_block(program, unit, mate: ModelSym, body: list, out: list[Diagnostic]) -> None:
+def _mates_of_block(program, unit, mate: ModelSym, body: list):
+    """The block's mates with their connector lists, and each attribute's type as written (to find
+    same-typed siblings)."""
     mates: list[tuple[ast.Declaration, list[ast.Expr]]] = []
-    types: dict[str, str] = {}  # attribute name -> its type as written (to find same-typed siblings)
+    types: dict[str, str] = {}
     for s in body:
         if not isinstance(s, ast.Declaration) or s.keyword != "is" or len(s.path.parts) != 1:
             continue
@@ -65,6 +67,12 @@ def _one_block(program, unit, mate: ModelSym, body: list, out: list[Diagnostic])
         if ty.model is None or not program.is_subtype(ty.model, mate):
             continue
         mates.append((s, items))
+    return mates, types
+
+
+def _one_block(program, unit, mate: ModelSym, body: list, out: list[Diagnostic]) -> None:
+    mates, types = _mates_of_block(program, unit, mate, body)
+    mates = [m for m in mates if not _same_body(unit, m, types, mates, out)]
     used: dict[str, list[tuple[ast.Declaration, ast.Expr]]] = {}
     for s, items in mates:
         for e in items:
@@ -89,6 +97,43 @@ def _one_block(program, unit, mate: ModelSym, body: list, out: list[Diagnostic])
                            e.span, Severity.ERROR, file=unit.path, help=help_, fix=fix)
             d.related.append((unit.path, other.header, f"'{conn}' is also used by '{other.path.text}'"))
             out.append(d)
+
+
+MATE_SAME_BODY = "A015"  # home: plx check's assembly checks; lint reports it when the names decide it
+
+
+def _same_body(unit, mate, types: dict[str, str], mates, out: list[Diagnostic]) -> bool:
+    """A015 for a mate whose two connectors are on one body (`[chassis.a, chassis.b]`), with the
+    connector it most likely meant: the same connector of a sibling that no mate holds yet."""
+    s, items = mate
+    texts = [_text(unit, e) for e in items]
+    if len(texts) != 2 or not all("." in t for t in texts):
+        return False
+    if texts[0] == texts[1]:
+        return False  # one connector twice: A014's (plx check)
+    holders = {t.rsplit(".", 1)[0] for t in texts}
+    if len(holders) != 1:
+        return False
+    holder = holders.pop()
+    used = {_text(unit, e) for _m, its in mates for e in its}
+    # the connector other mates join to bodies of one type, on a sibling of that type no mate holds
+    spare = []
+    for _m, its in mates:
+        for e in its:
+            t = _text(unit, e)
+            if "." in t and t.rsplit(".", 1)[0] != holder:
+                h, member = t.rsplit(".", 1)
+                spare += [f"{n}.{member}" for n, ty in types.items() if ty == types.get(h) and n != holder
+                          and f"{n}.{member}" not in used]
+    name = s.path.parts[0].name
+    meant = max(spare, key=lambda c: difflib.SequenceMatcher(None, name, c.split(".")[0]).ratio()) if spare else None
+    e = items[1]
+    help_ = (f"did you mean '{meant}' for the second connector? (one connector on each body the mate joins)"
+             if meant else "one connector must belong to each of the two bodies the mate joins")
+    fix = (Fix(f"use '{meant}'", (Edit(e.span.start.offset, e.span.end.offset, meant),), safe=False) if meant else None)
+    out.append(Diagnostic(MATE_SAME_BODY, f"mate '{s.path.text}': both connectors belong to '{holder}', so it joins "
+                          "nothing", e.span, Severity.ERROR, file=unit.path, help=help_, fix=fix))
+    return True
 
 
 def _blame(uses, holder: str, spare: list[str]):

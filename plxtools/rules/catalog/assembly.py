@@ -60,7 +60,9 @@ rule("A009", "instantiation-too-deep", E,
      "A model contains itself, directly or through others (owned objects more than 48 levels deep, "
      "a model met again among its owners), or distinct models nest more than 500 levels deep.",
      "Instantiating a model that contains itself would never end; the objects below that depth are not "
-     "created. The message says which it is: the chain of models that repeats, or plx check's nesting limit.",
+     "created. The message says which it is: the chain of models that repeats, or plx check's nesting limit."
+     " `plx lint` reports a model that contains itself at the attribute that closes the ring; `plx check` "
+     "then reports it once, without the objects it could not build.",
      example="Link is Physics3D.System:\n    next is Link", stage=C)
 
 # ---------------------------------------------------------------- connectors and mates
@@ -83,7 +85,9 @@ rule("A012", "normal-not-orthogonal", I,
 rule("A013", "connector-count", E,
      "A mate or a 1-DOF controller does not have exactly two MateConnectors.",
      "A mate joins two parts: `connectors[0]` and `connectors[1]`. With fewer there is nothing to join; "
-     "extra connectors are ignored by the runtime.",
+     "extra connectors are ignored by the runtime."
+     " `plx lint` (and so the editor) reports a mate or controller declared with no `connectors` at all, at its "
+     "declaration, with the connectors of the mate in its block whose name is closest.",
      example="connectors: [chassis.hub]", use_instead="connectors: [chassis.hub, wheel.connector]", stage=C)
 rule("A014", "mate-same-connector", E,
      "A mate lists the same connector twice.", "A mate must join two different parts.", stage=C)
@@ -91,7 +95,8 @@ rule("A015", "mate-same-body", E,
      "Both connectors of a mate belong to the same body (or both to the world / a system), so it joins "
      "nothing (AGXUnity `MissingConnectedBody`).",
      "A mate constrains one body relative to another; within one body it has no effect and SNAP cannot "
-     "use it.", stage=C)
+     "use it. `plx lint` reports it when both connectors are written as one body's (`[chassis.a, chassis.b]`), "
+     "at the second connector, with the unused connector of a sibling body it most likely meant.", stage=C)
 rule("A016", "mate-not-coincident", E,
      "After assembly the two connector frames of a mate do not coincide: the message gives the distance "
      "and the angle, and how each side was placed.",
@@ -124,12 +129,16 @@ rule("A021", "controller-dof-mismatch", E,
      "linear one on a Hinge, or any controller on a Lock, Ball or Distance.",
      "Rotational controllers need a Hinge or Cylindrical mate; linear ones a Prismatic or Cylindrical.",
      stage=C)
-rule("A022", "angle-probably-degrees", I,
-     "An angle or angular speed (`initial_angle`, `target_speed` of a rotational motor, a rotational "
-     "range) is larger than 2 pi.",
-     "OpenPLX angles are radians. A value such as 90 is likely meant in degrees; "
-     "`Math.Functions.deg_to_rad(90)` converts it.", example="initial_angle: 90",
-     use_instead="initial_angle: Math.Functions.deg_to_rad(90)", stage=C)
+rule("A022", "angle-probably-degrees", W,
+     "An angle is more than one full turn (2 pi): a number written for any angle-taking function argument "
+     "or attribute of the bundles (`Math.Quat.angle_axis(90, ...)`, `from_euler_angles(...)`, "
+     "`initial_angle`, a rotational range's ends), reported by `plx lint` at the number; and, by `plx check`, "
+     "a computed initial angle, rotational range or rotational motor speed. Which values are angles is read "
+     "from the bundles: parameter, function and type names, and documentation that speaks of radians "
+     "(plxtools/rules/angle_units.py; the plausibility model is in docs/plausibility.md).",
+     "OpenPLX angles are radians. A value such as 90 is likely meant in degrees (as radians it is 14 turns "
+     "and 116.6 degrees); `Math.Functions.deg_to_rad(90)` converts it.", example="initial_angle: 90",
+     use_instead="initial_angle: Math.Functions.deg_to_rad(90)", fix="unsafe", stage=C)
 rule("A023", "mirrored-drive-motors", I,
      "Two velocity motors with the same target speed drive hinges whose axes point in opposite directions "
      "(the left and right hubs of a vehicle).",
@@ -230,6 +239,22 @@ rule("A041", "non-finite-value", E,
 
 # ---------------------------------------------------------------- simulation (MuJoCo backend)
 
+rule("A046", "controller-on-other-mate", W,
+     "A controller (a motor, range or spring: any Interaction1DOF) names the connectors of a mate that another "
+     "controller of its kind already drives, while a mate of the same kind in the same block has none. "
+     "Reported by `plx lint` at the controller whose name is closer to the idle mate, with that mate's "
+     "connectors as the fix.",
+     "A copied motor line with only its name changed drives one hinge twice and leaves the other free: "
+     "the vehicle pulls to one side and nothing fails.",
+     example="left_motor is Physics3D.Interactions.RotationalVelocityMotor:\n    connectors: left_hinge.connectors\n"
+     "right_motor is Physics3D.Interactions.RotationalVelocityMotor:\n    connectors: left_hinge.connectors",
+     use_instead="right_motor is Physics3D.Interactions.RotationalVelocityMotor:\n    connectors: right_hinge.connectors")
+rule("A047", "explicit-zero-mass", W,
+     "`inertia.mass: 0` written on a dynamic body: 0 means 'from the geometries', so the body gets its "
+     "geometries' volume times their density; the message says how much when the file decides it.",
+     "A hand-written 0 is almost always a placeholder or a wish for a massless part, neither of which the "
+     "simulation honours: the body silently weighs what its geometry weighs.",
+     example="inertia.mass: 0", use_instead="inertia.mass: 10")
 rule("A043", "connector-used-by-two-mates", E,
      "Two mates in one model name the same connector: the second can only close by moving the body "
      "the first one places. Reported by `plx lint` at the mate that is most likely wrong: when another "

@@ -1,0 +1,156 @@
+"""An angle written in degrees where OpenPLX means radians: `Math.Quat.angle_axis(90, axis)`,
+`initial_angle: 45`, a rotational range ending at `180`.
+
+Which values are angles is read from the bundle sources, not from a list of call sites: a `Real`
+parameter of a function is an angle when the parameter's name says so (`angle`), when the
+function's name does (`from_euler_angles_xyz(alpha, beta, gamma)`, `from_angle(v, ...)`) or when
+its type does (`AngleValue.create(value)`); a `Real` attribute is an angle when its name says so
+(`initial_angle`, `knuckle_angle`), when its documentation speaks of radians, or when it is the
+`start` or `end` of a range whose type is rotational (`RotationalRange`).
+
+The plausibility model (see docs/plausibility.md): an angle whose size is more than one full turn
+(2 pi = 6.283 rad) is suspicious. Poses, initial angles and the limits of a joint lie within one
+turn; 90, 45, 180 and 360 are the sizes people write in degrees, and as radians they are 14, 7, 29
+and 57 turns. Only numbers the file writes are judged (a computed value is the author's own
+arithmetic); a value between 1 and 6.28 is a plausible angle in either unit, so it is left alone.
+
+## Why it matters
+
+A degree value read as radians gives a pose that is wrong by an odd amount (90 rad is 116.6
+degrees past 14 whole turns), which looks like a different bug: a truck that starts skewed, a
+joint that starts beyond its limit.
+
+## Example
+
+```openplx
+Scene is Physics3D.System:
+    box is Physics3D.Bodies.RigidBody:
+        kinematics.local_transform.rotation: Math.Quat.angle_axis(90, Math.Vec3.Z_AXIS())
+```
+
+## Use instead
+
+```openplx
+Scene is Physics3D.System:
+    box is Physics3D.Bodies.RigidBody:
+        kinematics.local_transform.rotation: Math.Quat.angle_axis(Math.PI / 2, Math.Vec3.Z_AXIS())
+```
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity
+from plxtools.model.symbols import MemberSym, MethodSym, ModelSym
+from plxtools.rules.literals import literal
+from plxtools.syntax import ast
+
+ANGLE_PROBABLY_DEGREES = "A022"
+FULL_TURN = 2 * math.pi
+_ANGLE_WORDS = frozenset({"angle", "angles", "euler", "yaw", "pitch", "roll"})
+_RANGE_ENDS = frozenset({"start", "end"})
+
+
+def words(name: str) -> set[str]:
+    """`from_euler_angles_xyzs` -> {from, euler, angles, xyzs}; `AngleValue` -> {angle, value}."""
+    return {w.lower() for w in re.findall(r"[A-Z]?[a-z]+|[A-Z]+(?![a-z])|\d+", name)}
+
+
+def angle_parameter(method: MethodSym, index: int, program) -> bool:
+    """Whether the `index`-th parameter of `method` is an angle in radians (its names say so)."""
+    params = method.stmt.params
+    if index >= len(params) or params[index].type.name.parts[-1].name != "Real" or params[index].type.array:
+        return False
+    return bool(words(params[index].name.name) & _ANGLE_WORDS or words(method.name) & _ANGLE_WORDS
+                or words(method.owner.name) & _ANGLE_WORDS)
+
+
+def angle_attribute(member: MemberSym, program) -> bool:
+    """Whether `member` holds an angle in radians (its name, its documentation or its range says so)."""
+    ty = program.member_type(member)
+    if ty.primitive != "Real" or ty.array:
+        return False
+    if words(member.name) & _ANGLE_WORDS or "radian" in (member.doc or "").lower():
+        return True
+    if member.name in _RANGE_ENDS:
+        return any("rotational" in words(m.name) and "range" in words(m.name)
+                   for m in program.linearize(member.owner) if isinstance(m, ModelSym))
+    return False
+
+
+def _targets(occurrences) -> dict:
+    return {(o.span.start.offset, o.span.end.offset): o.target for o in occurrences
+            if o.kind in ("attribute", "definition", "name")}
+
+
+def angle_diagnostics(program, tree: ast.File, occurrences, path: str) -> list[Diagnostic]:
+    target = None
+    out: list[Diagnostic] = []
+    for node in _walk(tree):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Member):
+            big = [(i, a) for i, a in enumerate(node.args) if _too_big(a)]
+            if not big:
+                continue
+            target = target if target is not None else _targets(occurrences)
+            meth = target.get((node.func.name.span.start.offset, node.func.name.span.end.offset))
+            if isinstance(meth, MethodSym):
+                for i, a in big:
+                    if angle_parameter(meth, i, program):
+                        name = meth.stmt.params[i].name.name
+                        out.append(_report(path, a, f"argument '{name}' of {meth.owner.name}.{meth.name}"))
+        elif isinstance(node, (ast.Assignment, ast.Declaration)) and node.value is not None and _too_big(node.value):
+            target = target if target is not None else _targets(occurrences)
+            last = node.path.parts[-1]
+            mem = target.get((last.span.start.offset, last.span.end.offset))
+            if isinstance(mem, MemberSym) and angle_attribute(mem, program):
+                out.append(_report(path, node.value, f"'{node.path.text}'"))
+    out.sort(key=lambda d: d.span.start.offset)
+    return out
+
+
+def _too_big(expr) -> bool:
+    v = literal(expr)
+    return isinstance(v, float) and abs(v) > FULL_TURN
+
+
+def _report(path: str, expr, what: str) -> Diagnostic:
+    v = literal(expr)
+    turns = abs(v) / FULL_TURN
+    rad = math.radians(v)
+    fix = Fix(f"read {v:g} as degrees", (Edit(expr.span.start.offset, expr.span.end.offset,
+                                                f"Math.Functions.deg_to_rad({v:g})"),), safe=False)
+    return Diagnostic(ANGLE_PROBABLY_DEGREES, f"{what} is {v:g} rad ({turns:.1f} turns): angles are in radians, "
+                      f"so {v:g} looks like degrees", expr.span, Severity.WARNING, file=path,
+                      help=f"if it is {v:g} degrees, write Math.Functions.deg_to_rad({v:g}) (= {rad:.4g} rad)",
+                      fix=fix)
+
+
+def _walk(tree: ast.File):
+    """Every statement and every expression node of the file, without recursion."""
+    stack: list = list(tree.statements)
+    while stack:
+        node = stack.pop()
+        yield node
+        if isinstance(node, ast.Stmt):
+            stack.extend(ast.body_of(node) or ())
+            for attr in ("value",):
+                v = getattr(node, attr, None)
+                if v is not None:
+                    stack.append(v)
+        elif isinstance(node, ast.Call):
+            stack.append(node.func)
+            stack.extend(node.args)
+        elif isinstance(node, ast.Member):
+            stack.append(node.obj)
+        elif isinstance(node, (ast.Brace, ast.Array)):
+            stack.extend(node.items)
+        elif isinstance(node, ast.Binary):
+            stack.extend((node.left, node.right))
+        elif isinstance(node, ast.Unary):
+            stack.append(node.operand)
+        elif isinstance(node, ast.Paren):
+            stack.append(node.inner)
+        elif isinstance(node, ast.Index):
+            stack.extend((node.obj, node.index))
