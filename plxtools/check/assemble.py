@@ -33,15 +33,17 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.rules.controller_mates import CONNECTOR_COUNT
-from plxtools.rules.mates import MATE_SAME_BODY
 from plxtools.check.evaluate import Evaluator, Unavailable, report_non_finite
 from plxtools.check.frames import (IDENTITY, Pose, angle_between, compose, from_transform, inverse, orthogonal_unit,
                                    rot_z, rotation_angle)
 from plxtools.check.instance import Obj, walk_owned
 from plxtools.check.mapped_types import CONTROLLERS, FREE_DOFS, MATES
 from plxtools.check.report import Reporter
+from plxtools.rules.registry import code_of
 from plxtools.model.program import Program
+
+CONNECTOR_COUNT = code_of("connector-count")
+MATE_SAME_BODY = code_of("mate-same-body")
 
 # The codes this module raises (their home); the MuJoCo build names them when a hand-built scene
 # breaks what the assembler guarantees, the pipeline knows A016's scene is as written.

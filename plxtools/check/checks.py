@@ -13,7 +13,6 @@ from itertools import combinations
 
 import numpy as np
 
-from plxtools.rules.angle_units import ANGLE_PROBABLY_DEGREES
 from plxtools import envpath
 from plxtools.check.broadphase import first_overlaps
 from plxtools.check import coverage, drivetrain
@@ -24,7 +23,10 @@ from plxtools.check.frames import angle_between, compose
 from plxtools.check.instance import Obj
 from plxtools.check.report import Reporter
 from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NEGATIVE_MASS, NON_POSITIVE_DENSITY
+from plxtools.rules.registry import code_of
 from plxtools.syntax import ast
+
+ANGLE_PROBABLY_DEGREES = code_of("angle-probably-degrees")
 
 # The codes this module raises (their home).  The MuJoCo build names them when it meets a scene these
 # checks should have rejected (BuildContext.invariant); `plx check`'s summary lists the motion ones.

@@ -31,12 +31,14 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from plxtools.rules.self_containing import INSTANTIATION_TOO_DEEP
 from plxtools.model.natives import struct_types
 from plxtools.model.program import Program
 from plxtools.model.resolve import opaque_import, replaces
 from plxtools.model.symbols import FileUnit, ModelSym, Ty
+from plxtools.rules.registry import code_of
 from plxtools.syntax import ast
+
+INSTANTIATION_TOO_DEEP = code_of("instantiation-too-deep")
 
 DECL, VALUE, WITH = 0, 1, 2
 MAX_DEPTH = 48  # nesting of owned objects from which a model met again among the owners contains itself

@@ -18,12 +18,11 @@ from plxtools.check.checks import StaticChecks, scan_strings
 from plxtools.check.convert import Collector, to_scene
 from plxtools.check.evaluate import EVALUATION_ERROR, MISSING_VALUE, UNBOUND_REFERENCE, VALUE_CYCLE, Evaluator
 from plxtools.check.frames import mat_to_quat_wxyz
-from plxtools.check.instance import Builder
+from plxtools.check.instance import INSTANTIATION_TOO_DEEP, Builder
 from plxtools.check.report import Reporter
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Pos, Severity, Span
 from plxtools.model.checker import DEFAULT_CYCLE, TYPE_MISMATCH, UNKNOWN_ATTRIBUTE
 from plxtools.model.symbols import ModelSym
-from plxtools.rules.self_containing import INSTANTIATION_TOO_DEEP
 from plxtools.rules import completeness
 from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import ast, parse_bytes

@@ -10,6 +10,7 @@ import bisect
 
 from plxtools.config import Config
 from plxtools.diagnostics import Diagnostic
+from plxtools.rules.engine import FileFacts, apply_severity, run_file_rules
 from plxtools.syntax import ast
 from plxtools.syntax.source import BINARY_FILE
 
@@ -23,9 +24,6 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
     from plxtools.model.workspace import FileAnalysis
     from plxtools.rules.completeness import completeness_diagnostics
     from plxtools.rules.literals import literal_diagnostics
-    from plxtools.rules.controller_mates import controller_mate_diagnostics
-    from plxtools.rules.mates import shared_connector_diagnostics
-    from plxtools.rules.self_containing import self_containing_diagnostics
     from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements
 
     snap = previous.snapshot if previous is not None else None
@@ -36,7 +34,6 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
         extra = completeness_diagnostics(workspace.program, fa.unit, list(tree.diagnostics) + fa.diagnostics, root)
         extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences, root)
         extra += literal_diagnostics(tree, fa.occurrences, tree.path)
-        extra += _by_statement(workspace.program, tree, fa.occurrences)
     else:
         extra = _completeness_again(workspace.program, fa, tree, snap, plan)
         extra += _per_statement(fa, plan, "style", style_of_statements(fa.unit, plan.dirty))
@@ -45,25 +42,10 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
         extra += style_of_file(workspace.program, fa.unit, used, root)
         checked = [o for i in sorted(plan.dirty) for o in parts[i].occs]
         extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, checked, tree.path, plan.dirty))
-        extra += _per_statement(fa, plan, "mistakes", _by_statement(workspace.program, tree, checked))
-    extra += shared_connector_diagnostics(workspace.program, fa.unit)  # (whole file: cheap, never re-used)
-    extra += controller_mate_diagnostics(workspace.program, fa.unit, list(tree.diagnostics) + fa.diagnostics)
-    extra += self_containing_diagnostics(workspace.program, fa.unit)
+    extra += run_file_rules(FileFacts(workspace.program, fa, tree, root))
     for d in extra:
         d.file = tree.path
     return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.lazy_occurrences, fa.snapshot, fa.plan)
-
-
-def _by_statement(program, tree: ast.File, occurrences) -> list[Diagnostic]:
-    """The beginner-mistake rules that each top-level statement decides by itself (issue 45): a
-    value given twice, an angle in degrees, a hand-written zero mass. Only the statements whose
-    occurrences are given are judged by the two that need them."""
-    from plxtools.rules.angle_units import angle_diagnostics
-    from plxtools.rules.assigned_twice import assigned_twice_diagnostics
-    from plxtools.rules.zero_mass import zero_mass_diagnostics
-
-    return (assigned_twice_diagnostics(tree, tree.path) + angle_diagnostics(program, tree, occurrences, tree.path)
-            + zero_mass_diagnostics(tree, occurrences, tree.path))
 
 
 def _completeness_again(program, fa, tree: ast.File, previous, plan) -> list[Diagnostic]:
@@ -155,14 +137,14 @@ def final_diagnostics(tree: ast.File, cfg: Config, analysis) -> list[Diagnostic]
 
 
 def finalize(tree: ast.File, diags: list[Diagnostic], cfg: Config) -> list[Diagnostic]:
-    """Config selection, follow-on findings dropped, inline suppressions and ordering (syntax first):
-    shared by lint, check and the server."""
+    """The registry's severities, config selection, follow-on findings dropped, inline suppressions
+    and ordering (syntax first): shared by lint, check and the server."""
     from plxtools.rules.consequences import drop_consequences, report_order
     from plxtools.rules.suppress import UNUSED_SUPPRESSION, apply
 
     for d in diags:
         d.file = tree.path
-    diags = [d for d in diags if cfg.rule_enabled(d.code, tree.path)]
+    diags = [d for d in apply_severity(diags) if cfg.rule_enabled(d.code, tree.path)]
     diags = apply(tree, drop_consequences(diags), report_unused=cfg.rule_enabled(UNUSED_SUPPRESSION, tree.path))
     diags.sort(key=report_order)
     return diags

@@ -56,14 +56,7 @@ rule("A008", "unsupported-function", W,
      "(`Physics3D.System.resnap`, signal factories, `on_init`...).",
      "Such functions need the AGX runtime. The value is left unknown and whatever depends on it is "
      "skipped.", stage=C)
-rule("A009", "instantiation-too-deep", E,
-     "A model contains itself, directly or through others (owned objects more than 48 levels deep, "
-     "a model met again among its owners), or distinct models nest more than 500 levels deep.",
-     "Instantiating a model that contains itself would never end; the objects below that depth are not "
-     "created. The message says which it is: the chain of models that repeats, or plx check's nesting limit."
-     " `plx lint` reports a model that contains itself at the attribute that closes the ring; `plx check` "
-     "then reports it once, without the objects it could not build.",
-     example="Link is Physics3D.System:\n    next is Link", stage=C)
+# A009 instantiation-too-deep: plxtools/rules/assembly/self_containing.py
 
 # ---------------------------------------------------------------- connectors and mates
 
@@ -82,21 +75,10 @@ rule("A012", "normal-not-orthogonal", I,
      "A MateConnector's `normal` is not orthogonal to its `main_axis`; only its orthogonal part counts.",
      "This is allowed (the frame is Gram-Schmidt orthogonalised), but it usually means the axes were "
      "mixed up. The message shows the normal that is actually used.", stage=C)
-rule("A013", "connector-count", E,
-     "A mate or a 1-DOF controller does not have exactly two MateConnectors.",
-     "A mate joins two parts: `connectors[0]` and `connectors[1]`. With fewer there is nothing to join; "
-     "extra connectors are ignored by the runtime."
-     " `plx lint` (and so the editor) reports a mate or controller declared with no `connectors` at all, at its "
-     "declaration, with the connectors of the mate in its block whose name is closest.",
-     example="connectors: [chassis.hub]", use_instead="connectors: [chassis.hub, wheel.connector]", stage=C)
+# A013 connector-count: plxtools/rules/assembly/controller_connectors.py
 rule("A014", "mate-same-connector", E,
      "A mate lists the same connector twice.", "A mate must join two different parts.", stage=C)
-rule("A015", "mate-same-body", E,
-     "Both connectors of a mate belong to the same body (or both to the world / a system), so it joins "
-     "nothing (AGXUnity `MissingConnectedBody`).",
-     "A mate constrains one body relative to another; within one body it has no effect and SNAP cannot "
-     "use it. `plx lint` reports it when both connectors are written as one body's (`[chassis.a, chassis.b]`), "
-     "at the second connector, with the unused connector of a sibling body it most likely meant.", stage=C)
+# A015 mate-same-body: plxtools/rules/assembly/shared_connector.py
 rule("A016", "mate-not-coincident", E,
      "After assembly the two connector frames of a mate do not coincide: the message gives the distance "
      "and the angle, and how each side was placed.",
@@ -129,16 +111,7 @@ rule("A021", "controller-dof-mismatch", E,
      "linear one on a Hinge, or any controller on a Lock, Ball or Distance.",
      "Rotational controllers need a Hinge or Cylindrical mate; linear ones a Prismatic or Cylindrical.",
      stage=C)
-rule("A022", "angle-probably-degrees", W,
-     "An angle is more than one full turn (2 pi): a number written for any angle-taking function argument "
-     "or attribute of the bundles (`Math.Quat.angle_axis(90, ...)`, `from_euler_angles(...)`, "
-     "`initial_angle`, a rotational range's ends), reported by `plx lint` at the number; and, by `plx check`, "
-     "a computed initial angle, rotational range or rotational motor speed. Which values are angles is read "
-     "from the bundles: parameter, function and type names, and documentation that speaks of radians "
-     "(plxtools/rules/angle_units.py; the plausibility model is in docs/plausibility.md).",
-     "OpenPLX angles are radians. A value such as 90 is likely meant in degrees (as radians it is 14 turns "
-     "and 116.6 degrees); `Math.Functions.deg_to_rad(90)` converts it.", example="initial_angle: 90",
-     use_instead="initial_angle: Math.Functions.deg_to_rad(90)", fix="unsafe", stage=C)
+# A022 angle-probably-degrees: plxtools/rules/assembly/angle_in_degrees.py
 rule("A023", "mirrored-drive-motors", I,
      "Two velocity motors with the same target speed drive hinges whose axes point in opposite directions "
      "(the left and right hubs of a vehicle).",
@@ -239,41 +212,7 @@ rule("A041", "non-finite-value", E,
 
 # ---------------------------------------------------------------- simulation (MuJoCo backend)
 
-rule("A046", "controller-on-other-mate", W,
-     "A controller (a motor, range or spring: any Interaction1DOF) names the connectors of a mate that another "
-     "controller of its kind already drives, while a mate of the same kind in the same block has none. "
-     "Reported by `plx lint` at the controller whose name is closer to the idle mate, with that mate's "
-     "connectors as the fix.",
-     "A copied motor line with only its name changed drives one hinge twice and leaves the other free: "
-     "the vehicle pulls to one side and nothing fails.",
-     example="left_motor is Physics3D.Interactions.RotationalVelocityMotor:\n    connectors: left_hinge.connectors\n"
-     "right_motor is Physics3D.Interactions.RotationalVelocityMotor:\n    connectors: left_hinge.connectors",
-     use_instead="right_motor is Physics3D.Interactions.RotationalVelocityMotor:\n    connectors: right_hinge.connectors")
-rule("A047", "explicit-zero-mass", W,
-     "`inertia.mass: 0` written on a dynamic body: 0 means 'from the geometries', so the body gets its "
-     "geometries' volume times their density; the message says how much when the file decides it.",
-     "A hand-written 0 is almost always a placeholder or a wish for a massless part, neither of which the "
-     "simulation honours: the body silently weighs what its geometry weighs.",
-     example="inertia.mass: 0", use_instead="inertia.mass: 10")
-rule("A043", "connector-used-by-two-mates", E,
-     "Two mates in one model name the same connector: the second can only close by moving the body "
-     "the first one places. Reported by `plx lint` at the mate that is most likely wrong: when another "
-     "body of the same type has that connector unused and the mate's name is closer to that body, that "
-     "mate, with the connector it probably meant; otherwise the later mate.",
-     "A connector is one frame on one body, and a mate ties two frames together. Copying a hinge line "
-     "and changing only one side leaves a wheel held by two hinges (at two places) and another wheel "
-     "held by none: `plx check` then reports the consequences elsewhere (A016 on the other hinge, A037 "
-     "for the loose wheel) and the simulation drags the body away. Motors, springs and ranges use a "
-     "mate's connectors on purpose; they are not mates and are not counted.",
-     example="front_left_hinge is Physics3D.Interactions.Hinge:\n"
-             "    connectors: [chassis.front_left_connector, front_right_wheel.connector]\n"
-             "front_right_hinge is Physics3D.Interactions.Hinge:\n"
-             "    connectors: [chassis.front_right_connector, front_right_wheel.connector]",
-     use_instead="front_left_hinge is Physics3D.Interactions.Hinge:\n"
-                 "    connectors: [chassis.front_left_connector, front_left_wheel.connector]\n"
-                 "front_right_hinge is Physics3D.Interactions.Hinge:\n"
-                 "    connectors: [chassis.front_right_connector, front_right_wheel.connector]",
-     fix="unsafe")
+# A043 connector-used-by-two-mates: plxtools/rules/assembly/shared_connector.py
 rule("A044", "collision-pair-without-effect", I,
      "A `DisableCollisionPair` whose body pairs are all either joined by a mate or apart at the start: "
      "it changes nothing at the start of the simulation.",

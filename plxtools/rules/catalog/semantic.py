@@ -124,12 +124,7 @@ rule("M004", "duplicate-definition", E,
      "A name is defined twice: two top-level definitions in one namespace (across all files of a "
      "bundle), or two attributes with the same name in one model.",
      "Only one of them can be used; which one is undefined.")
-rule("M010", "assigned-twice", E,
-     "One model body gives an attribute a value twice (`inertia.mass: 10`, later `inertia.mass: 15`, or the "
-     "same path in an assignment block); reported at the second, which silently replaces the first.",
-     "Only the last value counts and nothing says so: one of the two lines is a mistake.",
-     example="Chassis is Physics3D.Bodies.RigidBody:\n    inertia.mass: 1000\n    inertia.mass: 1500",
-     use_instead="Chassis is Physics3D.Bodies.RigidBody:\n    inertia.mass: 1500")
+# M010 assigned-twice: plxtools/rules/semantic/assigned_twice.py
 rule("M005", "inheritance-cycle", E, "A model or trait inherits from itself, directly or through others.",
      "The model would have no base to stop at; nothing about it can be resolved.",
      example="A is B\nB is A")

@@ -21,7 +21,7 @@ rule("S003", "tab-indentation", W,
      "follow from the wrong block): the line is read as part of the deeper block, and `plx fmt` refuses "
      "the file.",
      example="Wheel is Physics3D.Bodies.RigidBody:\n\tis_dynamic: true",
-     use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    is_dynamic: true", stage="syntax")
+     use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    is_dynamic: true", stage="syntax", graver=E)
 rule("S004", "unbalanced-bracket", E,
      "A `(`, `[` or `{` is never closed, or a closing bracket has no matching opener.",
      "Brackets let an expression continue over several lines, so a missing closer would swallow the "

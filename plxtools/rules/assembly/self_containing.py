@@ -1,6 +1,7 @@
-"""A model that contains itself, directly (`Wheel` with `spare is Wheel`) or through others
-(`A` holds a `B` that holds an `A`), found by lint from the file, at the attribute that closes the
-ring.
+"""A model contains itself, directly (`Wheel` with `spare is Wheel`) or through others (`A` holds a
+`B` that holds an `A`): `plx lint` reports it at the attribute that closes the ring, and `plx check`
+then builds the model without the ring (no follow-on findings). `plx check` also stops distinct
+models nested more than 500 levels deep (its nesting limit, not a ring) and says so.
 
 ## Why it matters
 
@@ -29,17 +30,14 @@ Truck is Physics3D.System:
 
 from __future__ import annotations
 
-from plxtools.diagnostics import Diagnostic, Severity
 from plxtools.model.symbols import MemberSym, ModelSym
 from plxtools.syntax import ast
 
-INSTANTIATION_TOO_DEEP = "A009"  # home: plx check's instantiation; lint reports the ring it can see
 
-
-def self_containing_diagnostics(program, unit) -> list[Diagnostic]:
+def check(facts, report) -> None:
+    program, unit = facts.program, facts.unit
     if unit.official:
-        return []
-    out: list[Diagnostic] = []
+        return
     reported: set[frozenset] = set()
     for stmt in unit.tree.statements:
         if not isinstance(stmt, ast.Declaration) or not stmt.body:
@@ -54,8 +52,7 @@ def self_containing_diagnostics(program, unit) -> list[Diagnostic]:
         if key in reported:
             continue
         reported.add(key)
-        out.append(_report(program, unit, model, ring))
-    return out
+        _report(report, program, unit, model, ring)
 
 
 def _top_model(program, unit, stmt) -> ModelSym | None:
@@ -93,7 +90,7 @@ def _ring_from(program, start: ModelSym) -> list[tuple[ModelSym, MemberSym]] | N
     return None
 
 
-def _report(program, unit, model: ModelSym, ring) -> Diagnostic:
+def _report(report, program, unit, model: ModelSym, ring) -> None:
     first_model, mem = ring[0]
     names = " -> ".join([m.name for m, _x in ring] + [model.name])
     at = mem.stmt.header if mem.owner.unit is unit else unit.tree.statements[0].header
@@ -102,8 +99,7 @@ def _report(program, unit, model: ModelSym, ring) -> Diagnostic:
             at, mem = x.stmt.header, x
             break
     ty = program.concrete(program.member_type(mem).model)
-    return Diagnostic(INSTANTIATION_TOO_DEEP, f"{model.name} contains itself ({names}): '{mem.name}' is a "
-                      f"{ty.name}, which holds another {'one' if len(ring) == 1 else model.name}, without end",
-                      at, Severity.ERROR, file=unit.path,
-                      help=f"a model cannot own an instance of itself: give '{mem.name}' another model, or "
-                           f"declare it in the system that holds {model.name}")
+    report(f"{model.name} contains itself ({names}): '{mem.name}' is a {ty.name}, which holds another "
+           f"{'one' if len(ring) == 1 else model.name}, without end", at,
+           help=f"a model cannot own an instance of itself: give '{mem.name}' another model, or declare it in "
+                f"the system that holds {model.name}")

@@ -1,4 +1,7 @@
-"""`inertia.mass: 0` written by hand on a dynamic body.
+"""`inertia.mass: 0` written on a dynamic body: 0 means 'from the geometries', so the body gets its
+geometries' volume times their density; the message says how much when the file decides it.
+
+## How it decides
 
 A mass of 0 is the bundles' way of saying "compute it from the geometries" (volume times the
 material's density, 1000 kg/m^3 unless a material says otherwise), so a hand-written 0 does not
@@ -39,18 +42,16 @@ from __future__ import annotations
 
 import math
 
-from plxtools.diagnostics import Diagnostic, Severity
 from plxtools.rules.literals import literal
 from plxtools.syntax import ast
 
-EXPLICIT_ZERO_MASS = "A047"
 MASS = "Physics3D.Bodies.Inertia.mass"
 DEFAULT_DENSITY = 1000.0  # Physics.Geometries.Material.density's default in the bundles
 
 
-def zero_mass_diagnostics(tree: ast.File, occurrences, path: str) -> list[Diagnostic]:
+def check(facts, report) -> None:
+    tree = facts.tree
     target = None
-    out: list[Diagnostic] = []
     consts = _const_densities(tree)
     stack = [s for s in tree.statements if isinstance(s, ast.Declaration) and s.body]
     while stack:
@@ -63,13 +64,11 @@ def zero_mass_diagnostics(tree: ast.File, occurrences, path: str) -> list[Diagno
             if literal(value) != 0.0:
                 continue
             target = target if target is not None else {(o.span.start.offset, o.span.end.offset): o.target
-                                                        for o in occurrences if o.kind in ("attribute", "definition")}
+                                                        for o in facts.occurrences if o.kind in ("attribute", "definition")}
             last = stmt.path.parts[-1]
             if getattr(target.get((last.span.start.offset, last.span.end.offset)), "qname", None) != MASS:
                 continue
-            out.append(_report(path, owner, body, value, consts))
-    out.sort(key=lambda d: d.span.start.offset)
-    return out
+            _report(report, owner, body, value, consts)
 
 
 def _static(body) -> bool:
@@ -144,7 +143,7 @@ def _density(geometry: ast.Declaration, consts: dict[str, float]) -> float | Non
     return DEFAULT_DENSITY
 
 
-def _report(path, owner, body, value, consts) -> Diagnostic:
+def _report(report, owner, body, value, consts) -> None:
     geoms = [s for s in body if isinstance(s, ast.Declaration) and s.keyword in ("is", "becomes") and s.body
              and s.path.parts[-1].name == "geometry"]
     what = "the mass of its geometries (their volume times their material's density, 1000 kg/m^3 by default)"
@@ -153,7 +152,6 @@ def _report(path, owner, body, value, consts) -> Diagnostic:
         if vol is not None and rho is not None:
             what = f"{vol[0] * rho:.4g} kg, the mass of its geometry ({vol[1]}, {rho:g} kg/m^3)"
     name = owner.path.text
-    return Diagnostic(EXPLICIT_ZERO_MASS, f"inertia.mass: 0 does not make {name} massless: a dynamic body's mass 0 "
-                      f"means 'from the geometries', so it gets {what}", value.span, Severity.WARNING, file=path,
-                      help="write the mass it should have in kg, or delete the line to say 'from the geometries' "
-                           "on purpose")
+    report(f"inertia.mass: 0 does not make {name} massless: a dynamic body's mass 0 means 'from the geometries', "
+           f"so it gets {what}", value.span,
+           help="write the mass it should have in kg, or delete the line to say 'from the geometries' on purpose")

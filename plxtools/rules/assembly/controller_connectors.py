@@ -1,11 +1,10 @@
-"""A controller (motor, range, spring: any `Physics.Interactions.Interaction1DOF`) given another
-mate's connectors, so that one mate gets two controllers of a family and a mate of the same kind
-next to it gets none (A046); and a controller or mate with no `connectors` at all (A013, found by
-lint, so in the editor too).
-
-Which controller was meant is decided by names, as a reader would: the one of the two whose name
-is closer to the idle mate's name than to the mate it names is blamed, and the help names the
-idle mate's connectors. Without a name to go by, the later one is.
+"""A controller (a motor, range or spring: any `Physics.Interactions.Interaction1DOF`) names the
+connectors of a mate that another controller of its kind already drives, while a mate of the same
+kind in the same block has none (A046, at the controller whose name is closer to the idle mate,
+with that mate's connectors as the fix). And a mate or a 1-DOF controller that does not have
+exactly two MateConnectors (A013): `plx lint` reports one declared with no `connectors` at all, at
+its declaration, with the connectors of the mate in its block whose name is closest; `plx check`
+reports the other counts.
 
 ## Why it matters
 
@@ -37,36 +36,35 @@ from __future__ import annotations
 import bisect
 import difflib
 
-from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.diagnostics import Severity
 from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast
 
-CONTROLLER_ON_OTHER_MATE = "A046"
-CONNECTOR_COUNT = "A013"  # its home is plx check's; lint reports the case a file decides: no connectors
+OTHER_MATE, COUNT = "controller-on-other-mate", "connector-count"
 CONTROLLER = ("Physics", "Interactions", "Interaction1DOF")
 MATE = ("Physics3D", "Interactions", "Mate")
 
 
-def controller_mate_diagnostics(program, unit, found=()) -> list[Diagnostic]:
-    """`found`: the file's diagnostics so far; a declaration with an error in its block (a misspelt
-    or renamed `connectors`) is not also said to have none."""
+def check(facts, report) -> None:
+    """A declaration with an error in its block (a misspelt or renamed `connectors`) is not also
+    said to have none."""
+    program, unit = facts.program, facts.unit
+    found = list(facts.tree.diagnostics) + list(facts.analysis.diagnostics)
     if unit.official:
-        return []
+        return
     controller = program.lookup_outside_visibility(list(CONTROLLER))
     mate = program.lookup_outside_visibility(list(MATE))
     if not isinstance(controller, ModelSym) or not isinstance(mate, ModelSym):
-        return []
+        return
     assigned = _assigned_connectors(unit.tree)
     errors = sorted(d.span.start.offset for d in found if d.severity is Severity.ERROR)
-    out: list[Diagnostic] = []
+    out = report
     stack = [s for s in unit.tree.statements if isinstance(s, ast.Declaration) and s.body]
     while stack:
         owner = stack.pop()
         body = owner.body or []
         _one_block(program, unit, controller, mate, body, assigned, out, errors)
         stack.extend(s for s in body if isinstance(s, ast.Declaration) and s.body)
-    out.sort(key=lambda d: d.span.start.offset)
-    return out
 
 
 def _assigned_connectors(tree: ast.File) -> set[str]:
@@ -129,7 +127,7 @@ def _one_block(program, unit, controller, mate, body, assigned, out, errors) -> 
         conn = _connectors(s)
         name = s.path.parts[0].name
         if conn is None and name not in assigned and not _has_error(s, errors) and not _sets_connectors(program, model):
-            out.append(_no_connectors(unit, s, name, is_ctrl, mates))
+            _no_connectors(out, s, name, is_ctrl, mates)
             continue
         if is_mate:
             mates[name] = (s, program.concrete(model), _text(unit, conn.value) if conn and conn.value else "")
@@ -143,7 +141,7 @@ def _has_error(s, errors: list[int]) -> bool:
     return i < len(errors) and errors[i] <= s.span.end.offset
 
 
-def _no_connectors(unit, s, name: str, is_ctrl: bool, mates) -> Diagnostic:
+def _no_connectors(report, s, name: str, is_ctrl: bool, mates) -> None:
     what = "controller" if is_ctrl else "mate"
     if is_ctrl and mates:
         near = max(mates, key=lambda m: difflib.SequenceMatcher(None, name, m).ratio())
@@ -152,8 +150,8 @@ def _no_connectors(unit, s, name: str, is_ctrl: bool, mates) -> Diagnostic:
         help_ = "give it the connectors of the mate it drives: connectors: some_hinge.connectors"
     else:
         help_ = "give it one connector on each of the two bodies it joins: connectors: [a.connector, b.connector]"
-    return Diagnostic(CONNECTOR_COUNT, f"{what} '{name}' has no connectors, so it {'drives' if is_ctrl else 'joins'} "
-                      "nothing", s.header, Severity.ERROR, file=unit.path, help=help_)
+    report(f"{what} '{name}' has no connectors, so it {'drives' if is_ctrl else 'joins'} nothing", s.header,
+           help=help_, rule=COUNT)
 
 
 def _mate_of(unit, conn, mates) -> str | None:
@@ -191,11 +189,9 @@ def _shared(unit, mates, ctrls, out) -> None:
                  if meant else f"give it the connectors of the mate it should drive (no {fam_name} drives "
                                f"{', '.join(idle)})")
         idle_text = f"'{meant}'" if meant else ", ".join(f"'{n}'" for n in idle)
-        d = Diagnostic(CONTROLLER_ON_OTHER_MATE, f"'{s.path.text}' drives '{m}', which '{other.path.text}' "
-                       f"(line {line}) already drives, while {idle_text} {'gets' if meant or len(idle) == 1 else 'get'} "
-                       f"no {fam_name}", conn.value.span, Severity.WARNING, file=unit.path, help=help_)
-        d.related.append((unit.path, other.header, f"'{other.path.text}' also drives '{m}'"))
-        out.append(d)
+        out(f"'{s.path.text}' drives '{m}', which '{other.path.text}' (line {line}) already drives, while "
+            f"{idle_text} {'gets' if meant or len(idle) == 1 else 'get'} no {fam_name}", conn.value.span, help=help_,
+            related=[(unit.path, other.header, f"'{other.path.text}' also drives '{m}'")], rule=OTHER_MATE)
 
 
 def _blame(uses, mate: str, idle: list[str]):

@@ -1,41 +1,71 @@
-"""A043: a connector that two mates use, found from the source alone (issue 32.3).
+"""Two mates in one model name the same connector: the second can only close by moving the body
+the first one places. Reported by `plx lint` at the mate that is most likely wrong: when another
+body of the same type has that connector unused and the mate's name is closer to that body, that
+mate, with the connector it probably meant; otherwise the later mate. And a mate whose two
+connectors belong to the same body (A015): `plx lint` reports it at the second connector when the
+file says so (`[chassis.a, chassis.b]`), with the unused connector of a sibling it most likely
+meant, and does not count it as holding either connector; `plx check` reports the cases only the
+assembled scene shows (both on the world or on one system).
 
-A mate connector is one frame on one body; a mate ties two of them together. When a second mate
-names a connector that another mate already uses, the body behind it is placed by the first mate,
-and the second can only close by moving that placed body: the assembly check then blames some
-other mate (A016, A037) and the simulation drags the body away. Which of the two mates is the
-mistake is decided by names, as a reader would: when another body of the same type has the same
-connector unused, and one mate's name is closer to that body's name than to the one it uses, that
-mate is blamed, with the connector it most likely meant. Otherwise the later mate is.
+## Why it matters
 
-The mates are the declarations whose type is a Physics3D.Interactions.Mate (Hinge, Prismatic,
-Lock, ...) with a `connectors: [a, b]` list in their block, compared within one model's block.
-Motors, springs and ranges reuse a mate's connectors on purpose and are not mates.
+A connector is one frame on one body, and a mate ties two frames together. Copying a hinge line
+and changing only one side leaves a wheel held by two hinges (at two places) and another wheel
+held by none: `plx check` then reports the consequences elsewhere (A016 on the other hinge, A037
+for the loose wheel) and the simulation drags the body away. Motors, springs and ranges use a
+mate's connectors on purpose; they are not mates and are not counted.
+
+## Example
+
+```openplx
+front_left_hinge is Physics3D.Interactions.Hinge:
+    connectors: [chassis.front_left_connector, front_right_wheel.connector]
+front_right_hinge is Physics3D.Interactions.Hinge:
+    connectors: [chassis.front_right_connector, front_right_wheel.connector]
+```
+
+## Use instead
+
+```openplx
+front_left_hinge is Physics3D.Interactions.Hinge:
+    connectors: [chassis.front_left_connector, front_left_wheel.connector]
+front_right_hinge is Physics3D.Interactions.Hinge:
+    connectors: [chassis.front_right_connector, front_right_wheel.connector]
+```
 """
+
+# How the blame is decided (issue 32.3). A mate connector is one frame on one body; a mate ties
+# two of them together. When a second mate names a connector another mate already uses, the body
+# behind it is placed by the first mate. Which of the two mates is the mistake is decided by names,
+# as a reader would: when another body of the same type has the same connector unused, and one
+# mate's name is closer to that body's name than to the one it uses, that mate is blamed, with the
+# connector it most likely meant. Otherwise the later mate is. The mates are the declarations whose
+# type is a Physics3D.Interactions.Mate with a `connectors: [a, b]` list in their block, compared
+# within one model's block. Whole file on every analysis: cheap, so the server never re-uses it.
 
 from __future__ import annotations
 
 import difflib
 
-from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity
+from plxtools.diagnostics import Edit, Fix
 from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast
 
 MATE = ("Physics3D", "Interactions", "Mate")
+SHARED, SAME_BODY = "connector-used-by-two-mates", "mate-same-body"
 
 
-def shared_connector_diagnostics(program, unit) -> list[Diagnostic]:
+def check(facts, report) -> None:
+    program, unit = facts.program, facts.unit
     mate = program.lookup_outside_visibility(list(MATE))
     if not isinstance(mate, ModelSym):
-        return []
-    out: list[Diagnostic] = []
+        return
     stack = [s for s in unit.tree.statements if isinstance(s, ast.Declaration) and s.body]
     while stack:
         owner = stack.pop()
         body = owner.body or []
-        _one_block(program, unit, mate, body, out)
+        _one_block(program, unit, mate, body, report)
         stack.extend(s for s in body if isinstance(s, ast.Declaration) and s.body)
-    return out
 
 
 def _text(unit, node) -> str:
@@ -70,9 +100,9 @@ def _mates_of_block(program, unit, mate: ModelSym, body: list):
     return mates, types
 
 
-def _one_block(program, unit, mate: ModelSym, body: list, out: list[Diagnostic]) -> None:
+def _one_block(program, unit, mate: ModelSym, body: list, report) -> None:
     mates, types = _mates_of_block(program, unit, mate, body)
-    mates = [m for m in mates if not _same_body(unit, m, types, mates, out)]
+    mates = [m for m in mates if not _same_body(unit, m, types, mates, report)]
     used: dict[str, list[tuple[ast.Declaration, ast.Expr]]] = {}
     for s, items in mates:
         for e in items:
@@ -92,25 +122,19 @@ def _one_block(program, unit, mate: ModelSym, body: list, out: list[Diagnostic])
                                    "should hold")
             fix = (Fix(f"use '{meant}.{member}'", (Edit(e.span.start.offset, e.span.end.offset,
                                                           f"{meant}.{member}"),), safe=False) if meant else None)
-            d = Diagnostic("A043", f"'{conn}' is already used by mate '{other.path.text}' (line {line}): this mate "
-                           f"can only close by moving '{holder}', which that mate places",
-                           e.span, Severity.ERROR, file=unit.path, help=help_, fix=fix)
-            d.related.append((unit.path, other.header, f"'{conn}' is also used by '{other.path.text}'"))
-            out.append(d)
+            report(f"'{conn}' is already used by mate '{other.path.text}' (line {line}): this mate "
+                   f"can only close by moving '{holder}', which that mate places", e.span, help=help_, fix=fix,
+                   rule=SHARED,
+                   related=[(unit.path, other.header, f"'{conn}' is also used by '{other.path.text}'")])
 
 
-MATE_SAME_BODY = "A015"  # home: plx check's assembly checks; lint reports it when the names decide it
-
-
-def _same_body(unit, mate, types: dict[str, str], mates, out: list[Diagnostic]) -> bool:
+def _same_body(unit, mate, types: dict[str, str], mates, report) -> bool:
     """A015 for a mate whose two connectors are on one body (`[chassis.a, chassis.b]`), with the
     connector it most likely meant: the same connector of a sibling that no mate holds yet."""
     s, items = mate
     texts = [_text(unit, e) for e in items]
-    if len(texts) != 2 or not all("." in t for t in texts):
-        return False
-    if texts[0] == texts[1]:
-        return False  # one connector twice: A014's (plx check)
+    if len(texts) != 2 or not all("." in t for t in texts) or texts[0] == texts[1]:
+        return False  # (one connector twice: A014's, plx check)
     holders = {t.rsplit(".", 1)[0] for t in texts}
     if len(holders) != 1:
         return False
@@ -131,8 +155,8 @@ def _same_body(unit, mate, types: dict[str, str], mates, out: list[Diagnostic]) 
     help_ = (f"did you mean '{meant}' for the second connector? (one connector on each body the mate joins)"
              if meant else "one connector must belong to each of the two bodies the mate joins")
     fix = (Fix(f"use '{meant}'", (Edit(e.span.start.offset, e.span.end.offset, meant),), safe=False) if meant else None)
-    out.append(Diagnostic(MATE_SAME_BODY, f"mate '{s.path.text}': both connectors belong to '{holder}', so it joins "
-                          "nothing", e.span, Severity.ERROR, file=unit.path, help=help_, fix=fix))
+    report(f"mate '{s.path.text}': both connectors belong to '{holder}', so it joins nothing", e.span, help=help_,
+           fix=fix, rule=SAME_BODY)
     return True
 
 

@@ -1,24 +1,15 @@
-"""An angle written in degrees where OpenPLX means radians: `Math.Quat.angle_axis(90, axis)`,
-`initial_angle: 45`, a rotational range ending at `180`.
-
-Which values are angles is read from the bundle sources, not from a list of call sites: a `Real`
-parameter of a function is an angle when the parameter's name says so (`angle`), when the
-function's name does (`from_euler_angles_xyz(alpha, beta, gamma)`, `from_angle(v, ...)`) or when
-its type does (`AngleValue.create(value)`); a `Real` attribute is an angle when its name says so
-(`initial_angle`, `knuckle_angle`), when its documentation speaks of radians, or when it is the
-`start` or `end` of a range whose type is rotational (`RotationalRange`).
-
-The plausibility model (see docs/plausibility.md): an angle whose size is more than one full turn
-(2 pi = 6.283 rad) is suspicious. Poses, initial angles and the limits of a joint lie within one
-turn; 90, 45, 180 and 360 are the sizes people write in degrees, and as radians they are 14, 7, 29
-and 57 turns. Only numbers the file writes are judged (a computed value is the author's own
-arithmetic); a value between 1 and 6.28 is a plausible angle in either unit, so it is left alone.
+"""An angle is more than one full turn (2 pi): a number written for any angle-taking function
+argument or attribute of the bundles (`Math.Quat.angle_axis(90, ...)`, `from_euler_angles(...)`,
+`initial_angle`, a rotational range's ends), reported by `plx lint` at the number; and, by
+`plx check`, a computed initial angle, rotational range end or rotational motor speed. Which values
+are angles is read from the bundles (names and documentation); the plausibility model is in
+docs/plausibility.md.
 
 ## Why it matters
 
-A degree value read as radians gives a pose that is wrong by an odd amount (90 rad is 116.6
-degrees past 14 whole turns), which looks like a different bug: a truck that starts skewed, a
-joint that starts beyond its limit.
+OpenPLX angles are radians. A value such as 90 is likely meant in degrees: as radians it is 14
+turns and 116.6 degrees, a pose wrong by an odd amount that looks like another bug (a truck that
+starts skewed, a joint that starts beyond its limit). `Math.Functions.deg_to_rad(90)` converts it.
 
 ## Example
 
@@ -37,17 +28,26 @@ Scene is Physics3D.System:
 ```
 """
 
+# Which values are angles (read from the bundle sources, not a list of call sites): a `Real`
+# parameter of a function is an angle when the parameter's name says so (`angle`), when the
+# function's name does (`from_euler_angles_xyz(alpha, beta, gamma)`, `from_angle(v, ...)`) or when
+# its type's does (`AngleValue.create(value)`); a `Real` attribute is an angle when its name says so
+# (`initial_angle`, `knuckle_angle`), when its documentation speaks of radians, or when it is the
+# `start` or `end` of a range whose type is rotational (`RotationalRange`). Plausibility: more than
+# one full turn is suspicious (poses, initial angles and joint limits lie within one turn; 90, 45,
+# 180, 360 are the sizes people write in degrees). Only numbers the file writes are judged; a value
+# between 1 and 6.28 is a plausible angle in either unit and is left alone.
+
 from __future__ import annotations
 
 import math
 import re
 
-from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity
+from plxtools.diagnostics import Edit, Fix
 from plxtools.model.symbols import MemberSym, MethodSym, ModelSym
 from plxtools.rules.literals import literal
 from plxtools.syntax import ast
 
-ANGLE_PROBABLY_DEGREES = "A022"
 FULL_TURN = 2 * math.pi
 _ANGLE_WORDS = frozenset({"angle", "angles", "euler", "yaw", "pitch", "roll"})
 _RANGE_ENDS = frozenset({"start", "end"})
@@ -85,29 +85,27 @@ def _targets(occurrences) -> dict:
             if o.kind in ("attribute", "definition", "name")}
 
 
-def angle_diagnostics(program, tree: ast.File, occurrences, path: str) -> list[Diagnostic]:
+def check(facts, report) -> None:
+    program, tree = facts.program, facts.tree
     target = None
-    out: list[Diagnostic] = []
     for node in _walk(tree):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Member):
             big = [(i, a) for i, a in enumerate(node.args) if _too_big(a)]
             if not big:
                 continue
-            target = target if target is not None else _targets(occurrences)
+            target = target if target is not None else _targets(facts.occurrences)
             meth = target.get((node.func.name.span.start.offset, node.func.name.span.end.offset))
             if isinstance(meth, MethodSym):
                 for i, a in big:
                     if angle_parameter(meth, i, program):
                         name = meth.stmt.params[i].name.name
-                        out.append(_report(path, a, f"argument '{name}' of {meth.owner.name}.{meth.name}"))
+                        _report(report, a, f"argument '{name}' of {meth.owner.name}.{meth.name}")
         elif isinstance(node, (ast.Assignment, ast.Declaration)) and node.value is not None and _too_big(node.value):
-            target = target if target is not None else _targets(occurrences)
+            target = target if target is not None else _targets(facts.occurrences)
             last = node.path.parts[-1]
             mem = target.get((last.span.start.offset, last.span.end.offset))
             if isinstance(mem, MemberSym) and angle_attribute(mem, program):
-                out.append(_report(path, node.value, f"'{node.path.text}'"))
-    out.sort(key=lambda d: d.span.start.offset)
-    return out
+                _report(report, node.value, f"'{node.path.text}'")
 
 
 def _too_big(expr) -> bool:
@@ -115,16 +113,14 @@ def _too_big(expr) -> bool:
     return isinstance(v, float) and abs(v) > FULL_TURN
 
 
-def _report(path: str, expr, what: str) -> Diagnostic:
+def _report(report, expr, what: str) -> None:
     v = literal(expr)
     turns = abs(v) / FULL_TURN
     rad = math.radians(v)
     fix = Fix(f"read {v:g} as degrees", (Edit(expr.span.start.offset, expr.span.end.offset,
                                                 f"Math.Functions.deg_to_rad({v:g})"),), safe=False)
-    return Diagnostic(ANGLE_PROBABLY_DEGREES, f"{what} is {v:g} rad ({turns:.1f} turns): angles are in radians, "
-                      f"so {v:g} looks like degrees", expr.span, Severity.WARNING, file=path,
-                      help=f"if it is {v:g} degrees, write Math.Functions.deg_to_rad({v:g}) (= {rad:.4g} rad)",
-                      fix=fix)
+    report(f"{what} is {v:g} rad ({turns:.1f} turns): angles are in radians, so {v:g} looks like degrees",
+           expr.span, help=f"if it is {v:g} degrees, write Math.Functions.deg_to_rad({v:g}) (= {rad:.4g} rad)", fix=fix)
 
 
 def _walk(tree: ast.File):

@@ -1,4 +1,5 @@
-"""An attribute given a value twice in one model body (`inertia.mass: 10`, later `inertia.mass: 15`).
+"""One model body gives an attribute a value twice (`inertia.mass: 10`, later `inertia.mass: 15`, or
+the same path in an assignment block); reported at the second, which silently replaces the first.
 
 ## Why it matters
 
@@ -25,14 +26,11 @@ Chassis is Physics3D.Bodies.RigidBody:
 
 from __future__ import annotations
 
-from plxtools.diagnostics import Diagnostic, Severity
 from plxtools.syntax import ast
 
-ASSIGNED_TWICE = "M010"
 
-
-def assigned_twice_diagnostics(tree: ast.File, path: str) -> list[Diagnostic]:
-    out: list[Diagnostic] = []
+def check(facts, report) -> None:
+    tree, path = facts.tree, facts.path
     stack = [s.body for s in tree.statements if ast.body_of(s)]
     while stack:
         body = stack.pop()
@@ -42,11 +40,9 @@ def assigned_twice_diagnostics(tree: ast.File, path: str) -> list[Diagnostic]:
             if first is None:
                 seen[key] = stmt
                 continue
-            out.append(_report(tree, path, ".".join(key), first, stmt, value))
+            _report(report, tree, path, ".".join(key), first, stmt, value)
         # every block below a declaration is its own model body
         stack.extend(s.body for s in _declarations(body) if s.body)
-    out.sort(key=lambda d: d.span.start.offset)
-    return out
 
 
 def _declarations(body):
@@ -78,11 +74,9 @@ def _text(tree: ast.File, node) -> str:
     return text if len(text) <= 40 else text[:37] + "..."
 
 
-def _report(tree, path, name, first, second, value) -> Diagnostic:
+def _report(report, tree, path, name, first, second, value) -> None:
     line = first.header.start.line + 1
     old = _text(tree, first.value) if getattr(first, "value", None) is not None else "?"
-    d = Diagnostic(ASSIGNED_TWICE, f"'{name}' is given a value twice in this block: {_text(tree, value)} here "
-                   f"silently replaces {old} from line {line}", second.header, Severity.ERROR, file=path,
-                   help=f"keep one of the two: delete this line or line {line}")
-    d.related.append((path, first.header, f"'{name}' first given here"))
-    return d
+    report(f"'{name}' is given a value twice in this block: {_text(tree, value)} here silently replaces {old} "
+           f"from line {line}", second.header, help=f"keep one of the two: delete this line or line {line}",
+           related=[(path, first.header, f"'{name}' first given here")])

@@ -1,0 +1,1 @@
+"""Rule modules about how a model will assemble, judged from its source (the `A` codes lint reports)."""

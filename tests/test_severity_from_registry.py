@@ -1,0 +1,84 @@
+"""A code's severity is the registry's, in `plx lint`, `plx check` and the language server (issue 38).
+
+Each test changes one code's severity in the registry (a rule raised by the model, one raised by
+check's evaluation, one in the module form) and reads what the three surfaces print."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+
+from plxtools.diagnostics import Severity
+from plxtools.ide import AnalysisHost
+from plxtools.rules import registry
+from tests.conftest import plx_here
+
+REAL_FOR_INT = "A is Physics3D.Bodies.RigidBody:\n    count is Int: 2.5\n"
+TWO_MATES = """Car is Physics3D.System:
+    chassis is Physics3D.Bodies.RigidBody:
+        inertia.mass: 1
+        left is Physics3D.Interactions.MateConnector
+        right is Physics3D.Interactions.MateConnector
+    left_wheel is Physics3D.Bodies.RigidBody:
+        inertia.mass: 1
+        connector is Physics3D.Interactions.MateConnector
+    right_wheel is Physics3D.Bodies.RigidBody:
+        inertia.mass: 1
+        connector is Physics3D.Interactions.MateConnector
+    left_hinge is Physics3D.Interactions.Hinge:
+        connectors: [chassis.left, right_wheel.connector]
+    right_hinge is Physics3D.Interactions.Hinge:
+        connectors: [chassis.right, right_wheel.connector]
+"""
+NO_VALUE = """const Sizes:
+    radius is Real
+
+Scene is Physics3D.System:
+    ball is Physics3D.Bodies.RigidBody:
+        inertia.mass: 1
+        geometry is Physics3D.Geometries.Sphere:
+            radius: Sizes.radius
+"""
+
+
+def set_severity(monkeypatch, code: str, severity: Severity) -> None:
+    rule = registry.get(code)
+    assert rule is not None and rule.severity is not severity
+    monkeypatch.setitem(registry.RULES, code, replace(rule, severity=severity))
+
+
+def reported(out: str, code: str) -> set[str]:
+    return {line.split()[1] for line in out.splitlines() if f" {code} " in line and line.split()[1:2]}
+
+
+def server_severities(path, text: str, code: str) -> set[Severity]:
+    host = AnalysisHost()
+    host.open_document(str(path), text, 1)
+    try:
+        return {d.severity for d in host.state(str(path)).diagnostics if d.code == code}
+    finally:
+        host.close_document(str(path))
+
+
+@pytest.mark.parametrize("code, text", [("T002", REAL_FOR_INT), ("A043", TWO_MATES)], ids=["model", "module"])
+def test_lint_and_server_print_the_registry_severity(monkeypatch, tmp_path, code, text):
+    path = tmp_path / "m.openplx"
+    path.write_text(text, encoding="utf-8")
+    before = registry.get(code).severity
+    assert reported(plx_here("lint", "--no-cache", str(path)).stdout, code) == {before.value}
+    assert server_severities(path, text, code) == {before}
+    after = Severity.INFO if before is not Severity.INFO else Severity.ERROR
+    set_severity(monkeypatch, code, after)
+    assert reported(plx_here("lint", "--no-cache", str(path)).stdout, code) == {after.value}
+    assert server_severities(path, text, code) == {after}
+
+
+def test_check_prints_the_registry_severity(monkeypatch, tmp_path):
+    path = tmp_path / "m.openplx"
+    path.write_text(NO_VALUE, encoding="utf-8")
+    assert reported(plx_here("check", str(path)).stdout, "A004") == {"error"}
+    set_severity(monkeypatch, "A004", Severity.WARNING)
+    r = plx_here("check", str(path))
+    assert reported(r.stdout, "A004") == {"warning"}
+    assert "Found 1 error" not in r.stdout
