@@ -26,6 +26,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
+from plxtools.model import suggest
 from plxtools.check.mapped_types import CONTROLLERS, MATES
 
 INPUT = "Physics.Signals.Input"
@@ -650,15 +651,16 @@ def rpy_of_mat(xmat: Any) -> tuple[float, float, float]:
 
 
 def did_you_mean(name: str, candidates: list[str]) -> str | None:
-    """The candidate closest to ``name`` (same last part first), or None."""
+    """The candidate to offer for ``name`` (model/suggest.py's ranking: meaning, then spelling; a
+    candidate with the same last part when nothing else is close), or None."""
     import difflib
 
     if not candidates:
         return None
     last = name.rsplit(".", 1)[-1]
-    close = difflib.get_close_matches(name, candidates, n=1, cutoff=0.6)
+    close = suggest.best(name, candidates, cutoff=0.6)
     if close:
-        return close[0]
+        return close
     same_tail = [c for c in candidates if c.rsplit(".", 1)[-1] == last]
     if same_tail:
         return difflib.get_close_matches(name, same_tail, n=1, cutoff=0.0)[0]

@@ -12,6 +12,7 @@ from plxtools.cache import reads
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity, Span
 from plxtools.model import resolve
 from plxtools.model.program import Program, compose_type
+from plxtools.model import suggest
 from plxtools.model.symbols import (
     BOOL,
     INT,
@@ -85,11 +86,8 @@ class Checker:
         self.occurrences.append(Occurrence(span, target, kind))
 
     def _closest(self, name: str, options) -> str | None:
-        import difflib  # (only a file with an unknown name needs it)
-
         self._suggests = True  # the answer depends on every name in scope (model/reuse.py)
-        close = difflib.get_close_matches(name, list(options), n=1, cutoff=0.7)
-        return close[0] if close else None
+        return suggest.best(name, options)
 
     def _suggest(self, name: str, options) -> str | None:
         close = self._closest(name, options)
@@ -287,6 +285,10 @@ class Checker:
         self._suggests = True
         if len(parts) >= 2:
             ns = self.p.lookup(parts[:-1], self.unit)
+            if not isinstance(ns, Namespace):
+                fixed = self._corrected_path(parts)
+                if fixed is not None:
+                    return None, fixed
             if isinstance(ns, Namespace):
                 close = self._closest(parts[-1], list(ns.symbols) + list(ns.children)) if parts[-1] else None
                 if close:
@@ -295,6 +297,25 @@ class Checker:
                 if names:
                     return f"{ns.dotted} has: " + ", ".join(names) + (" ..." if len(ns.symbols) > 8 else ""), None
         return None, None
+
+    def _corrected_path(self, parts: list[str]) -> str | None:
+        """`Physics3d.Bodies.RigidBody` -> `Physics3D.Bodies.RigidBody`: each part that does not
+        resolve replaced by the best suggestion among what the part before it holds."""
+        ns = self.p.root
+        out = []
+        for i, part in enumerate(parts):
+            last = i == len(parts) - 1
+            names = list(ns.children) + (list(ns.symbols) if last else [])
+            word = part if part in names else self._closest(part, names)
+            if word is None:
+                return None
+            out.append(word)
+            if not last:
+                ns = ns.children.get(word)
+                if ns is None:
+                    return None
+        fixed = ".".join(out)
+        return fixed if fixed != ".".join(parts) and isinstance(self.p.lookup(out, self.unit), ModelSym) else None
 
     def _type_expr(self, texpr: ast.TypeExpr | None, want: str | None = None) -> Ty:
         if texpr is None:
