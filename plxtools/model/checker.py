@@ -530,11 +530,32 @@ class Checker:
         verdict = self.p.assignable(got, expected)
         if verdict == "no":
             help_, fix = self._literal_help(expr, expected)
+            if help_ is None and isinstance(expr, ast.String):
+                help_, fix = self._const_named(expr, expected)
             self.report(TYPE_MISMATCH, f"expected {expected.display()}, found {got.display()}", expr.span,
                         help=help_ or self._mismatch_help(got, expected), fix=fix)
         elif verdict == "warn":
             self.report("T002", "a Real is given where an Int is expected", expr.span, W,
                         help="write a whole number, or use Math.Functions.round/floor/ceil")
+
+    def _const_named(self, expr: ast.String, expected: Ty) -> tuple[str | None, Fix | None]:
+        """A material's `unique_name` string where the material is expected: the const model whose
+        attribute holds that string, by name (`material: "Tutorial_WheelMaterial"` -> WheelMaterial)."""
+        want = expected.model if not expected.array and not expected.alts else None
+        if want is None:
+            return None, None
+        self._suggests = True  # the answer depends on every const model in the program (model/reuse.py)
+        for m in self.p.all_models():
+            if not m.const or m.is_trait or not self.p.is_subtype(m, want):
+                continue
+            for a in m.assignments:
+                if isinstance(a.value, ast.String) and a.value.value == expr.value:
+                    name = m.name if m.unit is self.unit else m.qname
+                    attr = ".".join(p.name for p in a.path.parts)
+                    return (f"did you mean {name}? (\"{expr.value}\" is its {attr}; give the const itself, without "
+                            "quotes)", Fix(f"replace with '{name}'", (Edit(expr.span.start.offset, expr.span.end.offset,
+                                                                             name),), safe=False))
+        return None, None
 
     def _literal_help(self, expr: ast.Expr, expected: Ty) -> tuple[str | None, Fix | None]:
         """How a value of a positional model (a vector, a quaternion) is written, when an array
@@ -580,8 +601,8 @@ class Checker:
         sym = v.sym if isinstance(v, TypeObj) else None
         want = expected.model if not expected.array and not expected.alts else None
         if not isinstance(sym, ModelSym) or sym.is_trait or sym.const or want is None or sym is want \
-                or not self.p.is_subtype(sym, want):
-            return False
+                or sym.unit is self.unit or not self.p.is_subtype(sym, want):
+            return False  # (a model of this file given as a value most often lacks `const`: _not_a_value)
         self.report(TYPE_MISMATCH, f"'{sym.qname}' is a model, not a value; it is a kind of "
                     f"{self.p.concrete(want).qname}, the attribute's type", span,
                     help=f"use becomes to make the attribute a {sym.name}: write '<attribute> becomes {sym.qname}' "

@@ -83,6 +83,7 @@ MODULE_RULES = (
     ("A043", "connector-used-by-two-mates", E, "assembly.shared_connector", dict(fix="unsafe")),
     ("A046", "controller-on-other-mate", W, "assembly.controller_connectors", dict()),
     ("A047", "explicit-zero-mass", W, "assembly.explicit_zero_mass", dict()),
+    ("A048", "length-in-millimetres", W, "assembly.length_in_millimetres", dict()),
     ("M010", "assigned-twice", E, "semantic.assigned_twice", dict()),
 )
 
