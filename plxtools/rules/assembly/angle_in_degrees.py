@@ -67,16 +67,17 @@ def angle_parameter(method: MethodSym, index: int, program) -> bool:
                 or words(method.owner.name) & _ANGLE_WORDS)
 
 
-def angle_attribute(member: MemberSym, program) -> bool:
-    """Whether `member` holds an angle in radians (its name, its documentation or its range says so)."""
+def angle_attribute(member: MemberSym, program, block: ModelSym | None = None) -> bool:
+    """Whether `member` holds an angle in radians (its name, its documentation or its range says
+    so); `block`: the model of the block the value is written in (a RotationalRange's `start`)."""
     ty = program.member_type(member)
     if ty.primitive != "Real" or ty.array:
         return False
     if words(member.name) & _ANGLE_WORDS or "radian" in (member.doc or "").lower():
         return True
-    if member.name in _RANGE_ENDS:
+    if member.name in _RANGE_ENDS and block is not None:
         return any("rotational" in words(m.name) and "range" in words(m.name)
-                   for m in program.linearize(member.owner) if isinstance(m, ModelSym))
+                   for m in program.linearize(block) if isinstance(m, ModelSym))
     return False
 
 
@@ -88,7 +89,7 @@ def _targets(occurrences) -> dict:
 def check(facts, report) -> None:
     program, tree = facts.program, facts.tree
     target = None
-    for node in _walk(tree):
+    for node, block in _walk(tree, program, facts.unit):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Member):
             big = [(i, a) for i, a in enumerate(node.args) if _too_big(a)]
             if not big:
@@ -104,7 +105,7 @@ def check(facts, report) -> None:
             target = target if target is not None else _targets(facts.occurrences)
             last = node.path.parts[-1]
             mem = target.get((last.span.start.offset, last.span.end.offset))
-            if isinstance(mem, MemberSym) and angle_attribute(mem, program):
+            if isinstance(mem, MemberSym) and angle_attribute(mem, program, block):
                 _report(report, node.value, f"'{node.path.text}'")
 
 
@@ -123,30 +124,38 @@ def _report(report, expr, what: str) -> None:
            expr.span, help=f"if it is {v:g} degrees, write Math.Functions.deg_to_rad({v:g}) (= {rad:.4g} rad)", fix=fix)
 
 
-def _walk(tree: ast.File):
-    """Every statement and every expression node of the file, without recursion."""
-    stack: list = list(tree.statements)
+def _walk(tree: ast.File, program, unit):
+    """(node, the model of the block its statement is in) for every statement and expression
+    node of the file, without recursion."""
+    stack: list = [(s, None) for s in tree.statements]
     while stack:
-        node = stack.pop()
-        yield node
+        node, block = stack.pop()
+        yield node, block
         if isinstance(node, ast.Stmt):
-            stack.extend(ast.body_of(node) or ())
-            for attr in ("value",):
-                v = getattr(node, attr, None)
-                if v is not None:
-                    stack.append(v)
-        elif isinstance(node, ast.Call):
-            stack.append(node.func)
-            stack.extend(node.args)
-        elif isinstance(node, ast.Member):
-            stack.append(node.obj)
-        elif isinstance(node, (ast.Brace, ast.Array)):
-            stack.extend(node.items)
-        elif isinstance(node, ast.Binary):
-            stack.extend((node.left, node.right))
-        elif isinstance(node, ast.Unary):
-            stack.append(node.operand)
-        elif isinstance(node, ast.Paren):
-            stack.append(node.inner)
-        elif isinstance(node, ast.Index):
-            stack.extend((node.obj, node.index))
+            inner = block
+            if isinstance(node, ast.Declaration) and node.body and node.type is not None:
+                inner = program.resolve_type_expr(node.type, unit).model
+            stack.extend((s, inner) for s in ast.body_of(node) or ())
+            v = getattr(node, "value", None)
+            if v is not None:
+                stack.append((v, block))
+            continue
+        stack.extend((child, block) for child in _children(node))
+
+
+def _children(node) -> tuple:
+    if isinstance(node, ast.Call):
+        return (node.func, *node.args)
+    if isinstance(node, ast.Member):
+        return (node.obj,)
+    if isinstance(node, (ast.Brace, ast.Array)):
+        return tuple(node.items)
+    if isinstance(node, ast.Binary):
+        return (node.left, node.right)
+    if isinstance(node, ast.Unary):
+        return (node.operand,)
+    if isinstance(node, ast.Paren):
+        return (node.inner,)
+    if isinstance(node, ast.Index):
+        return (node.obj, node.index)
+    return ()
