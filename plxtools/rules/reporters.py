@@ -50,13 +50,14 @@ def shorten(text: str) -> str:
 
 
 def fit(first: str, text: str, indent: str = "    ") -> str:
-    """`first` + `text` in lines of at most WIDTH characters: paths shortened, then the rest wrapped
-    at spaces onto indented continuation lines (nothing is cut)."""
+    """`first` + `text`, with a message longer than WIDTH made readable: long object paths
+    shortened, then wrapped at spaces onto indented continuation lines of at most WIDTH characters
+    (nothing is cut). The width is the message's: a long file path before it is the user's own."""
+    if len(text) <= WIDTH:
+        return first + text
     line = first + shorten(text)
-    if len(line) <= WIDTH:
-        return line
-    return "\n".join(textwrap.wrap(line, WIDTH, subsequent_indent=indent, break_long_words=False,
-                                    break_on_hyphens=False))
+    return "\n".join(textwrap.wrap(line, max(WIDTH, len(first) + 80), subsequent_indent=indent,
+                                    break_long_words=False, break_on_hyphens=False))
 
 
 def render_text(diags: list[Diagnostic], stream: TextIO, *, show_fix_hint: bool = True,

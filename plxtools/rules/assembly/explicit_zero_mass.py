@@ -72,8 +72,9 @@ def check(facts, report) -> None:
 
 
 def _static(body) -> bool:
+    """(Anything but a written `is_dynamic: true` counts as static: a wrong value has its own error.)"""
     return any(isinstance(s, ast.Assignment) and [p.name for p in s.path.parts] == ["is_dynamic"]
-               and isinstance(s.value, ast.Bool) and not s.value.value for s in body)
+               and not (isinstance(s.value, ast.Bool) and s.value.value) for s in body)
 
 
 def _mass_values(body):
