@@ -17,42 +17,61 @@ from plxtools.rules.registry import all_rules
 
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ROOT / "plxtools"
-CATALOG = PACKAGE / "rules" / "catalog"  # the rules' documentation: names every code once more
+CATALOG = PACKAGE / "rules" / "catalog"  # the documentation of the rules not in the module form
 LITERAL = re.compile(r"""["']([A-Z]\d{3})["']""")
 
-# ---------------------------------------------------------------- one home per code
-# A code is written as a string in exactly one module: the one that raises it. Other modules that
-# need to recognise it import that module's name for it, or ask the registry (`Rule.stage`).
-NOT_ONE_HOME_YET = set("""
+# ---------------------------------------------------------------- one place for every code
+# A code is written as a string only in plxtools/rules/registry.py (issue 38). Layers above `rules`
+# name a code by its registry constant (`registry.MISSING_VALUE`); a rule module never names its
+# code (the engine stamps it). The layers below `rules` cannot import the registry: their findings
+# are still made with their codes until they are facts (the next step of issue 38), so they are the
+# one exception, by layer, and each of their codes must be a registered one with its constant.
+REGISTRY = PACKAGE / "rules" / "registry.py"
+BELOW_RULES = (PACKAGE / "syntax", PACKAGE / "model")
 
-""".split())
+
+def code_constants() -> dict[str, str]:
+    """code -> its constant in the registry, generated from the registry module itself."""
+    from plxtools.rules import registry
+
+    return {getattr(registry, n): n for n in dir(registry)
+            if n.isupper() and isinstance(getattr(registry, n), str) and LITERAL.fullmatch(f'"{getattr(registry, n)}"')}
 
 
-def modules_naming_codes() -> dict[str, set[str]]:
-    codes = {r.code for r in all_rules()}
-    where: dict[str, set[str]] = defaultdict(set)
-    for path in PACKAGE.rglob("*.py"):
-        if CATALOG in path.parents:
+def written_codes(path: Path) -> list[tuple[int, str]]:
+    text = path.read_text(encoding="utf-8")
+    return [(text.count("\n", 0, m.start()) + 1, m.group(1)) for m in LITERAL.finditer(text)]
+
+
+def test_a_code_is_written_only_in_the_registry():
+    constants = code_constants()
+    without = sorted(r.code for r in all_rules() if r.module is None and r.code not in constants)
+    assert not without, f"codes of the older form without their constant in the registry: {without}"
+    offenders = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if path == REGISTRY or any(top in path.parents for top in BELOW_RULES):
             continue
-        for code in LITERAL.findall(path.read_text(encoding="utf-8")):
-            if code in codes:
-                where[code].add(path.relative_to(ROOT).as_posix())
-    return where
-
-
-def test_each_code_is_written_in_one_module():
-    where = modules_naming_codes()
-    spread = {code: sorted(mods) for code, mods in where.items() if len(mods) > 1}
-    new = {code: mods for code, mods in spread.items() if code not in NOT_ONE_HOME_YET}
-    assert not new, f"codes written as a string in more than one module: {new}"
-    fixed = sorted(NOT_ONE_HOME_YET - set(spread))
-    assert not fixed, f"these codes have one home now; take them off NOT_ONE_HOME_YET: {fixed}"
+        for line, code in written_codes(path):
+            hint = f"registry.{constants[code]}" if code in constants else "register it in rules/registry.py"
+            offenders.append(f"{path.relative_to(ROOT).as_posix()}:{line}: '{code}' -> use {hint}")
+    assert not offenders, ("rule codes written outside plxtools/rules/registry.py (name each through the "
+                           "registry):\n  " + "\n  ".join(offenders))
 
 
 def test_every_registered_code_is_raised_somewhere():
-    where = modules_naming_codes()
-    missing = sorted(r.code for r in all_rules() if r.code not in where)
-    assert not missing, f"registered codes no module raises: {missing}"
+    """A code's constant is used outside the registry and the docs catalogue, or the code is made by
+    a rule module, or (below rules) written where its finding is made."""
+    constants = code_constants()
+    used: set[str] = set()
+    for path in PACKAGE.rglob("*.py"):
+        if path == REGISTRY or CATALOG in path.parents:
+            continue
+        text = path.read_text(encoding="utf-8")
+        used.update(n for n in re.findall(r"\b([A-Z][A-Z0-9_]+)\b", text) if n in constants.values())
+        if any(top in path.parents for top in BELOW_RULES):
+            used.update(constants[c] for _line, c in written_codes(path) if c in constants)
+    missing = sorted(r.code for r in all_rules() if r.module is None and constants.get(r.code) not in used)
+    assert not missing, f"registered codes that nothing raises (no use of their registry constant): {missing}"
 
 
 # ---------------------------------------------------------------- complexity

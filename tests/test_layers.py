@@ -37,3 +37,18 @@ def test_the_documented_layers_are_the_contracted_ones():
     block = doc[start:doc.index("<!-- /layers -->")]
     listed = [ln.strip("`- ").split("`")[0] for ln in block.splitlines() if ln.startswith("- `")]
     assert listed == layers, "docs/architecture.md's layer list differs from [tool.importlinter] in pyproject.toml"
+
+
+def test_no_circle_inside_check_and_no_model_constant_in_the_server():
+    """dev/import_graph.py over every import, top-level or inside a function (issue 38): the
+    modules of plxtools.check import each other one way only, and the server names a rule through
+    the registry, not by a constant of the model or check layers."""
+    r = subprocess.run([sys.executable, str(REPO / "dev" / "import_graph.py"), "--inside", "check"],
+                       capture_output=True, text=True, check=True)
+    assert "circles inside plxtools.check: 0" in r.stdout, r.stdout
+    assert "circle:" not in r.stdout, r.stdout
+    assert "lsp reads a constant" not in r.stdout, r.stdout
+    # the script does see circles and constants: it finds a real one elsewhere
+    whole = subprocess.run([sys.executable, str(REPO / "dev" / "import_graph.py")], capture_output=True, text=True,
+                           check=True).stdout
+    assert "circle: plxtools.model.program <-> plxtools.model.resolve" in whole, whole

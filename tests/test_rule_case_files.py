@@ -29,6 +29,7 @@ from pathlib import Path
 import pytest
 
 from plxtools.rules.registry import all_rules
+from plxtools.rules.registry import get as registry_rule
 from tests.conftest import CASES, plx_here
 
 RULE_CASES = CASES / "rules"
@@ -107,7 +108,11 @@ def test_every_registered_code_has_a_case_file():
     registered = {r.code for r in all_rules()}
     covered = reported_by_cases()
     missing = registered - covered - set(NOT_A_CASE) - WITHOUT_A_CASE_YET
-    assert not missing, f"registered codes that no case file reports: {sorted(missing)}"
+    assert not missing, "registered codes that no case file reports; for each, add the smallest model that " \
+        "makes plx report it:\n  " + "\n  ".join(
+            f"{code} ({registry_rule(code).name}, stage {registry_rule(code).stage}): tests/cases/rules/{code}.openplx, "
+            f"first line '# plx {'lint' if registry_rule(code).stage in ('lint', 'syntax') else 'check'}'"
+            for code in sorted(missing))
     assert not WITHOUT_A_CASE_YET & covered, "these codes have a case now: remove them from WITHOUT_A_CASE_YET"
     assert WITHOUT_A_CASE_YET <= registered
     for code, test in NOT_A_CASE.items():

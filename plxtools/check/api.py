@@ -43,6 +43,14 @@ from plxtools.check.signals import (
     collect,
     did_you_mean,
 )
+from plxtools.check.scenecounts import scene_counts
+from plxtools.check.scenecounts import scene_paths
+from plxtools.check.signals import KIND_TEXT
+from plxtools.check.signals import rpy_of_mat
+from plxtools.config import ConfigError, config_for
+from plxtools.diagnostics import Severity
+from plxtools.discovery import UsageError
+from plxtools.model.workspace import workspace_for_cli
 
 __all__ = [
     "BoolInputSignal", "IntInputSignal", "Input", "ModelError", "NotSimulatedError", "Output",
@@ -179,10 +187,6 @@ def prepare(path: str | Path, model: str | None = None, *, bundle_path: list[str
     from plxtools.check.connector_frames import connector_frame
     from plxtools.check.convert import _source
     from plxtools.check.pipeline import analyse, blocking_reason
-    from plxtools.config import ConfigError, config_for
-    from plxtools.diagnostics import Severity
-    from plxtools.discovery import UsageError
-    from plxtools.model.workspace import workspace_for_cli
 
     p = Path(path)
     if not p.is_file():
@@ -267,20 +271,17 @@ class Scene:
 
     def bodies(self) -> list[str]:
         """The dotted paths of the assembled scene's rigid bodies (what the run simulates)."""
-        from plxtools.check.scenecounts import scene_paths
 
         return scene_paths(self._sim.prepared.compiled.scene)["bodies"]
 
     def mates(self) -> list[str]:
         """The dotted paths of the assembled scene's mates."""
-        from plxtools.check.scenecounts import scene_paths
 
         return scene_paths(self._sim.prepared.compiled.scene)["mates"]
 
     def counts(self) -> dict[str, int]:
         """How many bodies, mates, controllers and drive-train parts, in all and per kind
         (`{"bodies": 3, "mates": 2, "mates.hinge": 2, ...}`)."""
-        from plxtools.check.scenecounts import scene_counts
 
         return scene_counts(self._sim.prepared.compiled.scene)
 
@@ -438,7 +439,6 @@ class Simulation:
     def body(self, path: str) -> BodyState:
         """The world state of a rigid body."""
         from plxtools.check.mujoco.kinematic import body_velocity
-        from plxtools.check.signals import rpy_of_mat
 
         if path not in self.prepared.bodies:
             raise unknown_path(path, self.prepared.bodies, "body", self.path)
@@ -454,8 +454,6 @@ class Simulation:
 
 
 def _kind_text(kind: str) -> str:
-    from plxtools.check.signals import KIND_TEXT
-
     return KIND_TEXT.get(kind, kind)
 
 

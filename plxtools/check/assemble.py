@@ -39,16 +39,12 @@ from plxtools.check.frames import (IDENTITY, Pose, angle_between, compose, from_
 from plxtools.check.instance import Obj, walk_owned
 from plxtools.check.mapped_types import CONTROLLERS, FREE_DOFS, MATES
 from plxtools.check.report import Reporter
-from plxtools.rules.registry import code_of
 from plxtools.model.program import Program
+from plxtools.rules import registry
 
-CONNECTOR_COUNT = code_of("connector-count")
-MATE_SAME_BODY = code_of("mate-same-body")
 
 # The codes this module raises (their home); the MuJoCo build names them when a hand-built scene
 # breaks what the assembler guarantees, the pipeline knows A016's scene is as written.
-ZERO_MAIN_AXIS = "A010"
-MATE_NOT_COINCIDENT = "A016"
 
 SYSTEM = "Physics3D.System"
 RIGID_BODY = "Physics3D.Bodies.RigidBody"
@@ -332,12 +328,12 @@ class Assembler:
                 asm.nodes.append(node)
                 asm.by_obj[id(obj)] = node
                 if kind == "body" and parent is not None and parent.kind != "system":
-                    self.rep.add("A039", f"rigid body {obj.display} is owned by {obj.owner.display}, which is not "
+                    self.rep.add(registry.BODY_NOT_IN_SYSTEM, f"rigid body {obj.display} is owned by {obj.owner.display}, which is not "
                                  f"a Physics3D.System; bodies must sit directly in a system", obj=obj,
                                  help="move the body into the system and join it with a mate (Lock)")
                 elif kind == "body" and obj.owner is not None and asm.node_of(obj.owner) is None \
                         and obj.owner is not root:
-                    self.rep.add("A039", f"rigid body {obj.display} is owned by {obj.owner.display}, which is not "
+                    self.rep.add(registry.BODY_NOT_IN_SYSTEM, f"rigid body {obj.display} is owned by {obj.owner.display}, which is not "
                                  f"a Physics3D.System; bodies must sit directly in a system", obj=obj)
                 continue
             if self.k.isa(obj, MATE):
@@ -401,7 +397,7 @@ class Assembler:
         if c is not None:
             return c
         if not self.k.isa(obj, CONNECTOR):
-            self.rep.add(CONNECTOR_COUNT, f"{obj.display} is not a Physics3D.Interactions.MateConnector", obj=obj)
+            self.rep.add(registry.CONNECTOR_COUNT, f"{obj.display} is not a Physics3D.Interactions.MateConnector", obj=obj)
             return None
         node = self._parent_node(asm, obj) if obj.owner is not None else asm.root_node
         if node is None:
@@ -413,7 +409,7 @@ class Assembler:
         n_axis = float(np.linalg.norm(axis))
         if n_axis < 1e-9:
             node_, unit_ = self.ev.where(obj, "main_axis")
-            self.rep.add(ZERO_MAIN_AXIS, f"connector {obj.display} has a zero main_axis", node=node_, unit=unit_, obj=obj,
+            self.rep.add(registry.ZERO_MAIN_AXIS, f"connector {obj.display} has a zero main_axis", node=node_, unit=unit_, obj=obj,
                          help="give the axis the joint turns about or slides along, e.g. main_axis: {0, 0, 1}")
             z = np.array([0.0, 0.0, 1.0])
             ok = False
@@ -427,13 +423,13 @@ class Assembler:
                 node_, unit_ = self.ev.where(obj, "normal")
                 what = "zero" if nn < 1e-9 else ("parallel" if float(np.dot(normal, z)) > 0 else "antiparallel") \
                     + " to its main_axis"
-                self.rep.add("A011", f"connector {obj.display}: normal {_v(normal)} is {what}, so the frame "
+                self.rep.add(registry.DEGENERATE_NORMAL, f"connector {obj.display}: normal {_v(normal)} is {what}, so the frame "
                              f"about the main axis is undefined", node=node_, unit=unit_, obj=obj,
                              help="give a normal orthogonal to main_axis")
                 ok = False
             elif abs(float(np.dot(normal / nn, z))) > 1e-6:
                 node_, unit_ = self.ev.where(obj, "normal")
-                self.rep.add("A012", f"connector {obj.display}: normal {_v(normal)} is not orthogonal to "
+                self.rep.add(registry.NORMAL_NOT_ORTHOGONAL, f"connector {obj.display}: normal {_v(normal)} is not orthogonal to "
                              f"main_axis {_v(axis)}; only its orthogonal part {_v(x)} counts",
                              node=node_, unit=unit_, obj=obj)
         if x is None:
@@ -476,7 +472,7 @@ class Assembler:
             return None
         if len(lst) != 2:
             node_, unit_ = self.ev.where(obj, "connectors")
-            self.rep.add(CONNECTOR_COUNT, f"{what} {obj.display} has {len(lst)} connector{'s' if len(lst) != 1 else ''}; "
+            self.rep.add(registry.CONNECTOR_COUNT, f"{what} {obj.display} has {len(lst)} connector{'s' if len(lst) != 1 else ''}; "
                          f"it needs exactly 2", node=node_, unit=unit_, obj=obj,
                          help="connectors: [a.connector, b.connector]")
             return None
@@ -484,7 +480,7 @@ class Assembler:
         for item in lst:
             if not isinstance(item, Obj):
                 node_, unit_ = self.ev.where(obj, "connectors")
-                self.rep.add(CONNECTOR_COUNT, f"{what} {obj.display}: a connector is not an object", node=node_, unit=unit_,
+                self.rep.add(registry.CONNECTOR_COUNT, f"{what} {obj.display}: a connector is not an object", node=node_, unit=unit_,
                              obj=obj)
                 return None
             out.append(self.connector(asm, item))
@@ -510,13 +506,13 @@ class Assembler:
         c0, c1 = conns
         node_, unit_ = self.ev.where(obj, "connectors")
         if c0.obj is c1.obj:
-            self.rep.add("A014", f"mate {obj.display} joins connector {c0.obj.display} to itself",
+            self.rep.add(registry.MATE_SAME_CONNECTOR, f"mate {obj.display} joins connector {c0.obj.display} to itself",
                          node=node_, unit=unit_, obj=obj, help="list the two connectors of the two parts it joins")
             rec.usable = False
         elif asm.mover(c0) is asm.mover(c1) and (asm.mover(c0).kind == "body" or asm.mover(c0) is asm.root_node or
                                                  (c0.redirected_parent is None and c1.redirected_parent is None)):
             where = asm.mover(c0).path if asm.mover(c0).kind == "body" else "the world (no body)"
-            self.rep.add(MATE_SAME_BODY, f"mate {obj.display}: both connectors belong to {where}, so it joins nothing",
+            self.rep.add(registry.MATE_SAME_BODY, f"mate {obj.display}: both connectors belong to {where}, so it joins nothing",
                          node=node_, unit=unit_, obj=obj,
                          help="one connector must belong to each of the two bodies the mate joins")
             rec.usable = False
@@ -723,7 +719,7 @@ class Assembler:
                 else:
                     sides.append(f"{n.path}: {n.placed_by}")
             why = "; ".join(sides)
-            self.rep.add(MATE_NOT_COINCIDENT, f"mate {m.path}: its connectors do not coincide after assembly ({', '.join(parts)}); "
+            self.rep.add(registry.MATE_NOT_COINCIDENT, f"mate {m.path}: its connectors do not coincide after assembly ({', '.join(parts)}); "
                          f"{why}", obj=m.obj,
                          help="SNAP moves only bodies and systems without a declared transform; remove the "
                          "explicit local_transform of one side, or fix the connector positions and axes")

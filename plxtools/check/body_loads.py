@@ -20,13 +20,13 @@ from __future__ import annotations
 
 from typing import Any
 
+from plxtools.check.bindings import Binding, Unbindable
+
 LOAD_QUANTITIES = ("body_force", "body_torque")
 
 
 def bind_load(rt: Any, info: Any) -> Any:
     """The Binding of a force or torque input (``rt`` is the SignalRuntime)."""
-    from plxtools.check.signals import Binding, Unbindable
-
     src = info.source or ""
     bid = rt.body_id(src)
     sb = rt.compiled.scene.body(src)
@@ -51,8 +51,6 @@ def bind_mass(rt: Any, info: Any) -> Any:
     """``MassOutput`` of a body: the mass MuJoCo simulates it with (its ``inertia.mass``, or its
     geometry's).  A body whose motion is prescribed needs none in MuJoCo (no force moves it): its
     declared ``inertia.mass`` is given when it has one."""
-    from plxtools.check.signals import Binding
-
     src = info.source or ""
     bid = rt.body_id(src)
     sb = rt.compiled.scene.body(src)

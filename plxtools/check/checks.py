@@ -22,27 +22,16 @@ from plxtools.check.convert import Collector, GeomRec, report_missing_file
 from plxtools.check.frames import angle_between, compose
 from plxtools.check.instance import Obj
 from plxtools.check.report import Reporter
-from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NEGATIVE_MASS, NON_POSITIVE_DENSITY
-from plxtools.rules.registry import code_of
 from plxtools.syntax import ast
+from plxtools.rules import registry
+from plxtools.check.signals import classify
 
-ANGLE_PROBABLY_DEGREES = code_of("angle-probably-degrees")
 
 # The codes this module raises (their home).  The MuJoCo build names them when it meets a scene these
 # checks should have rejected (BuildContext.invariant); `plx check`'s summary lists the motion ones.
-MATE_WITHOUT_DYNAMIC_BODY = "A017"
-HINGE_AXIS_OFF_CYLINDER_AXIS = "A018"
-CONTROLLER_WITHOUT_MATE = "A020"
-CONTROLLER_DOF_MISMATCH = "A021"
-MIRRORED_DRIVE_MOTORS = "A023"
-INVERTED_LIMITS = "A024"
-ZERO_MASS_DYNAMIC_BODY = "A033"
-INVALID_INERTIA = "A034"
-DUPLICATE_CONTACT_MODEL = "A035"
-UNPLACED_BODY_OVERLAPS = "A037"
 # found by these checks, not by the simulation: what they say about how the scene moves (or fails to)
-STATIC_MOTION_CODES = frozenset({MATE_WITHOUT_DYNAMIC_BODY, HINGE_AXIS_OFF_CYLINDER_AXIS, MIRRORED_DRIVE_MOTORS,
-                                 UNPLACED_BODY_OVERLAPS})
+STATIC_MOTION_CODES = frozenset({registry.MATE_WITHOUT_DYNAMIC_BODY, registry.HINGE_AXIS_OFF_CYLINDER_AXIS, registry.MIRRORED_DRIVE_MOTORS,
+                                 registry.UNPLACED_BODY_OVERLAPS})
 
 TWO_PI = 2.0 * math.pi
 UNSUPPORTED_BUNDLES = {
@@ -186,7 +175,6 @@ class StaticChecks:
     def _unmapped_signal(self, obj: Obj, qn: str) -> str | None:
         """The A040 text for a signal declared in the file that the MuJoCo run cannot map (None when
         it maps: plxtools/check/signals.py)."""
-        from plxtools.check.signals import classify
 
         info = classify(obj, self.ev, self.k)
         if info is not None and info.mapped:
@@ -201,7 +189,7 @@ class StaticChecks:
         for g in self.col.geoms:
             geoms.setdefault(id(g.node), []).append(g)
             if not g.visual and g.include_in_mass and g.valid and g.density <= 0 and g.material_obj is not None:
-                self.add_at(NON_POSITIVE_DENSITY, f"material {g.material_obj.display} of {g.path} has density "
+                self.add_at(registry.NON_POSITIVE_DENSITY, f"material {g.material_obj.display} of {g.path} has density "
                             f"{g.density:g}; it must be > 0 for the geometry to give mass", g.material_obj,
                             "density", path=g.path)
         for n in self.asm.bodies:
@@ -213,7 +201,7 @@ class StaticChecks:
         obj = n.obj
         mass = self.a.real(obj, "inertia.mass", 0.0)
         if mass < 0:
-            self.add_at(NEGATIVE_MASS, f"{n.path} has negative mass {mass:g}", obj, "inertia.mass",
+            self.add_at(registry.NEGATIVE_MASS, f"{n.path} has negative mass {mass:g}", obj, "inertia.mass",
                         help="a mass of 0 means: compute it from the geometries")
             return
         if mass != 0 or not n.is_dynamic:
@@ -223,7 +211,7 @@ class StaticChecks:
         # a geometry that failed to evaluate or was rejected (A030, A031) is reported already
         failed = any(g.failed or not g.valid for g in geoms if not g.visual)
         if not contributing and not failed:
-            self.add_at(ZERO_MASS_DYNAMIC_BODY, f"dynamic body {n.path} has mass 0 and no geometry that gives it "
+            self.add_at(registry.ZERO_MASS_DYNAMIC_BODY, f"dynamic body {n.path} has mass 0 and no geometry that gives it "
                         f"mass", obj, "inertia.mass",
                         help="give inertia.mass a value, or a contact geometry with a size and a material density")
 
@@ -232,7 +220,7 @@ class StaticChecks:
         if isinstance(t, np.ndarray) and t.shape == (3, 3) and np.any(np.diag(t) != 0):
             problem = _tensor_problem(t)
             if problem:
-                self.add_at(INVALID_INERTIA, f"{n.path}: inertia tensor {problem}", n.obj, "inertia.tensor",
+                self.add_at(registry.INVALID_INERTIA, f"{n.path}: inertia tensor {problem}", n.obj, "inertia.tensor",
                             help="use Physics3D.Bodies.Inertia.symmetric_tensor(diag, e01, e02, e12) with "
                             "positive principal moments")
 
@@ -247,20 +235,20 @@ class StaticChecks:
             first = seen.get(key)
             if first is not None:
                 line = self.rep.anchor(first.obj).start.line + 1
-                self.rep.add(DUPLICATE_CONTACT_MODEL, f"{c.obj.display} is a second SurfaceContact.Model for the material pair "
+                self.rep.add(registry.DUPLICATE_CONTACT_MODEL, f"{c.obj.display} is a second SurfaceContact.Model for the material pair "
                              f"{key[0]} / {key[1]} (the first is {first.obj.display}, line {line})", obj=c.obj,
                              help="keep one contact model per pair of materials")
             else:
                 seen[key] = c
             if c.friction is not None and c.friction < 0:
                 fr = self.ev.child(c.obj, "friction")
-                self.add_at(INVALID_CONTACT_PARAMETER, f"{c.obj.display}: friction coefficient {c.friction:g} is negative",
+                self.add_at(registry.INVALID_CONTACT_PARAMETER, f"{c.obj.display}: friction coefficient {c.friction:g} is negative",
                             fr if isinstance(fr, Obj) else c.obj, "coefficient" if isinstance(fr, Obj) else None,
                             path=c.obj.display)
             pairs = (("normal_restitution", c.restitution), ("tangential_restitution", c.tangential_restitution))
             for attr, v in pairs:
                 if v is not None and not 0.0 <= v <= 1.0:
-                    self.add_at(INVALID_CONTACT_PARAMETER, f"{c.obj.display}: {attr} {v:g} is outside [0, 1]", c.obj, attr,
+                    self.add_at(registry.INVALID_CONTACT_PARAMETER, f"{c.obj.display}: {attr} {v:g} is outside [0, 1]", c.obj, attr,
                                 path=c.obj.display)
 
     # ------------------------------------------------------------------ mates
@@ -270,13 +258,13 @@ class StaticChecks:
             if not m.usable or not m.enabled:
                 continue
             if m.kind in ("hinge", "cylindrical") and abs(m.initial_angle) > TWO_PI:
-                self.add_at(ANGLE_PROBABLY_DEGREES, f"{m.path}: initial_angle {m.initial_angle:g} is more than 2 pi: is it in "
+                self.add_at(registry.ANGLE_PROBABLY_DEGREES, f"{m.path}: initial_angle {m.initial_angle:g} is more than 2 pi: is it in "
                             f"degrees? Angles are radians", m.obj, "initial_angle",
                             help=f"Math.Functions.deg_to_rad({m.initial_angle:g})")
             movers = [self.asm.mover(c) for c in m.conns]
             dyn = [n.kind == "body" and n.is_dynamic for n in movers]
             if not any(dyn):
-                self.rep.add(MATE_WITHOUT_DYNAMIC_BODY, f"mate {m.path} joins two parts that do not move (static bodies or the "
+                self.rep.add(registry.MATE_WITHOUT_DYNAMIC_BODY, f"mate {m.path} joins two parts that do not move (static bodies or the "
                              f"world); it has no effect", obj=m.obj)
 
     # ------------------------------------------------------------------ controllers
@@ -288,36 +276,36 @@ class StaticChecks:
                 continue
             if c.mate is None:
                 names = ", ".join(x.obj.display for x in c.conns)
-                self.add_at(CONTROLLER_WITHOUT_MATE, f"{c.path}: its connectors [{names}] are not the connectors of any mate, so "
+                self.add_at(registry.CONTROLLER_WITHOUT_MATE, f"{c.path}: its connectors [{names}] are not the connectors of any mate, so "
                             f"it drives nothing", obj, "connectors",
                             help="use the connectors of the mate it drives, e.g. connectors: hinge.connectors")
             else:
                 free = DOF_OF_MATE.get(c.mate.kind, set())
                 if c.dof not in free:
                     what = "rotation" if c.dof == "rotational" else "translation"
-                    self.add_at(CONTROLLER_DOF_MISMATCH, f"{c.path} ({self.a.p.concrete(obj.model).name}) drives a {what}, but its "
+                    self.add_at(registry.CONTROLLER_DOF_MISMATCH, f"{c.path} ({self.a.p.concrete(obj.model).name}) drives a {what}, but its "
                                 f"mate {c.mate.path} is a {c.mate.kind.capitalize()}, which has no free {what}",
                                 obj, "connectors")
             if c.kind == "velocity_motor" and c.dof == "rotational":
                 v = self.a.real(obj, "target_speed", 0.0)
                 if abs(v) > TWO_PI:
-                    self.add_at(ANGLE_PROBABLY_DEGREES, f"{c.path}: target_speed {v:g} rad/s is more than 2 pi: is it in degrees "
+                    self.add_at(registry.ANGLE_PROBABLY_DEGREES, f"{c.path}: target_speed {v:g} rad/s is more than 2 pi: is it in degrees "
                                 f"per second?", obj, "target_speed",
                                 help=f"Math.Functions.deg_to_rad({v:g}) if it is")
             if c.kind == "range":
                 start = self.a.real(obj, "start", math.nan)
                 end = self.a.real(obj, "end", math.nan)
                 if math.isfinite(start) and math.isfinite(end) and start > end:
-                    self.add_at(INVERTED_LIMITS, f"{c.path}: range start {start:g} is greater than end {end:g}", obj, "start")
+                    self.add_at(registry.INVERTED_LIMITS, f"{c.path}: range start {start:g} is greater than end {end:g}", obj, "start")
                 elif math.isfinite(start) and math.isfinite(end) and c.mate is not None and c.mate.enabled:
                     self._range_start(c, start, end)
                 if c.dof == "rotational" and any(math.isfinite(x) and abs(x) > TWO_PI for x in (start, end)):
-                    self.add_at(ANGLE_PROBABLY_DEGREES, f"{c.path}: range [{start:g}, {end:g}] goes beyond 2 pi: is it in degrees?",
+                    self.add_at(registry.ANGLE_PROBABLY_DEGREES, f"{c.path}: range [{start:g}, {end:g}] goes beyond 2 pi: is it in degrees?",
                                 obj, "start")
             lo = self.a.real(obj, "min_effort", -math.inf)
             hi = self.a.real(obj, "max_effort", math.inf)
             if lo > hi:
-                self.add_at(INVERTED_LIMITS, f"{c.path}: min_effort {lo:g} is greater than max_effort {hi:g}", obj,
+                self.add_at(registry.INVERTED_LIMITS, f"{c.path}: min_effort {lo:g} is greater than max_effort {hi:g}", obj,
                             "min_effort")
 
     def _range_start(self, c, start: float, end: float) -> None:
@@ -337,7 +325,7 @@ class StaticChecks:
         node, unit_ = self.where(m.obj, what)
         if node is None:
             node, unit_ = self.where(c.obj, "start" if q < start else "end")
-        self.rep.add("A045", f"{c.path}: {m.path} starts at {what} {q:g} {unit}, outside the range [{start:g}, "
+        self.rep.add(registry.RANGE_STARTS_VIOLATED, f"{c.path}: {m.path} starts at {what} {q:g} {unit}, outside the range [{start:g}, "
                      f"{end:g}] {unit}; the limit pushes it back at the first step with a kick that is not in the "
                      f"model", node=node, unit=unit_, obj=c.obj, path=c.path,
                      help=f"start the mate inside the range, or widen the range to include {q:g}")
@@ -370,7 +358,7 @@ class StaticChecks:
                     if ang > math.radians(1.0):
                         node, unit = self.where(c.obj, "main_axis")
                         local_axis = c.main_axis
-                        self.rep.add(HINGE_AXIS_OFF_CYLINDER_AXIS, f"{m.path} turns {n.path} about an axis {math.degrees(ang):.3g} deg "
+                        self.rep.add(registry.HINGE_AXIS_OFF_CYLINDER_AXIS, f"{m.path} turns {n.path} about an axis {math.degrees(ang):.3g} deg "
                                      f"away from the axis of its {g.kind} {g.path} (the {g.kind}'s local Y): the "
                                      f"{g.kind} would tumble instead of rolling", node=node, unit=unit, obj=c.obj,
                                      path=m.path,
@@ -400,7 +388,7 @@ class StaticChecks:
             if float(np.dot(d, ay)) <= 0:
                 continue
             d = self.rep.add(
-                MIRRORED_DRIVE_MOTORS, f"{x.path} and {y.path} have the same target_speed ({vx:g}) on hinges whose axes "
+                registry.MIRRORED_DRIVE_MOTORS, f"{x.path} and {y.path} have the same target_speed ({vx:g}) on hinges whose axes "
                 f"point opposite ways ({_v(ax)} and {_v(ay)}): the two wheels are driven in opposite directions, "
                 f"so the vehicle does not drive straight: it turns where it stands, and where other wheels on the "
                 f"ground resist (a four-wheeled truck) the driven wheels slip and scrub against each other (motors "
@@ -438,7 +426,7 @@ class StaticChecks:
                     break
             else:
                 if joined:
-                    self.rep.add("A044", f"{pair.display} changes nothing at the start of the simulation: "
+                    self.rep.add(registry.COLLISION_PAIR_WITHOUT_EFFECT, f"{pair.display} changes nothing at the start of the simulation: "
                                  f"{joined} of its {len(pairs)} body pairs are joined by mates, whose contacts are "
                                  f"excluded anyway, and the other {apart} are apart",
                                  obj=pair, help="keep it if those bodies can come to touch as they move; "
@@ -499,7 +487,7 @@ class StaticChecks:
                         f"may be the mate that places {n.path}")
             else:
                 help = "give it kinematics.local_transform.position, or join it to the scene with a mate"
-            self.rep.add(UNPLACED_BODY_OVERLAPS, f"{n.path} has no declared transform and no mate places it, so it stays "
+            self.rep.add(registry.UNPLACED_BODY_OVERLAPS, f"{n.path} has no declared transform and no mate places it, so it stays "
                          f"at {_v(n.world[1])}, where it overlaps {other.path} "
                          f"(by {depth:.3g} m)", obj=n.obj, help=help)
 
@@ -541,7 +529,7 @@ def _check_string(s: ast.String, base: str, rep: Reporter, variables_only: bool 
     elif s.kind == "interp":
         val, unset = envpath.expand(s.value)
         for v in unset:
-            rep.add("A007", f"environment variable {v} in {s.raw} is not set; the path cannot be resolved here",
+            rep.add(registry.ENVIRONMENT_VARIABLE_UNSET, f"environment variable {v} in {s.raw} is not set; the path cannot be resolved here",
                     span=s.span, help=f"set {v} (for AGX_DATA_DIR: install AGX), or use @\"...\" with a relative path")
         if not unset and not variables_only:
             looks_like_file = "/" in val or os.sep in val or re.search(r"\.[A-Za-z0-9]{2,4}$", val)
@@ -580,66 +568,6 @@ def _v(a) -> str:
 
 
 __all__ = ["StaticChecks", "scan_strings", "MateRec", "CtrlRec", "Node"]
-
-
-# A body that ends this far below everything it started near has left the scene (issue 32.4)
-OUT_OF_WORLD_DROP = 5.0  # m
-OUT_OF_WORLD_NEAR = 20.0  # m between starting positions
-
-
-def bodies_out_of_world(sim, sources) -> list:
-    """A102 for a dynamic body that ended far below every body it started near, while one of those
-    stayed (a static ground, the chassis a loose wheel should have been mated to).
-
-    The monitor of the simulation reports a body that sinks through static geometry it started
-    above; a body that never had anything under it (the loose wheel of a mis-mated hinge beside
-    the chassis, a part off the edge of the ground) falls out of the world without crossing any,
-    so the start and end positions decide here. A scene that falls as a whole (a free-fall test
-    with no ground) has nothing that stayed, and is not reported."""
-    from plxtools.check.mujoco.simulate import fell_out_of_world
-
-    if sim is None:
-        return []
-    fell = {f["body"] for f in sim.fall_through}
-    bodies = list(sim.bodies.values())
-    out = []
-    for b in bodies:
-        if not b.dynamic or b.path in fell:
-            continue
-        start = np.asarray(b.initial_pos, dtype=float)
-        near = [o for o in bodies if o is not b
-                and float(np.linalg.norm(np.asarray(o.initial_pos, dtype=float) - start)) <= OUT_OF_WORLD_NEAR]
-        stayed = [o for o in near if not o.dynamic or o.final_pos[2] > o.initial_pos[2] - OUT_OF_WORLD_DROP]
-        if not stayed:
-            continue
-        floor = min([b.initial_pos[2]] + [o.initial_pos[2] for o in near])
-        if b.final_pos[2] < floor - OUT_OF_WORLD_DROP:
-            below = floor - b.final_pos[2]
-            sim.fall_through.append({"body": b.path, "time": None, "ground": None, "com": list(b.final_pos),
-                                     "drop": below})
-            out.append(fell_out_of_world(
-                b.path,
-                f"{b.path} fell out of the world: it ended at z = {b.final_pos[2]:.1f} m, {below:.1f} m below "
-                f"everything it started near (nothing held it: is it mated, and is there ground under it?)",
-                sources.get(b.path)))
-    return out
-
-
-def tie_mirrored_motors(rep: Reporter) -> None:
-    """A106 on a motor of an A023 pair says why it misses its target: the two motors drive the
-    wheels against each other (issue 32.6); the two findings name each other."""
-    if not rep.mirrored_motors:
-        return
-    from plxtools.check.mujoco.simulate import MOTOR_OFF_TARGET
-
-    partner = {}
-    for a, b, d in rep.mirrored_motors:
-        partner[a], partner[b] = (b, d), (a, d)
-    for e in rep.entries:
-        if e.diag.code == MOTOR_OFF_TARGET and e.path in partner:
-            other, a023 = partner[e.path]
-            e.diag.help = (f"it is driven against {other} (A023, line {a023.span.start.line + 1}): give one of "
-                           "the two the opposite target_speed to drive straight")
 
 
 def _boxes_touch(a, b, margin: float = 0.01) -> bool:

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.frames import compose, orthogonal_unit
+from plxtools.check.scene import default_normal
 
 REDIRECTED = "Physics3D.Interactions.RedirectedMateConnector"
 
@@ -48,7 +49,6 @@ def _vec(ev: Any, obj: Any, attr: str, default: np.ndarray | None) -> np.ndarray
 
 def _local_frame(ev: Any, obj: Any) -> tuple[np.ndarray, np.ndarray] | None:
     """(R, p) of the connector in its owner's frame, or None when its axes are degenerate."""
-    from plxtools.check.scene import default_normal
 
     pos = _vec(ev, obj, "position", np.zeros(3))
     axis = _vec(ev, obj, "main_axis", np.array([0.0, 0.0, 1.0]))

@@ -29,6 +29,10 @@ from typing import Any
 
 import numpy as np
 
+from plxtools.check.bindings import Binding, Unbindable, rpy_of_mat
+from plxtools.check.mujoco.kinematic import body_velocity
+from plxtools.check.mujoco.kinematic import prescribed
+
 CONNECTOR_QUANTITIES = ("connector_position", "connector_rpy", "connector_linear_velocity",
                         "connector_angular_velocity", "connector_acceleration", "connector_angular_acceleration")
 _MOTION = CONNECTOR_QUANTITIES[2:]
@@ -36,8 +40,6 @@ _MOTION = CONNECTOR_QUANTITIES[2:]
 
 def _placed(rt: Any, frame: Any) -> tuple[int | None, np.ndarray, np.ndarray]:
     """(MuJoCo body id or None for the world, rotation and origin of the frame in that body)."""
-    from plxtools.check.signals import Unbindable
-
     r0, p0 = frame.pose()
     if frame.body is None:
         return None, r0, p0
@@ -67,16 +69,12 @@ def _moves(rt: Any, placed: tuple, path: str) -> bool:
 
 
 def _velocity(rt: Any, m: Any, d: Any, bid: int, point: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    from plxtools.check.mujoco.kinematic import body_velocity
-
     res = body_velocity(rt.mujoco, m, d, rt.compiled, bid)
     w = res[:3].copy()
     return w, res[3:] + np.cross(w, point - np.asarray(d.xipos[bid]))
 
 
 def _acceleration(rt: Any, m: Any, d: Any, bid: int, point: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    from plxtools.check.mujoco.kinematic import prescribed
-
     kin = prescribed(rt.compiled, m).get(bid)
     if kin is not None:  # constant prescribed velocity: no angular acceleration, only the centripetal part
         w = kin[2]
@@ -98,8 +96,6 @@ def _t3(v: Any) -> tuple[float, float, float]:
 
 def bind_connector(rt: Any, info: Any) -> Any:
     """The Binding of a connector output (``rt`` is the SignalRuntime)."""
-    from plxtools.check.signals import Binding, Unbindable, rpy_of_mat
-
     q = info.quantity
     if info.frame is None:
         raise Unbindable(f"the frame of its connector {info.source} is undefined (see the check's findings)")

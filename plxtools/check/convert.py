@@ -21,15 +21,16 @@ from plxtools.check.frames import IDENTITY, Pose, compose, from_transform, inver
 from plxtools.check.instance import Obj
 from plxtools.check.mapped_types import GEOMS, scene_geom_kind
 from plxtools.check.report import Reporter, span_of
-from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NON_POSITIVE_SIZE
+from plxtools.rules import registry
+from plxtools.check import drivetrain
+from plxtools.model.imports import read_obj
 
 # The one home of A031 (missing-file): a mesh file here, a path string in check's scan_strings.
-MISSING_FILE = "A031"
 
 
 def report_missing_file(rep: Reporter, message: str, **where: Any) -> Any:
     """A031: a file the model names does not exist, placed as ``Reporter.add`` places it."""
-    return rep.add(MISSING_FILE, message, **where)
+    return rep.add(registry.MISSING_FILE, message, **where)
 
 
 CONTACT_GEOM = "Physics3D.Geometries.ContactGeometry"
@@ -286,7 +287,7 @@ class Collector:
                 g.valid = False
         else:
             g.valid = False
-            self.rep.add(NON_POSITIVE_SIZE, f"mesh {obj.display} has no vertices", obj=obj)
+            self.rep.add(registry.NON_POSITIVE_SIZE, f"mesh {obj.display} has no vertices", obj=obj)
         if kind == "trimesh":
             idx = self.get(obj, "indices", None)
             g.indices = [int(i) for i in idx] if isinstance(idx, list) else None
@@ -303,14 +304,13 @@ class Collector:
 
     def _obj_bounds(self, g: "GeomRec", obj: Obj, written: str, visual: bool) -> None:
         """An OBJ file's bounds (model/imports.py reads it), so the geometry has extents."""
-        from plxtools.model.imports import read_obj
 
         info = read_obj(g.mesh_file)
         if info.lo is not None:
             g.bounds = np.array([info.lo, info.hi], dtype=float)
         elif info.problem:
             g.valid = False
-            self.rep.add(NON_POSITIVE_SIZE, f"mesh {obj.display}: {written!r} cannot be used: {info.problem}",
+            self.rep.add(registry.NON_POSITIVE_SIZE, f"mesh {obj.display}: {written!r} cannot be used: {info.problem}",
                          obj=obj, severity="warning" if visual else None)
 
     def _num(self, obj: Obj, path: str) -> float | None:
@@ -327,7 +327,7 @@ class Collector:
     def _bad_size(self, g: GeomRec, attr: str, message: str, help: str | None = None) -> None:
         g.valid = False
         node, unit = self.ev.where(g.obj, attr)
-        self.rep.add(NON_POSITIVE_SIZE, message, node=node, unit=unit, obj=g.obj, help=help)
+        self.rep.add(registry.NON_POSITIVE_SIZE, message, node=node, unit=unit, obj=g.obj, help=help)
 
     # ------------------------------------------------------------------ contacts
 
@@ -418,7 +418,6 @@ def to_scene(asm: Assembly, col: Collector, rep: Reporter, base_dir: str | None)
                                            cr.restitution, cr.tangential_restitution, cr.enabled, _source(rep, cr.obj))
                             for cr in col.contacts if cr.key1 is not None and cr.key2 is not None]
     scene.excludes = _excludes(col, rep)
-    from plxtools.check import drivetrain
 
     scene.shafts, scene.shaft_couplings, scene.shaft_motors = drivetrain.collect(
         asm, col, rep, _source, {m.path for m in scene.mates if m.kind in ("hinge", "cylindrical")})
@@ -548,7 +547,7 @@ def _mate(col: Collector, m: MateRec, conns: _Connectors, rep: Reporter) -> S.Ma
     for k in (0, 1):
         if not (math.isfinite(limit[k]) and limit[k] >= 0) or not (math.isfinite(viscous[k]) and viscous[k] >= 0):
             node, unit = col.ev.where(m.obj, MATE_FRICTION[m.kind][0][0])
-            rep.add(INVALID_CONTACT_PARAMETER, f"{m.path}: joint friction must be a finite number >= 0 (limit {limit[k]:g}, viscosity "
+            rep.add(registry.INVALID_CONTACT_PARAMETER, f"{m.path}: joint friction must be a finite number >= 0 (limit {limit[k]:g}, viscosity "
                     f"{viscous[k]:g}); it is left out", node=node, unit=unit, obj=m.obj)
             limit[k] = viscous[k] = 0.0
     sm.friction_limit, sm.viscous_friction = (limit[0], limit[1]), (viscous[0], viscous[1])

@@ -11,6 +11,7 @@ does not classify, so a new bundle version cannot add an attribute that plx sile
 from __future__ import annotations
 
 from typing import Any
+from plxtools.rules import registry
 
 MAPPED = "mapped"
 CHOICE = "choice"  # an object-valued attribute: only the runtime's default choice is simulated
@@ -21,14 +22,13 @@ REFUSED = "refused"  # never simulated: A040 wherever the object has it (a trait
 
 # The one home of A040 (unsupported-feature): every static check that finds something the MuJoCo
 # backend does not simulate reports it through not_simulated(); the backend names the code when it
-# meets such an element anyway (an invariant) through NOT_SIMULATED.
-NOT_SIMULATED = "A040"
+# meets such an element anyway (an invariant) through registry.NOT_SIMULATED.
 
 
 def not_simulated(rep: Any, message: str, **where: Any) -> Any:
     """Report (A040) that ``message``'s element or setting is not simulated by the MuJoCo backend;
     ``where`` places it as ``Reporter.add`` does (obj, node, unit, severity, path, ...)."""
-    return rep.add(NOT_SIMULATED, message, **where)
+    return rep.add(registry.NOT_SIMULATED, message, **where)
 
 _MATE_COMMON = {"connectors": MAPPED, "enabled": MAPPED, "enable_snap": MAPPED, "flexibility": CHOICE,
                 "dissipation": CHOICE, "toughness": CHOICE, "clearance": CHOICE}

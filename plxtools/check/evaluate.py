@@ -32,6 +32,7 @@ from plxtools.model.program import Program
 from plxtools.model.symbols import GlobalSym, MethodSym, ModelSym, Ty
 from plxtools.model.values import MethodRef, NsRef, TypeObj
 from plxtools.syntax import ast
+from plxtools.rules import registry
 
 
 class Unavailable(Exception):
@@ -41,17 +42,12 @@ class Unavailable(Exception):
 # The codes this module raises (their home): the evaluator's own findings.  The pipeline imports
 # these names to drop the ones lint already owns; the assembler reports a non-finite value through
 # report_non_finite() below.
-EVALUATION_ERROR = "A003"
-MISSING_VALUE = "A004"
-UNBOUND_REFERENCE = "A005"
-VALUE_CYCLE = "A006"
-NON_FINITE_VALUE = "A041"
 
 
 def report_non_finite(rep: Any, message: str, **where: Any) -> Any:
     """A041: a value that is not a finite number (an overflow, inf - inf), placed as ``Reporter.add``
     places it."""
-    return rep.add(NON_FINITE_VALUE, message, **where)
+    return rep.add(registry.NON_FINITE_VALUE, message, **where)
 
 
 class EvalError(Exception):
@@ -252,7 +248,7 @@ class Evaluator:
         if key in self._active:
             start = self._stack.index(label) if label in self._stack else 0
             ring = self._stack[start:] + [label]
-            raise EvalError(VALUE_CYCLE, "values depend on each other in a cycle: " + " -> ".join(ring), node, unit,
+            raise EvalError(registry.VALUE_CYCLE, "values depend on each other in a cycle: " + " -> ".join(ring), node, unit,
                             help="give one of them a value that does not depend on the others")
         self._active[key] = label
         self._stack.append(label)
@@ -260,7 +256,7 @@ class Evaluator:
             v = compute()
         except EvalError as err:
             self._failed.add(key)
-            if err.code != VALUE_CYCLE and not err.message.startswith(label):
+            if err.code != registry.VALUE_CYCLE and not err.message.startswith(label):
                 err.message = f"{label}: {err.message}"
             self._emit(err, anchor)
             raise Unavailable(label) from None
@@ -269,15 +265,15 @@ class Evaluator:
             raise
         except NativeError as err:
             self._failed.add(key)
-            self._emit(EvalError(EVALUATION_ERROR, f"{label}: {err}", node, unit), anchor)
+            self._emit(EvalError(registry.EVALUATION_ERROR, f"{label}: {err}", node, unit), anchor)
             raise Unavailable(label) from None
         except OverflowError:  # an integer beyond float range used as a Real (issue 14)
             self._failed.add(key)
-            self._emit(EvalError(NON_FINITE_VALUE, f"{label} is too large for a number (beyond 1.8e308)", node, unit), anchor)
+            self._emit(EvalError(registry.NON_FINITE_VALUE, f"{label} is too large for a number (beyond 1.8e308)", node, unit), anchor)
             raise Unavailable(label) from None
         except RecursionError:
             self._failed.add(key)
-            self._emit(EvalError(VALUE_CYCLE, f"{label}: the values it depends on nest too deeply to evaluate",
+            self._emit(EvalError(registry.VALUE_CYCLE, f"{label}: the values it depends on nest too deeply to evaluate",
                                  node, unit), anchor)
             raise Unavailable(label) from None
         finally:
@@ -299,7 +295,7 @@ class Evaluator:
                 if pr.optional:
                     return None
                 what = pr.ty.display() if pr.ty is not None else "value"
-                raise EvalError(MISSING_VALUE, f"{label} ({what}) has no value", None, None,
+                raise EvalError(registry.MISSING_VALUE, f"{label} ({what}) has no value", None, None,
                                 help=f"assign it, e.g. '{pr.name}: ...'")
             t, scope, _d = pr.value
             v = self._eval_effect(pr.value, pr.ty)
@@ -314,12 +310,12 @@ class Evaluator:
             if ref.const_model is not None:
                 obj = self.b.singleton(ref.const_model)
                 if obj is None:
-                    raise EvalError(VALUE_CYCLE, f"const model {ref.const_model.qname} refers to itself", None, None)
+                    raise EvalError(registry.VALUE_CYCLE, f"const model {ref.const_model.qname} refers to itself", None, None)
                 return obj
             if ref.value is None:
                 if ref.optional:
                     return None
-                raise EvalError(UNBOUND_REFERENCE, f"{ref.path} ({ref.ty.display()}) is not bound to an object", None, None,
+                raise EvalError(registry.EVALUATED_UNBOUND_REFERENCE, f"{ref.path} ({ref.ty.display()}) is not bound to an object", None, None,
                                 help=f"give it an existing object, e.g. '{ref.name}: ...'")
             t = ref.value[0]
             v = self._eval_effect(ref.value, ref.ty)
@@ -327,12 +323,12 @@ class Evaluator:
                 v = v.obj
             if isinstance(v, TypeObj):  # a model named where an object is needed (issue 16)
                 name = getattr(v.sym, "name", v.sym)
-                raise EvalError(UNBOUND_REFERENCE, f"{ref.path} must refer to an object ({ref.ty.display()}), but '{name}' is "
+                raise EvalError(registry.EVALUATED_UNBOUND_REFERENCE, f"{ref.path} must refer to an object ({ref.ty.display()}), but '{name}' is "
                                 f"a model, not an object", t.expr, t.unit,
                                 help=f"a model used as a value must be declared 'const {name} is ...', or "
                                 f"instantiated ('{ref.name} is {name}')")
             if v is not None and not isinstance(v, Obj):
-                raise EvalError(UNBOUND_REFERENCE, f"{ref.path} must refer to an object ({ref.ty.display()}), "
+                raise EvalError(registry.EVALUATED_UNBOUND_REFERENCE, f"{ref.path} must refer to an object ({ref.ty.display()}), "
                                 f"not to {_kind(v)}", t.expr, t.unit)
             return v
 
@@ -367,7 +363,7 @@ class Evaluator:
                 v = self._coerce_struct(v, whole_t, e[0].expr, e[0].unit)
                 v = _component(self.structs, v, whole_t, sub[len(best_rel):])
             elif sub[len(best_rel):]:
-                raise EvalError(EVALUATION_ERROR, f"{obj.display}: cannot take a field of this value", e[0].expr, e[0].unit)
+                raise EvalError(registry.EVALUATION_ERROR, f"{obj.display}: cannot take a field of this value", e[0].expr, e[0].unit)
             if codec is None:
                 return self._coerce(v, Ty(tname), e[0].expr, e[0].unit, obj.display)
             return v
@@ -377,7 +373,7 @@ class Evaluator:
             if pc is not None and sub[-1] in pc.defaults:
                 d = pc.defaults[sub[-1]]
                 return float(d) if isinstance(d, (int, float, np.floating)) else d
-            raise EvalError(MISSING_VALUE, f"{obj.display}{''.join('.' + s for s in sub)} has no value", None, None)
+            raise EvalError(registry.MISSING_VALUE, f"{obj.display}{''.join('.' + s for s in sub)} has no value", None, None)
         fields = {f: self.struct_value(obj, sub + (f,), codec.field_types[f]) for f in codec.fields}
         return codec.from_fields(fields)
 
@@ -408,23 +404,23 @@ class Evaluator:
         prim = ty.primitive if isinstance(ty, Ty) else None
         if ty.array:
             if not isinstance(v, list):
-                raise EvalError(EVALUATION_ERROR, f"{label}: expected an array, got {_kind(v)}", node, unit)
+                raise EvalError(registry.EVALUATION_ERROR, f"{label}: expected an array, got {_kind(v)}", node, unit)
             return [self.value(x) if isinstance(x, SView) else x for x in v]
         if prim == "Real":
             if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, float, np.integer, np.floating)):
-                raise EvalError(EVALUATION_ERROR, f"{label}: expected a Real, got {_kind(v)}", node, unit)
+                raise EvalError(registry.EVALUATION_ERROR, f"{label}: expected a Real, got {_kind(v)}", node, unit)
             return float(v)
         if prim == "Int":
             if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, float, np.integer, np.floating)):
-                raise EvalError(EVALUATION_ERROR, f"{label}: expected an Int, got {_kind(v)}", node, unit)
+                raise EvalError(registry.EVALUATION_ERROR, f"{label}: expected an Int, got {_kind(v)}", node, unit)
             return int(v) if float(v).is_integer() else float(v)
         if prim == "Bool":
             if not isinstance(v, (bool, np.bool_)):
-                raise EvalError(EVALUATION_ERROR, f"{label}: expected a Bool, got {_kind(v)}", node, unit)
+                raise EvalError(registry.EVALUATION_ERROR, f"{label}: expected a Bool, got {_kind(v)}", node, unit)
             return bool(v)
         if prim == "String":
             if not isinstance(v, str):
-                raise EvalError(EVALUATION_ERROR, f"{label}: expected a String, got {_kind(v)}", node, unit)
+                raise EvalError(registry.EVALUATION_ERROR, f"{label}: expected a String, got {_kind(v)}", node, unit)
             return v
         if isinstance(ty, Ty) and ty.model is not None:
             sname = self.b.struct_name(ty.model)
@@ -438,9 +434,9 @@ class Evaluator:
             if isinstance(v, np.ndarray):
                 want = natives.SHAPES.get(sname)
                 if want is not None and v.shape != want:
-                    raise EvalError(EVALUATION_ERROR, f"expected a {sname}, got an array of shape {v.shape}", node, unit)
+                    raise EvalError(registry.EVALUATION_ERROR, f"expected a {sname}, got an array of shape {v.shape}", node, unit)
             return v
-        raise EvalError(EVALUATION_ERROR, f"expected a {sname}, got {_kind(v)}", node, unit)
+        raise EvalError(registry.EVALUATION_ERROR, f"expected a {sname}, got {_kind(v)}", node, unit)
 
     # ------------------------------------------------------------------ expressions
 
@@ -457,7 +453,7 @@ class Evaluator:
             return self.eval(e.inner, scope, unit, expected)
         if isinstance(e, ast.This):
             if scope is None:
-                raise EvalError(EVALUATION_ERROR, "'this' is used outside a model", e, unit)
+                raise EvalError(registry.EVALUATION_ERROR, "'this' is used outside a model", e, unit)
             return scope
         if isinstance(e, ast.Name):
             return self._name(e, scope, unit)
@@ -470,11 +466,11 @@ class Evaluator:
             base = self.value(self.eval(e.obj, scope, unit))
             idx = self.value(self.eval(e.index, scope, unit))
             if not isinstance(base, list):
-                raise EvalError(EVALUATION_ERROR, f"{_kind(base)} cannot be indexed", e, unit)
+                raise EvalError(registry.EVALUATION_ERROR, f"{_kind(base)} cannot be indexed", e, unit)
             if isinstance(idx, bool) or not isinstance(idx, (int, np.integer)):
-                raise EvalError(EVALUATION_ERROR, f"an index must be an Int, not {_kind(idx)}", e.index, unit)
+                raise EvalError(registry.EVALUATION_ERROR, f"an index must be an Int, not {_kind(idx)}", e.index, unit)
             if not -len(base) <= int(idx) < len(base):
-                raise EvalError(EVALUATION_ERROR, f"index {int(idx)} is out of range for an array of {len(base)}", e, unit)
+                raise EvalError(registry.EVALUATION_ERROR, f"index {int(idx)} is out of range for an array of {len(base)}", e, unit)
             return base[int(idx)]
         if isinstance(e, ast.Unary):
             v = self.value(self.eval(e.operand, scope, unit, expected))
@@ -490,7 +486,7 @@ class Evaluator:
             if isinstance(expected, Ty) and expected.array:
                 elem = expected.element()
             return [self.eval(x, scope, unit, elem) for x in e.items]
-        raise EvalError(EVALUATION_ERROR, "this expression cannot be evaluated", e, unit)
+        raise EvalError(registry.EVALUATION_ERROR, "this expression cannot be evaluated", e, unit)
 
     def _name(self, e: ast.Name, scope: Obj | None, unit) -> Any:
         name = e.ident.name
@@ -502,7 +498,7 @@ class Evaluator:
         v = self._global(found)
         if v is not _MISSING:
             return v
-        raise EvalError(EVALUATION_ERROR, f"unknown name '{name}'", e, unit)
+        raise EvalError(registry.EVALUATION_ERROR, f"unknown name '{name}'", e, unit)
 
     def _global(self, found: Any) -> Any:
         """The value of a name model/resolve.py found: a const model is its single instance."""
@@ -514,7 +510,7 @@ class Evaluator:
         if isinstance(found, ModelSym) and isinstance(meaning, Ty):
             obj = self.b.singleton(found)
             if obj is None:
-                raise EvalError(VALUE_CYCLE, f"const model {found.qname} refers to itself", None, None)
+                raise EvalError(registry.VALUE_CYCLE, f"const model {found.qname} refers to itself", None, None)
             if obj.struct is not None:
                 return SView(obj, (), obj.struct)
             return obj
@@ -525,13 +521,13 @@ class Evaluator:
             found = resolve.member_target(self.p, base, name)
             v = self._global(found)
             if v is _MISSING:
-                raise EvalError(EVALUATION_ERROR, f"'{name}' is not in namespace {base.ns.dotted}", e, unit)
+                raise EvalError(registry.EVALUATION_ERROR, f"'{name}' is not in namespace {base.ns.dotted}", e, unit)
             return v
         if isinstance(base, TypeObj):
             ref = resolve.member_target(self.p, base, name)
             if isinstance(ref, MethodRef):
                 return Bound(None, ref.method, ref.method.qname)
-            raise EvalError(EVALUATION_ERROR, f"{getattr(base.sym, 'qname', base.sym)} has no static function '{name}'", e, unit)
+            raise EvalError(registry.EVALUATION_ERROR, f"{getattr(base.sym, 'qname', base.sym)} has no static function '{name}'", e, unit)
         if isinstance(base, SView):
             ftype = _codec_field_type(self.structs, base.tname, (name,))
             if ftype is not None:
@@ -548,10 +544,10 @@ class Evaluator:
                 return Bound(None if meth.static else base, meth, meth.qname)
             if self.b.opaque_import(base) is not None:
                 raise Unavailable(f"{base.display}.{name}")  # inside an imported file: said once (A042)
-            raise EvalError(EVALUATION_ERROR, f"{base.display} ({self.p.concrete(base.model).qname}) has no attribute '{name}'",
+            raise EvalError(registry.EVALUATION_ERROR, f"{base.display} ({self.p.concrete(base.model).qname}) has no attribute '{name}'",
                             e, unit)
         if base is None:
-            raise EvalError(UNBOUND_REFERENCE, f"'.{name}' on an unbound optional reference", e, unit)
+            raise EvalError(registry.EVALUATED_UNBOUND_REFERENCE, f"'.{name}' on an unbound optional reference", e, unit)
         tname = natives.type_of(base)
         if tname in self.structs:
             codec = self.structs[tname]
@@ -559,7 +555,7 @@ class Evaluator:
                 return codec.to_fields(base)[name]
         if tname is not None:
             return self._method_on_value(base, tname, name, e, unit)
-        raise EvalError(EVALUATION_ERROR, f"{_kind(base)} has no member '{name}'", e, unit)
+        raise EvalError(registry.EVALUATION_ERROR, f"{_kind(base)} has no member '{name}'", e, unit)
 
     def _method_on_value(self, value: Any, tname: str, name: str, e, unit) -> Any:
         sym = self.p.lookup_outside_visibility(tname.split("."))
@@ -570,12 +566,12 @@ class Evaluator:
         qn = f"{tname}.{name}"
         if qn in natives.FUNCTIONS:
             return Bound(value, None, qn)
-        raise EvalError(EVALUATION_ERROR, f"a {tname} has no member '{name}'", e, unit)
+        raise EvalError(registry.EVALUATION_ERROR, f"a {tname} has no member '{name}'", e, unit)
 
     def _call(self, e: ast.Call, scope: Obj | None, unit) -> Any:
         f = self.eval(e.func, scope, unit)
         if not isinstance(f, Bound):
-            raise EvalError(EVALUATION_ERROR, f"{_kind(f)} cannot be called", e.func, unit)
+            raise EvalError(registry.EVALUATION_ERROR, f"{_kind(f)} cannot be called", e.func, unit)
         params: list = []
         if f.meth is not None:
             params = [self.p.resolve_type_ref(prm.type, f.meth.owner.unit) for prm in f.meth.stmt.params]
@@ -590,25 +586,25 @@ class Evaluator:
         if fn is None:
             what = "is not supported by the plxtools evaluator" if f.qname in natives.UNSUPPORTED \
                 else "has no native implementation"
-            raise EvalError("A008", f"{f.qname}() {what}", e, unit)
+            raise EvalError(registry.UNSUPPORTED_FUNCTION, f"{f.qname}() {what}", e, unit)
         try:
             if f.recv is not None:
                 return fn(self.value(f.recv), *args)
             return fn(*args)
         except NativeError as err:
-            raise EvalError(EVALUATION_ERROR, f"{f.qname}: {err}", e, unit) from None
+            raise EvalError(registry.EVALUATION_ERROR, f"{f.qname}: {err}", e, unit) from None
 
     def _op(self, op: str, vals: list, e, unit) -> Any:
         types = [natives.type_of(v) for v in vals]
         if any(t is None for t in types):
             bad = next(v for v, t in zip(vals, types) if t is None)
-            raise EvalError(EVALUATION_ERROR, f"operator {op} cannot be applied to {_kind(bad)}", e, unit)
+            raise EvalError(registry.EVALUATION_ERROR, f"operator {op} cannot be applied to {_kind(bad)}", e, unit)
         try:
             if len(vals) == 1:
                 return natives.apply_operator(op, types[0], vals[0])
             return natives.apply_operator(op, types[0], vals[0], types[1], vals[1])
         except NativeError as err:
-            raise EvalError(EVALUATION_ERROR, str(err), e, unit) from None
+            raise EvalError(registry.EVALUATION_ERROR, str(err), e, unit) from None
 
     def _brace(self, e: ast.Brace, scope, unit, expected: Any) -> Any:
         tname = None
@@ -626,9 +622,9 @@ class Evaluator:
         # no guessing from the item count (a 4-item literal is not always a Quat): the expected type decides
         codec = self.structs.get(tname) if tname else None
         if codec is None or tname in ("Math.AffineTransform", "Math.Line"):
-            raise EvalError(EVALUATION_ERROR, f"a {{...}} literal of {len(e.items)} values has no known type here", e, unit)
+            raise EvalError(registry.EVALUATION_ERROR, f"a {{...}} literal of {len(e.items)} values has no known type here", e, unit)
         if len(e.items) != len(codec.fields):
-            raise EvalError(EVALUATION_ERROR, f"{tname} takes {len(codec.fields)} values, this literal has {len(e.items)}",
+            raise EvalError(registry.EVALUATION_ERROR, f"{tname} takes {len(codec.fields)} values, this literal has {len(e.items)}",
                             e, unit)
         vals = {}
         for f, item in zip(codec.fields, e.items):
@@ -638,7 +634,7 @@ class Evaluator:
         try:
             return codec.from_fields(vals)
         except NativeError as err:
-            raise EvalError(EVALUATION_ERROR, str(err), e, unit) from None
+            raise EvalError(registry.EVALUATION_ERROR, str(err), e, unit) from None
 
 
 def _kind(v: Any) -> str:

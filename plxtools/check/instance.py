@@ -35,10 +35,9 @@ from plxtools.model.natives import struct_types
 from plxtools.model.program import Program
 from plxtools.model.resolve import opaque_import, replaces
 from plxtools.model.symbols import FileUnit, ModelSym, Ty
-from plxtools.rules.registry import code_of
 from plxtools.syntax import ast
+from plxtools.rules import registry
 
-INSTANTIATION_TOO_DEEP = code_of("instantiation-too-deep")
 
 DECL, VALUE, WITH = 0, 1, 2
 MAX_DEPTH = 48  # nesting of owned objects from which a model met again among the owners contains itself
@@ -304,7 +303,7 @@ class Builder:
             obj = cut
         self.too_deep.append(obj)
         if self.report is not None:
-            self.report(INSTANTIATION_TOO_DEEP, _too_deep_message(obj, depth, loop), obj)
+            self.report(registry.INSTANTIATION_TOO_DEEP, _too_deep_message(obj, depth, loop), obj)
         return True
 
     def _member(self, obj: Obj, name: str, e: Eff, flags: list, ce: list, path: str, depth: int) -> None:

@@ -9,6 +9,11 @@ from typing import Any, TextIO
 from plxtools.check.checks import STATIC_MOTION_CODES
 from plxtools.check.pipeline import FileCheck, Skip
 from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.rules import registry
+from plxtools.check.frames import quat_xyzw_to_mat
+from plxtools.rules.registry import get
+from plxtools.rules.reporters import _summary_line
+from plxtools.rules.reporters import render_text as lint_text
 
 
 def _r(x: float, nd: int = 6) -> float:
@@ -145,8 +150,6 @@ def _upright(b) -> bool:
     """Heading (yaw of the body's x axis) means something only for a body that stays upright."""
     import numpy as np
 
-    from plxtools.check.frames import quat_xyzw_to_mat
-
     for q in (b.initial_quat, b.final_quat):
         w, x, y, z = q
         if quat_xyzw_to_mat((x, y, z, w))[2, 2] < math.cos(math.radians(30)):
@@ -187,25 +190,21 @@ def findings(fc: FileCheck) -> list[str]:
 
 
 # diagnostics that explain how the scene moves (or fails to): the summary lists them with the findings
-MOTION_CODES = STATIC_MOTION_CODES  # and the run's MOTOR_OFF_TARGET
+MOTION_CODES = STATIC_MOTION_CODES  # and the run's registry.MOTOR_OFF_TARGET
 
 
 def motion_diagnostics(fc: FileCheck) -> list[Diagnostic]:
-    from plxtools.check.mujoco.simulate import MOTOR_OFF_TARGET
 
-    return [d for d in fc.diagnostics if d.code in MOTION_CODES or d.code == MOTOR_OFF_TARGET]
+    return [d for d in fc.diagnostics if d.code in MOTION_CODES or d.code == registry.MOTOR_OFF_TARGET]
 
 
 def _energy_gained(s) -> bool:
     """The run reported energy that no motor supplied (its finding, not a threshold of ours)."""
-    from plxtools.check.mujoco.simulate import ENERGY_GAIN
 
-    return any(n.code == ENERGY_GAIN for n in s.notes)
+    return any(n.code == registry.ENERGY_GAIN for n in s.notes)
 
 
 def render_text(results: list[FileCheck], diags: list[Diagnostic], stream: TextIO, *, simulate: bool) -> None:
-    from plxtools.rules.reporters import render_text as lint_text
-
     rich = _use_rich(stream)
     lint_text(diags, stream, summary=False)
     console = None
@@ -282,7 +281,6 @@ def _render_motion_table(rows: list[tuple[str, ...]], stream: TextIO, console) -
 
 def _summary_text(results: list[FileCheck], diags: list[Diagnostic]) -> str:
     """The last line: lint's count of findings, what the mapping notes are, and files not checked."""
-    from plxtools.rules.reporters import _summary_line
 
     summary = _summary_line(diags, len(results))
     mapping = _mapping_notes(diags)
@@ -302,7 +300,6 @@ def _summary_text(results: list[FileCheck], diags: list[Diagnostic]) -> str:
 
 def _mapping_notes(diags: list[Diagnostic]) -> int:
     """How many diagnostics are infos of the simulate stage (how a value was mapped to MuJoCo)."""
-    from plxtools.rules.registry import get
 
     n = 0
     for d in diags:

@@ -13,20 +13,24 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from plxtools.check.assemble import MATE_NOT_COINCIDENT, Assembler, Assembly, Kinds, Placement
+from plxtools.check.assemble import Assembler, Assembly, Kinds, Placement
 from plxtools.check.checks import StaticChecks, scan_strings
 from plxtools.check.convert import Collector, to_scene
-from plxtools.check.evaluate import EVALUATION_ERROR, MISSING_VALUE, UNBOUND_REFERENCE, VALUE_CYCLE, Evaluator
+from plxtools.check.evaluate import Evaluator
 from plxtools.check.frames import mat_to_quat_wxyz
-from plxtools.check.instance import INSTANTIATION_TOO_DEEP, Builder
+from plxtools.check.instance import Builder
 from plxtools.check.report import Reporter
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Pos, Severity, Span
-from plxtools.model.checker import DEFAULT_CYCLE, TYPE_MISMATCH, UNKNOWN_ATTRIBUTE
 from plxtools.model.symbols import ModelSym
 from plxtools.rules import completeness
 from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import ast, parse_bytes
-from plxtools.syntax.source import BINARY_FILE, unreadable
+from plxtools.syntax.source import unreadable
+from plxtools.rules import registry
+from plxtools.check import aftersim
+from plxtools.check.mujoco import backend as mjb  # (imports MuJoCo only when it compiles)
+from plxtools.rules.analysis import finalize
+from plxtools.rules.completeness import root_model
 
 
 class Skip(enum.Enum):
@@ -42,8 +46,8 @@ class Skip(enum.Enum):
 
 
 # errors whose scene is exactly what the file says; they do not stop simulation, export or render
-SCENE_AS_WRITTEN = frozenset({MATE_NOT_COINCIDENT})
-NO_SUCH_ROOT, TRAIT_AS_ROOT = "A001", "A002"  # the root model asked for (--model, a scenario's root) is not a model
+SCENE_AS_WRITTEN = frozenset({registry.MATE_NOT_COINCIDENT})
+NO_SUCH_ROOT, TRAIT_AS_ROOT = registry.ROOT_MODEL_NOT_FOUND, registry.ROOT_IS_TRAIT  # the root model asked for (--model, a scenario's root) is not a model
 
 
 @dataclass
@@ -131,8 +135,6 @@ class FileCheck:
 
 
 def _pick_root(program, unit, name: str | None, rep: Reporter) -> ModelSym | None:
-    from plxtools.rules.completeness import root_model
-
     if not name:
         root = root_model(program, unit)
         if root is None:
@@ -167,7 +169,7 @@ def analyse(path: Path, workspace, cfg, *, model: str | None = None) -> FileChec
     tree = parse_bytes(data, str(path))
     fc.tree = tree
     raw: list[Diagnostic] = list(tree.diagnostics)
-    if any(d.code == BINARY_FILE for d in tree.diagnostics):
+    if any(d.code == registry.BINARY_FILE for d in tree.diagnostics):
         fc.skip = Skip.NOT_TEXT
         fc.diagnostics = _finish(tree, raw, cfg)
         return fc
@@ -233,7 +235,7 @@ def _not_analysed(builder: Builder, unit, rep: Reporter) -> None:
         shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
         span = stmt.source.span if stmt is not None and imp.unit is unit else None
         suffix = os.path.splitext(stmt.source.value)[1] if stmt is not None else ""
-        rep.add("A042", f"{shown} {'is' if len(names) == 1 else 'are'} built from {written}, which plx cannot "
+        rep.add(registry.IMPORTED_FILE_NOT_ANALYSED, f"{shown} {'is' if len(names) == 1 else 'are'} built from {written}, which plx cannot "
                 f"read{f' ({suffix} file)' if suffix else ''}: the bodies, mates and values inside are not "
                 f"analysed or simulated", obj=objs[0], span=span, severity=Severity.INFO,
                 help="plx check analyses what is written in .openplx files (and reads .obj meshes)")
@@ -260,8 +262,6 @@ def blocking_reason(fc: FileCheck) -> str | None:
 def run_backend(fc: FileCheck, *, simulate: bool, duration: float, compile_only: bool = False,
                 record: bool = False, timeout: float | None = None, deadline: float | None = None) -> None:
     """Compile (and simulate) the file's scene; backend notes become diagnostics."""
-    from plxtools.check.mujoco import backend as mjb
-
     t0 = time.perf_counter()
     fc.compiled = mjb.compile_scene(fc.scene)
     fc.timings["compile"] = time.perf_counter() - t0
@@ -271,13 +271,9 @@ def run_backend(fc: FileCheck, *, simulate: bool, duration: float, compile_only:
         fc.simulation = mjb.simulate(fc.compiled, duration, record=record, timeout=timeout, deadline=deadline)
         fc.timings["simulate"] = time.perf_counter() - t1
         notes = list(fc.simulation.notes)
-        from plxtools.check.checks import bodies_out_of_world
-
-        notes += bodies_out_of_world(fc.simulation, fc.compiled.names.sources)
+        notes += aftersim.bodies_out_of_world(fc.simulation, fc.compiled.names.sources)
     add_backend_notes(fc.rep, fc.tree, notes)
-    from plxtools.check.checks import tie_mirrored_motors
-
-    tie_mirrored_motors(fc.rep)
+    aftersim.tie_mirrored_motors(fc.rep)
     refresh(fc)
 
 
@@ -307,26 +303,12 @@ def _span_of_source(tree: ast.File, src) -> Span:
     return Span(Pos(a, line, col), Pos(b, end_line, end_col))
 
 
-# What lint's model checks own: a missing value (M007), an unbound reference (M008) or one given a
-# value of the wrong kind (T001), a value cycle (M006), a type or name error.  When lint has found one
-# of these in the file, the evaluator's own reports of the same kinds (A004, A005, A006, A003) are
-# consequences of it and are not made.  A missing value that follows from a misspelt attribute or a
-# block that did not parse is lint's too (its M007 is dropped as a consequence, see
-# rules/completeness.py).  Each entry: the evaluation code, then the lint codes (or whole families by
-# their letter: S syntax, T types, N names) that own it.
-_LINT_OWNED = {
-    MISSING_VALUE: (completeness.MISSING_ASSIGNMENT, UNKNOWN_ATTRIBUTE, "S"),
-    UNBOUND_REFERENCE: (completeness.UNBOUND_REFERENCE, TYPE_MISMATCH),
-    VALUE_CYCLE: (DEFAULT_CYCLE,),
-    EVALUATION_ERROR: ("T", "N"),
-}
-
-
 def _owned_by_lint(lint: list[Diagnostic]) -> frozenset[str]:
-    """The evaluation codes that lint's errors in this file already own."""
-    errors = [d.code for d in lint if d.severity == Severity.ERROR]
-    return frozenset(code for code, owners in _LINT_OWNED.items()
-                     if any(c.startswith(owners) for c in errors))
+    """The evaluation codes that lint's errors in this file already own (the registry's `owns`): a
+    missing value (A004) after M007, a misspelt attribute or a syntax error; an unbound reference
+    (A005) after M008 or T001; a value cycle (A006) after M006; an evaluation error (A003) after a
+    type or name error. The evaluator does not make them again."""
+    return registry.owned_by(d.code for d in lint if d.severity == Severity.ERROR)
 
 
 def _merge(lint: list[Diagnostic], check: list[Diagnostic]) -> list[Diagnostic]:
@@ -335,13 +317,12 @@ def _merge(lint: list[Diagnostic], check: list[Diagnostic]) -> list[Diagnostic]:
     contains itself is lint's wherever check meets the ring (lint names the attribute that closes
     it, check the object where it stopped: one cause, said once)."""
     made = {(d.code, d.span.start.line) for d in lint}
-    rings = any(d.code == INSTANTIATION_TOO_DEEP for d in lint)
+    rings = any(d.code == registry.INSTANTIATION_TOO_DEEP for d in lint)
     return lint + [d for d in check if (d.code, d.span.start.line) not in made
-                   and not (rings and d.code == INSTANTIATION_TOO_DEEP)]
+                   and not (rings and d.code == registry.INSTANTIATION_TOO_DEEP)]
 
 
 def _finish(tree: ast.File, diags: list[Diagnostic], cfg) -> list[Diagnostic]:
     """Lint's own config filtering and suppressions, over lint's and check's findings together."""
-    from plxtools.rules.analysis import finalize
 
     return finalize(tree, diags, cfg)

@@ -11,6 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from plxtools.check.testrun import PASSED, run_scenario
 
 SUFFIX = ".scenario.toml"
 
@@ -47,8 +48,6 @@ class ScenarioItem(pytest.Item):
         self.funcargs: dict = {}
 
     def runtest(self) -> None:
-        from plxtools.check.testrun import PASSED, run_scenario
-
         result = run_scenario(self.path, bundle_path=self.config.getoption("plx_bundle_path"))
         self.user_properties.append(("simulated_time", result.simulated_time))
         if result.status != PASSED:

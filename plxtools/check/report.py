@@ -9,11 +9,10 @@ from typing import Any
 from plxtools.check.instance import Obj
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity, Span
 from plxtools.syntax import ast
+from plxtools.rules.registry import get
 
 
 def _rule_severity(code: str) -> Severity:
-    from plxtools.rules.registry import get
-
     r = get(code)
     return r.severity if r is not None else Severity.WARNING
 

@@ -34,6 +34,10 @@ from pathlib import Path
 from typing import Any
 
 from plxtools.check.signals import KIND_TEXT, SignalInfo, SignalValueError, coerce, did_you_mean
+from plxtools.check.api import ANGULAR_OUTPUTS, BODY_QUANTITIES, component_index
+from plxtools.check.mapped_types import CONTROLLERS, MATES
+from plxtools.check.scenecounts import PREFIX
+from plxtools.check.signals import COMPONENTS, RPY_COMPONENTS, RPY_QUANTITIES
 
 SUFFIX = ".scenario.toml"
 TOP_KEYS = ("model", "root", "duration", "name", "description", "input", "expect")
@@ -512,7 +516,6 @@ class _Model:
 
     def is_count(self, of: str) -> bool:
         """``scene.bodies``, ``scene.mates.hinge``...: unless a signal or body has that path."""
-        from plxtools.check.scenecounts import PREFIX
 
         head = of.rsplit(".", 1)[0]
         return (self.counts is not None and of.startswith(PREFIX) and of not in self.by_path
@@ -556,7 +559,6 @@ def _bind_input(step: InputStep, model: _Model) -> ScenarioError | None:
 
 def _bind_count(e: Expect, model: _Model) -> ScenarioError | None:
     """An expectation on a count of the assembled scene (``scene.mates.hinge``)."""
-    from plxtools.check.scenecounts import PREFIX
 
     counts = model.counts or {}
     what = e.of[len(PREFIX):]
@@ -580,7 +582,6 @@ def _bind_count(e: Expect, model: _Model) -> ScenarioError | None:
 
 def _known_kinds(group: str) -> set[str]:
     """The kinds a mate or controller count may name (the mapping's tables); other groups: any."""
-    from plxtools.check.mapped_types import CONTROLLERS, MATES
 
     if group == "mates":
         return set(MATES.values())
@@ -591,7 +592,6 @@ def _known_kinds(group: str) -> set[str]:
 
 def _bind_expect(e: Expect, model: _Model) -> ScenarioError | None:
     """Point an ``[[expect]]`` at an output (or a body quantity) and check its unit."""
-    from plxtools.check.api import ANGULAR_OUTPUTS, BODY_QUANTITIES, component_index
 
     err = _bind_subject(e, model.by_path, model.bodies, model.paths("output"), model.bound, model.unbound,
                         model.model_file, BODY_QUANTITIES, component_index)
@@ -648,8 +648,6 @@ def _bind_subject(e: Expect, by_path: dict, bodies: list[str], outputs: list[str
 
 
 def _components(info: SignalInfo) -> list[str]:
-    from plxtools.check.signals import COMPONENTS, RPY_COMPONENTS, RPY_QUANTITIES
-
     if info.quantity in RPY_QUANTITIES:
         return list(RPY_COMPONENTS)
     return list(COMPONENTS.get(info.value_kind or "", ()))

@@ -27,7 +27,9 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from plxtools.model import suggest
+from plxtools.check.bindings import Binding, Unbindable, rpy_of_mat  # noqa: F401 (rpy_of_mat: read from here too)
 from plxtools.check.mapped_types import CONTROLLERS, MATES
+from plxtools.model.resolve import linearize
 
 INPUT = "Physics.Signals.Input"
 OUTPUT = "Physics.Signals.Output"
@@ -268,7 +270,6 @@ def _by_carried_type(obj: Any, ev: Any, kinds: Any, skind: str | None) -> str | 
 
 def _lineage(obj: Any, kinds: Any) -> list[str]:
     """The qualified names of an object's model and its bases, nearest first."""
-    from plxtools.model.resolve import linearize
 
     return [m.qname for m in reversed(linearize(kinds.p, kinds.p.concrete(obj.model)))]
 
@@ -364,14 +365,6 @@ def _describe(value: Any) -> str:
     if isinstance(value, dict):
         return "a table"
     return f"{type(value).__name__} {value!r}"
-
-
-@dataclass(slots=True)
-class Binding:
-    info: SignalInfo
-    read: Callable[[Any, Any], Any] | None = None  # (model, data) -> value
-    write: Callable[[Any, Any, Any], None] | None = None  # (model, data, value)
-    refuse: Callable[[Any], str | None] | None = None  # a value this binding cannot take: why
 
 
 def _ctrl_binding(b: Binding, aid: int) -> None:
@@ -633,18 +626,6 @@ def _bound_elsewhere(quantity: str | None) -> Callable[[SignalRuntime, SignalInf
     if quantity in body_loads.LOAD_QUANTITIES:
         return body_loads.bind_load
     return body_loads.bind_mass if quantity == "body_mass" else None
-
-
-class Unbindable(Exception):
-    """A mapped signal that cannot act on this compiled model (the message says why)."""
-
-
-def rpy_of_mat(xmat: Any) -> tuple[float, float, float]:
-    """(roll, pitch, yaw) of a row-major 3x3 rotation, ``R = Rz(yaw) Ry(pitch) Rx(roll)``."""
-    r = [float(x) for x in xmat]
-    r00, r10, r20, r21, r22 = r[0], r[3], r[6], r[7], r[8]
-    pitch = math.asin(max(-1.0, min(1.0, -r20)))
-    return (math.atan2(r21, r22), pitch, math.atan2(r10, r00))
 
 
 # ---------------------------------------------------------------------------------------------- names

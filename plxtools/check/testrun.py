@@ -19,6 +19,11 @@ from typing import Any, TextIO
 
 from plxtools.check.scenario import SUFFIX, Expect, Loc, Scenario, ScenarioError, bind, display_path, parse
 from plxtools.diagnostics import Diagnostic, Pos, Severity, Span
+from plxtools.rules import registry
+from plxtools.check.api import ModelError, prepare
+from plxtools.check.scenario import discover
+from plxtools.check.scenecounts import scene_counts
+from plxtools.check.signals import SignalRuntime
 
 PASSED, FAILED, ERROR = "passed", "failed", "error"
 FORMATS = ("text", "json", "github", "sarif", "junit")
@@ -95,7 +100,7 @@ def diag(code: str, message: str, loc: Loc, severity: Severity = Severity.ERROR,
 
 def _error(res: ScenarioResult, errors: list[ScenarioError]) -> ScenarioResult:
     res.status = ERROR
-    res.diagnostics.extend(diag("A141", e.message, e.loc, help=e.help) for e in errors)
+    res.diagnostics.extend(diag(registry.INVALID_SCENARIO, e.message, e.loc, help=e.help) for e in errors)
     return res
 
 
@@ -121,8 +126,6 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
     import mujoco
 
     from plxtools.check.mujoco.simulate import simulate_compiled
-    from plxtools.check.scenecounts import scene_counts
-    from plxtools.check.signals import SignalRuntime
 
     assert sc.model_file is not None
     model_file = display_path(sc.model_file)
@@ -145,7 +148,7 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
     res.simulated_time, res.steps = sim.simulated_time, sim.steps
     for o in res.outcomes:
         if not o.passed:
-            res.diagnostics.append(diag("A140", o.message(), o.expect.loc))
+            res.diagnostics.append(diag(registry.EXPECTATION_FAILED, o.message(), o.expect.loc))
     _run_findings(sim.notes, res, model_file)
     if res.failures:
         res.status = FAILED
@@ -154,7 +157,6 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
 def _prepare(sc: Scenario, res: ScenarioResult, model_file: str, bundle_path, openplx_version) -> Any:
     """The model compiled for MuJoCo, or None when it cannot be (``res`` then says why: a root that
     is not in the file is the scenario's error, anything else a failure of the model)."""
-    from plxtools.check.api import ModelError, prepare
     from plxtools.check.pipeline import NO_SUCH_ROOT, TRAIT_AS_ROOT
 
     try:
@@ -166,7 +168,7 @@ def _prepare(sc: Scenario, res: ScenarioResult, model_file: str, bundle_path, op
             _error(res, [ScenarioError(f"{model_file}: {d.message}", sc.root_loc or sc.model_loc)])
             return None
         res.status = FAILED
-        res.diagnostics.append(diag("A142", f"{sc.name}: the model cannot be simulated: {exc}", sc.model_loc))
+        res.diagnostics.append(diag(registry.SCENARIO_MODEL_NOT_SIMULATED, f"{sc.name}: the model cannot be simulated: {exc}", sc.model_loc))
         res.diagnostics.extend(d for d in exc.diagnostics if d.severity == Severity.ERROR)
         return None
 
@@ -232,10 +234,9 @@ def _sample(o: Outcome, v: float, t: float) -> None:
 def _run_findings(notes: list, res: ScenarioResult, model_file: str) -> None:
     """The run's errors (a body that fell through among them) fail the scenario; its warnings of mates
     drifting apart and of geometries that start in each other are shown beside the result."""
-    from plxtools.check.mujoco.simulate import FELL_THROUGH, MATE_DRIFT, OVERLAP_AT_START
 
     for n in notes:
-        if n.severity == "error" or n.code in (FELL_THROUGH, MATE_DRIFT, OVERLAP_AT_START):
+        if n.severity == "error" or n.code in (registry.FELL_THROUGH, registry.MATE_DRIFT, registry.OVERLAP_AT_START):
             src = n.source
             loc = Loc(display_path(Path(src.file)) if src else model_file, src.line if src and src.line else 1,
                       src.column if src and src.column else 1)
@@ -329,8 +330,6 @@ def junit(results: list[ScenarioResult], wall: float) -> str:
 
 
 def run_test(args) -> int:
-    from plxtools.check.scenario import discover
-
     try:
         files = discover(args.paths)
     except FileNotFoundError as exc:

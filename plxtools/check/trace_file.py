@@ -13,6 +13,7 @@ import csv
 import io
 from pathlib import Path
 from typing import Any
+from plxtools.fileio import write_output
 
 BODY_FIELDS = (("position", ("x", "y", "z")), ("quaternion", ("qw", "qx", "qy", "qz")),
                ("velocity", ("vx", "vy", "vz")), ("angular_velocity", ("wx", "wy", "wz")))
@@ -53,7 +54,6 @@ def write_trace(trace: dict[str, Any], out: Path) -> None:
     """Write through the one safe writer (plxtools.fileio.write_output): a reader never sees half a
     table, a failed write leaves what was there, a symlink is written through and a device or
     folder is refused."""
-    from plxtools.fileio import write_output
 
     try:
         write_output(out, trace_csv(trace))

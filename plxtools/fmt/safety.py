@@ -13,6 +13,7 @@ import re
 from dataclasses import replace
 
 from plxtools.syntax import ast
+from plxtools.rules import registry
 
 _DIGITS = re.compile(r"\d+")
 _SUPPRESSION = re.compile(r"#\s*plx:\s*ignore")
@@ -42,11 +43,9 @@ def _lint_signature(tree: ast.File) -> list[tuple[str, str, str, str]]:
 
     from plxtools.config import Config, config_for
     from plxtools.rules.analysis import analyse_tree
-    from plxtools.rules.style import MISALIGNED_INDENTATION
-    from plxtools.syntax.lexer import TAB_INDENTATION
 
     # what the formatter fixes by design (indentation, tabs): left out on both sides of the comparison
-    layout_codes = (MISALIGNED_INDENTATION, TAB_INDENTATION)
+    layout_codes = (registry.MISALIGNED_INDENTATION, registry.TAB_INDENTATION)
     cfg = config_for(Path(tree.path)) if tree.path else Config()
     cfg = replace(cfg, ignore=list(cfg.ignore) + list(layout_codes))
     # messages may quote line numbers ("first defined at line 3"), which blank lines shift

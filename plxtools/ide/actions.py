@@ -7,6 +7,7 @@ from plxtools.ide.host import FileState
 from plxtools.ide.types import CodeAction, TextEdit
 from plxtools.rules import suppress
 from plxtools.syntax import ast
+from plxtools.rules import registry
 
 
 
@@ -72,7 +73,7 @@ def fix_all(st: FileState) -> CodeAction | None:
 
 def suppress_edit(st: FileState, d: Diagnostic) -> TextEdit | None:
     """`# plx: ignore[CODE]` at the end of the diagnostic's line (or the code added to one already there)."""
-    if d.code.startswith("S") or d.code == suppress.UNUSED_SUPPRESSION:
+    if d.code.startswith("S") or d.code == registry.UNUSED_SUPPRESSION:
         return None  # syntax errors cannot be suppressed; an unused suppression is removed, not suppressed
     idx = st.tree.index
     line = d.span.start.line

@@ -5,6 +5,7 @@ from __future__ import annotations
 import difflib
 
 from plxtools.ide.types import TextEdit
+from plxtools.fmt import format_range, format_text
 
 
 class FormattingRefused(Exception):
@@ -18,8 +19,6 @@ class FormattingRefused(Exception):
 
 
 def _formatter():
-    from plxtools.fmt import format_range, format_text
-
     return format_text, format_range
 
 

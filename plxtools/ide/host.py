@@ -22,6 +22,11 @@ from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity
 from plxtools.syntax.incremental import IncrementalParser
 from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import ast, parse_text
+from plxtools.rules import registry
+from plxtools.config import _config_for_dir
+from plxtools.model.imports import resolve_file
+from plxtools.model.versions import BundleSetError
+from plxtools.rules.analysis import final_diagnostics
 
 
 def is_file_path(path: str) -> bool:
@@ -171,7 +176,6 @@ class AnalysisHost:
         return self._ws
 
     def _load_workspace(self) -> None:
-        from plxtools.model.versions import BundleSetError
         from plxtools.model.workspace import Workspace, WorkspaceError, bundle_set_for_folder
 
         good = []
@@ -200,7 +204,6 @@ class AnalysisHost:
     def config_changed(self) -> bool:
         """A plx.toml, pyproject.toml or config.openplx changed: choose the bundle set again.
         Returns True when the set is a different one (everything must be checked again)."""
-        from plxtools.config import _config_for_dir
 
         _config_for_dir.cache_clear()
         if self._ws is None:
@@ -525,13 +528,11 @@ class AnalysisHost:
         return LineView(st, line, text, first, own, first + (len(old_region.rstrip("\n")) if old_region else 0))
 
     def _lint(self, tree: ast.File, analysis) -> list[Diagnostic]:
-        from plxtools.rules.analysis import final_diagnostics
-
         cfg = self.config(tree.path)
         ws = self._ws
         if ws is None:
             diags = list(tree.diagnostics)
-            diags.append(Diagnostic("B000", f"OpenPLX bundles unavailable: {self.workspace_error}", EMPTY_SPAN,
+            diags.append(Diagnostic(registry.BUNDLES_UNAVAILABLE, f"OpenPLX bundles unavailable: {self.workspace_error}", EMPTY_SPAN,
                                     Severity.WARNING, file=tree.path))
             return diags
         return final_diagnostics(tree, cfg, analysis)
@@ -552,7 +553,6 @@ class AnalysisHost:
     def imports_of(self, path: str) -> set[str]:
         """The files an open document imports (by the paths their import statements name now;
         a missing file too: creating it changes the diagnostics)."""
-        from plxtools.model.imports import resolve_file
 
         st = self._states.get(path)
         if st is None or st.tree is None:

@@ -16,6 +16,7 @@ from plxtools.ide.types import HoverResult
 from plxtools.model.symbols import MemberSym, ModelSym
 from plxtools.rules import suppress
 from plxtools.syntax import ast
+from plxtools.ide.context import symbol_of_top
 
 
 
@@ -81,7 +82,6 @@ def _member_context(st: FileState, offset: int, res):
         return ctx.outer, ctx.prefix + tuple(names[: k + 1]), stmt
     # a name in an expression: chains that start at an attribute of the outer model
     top = owners[0] if owners else stmt
-    from plxtools.ide.context import symbol_of_top
 
     outer = symbol_of_top(st, top)
     if not isinstance(outer, ModelSym):

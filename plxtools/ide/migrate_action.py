@@ -20,7 +20,13 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from plxtools.model.workspace import VERSION_CODES
+from plxtools.rules import registry
+from plxtools.migrate.endpoints import plan_for_sets
+from plxtools.migrate.rewrite import migrate_text
+from plxtools.model.apiindex import version_key
+from plxtools.model.versions import cached_root, installed
+from plxtools.model.versions import resolve_bundle_set
+from plxtools.model.workspace import workspace_for_set
 
 log = logging.getLogger("plxtools.lsp")  # the language server's log, where these run
 
@@ -41,19 +47,16 @@ def wanted(only: list[str] | None) -> bool:
 
 def has_version_diagnostics(diagnostics) -> bool:
     """Whether any diagnostic names something of an older OpenPLX version (U001/U002)."""
-    return any(d.code in VERSION_CODES for d in diagnostics)
+    return any(d.code in registry.tagged("version") for d in diagnostics)
 
 
 def _available(version: str) -> bool:
-    from plxtools.model.versions import cached_root, installed
-
     inst = installed()
     return (inst is not None and inst[1] == version) or cached_root(version) is not None
 
 
 def source_version(path: str, diagnostics, to_v: str) -> str | None:
     """The version the file was written for, when it is older than `to_v` (else None)."""
-    from plxtools.model.apiindex import version_key
 
     if os.path.isabs(path):
         try:
@@ -64,7 +67,7 @@ def source_version(path: str, diagnostics, to_v: str) -> str | None:
             pinned = None
         if pinned and version_key(pinned) < version_key(to_v):
             return pinned
-    found = [d.older_version for d in diagnostics if d.code in VERSION_CODES and d.older_version]
+    found = [d.older_version for d in diagnostics if d.code in registry.tagged("version") and d.older_version]
     found = [v for v in found if version_key(v) < version_key(to_v)]
     return min(found, key=version_key) if found else None
 
@@ -95,10 +98,6 @@ def migration(host, st) -> Migration | None:
                                           f"`plx bundles install {from_v}`, then try again")
         from_v = have[-1]
         title = f"Migrate this file from OpenPLX {from_v} to {to_v}"
-    from plxtools.migrate.endpoints import plan_for_sets
-    from plxtools.migrate.rewrite import migrate_text
-    from plxtools.model.versions import resolve_bundle_set
-    from plxtools.model.workspace import workspace_for_set
 
     targets = [Path(st.path)] if os.path.isabs(st.path) else []
     try:

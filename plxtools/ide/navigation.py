@@ -11,6 +11,8 @@ from plxtools.ide.types import FileSpan, NavTarget, RenameError, TextEdit
 from plxtools.model import resolve
 from plxtools.model.symbols import GlobalSym, MemberSym, MethodSym, ModelSym, Namespace
 from plxtools.syntax import ast
+from plxtools.diagnostics import EMPTY_SPAN
+from plxtools.syntax.lexer import KEYWORDS
 
 IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
@@ -50,7 +52,6 @@ def target_of(program, sym) -> NavTarget | None:
 
 def _namespace_target(program, ns: Namespace) -> NavTarget | None:
     """A namespace is a folder: go to its bundle's config.openplx, or the first file directly inside it."""
-    from plxtools.diagnostics import EMPTY_SPAN
 
     inside = sorted((u for u in program.units.values() if u.namespace.qname[: len(ns.qname)] == ns.qname),
                     key=lambda u: (len(u.namespace.qname), u.path))
@@ -304,7 +305,6 @@ def rename(host: AnalysisHost, path: str, offset: int, new_name: str) -> dict[st
     bare = new_name.strip("`")
     if not IDENT.match(new_name) and not (new_name.startswith("`") and new_name.endswith("`") and bare):
         raise RenameError(f"'{new_name}' is not a valid OpenPLX name")
-    from plxtools.syntax.lexer import KEYWORDS
 
     if new_name in KEYWORDS:
         raise RenameError(f"'{new_name}' is a keyword")

@@ -27,6 +27,7 @@ from pathlib import Path
 
 from plxtools.cache import reads, store
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Severity, Span
+from plxtools.rules import registry
 
 
 def _span(s: Span) -> list:
@@ -104,9 +105,8 @@ class ResultCache:
         if not diagnostics:
             return True
         # (imported here: a replay must not load the model; a result to store was just computed with it)
-        from plxtools.model.checker import UNRESOLVED_NAME, UNRESOLVED_TYPE
 
-        return not any(d.code in (UNRESOLVED_TYPE, UNRESOLVED_NAME) for d in diagnostics)
+        return not any(d.code in (registry.UNRESOLVED_TYPE, registry.UNRESOLVED_NAME) for d in diagnostics)
 
     def put(self, key: str | None, deps: list, diagnostics: list) -> None:
         if key is None or not self.stores(diagnostics):

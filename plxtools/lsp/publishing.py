@@ -18,14 +18,14 @@ from plxtools.ide.runtime.background import BackgroundCheck, checked_apart
 from plxtools.ide.runtime.collector import no_gc
 from plxtools.lsp import watching
 from plxtools.lsp.convert import Positions
-from plxtools.model.checker import DEPRECATED_MEMBER
-from plxtools.rules.suppress import UNUSED_SUPPRESSION
+from plxtools.rules import registry
 
 log = logging.getLogger("plxtools.lsp")
 
 SEVERITY = {Severity.ERROR: types.DiagnosticSeverity.Error, Severity.WARNING: types.DiagnosticSeverity.Warning,
             Severity.INFO: types.DiagnosticSeverity.Information}
-TAGS = {DEPRECATED_MEMBER: types.DiagnosticTag.Deprecated, UNUSED_SUPPRESSION: types.DiagnosticTag.Unnecessary}
+# the registry's tags that an editor draws (struck through, faded)
+TAGS = {"deprecated": types.DiagnosticTag.Deprecated, "unnecessary": types.DiagnosticTag.Unnecessary}
 
 
 class Publishing:
@@ -106,9 +106,10 @@ class Publishing:
                                source="plx")
         if self.rule_docs_url and self.cap("text_document.publish_diagnostics.code_description_support"):
             out.code_description = types.CodeDescription(href=self.rule_docs_url.replace("{code}", d.code))
-        tag = TAGS.get(d.code)
-        if tag is not None and self.cap("text_document.publish_diagnostics.tag_support"):
-            out.tags = [tag]
+        rule = registry.RULES.get(d.code)
+        tags = [TAGS[t] for t in (rule.tags if rule is not None else ()) if t in TAGS]
+        if tags and self.cap("text_document.publish_diagnostics.tag_support"):
+            out.tags = tags
         if d.related and self.cap("text_document.publish_diagnostics.related_information"):
             rel = []
             for file, span, msg in d.related:

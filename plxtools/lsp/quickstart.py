@@ -16,14 +16,16 @@ from __future__ import annotations
 import json
 import os
 import sys
+from plxtools.cache import store
+from plxtools.cache.stamp import code_stamp, tree_digest
+from plxtools.cache.store import new_hash
+from plxtools.lsp.transport import FrameReader
 
 
 def _code_stamp() -> str:
     """What the reply depends on besides the params: this server's code (plxtools' code stamp, by
     content) and its libraries' versions."""
     from importlib.util import find_spec
-
-    from plxtools.cache.stamp import code_stamp, tree_digest
 
     parts = [code_stamp()]
     try:
@@ -49,22 +51,18 @@ def cache_key(raw: dict) -> str | None:
         text = json.dumps(kept, sort_keys=True)
     except (TypeError, ValueError):
         return None
-    from plxtools.cache.store import new_hash
 
     return new_hash(f"{stamp}\n{text}".encode()).hexdigest()
 
 
 def cached_result(key: str):
     """The stored reply (an authenticated JSON entry of plx's cache), or None."""
-    from plxtools.cache import store
 
     got = store.get_json("lsp", key)
     return got.get("result") if isinstance(got, dict) else None
 
 
 def store_result(key: str, result) -> None:
-    from plxtools.cache import store
-
     try:
         store.put_json("lsp", key, {"result": result})
     except (TypeError, ValueError):
@@ -104,7 +102,6 @@ _DONE = object()
 def start(args) -> int:
     """Read the first message; answer it from the cache when it is a known `initialize`; then run
     the real server with that message as its first input."""
-    from plxtools.lsp.transport import FrameReader
 
     stdin, stdout = sys.stdin.buffer, sys.stdout.buffer
     body = FrameReader(stdin).next_body()

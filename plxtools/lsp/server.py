@@ -33,6 +33,8 @@ from plxtools.lsp.convert import Positions
 from plxtools.lsp.documents import Documents
 from plxtools.lsp.protocol import PlxProtocol
 from plxtools.lsp.publishing import Publishing
+from plxtools.lsp.transport import Dispatcher
+from plxtools.lsp.transport import serve
 
 log = logging.getLogger("plxtools.lsp")
 
@@ -43,7 +45,6 @@ class PlxServer(Publishing, LanguageServer):
     def __init__(self) -> None:
         super().__init__("plx", __version__, protocol_cls=PlxProtocol,
                          text_document_sync_kind=types.TextDocumentSyncKind.Incremental)
-        from plxtools.lsp.transport import Dispatcher
 
         self.host = AnalysisHost()
         self.documents = Documents()
@@ -233,7 +234,6 @@ def run_server(args, first: bytes | None = None, replay=None) -> int:
     server = create_server()
     server.protocol.init_replay = replay
     log.info("plx lsp %s starting (python %s)", __version__, sys.version.split()[0])
-    from plxtools.lsp.transport import serve
 
     code = serve(server, sys.stdin.buffer, sys.stdout.buffer, first=first)
     # stdout is closed when the client says exit; later flushes must not fail on it

@@ -8,6 +8,13 @@ from dataclasses import dataclass
 
 from plxtools.config import ConfigError, config_for
 from plxtools.discovery import UsageError, discover
+from plxtools.bundles_cli import print_set
+from plxtools.fileio import unified_diff, write_atomic
+from plxtools.migrate import endpoints
+from plxtools.migrate.endpoints import check_direction
+from plxtools.migrate.endpoints import plan_between
+from plxtools.migrate.rewrite import migrate_text
+from plxtools.model.workspace import workspace_for_set
 
 
 def _say(text: str) -> None:
@@ -76,7 +83,6 @@ def run_migrate(args) -> int:
 
 def _ends(files, args, check: bool = True):
     """The source and target ends (raises EndpointError with what to pass)."""
-    from plxtools.migrate import endpoints
 
     src = endpoints.source(files, args.from_version)
     dst = endpoints.target(files, args.to)
@@ -88,8 +94,6 @@ def _ends(files, args, check: bool = True):
 def _setup(files, args) -> _Setup:
     """The ends, the plan between them (the stored index for two releases, else indexes built from
     the bundle folders) and a workspace per end."""
-    from plxtools.migrate.endpoints import plan_between
-    from plxtools.model.workspace import workspace_for_set
 
     src, dst = _ends(files, args)
     return _Setup(src, dst, plan_between(src, dst), workspace_for_set(src.bundle_set),
@@ -98,9 +102,6 @@ def _setup(files, args) -> _Setup:
 
 def _show_settings(files, args) -> int:
     """`plx migrate --show-settings`: the bundles of both ends and why (nothing is migrated)."""
-    from plxtools.bundles_cli import print_set
-
-    from plxtools.migrate.endpoints import check_direction
 
     src, dst = _ends(files, args, check=False)
     for title, end in (("from", src), ("to", dst)):
@@ -125,7 +126,6 @@ def _inputs(f):
 
 def _migrate_file(f, args, setup: _Setup, tally: _Tally) -> None:
     """Migrate one file (or show or check what would change) and say what happened."""
-    from plxtools.migrate.rewrite import migrate_text
 
     cfg, data, text = _inputs(f)
     to_v = setup.dst.version
@@ -158,7 +158,6 @@ def _remaining(fm, from_v: str) -> str:
 
 def _write(f, args, fm, data: bytes, step: str, remain: str) -> None:
     """The migrated text: as a diff (--diff), announced (--check), or written in place."""
-    from plxtools.fileio import unified_diff, write_atomic
 
     if args.diff:
         sys.stdout.write(unified_diff(str(f), fm.old_text, fm.new_text))

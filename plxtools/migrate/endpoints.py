@@ -16,6 +16,11 @@ from pathlib import Path
 
 from plxtools.model.apiindex import ApiIndex, load, version_key, versions
 from plxtools.model.versions import VERSION_RE, BundleSet, BundleSetError, resolve_bundle_set
+from plxtools.config import config_for
+from plxtools.migrate.rewrite import plan, plan_of
+from plxtools.model.agx import find_agx
+from plxtools.model.apichanges import changes_over
+from plxtools.model.apiindex.build import index_folder
 
 
 class EndpointError(ValueError):
@@ -57,8 +62,6 @@ class End:
 
 @lru_cache(maxsize=4)
 def _live_index(root: str, version: str) -> ApiIndex:
-    from plxtools.model.apiindex.build import index_folder
-
     return ApiIndex(index_folder(Path(root), version, use_cache=True))
 
 
@@ -70,8 +73,6 @@ def _found_agx(files: list[Path]):
     """The AGX installation plx finds for these files, used or not: `agx-dir` of the first config
     that sets it (the anchors `resolve_bundle_set` reads), else the environment and usual folders.
     Nothing else of the bundle set is resolved, so no version is fetched just to ask this."""
-    from plxtools.config import config_for
-    from plxtools.model.agx import find_agx
 
     configured = None
     for anchor in sorted({(f if f.is_dir() else f.parent) for f in files}) or [Path(".")]:
@@ -142,8 +143,6 @@ def chain(src: End, dst: End) -> list[ApiIndex]:
 def plan_between(src: End, dst: End):
     """The rewrite plan from one end to the other: the stored index's changes for two releases,
     else the changes along `chain` (bundles in no release indexed now)."""
-    from plxtools.migrate.rewrite import plan, plan_of
-    from plxtools.model.apichanges import changes_over
 
     if src.stored and dst.stored:
         return plan(src.version, dst.version)

@@ -6,6 +6,11 @@ import json
 import sys
 
 from plxtools.model.apichanges import AUTO, INFO, KIND_ORDER, KIND_TITLES, PERSON, TABLE, Change, between, changes, summary
+from plxtools.migrate import endpoints
+from plxtools.model.apichanges import RenameTableError
+from plxtools.model.apichanges import changes_over
+from plxtools.model.apiindex import UnknownVersion
+from plxtools.model.apiindex import versions, version_key
 
 HANDLING_TEXT = {AUTO: "automatic", TABLE: "reviewed table", PERSON: "needs a person", INFO: "nothing to migrate"}
 
@@ -61,8 +66,6 @@ def render_json(from_v: str, to_v: str, cs: list[Change]) -> str:
 
 def run_explain(from_v: str, to_v: str, output_format: str = "text") -> int:
     """Print the change list; exit 2 with one clear line for an unknown version or a backward range."""
-    from plxtools.model.apichanges import RenameTableError
-    from plxtools.model.apiindex import UnknownVersion
 
     try:
         from_label, to_label, cs, apart = _changes(from_v, to_v)
@@ -78,12 +81,9 @@ def run_explain(from_v: str, to_v: str, output_format: str = "text") -> int:
 def _changes(from_v: str, to_v: str) -> tuple[str, str, list[Change], int | None]:
     """The changes between two releases of the stored index, or, when either version is the one
     of the AGX installation found (its bundles indexed now), along the chain of indexes between."""
-    from plxtools.model.apiindex import versions, version_key
 
     if from_v in versions() and to_v in versions():
         return from_v, to_v, changes(from_v, to_v), None
-    from plxtools.migrate import endpoints
-    from plxtools.model.apichanges import changes_over
 
     src = endpoints.source([], from_v, "FROM")
     dst = endpoints.target([], to_v, "TO")

@@ -22,6 +22,10 @@ from pathlib import Path
 from plxtools.diagnostics import Edit, Severity, apply_edits
 from plxtools.model.apichanges import AUTO, TABLE, changes
 from plxtools.syntax import ast, parse_text
+from plxtools.fmt import format_text
+from plxtools.model.symbols import MemberSym
+from plxtools.rules.analysis import analyse_file, final_diagnostics
+from plxtools.syntax.lexer import lex
 
 
 @dataclass(frozen=True)
@@ -73,7 +77,6 @@ class FileMigration:
 
 def type_edits(tree: ast.File, types: dict[str, str]) -> list[Edit]:
     """Qualified names that moved: the longest leading part of a dotted name found in `types`."""
-    from plxtools.syntax.lexer import lex
 
     out: list[Edit] = []
     if not types:
@@ -100,7 +103,6 @@ def type_edits(tree: ast.File, types: dict[str, str]) -> list[Edit]:
 
 def attribute_edits(tree: ast.File, analysis, attrs: dict[tuple[str, str], str]) -> list[Edit]:
     """Renamed attributes, wherever the model resolves a name to that attribute."""
-    from plxtools.model.symbols import MemberSym
 
     out: dict[tuple[int, int], Edit] = {}
     if not attrs or analysis is None:
@@ -122,7 +124,6 @@ def _errors(diags) -> int:
 
 def _target_errors(path: Path, text: str, cfg, to_ws) -> tuple[list, object] | None:
     """The errors of `text` under the target version (None when it does not parse)."""
-    from plxtools.rules.analysis import analyse_file, final_diagnostics
 
     tree = parse_text(text, str(path))
     if tree.has_errors_of_syntax():
@@ -152,8 +153,6 @@ def migrate_text(path: Path, text: str, p: Plan, cfg, from_ws, to_ws) -> FileMig
     type) is listed in `left` at its line for a person, instead of refusing the whole file. When the
     whole rewrite would add errors, the edits that add none are kept one by one.
     """
-    from plxtools.fmt import format_text
-    from plxtools.rules.analysis import analyse_file, final_diagnostics
 
     fm = FileMigration(path, text)
     tree = parse_text(text, str(path))

@@ -1,6 +1,8 @@
 """The rules layer, between the semantic model and the commands (lint, fmt, check, ide).
 
-It holds every rule's code and documentation (`registry`, `catalog/`, one module per family),
-the rules that judge a resolved file (`completeness`, `style`), inline suppressions, the one
-pipeline that turns a parsed file into its final diagnostics (`analysis`), and the output
-formats (`reporters`)."""
+`registry` is the one list of codes (code, name, severity, stage, fix, tags, owns, module); a rule
+in the module form lives in `<family>/<rule>.py` (its docstring is its page, its `check(facts,
+report)` its findings) and `engine` runs those modules; the rules not moved yet are `completeness`,
+`style`, `literals` with their pages in `catalog/`. `analysis` is the one pipeline that turns a
+parsed file into its final diagnostics (registry severity, config, follow-on findings, owned codes,
+suppressions, order) for lint, check and the server; `reporters` writes the output formats."""

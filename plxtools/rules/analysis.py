@@ -9,10 +9,18 @@ from __future__ import annotations
 import bisect
 
 from plxtools.config import Config
-from plxtools.diagnostics import Diagnostic
+from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.model.reuse import fresh
+from plxtools.model.symbols import ModelSym
+from plxtools.model.workspace import FileAnalysis, workspace_for_cli
+from plxtools.rules import registry
+from plxtools.rules.completeness import Versions, completeness_diagnostics, root_model
+from plxtools.rules.consequences import drop_consequences, drop_owned, report_order
 from plxtools.rules.engine import FileFacts, apply_severity, run_file_rules
+from plxtools.rules.literals import literal_diagnostics
+from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements
+from plxtools.rules.suppress import apply
 from plxtools.syntax import ast
-from plxtools.syntax.source import BINARY_FILE
 
 
 def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previous=None, keep: bool = False):
@@ -21,11 +29,6 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
     `root_name` is the model a run instantiates (`plx check --model`); by default the file's last
     model. Completeness and the root rules judge that one. `keep` and `previous` (the last
     analysis of this file) let the language server re-use what did not change (model/reuse.py)."""
-    from plxtools.model.workspace import FileAnalysis
-    from plxtools.rules.completeness import completeness_diagnostics
-    from plxtools.rules.literals import literal_diagnostics
-    from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements
-
     snap = previous.snapshot if previous is not None else None
     fa = workspace.analyse(tree, snap, keep or previous is not None)
     root = _named_model(workspace.program, fa.unit, root_name) if root_name else None
@@ -52,10 +55,6 @@ def _completeness_again(program, fa, tree: ast.File, previous, plan) -> list[Dia
     """M007/M008 of the last version, moved, while the root's statements and the bundles are the
     same and neither version has a syntax error (a block that did not parse explains missing
     values by its position); otherwise the rule runs."""
-    from plxtools.diagnostics import Severity
-    from plxtools.model.reuse import fresh
-    from plxtools.rules.completeness import Versions, completeness_diagnostics, root_model
-
     root = root_model(program, fa.unit)
     key = None
     if root is not None:
@@ -87,8 +86,6 @@ def _completeness_again(program, fa, tree: ast.File, previous, plan) -> list[Dia
 def _per_statement(fa, plan, rule: str, new: list[Diagnostic]) -> list[Diagnostic]:
     """A rule's findings that each statement's own text decides: `new` for the statements checked
     again (kept on their parts for the next version), the re-used statements' moved with them."""
-    from plxtools.model.reuse import fresh
-
     out = []
     parts = fa.snapshot.parts
     if new:
@@ -105,8 +102,6 @@ def _per_statement(fa, plan, rule: str, new: list[Diagnostic]) -> list[Diagnosti
 
 def _named_model(program, unit, name: str):
     """The model `name` resolves to in this file (None when it is no model: check reports that)."""
-    from plxtools.model.symbols import ModelSym
-
     found = program.lookup(name.split("."), unit)
     return found if isinstance(found, ModelSym) and not found.is_trait else None
 
@@ -116,8 +111,6 @@ def analyse_tree(tree: ast.File, cfg: Config, workspace=None) -> list[Diagnostic
     analysis = None
     if not is_binary(tree):
         if workspace is None:
-            from plxtools.model.workspace import workspace_for_cli
-
             workspace = workspace_for_cli([], [], use_cache=True)
         analysis = analyse_file(workspace, tree)
     return final_diagnostics(tree, cfg, analysis)
@@ -125,7 +118,7 @@ def analyse_tree(tree: ast.File, cfg: Config, workspace=None) -> list[Diagnostic
 
 def is_binary(tree: ast.File) -> bool:
     """S001: the file is not text, so there is nothing to analyse beyond saying so."""
-    return any(d.code == BINARY_FILE for d in tree.diagnostics)
+    return any(d.code == registry.BINARY_FILE for d in tree.diagnostics)
 
 
 def final_diagnostics(tree: ast.File, cfg: Config, analysis) -> list[Diagnostic]:
@@ -137,14 +130,12 @@ def final_diagnostics(tree: ast.File, cfg: Config, analysis) -> list[Diagnostic]
 
 
 def finalize(tree: ast.File, diags: list[Diagnostic], cfg: Config) -> list[Diagnostic]:
-    """The registry's severities, config selection, follow-on findings dropped, inline suppressions
-    and ordering (syntax first): shared by lint, check and the server."""
-    from plxtools.rules.consequences import drop_consequences, report_order
-    from plxtools.rules.suppress import UNUSED_SUPPRESSION, apply
-
+    """The registry's severities, config selection, follow-on findings dropped (a layout error's, a
+    code another on the same line owns), inline suppressions and ordering (syntax first): shared by
+    lint, check and the server."""
     for d in diags:
         d.file = tree.path
     diags = [d for d in apply_severity(diags) if cfg.rule_enabled(d.code, tree.path)]
-    diags = apply(tree, drop_consequences(diags), report_unused=cfg.rule_enabled(UNUSED_SUPPRESSION, tree.path))
+    diags = apply(tree, drop_owned(drop_consequences(diags)), report_unused=cfg.rule_enabled(registry.UNUSED_SUPPRESSION, tree.path))
     diags.sort(key=report_order)
     return diags

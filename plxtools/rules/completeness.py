@@ -7,14 +7,12 @@ outside any bundle) actually creates must have every non-optional value.
 from __future__ import annotations
 
 from plxtools.diagnostics import Diagnostic, Severity, Span
-from plxtools.model.checker import UNKNOWN_ATTRIBUTE
 from plxtools.model.program import Program
 from plxtools.model.symbols import ModelSym, Ty
 from plxtools.syntax import ast
+from plxtools.rules import registry
 
 # raised here; check/pipeline.py imports these names to recognise them
-MISSING_ASSIGNMENT = "M007"
-UNBOUND_REFERENCE = "M008"
 
 REQUIRED_PRIMITIVES = {"Real", "Int", "Bool", "String"}
 MAX_DEPTH = 40
@@ -273,10 +271,10 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
             continue
         seen.add((full, kind))
         if kind == "ref":
-            d = Diagnostic(UNBOUND_REFERENCE, _message(UNBOUND_REFERENCE, full, shown), local_anchor, Severity.ERROR, file=unit.path,
+            d = Diagnostic(registry.UNBOUND_REFERENCE, _message(registry.UNBOUND_REFERENCE, full, shown), local_anchor, Severity.ERROR, file=unit.path,
                            help=f"give it an existing object: '{name}: ...' (declared in {owner})")
         else:
-            d = Diagnostic(MISSING_ASSIGNMENT, _message(MISSING_ASSIGNMENT, full, shown), local_anchor, Severity.ERROR, file=unit.path,
+            d = Diagnostic(registry.MISSING_ASSIGNMENT, _message(registry.MISSING_ASSIGNMENT, full, shown), local_anchor, Severity.ERROR, file=unit.path,
                            help=f"give it a value, e.g. '{name}: ...' (declared without a default in {owner})")
         found.append((d, name, full, shown))
     return _one_per_location(found)
@@ -318,7 +316,7 @@ def _prefixed(finds: list, name: str, below: list, local) -> None:
 
 def _message(code: str, path: str, ty: str, instances: str = "") -> str:
     where = f" in {instances}" if instances else ""
-    if code == UNBOUND_REFERENCE:
+    if code == registry.UNBOUND_REFERENCE:
         return f"reference '{path}' ({ty}){where} is never bound"
     return f"missing assignment {path} ({ty}){where}: the model is not complete"
 
@@ -351,7 +349,7 @@ class _Causes:
 
     def __init__(self, tree: ast.File, causes: list[Diagnostic]):
         self.text = tree.text
-        self.errors = [d for d in causes if d.severity is Severity.ERROR and (d.code[0] == "S" or d.code == UNKNOWN_ATTRIBUTE)]
+        self.errors = [d for d in causes if d.severity is Severity.ERROR and (d.code[0] == "S" or d.code == registry.UNKNOWN_ATTRIBUTE)]
         self.extent: dict[int, tuple[int, int]] = {}
         if self.errors:
             for st in ast.walk_statements(tree.statements):

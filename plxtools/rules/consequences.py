@@ -13,11 +13,10 @@ nothing below them can be trusted until they are fixed, and the first line print
 from __future__ import annotations
 
 from plxtools.diagnostics import Diagnostic, Severity
-from plxtools.syntax.lexer import TAB_INDENTATION
-from plxtools.syntax.parser import INDENTATION_BETWEEN_LEVELS
+from plxtools.rules import registry
 
-# layout errors that decide which block a line is read into
-_LAYOUT = frozenset({TAB_INDENTATION, INDENTATION_BETWEEN_LEVELS})
+# layout errors that decide which block a line is read into (tagged so in the registry)
+_LAYOUT = registry.tagged("layout")
 # the model's findings that depend on the block a name stands in (names and structure)
 _BLOCK_DEPENDENT = ("N", "M")
 
@@ -30,6 +29,15 @@ def drop_consequences(diags: list[Diagnostic]) -> list[Diagnostic]:
         return diags
     return [d for d in diags
             if not (d.code.startswith(_BLOCK_DEPENDENT) and (d.file, d.span.start.line) in lines)]
+
+
+def drop_owned(diags: list[Diagnostic]) -> list[Diagnostic]:
+    """`diags` without a finding whose code another finding on the same line owns (the registry's
+    `owns`): one fault seen by a lint rule and a check rule is reported once, by its owner."""
+    owned = {(d.file, d.span.start.line, code) for d in diags for code in registry.owned_by((d.code,))}
+    if not owned:
+        return diags
+    return [d for d in diags if (d.file, d.span.start.line, d.code) not in owned]
 
 
 def report_order(d: Diagnostic) -> tuple:

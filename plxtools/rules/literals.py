@@ -13,34 +13,31 @@ import math
 
 from plxtools.diagnostics import Diagnostic, Severity
 from plxtools.syntax import ast
+from plxtools.rules import registry
 
 # the codes this module raises (their home: `plx check` imports these names for its own findings)
-NON_POSITIVE_SIZE = "A030"
-NEGATIVE_MASS = "A032"
-INVALID_CONTACT_PARAMETER = "A036"
-NON_POSITIVE_DENSITY = "A038"
 
 # member qualified name -> (code, lowest allowed, inclusive?, highest allowed, what, help)
 LIMITS: dict[str, tuple[str, float, bool, float, str, str]] = {
-    "Physics3D.Bodies.Inertia.mass": (NEGATIVE_MASS, 0.0, True, math.inf, "mass", "a mass of 0 means: compute it from "
+    "Physics3D.Bodies.Inertia.mass": (registry.NEGATIVE_MASS, 0.0, True, math.inf, "mass", "a mass of 0 means: compute it from "
                                       "the geometries"),
-    "Physics3D.Geometries.Box.size": (NON_POSITIVE_SIZE, 0.0, False, math.inf, "box size", "give the full edge lengths in "
+    "Physics3D.Geometries.Box.size": (registry.NON_POSITIVE_SIZE, 0.0, False, math.inf, "box size", "give the full edge lengths in "
                                       "metres"),
-    "Physics3D.Geometries.Cylinder.radius": (NON_POSITIVE_SIZE, 0.0, False, math.inf, "cylinder radius", ""),
-    "Physics3D.Geometries.Cylinder.height": (NON_POSITIVE_SIZE, 0.0, False, math.inf, "cylinder height", ""),
-    "Physics3D.Geometries.Capsule.radius": (NON_POSITIVE_SIZE, 0.0, False, math.inf, "capsule radius", ""),
-    "Physics3D.Geometries.Capsule.height": (NON_POSITIVE_SIZE, 0.0, False, math.inf, "capsule height", ""),
-    "Physics3D.Geometries.Sphere.radius": (NON_POSITIVE_SIZE, 0.0, False, math.inf, "sphere radius", ""),
-    "Physics.Geometries.Material.density": (NON_POSITIVE_DENSITY, 0.0, False, math.inf, "density", "a material that gives "
+    "Physics3D.Geometries.Cylinder.radius": (registry.NON_POSITIVE_SIZE, 0.0, False, math.inf, "cylinder radius", ""),
+    "Physics3D.Geometries.Cylinder.height": (registry.NON_POSITIVE_SIZE, 0.0, False, math.inf, "cylinder height", ""),
+    "Physics3D.Geometries.Capsule.radius": (registry.NON_POSITIVE_SIZE, 0.0, False, math.inf, "capsule radius", ""),
+    "Physics3D.Geometries.Capsule.height": (registry.NON_POSITIVE_SIZE, 0.0, False, math.inf, "capsule height", ""),
+    "Physics3D.Geometries.Sphere.radius": (registry.NON_POSITIVE_SIZE, 0.0, False, math.inf, "sphere radius", ""),
+    "Physics.Geometries.Material.density": (registry.NON_POSITIVE_DENSITY, 0.0, False, math.inf, "density", "a material that gives "
                                             "mass has a positive density (kg/m^3)"),
-    "Physics.Interactions.Dissipation.DefaultDryFriction.coefficient": (INVALID_CONTACT_PARAMETER, 0.0, True, math.inf,
+    "Physics.Interactions.Dissipation.DefaultDryFriction.coefficient": (registry.INVALID_CONTACT_PARAMETER, 0.0, True, math.inf,
                                                                         "friction coefficient", ""),
-    "Physics.Interactions.SurfaceContact.Model.normal_restitution": (INVALID_CONTACT_PARAMETER, 0.0, True, 1.0, "normal_restitution",
+    "Physics.Interactions.SurfaceContact.Model.normal_restitution": (registry.INVALID_CONTACT_PARAMETER, 0.0, True, 1.0, "normal_restitution",
                                                                      ""),
-    "Physics.Interactions.SurfaceContact.Model.tangential_restitution": (INVALID_CONTACT_PARAMETER, 0.0, True, 1.0,
+    "Physics.Interactions.SurfaceContact.Model.tangential_restitution": (registry.INVALID_CONTACT_PARAMETER, 0.0, True, 1.0,
                                                                          "tangential_restitution", ""),
 }
-SEVERITY = {NON_POSITIVE_SIZE: Severity.ERROR, NEGATIVE_MASS: Severity.ERROR, INVALID_CONTACT_PARAMETER: Severity.ERROR, NON_POSITIVE_DENSITY: Severity.WARNING}
+SEVERITY = {registry.NON_POSITIVE_SIZE: Severity.ERROR, registry.NEGATIVE_MASS: Severity.ERROR, registry.INVALID_CONTACT_PARAMETER: Severity.ERROR, registry.NON_POSITIVE_DENSITY: Severity.WARNING}
 
 
 def literal(expr) -> float | list | None:

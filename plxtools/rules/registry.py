@@ -2,10 +2,10 @@
 
 Every code any layer emits (syntax, semantic model, assembly checks, simulation) is registered
 here, so docs, SARIF rule tables, `select`/`ignore` and the severity every command prints all come
-from one list. A rule in the module form (`docs/architecture.md`, "The rule engine") is one line
-in `MODULE_RULES` below: its code, name, severity, stage and module; its documentation is that
-module's docstring and its findings are made by that module's `check`. The older form (a `rule()`
-call with its documentation in `catalog/`) is being moved into that table one family at a time.
+from one list: the table below, the only place a code is written (`docs/architecture.md`, "The rule
+engine"). A rule in the module form names its module there; its documentation is that module's
+docstring and its findings are made by that module's `check`. The pages of the other rules are in
+`catalog/`, keyed by their constant here.
 """
 
 from __future__ import annotations
@@ -13,10 +13,9 @@ from __future__ import annotations
 import importlib
 import re
 from dataclasses import dataclass, replace
+from functools import cache
 
 from plxtools.diagnostics import Severity
-
-E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
 
 
 @dataclass(frozen=True, slots=True)
@@ -68,6 +67,168 @@ def rule(code: str, name: str, severity: Severity, summary: str = "", why: str =
     return r
 
 
+def entry(code: str, name: str, severity: Severity, *, stage: str = "lint", fix: str = "none",
+          module: str | None = None, tags: tuple[str, ...] = (), owns: tuple[str, ...] = (),
+          graver: Severity | None = None) -> str:
+    """Register one code (its documentation comes later: `doc()` or its module's docstring) and
+    return it, so that the table below gives every code its constant."""
+    rule(code, name, severity, stage=stage, fix=fix, module=module, tags=tags, owns=owns, graver=graver)
+    return code
+
+
+# ---------------------------------------------------------------- every code
+# The only place a code is written. Layers above `rules` name a code by its constant here
+# (`registry.MISSING_VALUE`); a rule in the module form is found through `module` (under
+# plxtools/rules/) and documented by that module's docstring; the others by `doc()` in catalog/.
+# `stage`: who reports it (syntax, lint, check, simulate); `fix`: none, safe or unsafe; `graver`:
+# the severity of its graver form; `tags`: deprecated, unnecessary (how an editor draws it), layout
+# (decides which block a line is read into), version (a name of an older bundle version: migrate); `owns`: codes its error makes redundant in the same
+# file (check does not make A004, a missing value, where lint reports M007 or a syntax error).
+E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
+
+# ---------------------------------------------------------------- syntax (docs: catalog/syntax.py)
+BINARY_FILE = entry("S001", "binary-file", E, stage="syntax", owns=("A004",))
+INVALID_UTF8 = entry("S002", "invalid-utf8", E, stage="syntax", owns=("A004",))
+TAB_INDENTATION = entry("S003", "tab-indentation", W, stage="syntax", graver=E, tags=("layout",), owns=("A004",))
+UNBALANCED_BRACKET = entry("S004", "unbalanced-bracket", E, stage="syntax", owns=("A004",))
+INVALID_NUMBER = entry("S005", "invalid-number", E, stage="syntax", owns=("A004",))
+EMPTY_BACKTICK_NAME = entry("S006", "empty-backtick-name", E, stage="syntax", owns=("A004",))
+NESTING_TOO_DEEP = entry("S007", "nesting-too-deep", E, stage="syntax", owns=("A004",))
+UNEXPECTED_CHARACTER = entry("S008", "unexpected-character", E, stage="syntax", owns=("A004",))
+UNTERMINATED_STRING = entry("S009", "unterminated-string", E, stage="syntax", owns=("A004",))
+EXPECTED_INDENTED_BLOCK = entry("S010", "expected-indented-block", E, stage="syntax", owns=("A004",))
+INVALID_SYNTAX = entry("S011", "invalid-syntax", E, stage="syntax", owns=("A004",))
+MISPLACED_STATEMENT = entry("S012", "misplaced-statement", E, stage="syntax", owns=("A004",))
+INCOMPLETE_MEMBER = entry("S013", "incomplete-member", E, stage="syntax", owns=("A004",))
+NON_LITERAL_ANNOTATION = entry("S014", "non-literal-annotation", E, stage="syntax", owns=("A004",))
+INDENTATION_BETWEEN_LEVELS = entry("S015", "indentation-between-levels", E, stage="syntax", tags=("layout",), owns=("A004",))
+MISSING_COLON = entry("S016", "missing-colon", E, stage="syntax", fix="safe", owns=("A004",))
+# ---------------------------------------------------------------- semantic (docs: catalog/semantic.py)
+UNREADABLE_FILE = entry("E001", "unreadable-file", E)
+UNRESOLVED_TYPE = entry("N001", "unresolved-type", E, fix="unsafe", owns=("A003",))
+UNKNOWN_ATTRIBUTE = entry("N002", "unknown-attribute", E, fix="unsafe", owns=("A003", "A004",))
+UNRESOLVED_NAME = entry("N003", "unresolved-name", E, fix="unsafe", owns=("A003",))
+UNKNOWN_MEMBER = entry("N004", "unknown-member", E, fix="unsafe", owns=("A003",))
+WRONG_KIND_OF_TYPE = entry("N005", "wrong-kind-of-type", E, owns=("A003",))
+IMPORT_FILE_NOT_FOUND = entry("N006", "import-file-not-found", E, owns=("A003",))
+IMPORT_NEEDS_ALIAS = entry("N007", "import-needs-alias", E, owns=("A003",))
+NAME_FROM_OPAQUE_IMPORT = entry("N008", "name-from-opaque-import", I, owns=("A003",))
+TYPE_MISMATCH = entry("T001", "type-mismatch", E, owns=("A003", "A005",))
+REAL_FOR_INT = entry("T002", "real-for-int", W, owns=("A003",))
+BRACE_LITERAL_LENGTH = entry("T003", "brace-literal-length", E, owns=("A003",))
+WRONG_ARITY = entry("T004", "wrong-arity", E, owns=("A003",))
+ARGUMENT_TYPE = entry("T005", "argument-type", E, owns=("A003",))
+NO_OPERATOR = entry("T006", "no-operator", E, owns=("A003",))
+VOID_IN_EXPRESSION = entry("T007", "void-in-expression", E, owns=("A003",))
+BAD_CALL = entry("T008", "bad-call", E, owns=("A003",))
+BAD_INDEX = entry("T009", "bad-index", E, owns=("A003",))
+REDECLARED_ATTRIBUTE = entry("M001", "redeclared-attribute", E)
+BECOMES_NOT_INHERITED = entry("M002", "becomes-not-inherited", E)
+BECOMES_INCOMPATIBLE = entry("M003", "becomes-incompatible", E)
+DUPLICATE_DEFINITION = entry("M004", "duplicate-definition", E)
+INHERITANCE_CYCLE = entry("M005", "inheritance-cycle", E)
+DEFAULT_CYCLE = entry("M006", "default-cycle", E, owns=("A006",))
+MISSING_ASSIGNMENT = entry("M007", "missing-assignment", E, owns=("A004",))
+UNBOUND_REFERENCE = entry("M008", "unbound-reference", E, owns=("A005",))
+REFERENCE_WITH_BLOCK = entry("M009", "reference-with-block", E)
+BUNDLES_UNAVAILABLE = entry("B000", "bundles-unavailable", W)
+BUNDLE_CONFIG_NAME = entry("B001", "bundle-config-name", E)
+BAD_DEPENDENCY_STRING = entry("B002", "bad-dependency-string", E)
+UNREAD_DEPENDENCY_FORM = entry("B006", "unread-dependency-form", W)
+UNKNOWN_DEPENDENCY = entry("B003", "unknown-dependency", E)
+DEPENDENCY_CYCLE = entry("B004", "dependency-cycle", E)
+OUTSIDE_DEPENDENCIES = entry("B005", "outside-dependencies", E)
+NAMING_CONVENTION = entry("C001", "naming-convention", I)
+UNUSED_MODEL = entry("C003", "unused-model", W)
+DEPRECATED_MEMBER = entry("C004", "deprecated-attribute", W, tags=("deprecated",))
+UNKNOWN_ANNOTATION = entry("C005", "unknown-annotation", I)
+MISALIGNED_INDENTATION = entry("C006", "misaligned-indentation", I)
+ROOT_NOT_SYSTEM = entry("C007", "root-not-system", W)
+# ---------------------------------------------------------------- hygiene (docs: catalog/hygiene.py)
+UNUSED_SUPPRESSION = entry("C002", "unused-suppression", W, fix="safe", tags=("unnecessary",))
+# ---------------------------------------------------------------- migration (docs: catalog/migration.py)
+OLDER_NAME = entry("U001", "renamed-model", E, fix="safe", tags=("version",))
+RENAMED_ATTRIBUTE = entry("U002", "renamed-attribute", E, fix="unsafe", tags=("version",))
+# ---------------------------------------------------------------- assembly (docs: catalog/assembly.py)
+ROOT_MODEL_NOT_FOUND = entry("A001", "root-model-not-found", E, stage="check")
+ROOT_IS_TRAIT = entry("A002", "root-is-trait", E, stage="check")
+EVALUATION_ERROR = entry("A003", "evaluation-error", E, stage="check")
+MISSING_VALUE = entry("A004", "missing-value", E, stage="check")
+EVALUATED_UNBOUND_REFERENCE = entry("A005", "unbound-reference", E, stage="check")
+VALUE_CYCLE = entry("A006", "value-cycle", E, stage="check")
+ENVIRONMENT_VARIABLE_UNSET = entry("A007", "environment-variable-unset", W, stage="check")
+UNSUPPORTED_FUNCTION = entry("A008", "unsupported-function", W, stage="check")
+INSTANTIATION_TOO_DEEP = entry("A009", "instantiation-too-deep", E, stage="check")
+ZERO_MAIN_AXIS = entry("A010", "zero-main-axis", E, stage="check")
+DEGENERATE_NORMAL = entry("A011", "degenerate-normal", E, stage="check")
+NORMAL_NOT_ORTHOGONAL = entry("A012", "normal-not-orthogonal", I, stage="check")
+CONNECTOR_COUNT = entry("A013", "connector-count", E, stage="check")
+MATE_SAME_CONNECTOR = entry("A014", "mate-same-connector", E, stage="check")
+MATE_SAME_BODY = entry("A015", "mate-same-body", E, stage="check")
+MATE_NOT_COINCIDENT = entry("A016", "mate-not-coincident", E, stage="check")
+MATE_WITHOUT_DYNAMIC_BODY = entry("A017", "mate-without-dynamic-body", W, stage="check")
+HINGE_AXIS_OFF_CYLINDER_AXIS = entry("A018", "hinge-axis-off-cylinder-axis", W, stage="check")
+CONTROLLER_WITHOUT_MATE = entry("A020", "controller-without-mate", E, stage="check")
+CONTROLLER_DOF_MISMATCH = entry("A021", "controller-dof-mismatch", E, stage="check")
+ANGLE_PROBABLY_DEGREES = entry("A022", "angle-probably-degrees", I, stage="check")
+MIRRORED_DRIVE_MOTORS = entry("A023", "mirrored-drive-motors", I, stage="check")
+INVERTED_LIMITS = entry("A024", "inverted-limits", E, stage="check")
+NON_POSITIVE_SIZE = entry("A030", "non-positive-size", E, stage="check")
+MISSING_FILE = entry("A031", "missing-file", E, stage="check")
+NEGATIVE_MASS = entry("A032", "negative-mass", E, stage="check")
+ZERO_MASS_DYNAMIC_BODY = entry("A033", "zero-mass-dynamic-body", E, stage="check")
+INVALID_INERTIA = entry("A034", "invalid-inertia", E, stage="check")
+DUPLICATE_CONTACT_MODEL = entry("A035", "duplicate-contact-model", E, stage="check")
+INVALID_CONTACT_PARAMETER = entry("A036", "invalid-contact-parameter", E, stage="check")
+UNPLACED_BODY_OVERLAPS = entry("A037", "unplaced-body-overlaps", W, stage="check")
+NON_POSITIVE_DENSITY = entry("A038", "non-positive-density", W, stage="check")
+BODY_NOT_IN_SYSTEM = entry("A039", "body-not-in-system", W, stage="check")
+NOT_SIMULATED = entry("A040", "unsupported-feature", W, stage="check")
+RANGE_STARTS_VIOLATED = entry("A045", "range-starts-violated", W, stage="check")
+IMPORTED_FILE_NOT_ANALYSED = entry("A042", "imported-file-not-analysed", I, stage="check")
+NON_FINITE_VALUE = entry("A041", "non-finite-value", E, stage="check")
+COLLISION_PAIR_WITHOUT_EFFECT = entry("A044", "collision-pair-without-effect", I, stage="check")
+SIMULATION_BLOWUP = entry("A101", "simulation-blowup", E, stage="simulate")
+FELL_THROUGH = entry("A102", "fell-through-ground", E, stage="simulate")
+MATE_DRIFT = entry("A103", "mate-came-apart", W, stage="simulate")
+OVERLAP_AT_START = entry("A104", "initial-penetration", W, stage="simulate")
+JOINT_LIMIT_EXCEEDED = entry("A105", "joint-limit-exceeded", W, stage="simulate")
+MOTOR_OFF_TARGET = entry("A106", "motor-not-tracking", W, stage="simulate")
+BAD_CONTROL = entry("A107", "bad-control", E, stage="simulate")
+SIMULATION_INCOMPLETE = entry("A108", "simulation-incomplete", I, stage="simulate")
+SIMULATION_TIMEOUT = entry("A109", "simulation-timeout", E, stage="simulate")
+MUJOCO_COMPILE_ERROR = entry("A110", "mujoco-compile-error", E, stage="simulate")
+VELOCITY_MOTOR_GAIN_CLAMPED = entry("A111", "velocity-motor-gain-clamped", I, stage="simulate")
+SPRING_STIFFNESS_CLAMPED = entry("A112", "spring-stiffness-clamped", W, stage="simulate")
+FRICTION_MODEL_APPROXIMATED = entry("A113", "friction-model-approximated", I, stage="simulate")
+LOOP_CLOSURE = entry("A114", "loop-closure", I, stage="simulate")
+LOOP_CLOSURE_UNSUPPORTED = entry("A115", "loop-closure-unsupported", W, stage="simulate")
+DISTANCE_MATE_APPROXIMATED = entry("A116", "distance-mate-approximated", W, stage="simulate")
+CONCAVE_MESH_HULL = entry("A117", "concave-mesh-hull", I, stage="simulate")
+MESH_FORMAT_UNSUPPORTED = entry("A118", "mesh-format-unsupported", W, stage="simulate")
+RANGE_EFFORT_IGNORED = entry("A119", "range-effort-ignored", I, stage="simulate")
+INITIAL_VELOCITY_IGNORED = entry("A120", "initial-velocity-ignored", I, stage="simulate")
+KINEMATIC_BODY = entry("A121", "kinematic-body", I, stage="simulate")
+CONTROLLER_REVERSED = entry("A122", "controller-reversed", I, stage="simulate")
+CONTROLLER_ON_DISABLED_MATE = entry("A123", "controller-on-disabled-mate", W, stage="simulate")
+CONTROLLER_ON_LOOP_MATE = entry("A124", "controller-on-loop-mate", W, stage="simulate")
+STACKED_CONTROLLERS = entry("A125", "stacked-controllers", I, stage="simulate")
+MASS_WITHOUT_GEOMETRY = entry("A126", "mass-without-geometry", W, stage="simulate")
+PLANE_ON_DYNAMIC_BODY = entry("A127", "plane-on-dynamic-body", W, stage="simulate")
+CONTACT_MODEL_UNUSED = entry("A128", "contact-model-unused", I, stage="simulate")
+DISABLED_ELEMENT = entry("A129", "disabled-element", I, stage="simulate")
+INVALID_CONTROLLER_PARAMETER = entry("A130", "invalid-controller-parameter", E, stage="simulate")
+SCENE_INCONSISTENT = entry("A131", "scene-inconsistent", E, stage="simulate")
+TIMESTEP_SHORTENED = entry("A133", "timestep-shortened", I, stage="simulate")
+ENERGY_GAIN = entry("A134", "energy-gain", W, stage="simulate")
+IMPLAUSIBLE_SPEED = entry("A135", "implausible-speed", W, stage="simulate")
+RESTITUTION_APPROXIMATED = entry("A137", "restitution-approximated", I, stage="simulate")
+VISUAL_MESH_SKIPPED = entry("A138", "visual-mesh-skipped", I, stage="simulate")
+MJCF_EXPORT_UNLOADABLE = entry("A132", "mjcf-export-unloadable", E, stage="simulate")
+EXPECTATION_FAILED = entry("A140", "expectation-failed", E, stage="test")
+INVALID_SCENARIO = entry("A141", "invalid-scenario", E, stage="test")
+SCENARIO_MODEL_NOT_SIMULATED = entry("A142", "scenario-model-not-simulated", E, stage="test")
+
 # ---------------------------------------------------------------- rules in the module form
 # One line per code. `module` is under plxtools/rules/; its docstring is the docs page and its
 # `check(facts, report)` makes the findings (plxtools/rules/engine.py runs it for lint, check and
@@ -76,10 +237,10 @@ def rule(code: str, name: str, severity: Severity, summary: str = "", why: str =
 #
 #     code    name                           severity  module                      stage, fix, tags, owns
 MODULE_RULES = (
-    ("A009", "instantiation-too-deep", E, "assembly.self_containing", dict()),
-    ("A013", "connector-count", E, "assembly.controller_connectors", dict()),
-    ("A015", "mate-same-body", E, "assembly.shared_connector", dict(fix="unsafe")),
-    ("A022", "angle-probably-degrees", W, "assembly.angle_in_degrees", dict(fix="unsafe")),
+    ("A009", "instantiation-too-deep", E, "assembly.self_containing", dict(stage="lint")),
+    ("A013", "connector-count", E, "assembly.controller_connectors", dict(stage="lint")),
+    ("A015", "mate-same-body", E, "assembly.shared_connector", dict(fix="unsafe", stage="lint")),
+    ("A022", "angle-probably-degrees", W, "assembly.angle_in_degrees", dict(fix="unsafe", stage="lint")),
     ("A043", "connector-used-by-two-mates", E, "assembly.shared_connector", dict(fix="unsafe")),
     ("A046", "controller-on-other-mate", W, "assembly.controller_connectors", dict()),
     ("A047", "explicit-zero-mass", W, "assembly.explicit_zero_mass", dict()),
@@ -89,18 +250,43 @@ MODULE_RULES = (
 
 _loaded = False
 
+for _code, _name, _severity, _module, _more in MODULE_RULES:
+    if _code in RULES:  # a code of the table above (raised elsewhere by its constant) moved to a module
+        RULES[_code] = replace(RULES[_code], name=_name, severity=_severity, module=_module, **_more)
+    else:
+        entry(_code, _name, _severity, module=_module, **_more)
+
 
 def _load() -> None:
     global _loaded
     if _loaded:
         return
     _loaded = True
-    # importing the catalogues registers the rules of the older form
-    from plxtools.rules import catalog  # noqa: F401
+    # the catalogue holds the documentation of the rules not in the module form; read only when a
+    # page or the whole list is asked for (lint's own runs never need it)
+    from plxtools.rules.catalog import pages
 
-    for code, name, severity, module, more in MODULE_RULES:
-        rule(code, name, severity, module=module, **more)
-        RULES[code] = replace(RULES[code], **_docs_of(module))
+    constants = globals()
+    for constant, docs in pages.DOCS.items():
+        code = constants.get(constant)
+        if not isinstance(code, str) or code not in RULES:
+            raise ValueError(f"rules/catalog/: a page for {constant}, which is no code of the registry")
+        RULES[code] = replace(RULES[code], **docs)
+    for r in list(RULES.values()):
+        if r.module is not None:
+            RULES[r.code] = replace(r, **_docs_of(r.module))
+
+
+@cache
+def tagged(tag: str) -> frozenset[str]:
+    """The codes carrying `tag` ("layout": decides which block a line is read into; "deprecated",
+    "unnecessary": how an editor draws them)."""
+    return frozenset(r.code for r in RULES.values() if tag in r.tags)
+
+
+def owned_by(codes) -> frozenset[str]:
+    """The codes that `codes` make redundant (their `owns`)."""
+    return frozenset(owned for c in codes if c in RULES for owned in RULES[c].owns)
 
 
 def module_of(r: Rule):
@@ -147,15 +333,6 @@ def severity_of(code: str, raised: Severity) -> Severity:
 def all_rules() -> list[Rule]:
     _load()
     return sorted(RULES.values(), key=lambda r: r.code)
-
-
-def code_of(name: str) -> str:
-    """The code of the rule named `name` (kebab-case): how a layer that raises a rule of the module
-    form (plx check's side of A009, A013, A015, A022) names it without writing the code."""
-    r = get(name)
-    if r is None or r.name != name:
-        raise KeyError(f"no rule named {name!r}")
-    return r.code
 
 
 def get(code_or_name: str) -> Rule | None:

@@ -9,13 +9,11 @@ from plxtools.rules.completeness import root_model
 from plxtools.model.program import Program
 from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast
-from plxtools.syntax.lexer import TAB_INDENTATION
-from plxtools.syntax.parser import INDENTATION_BETWEEN_LEVELS
+from plxtools.rules import registry
 
 PASCAL = re.compile(r"^[A-Z][A-Za-z0-9]*$")
 SNAKE = re.compile(r"^[a-z_][a-z0-9_]*$")
 UPPER = re.compile(r"^[A-Z][A-Z0-9_]*$")
-MISALIGNED_INDENTATION = "C006"  # raised here; fmt leaves it out of its before/after comparison
 
 
 def _block_column(body: list, parent_col: int) -> int:
@@ -87,7 +85,7 @@ def _misaligned_inside(top, caused: set[int], add) -> None:
 def _naming(s, unit, add) -> None:
     """C001: naming conventions of the definitions one top-level statement makes."""
     if isinstance(s, ast.TraitDef) and not PASCAL.match(s.name.name):
-        add("C001", f"trait name '{s.name.name}' should be PascalCase", s.name.span, Severity.INFO)
+        add(registry.NAMING_CONVENTION, f"trait name '{s.name.name}' should be PascalCase", s.name.span, Severity.INFO)
     elif isinstance(s, ast.Declaration) and len(s.path.parts) == 1:
         name = s.path.parts[0].name
         if name == "config" and unit.path.endswith("config.openplx"):
@@ -95,9 +93,9 @@ def _naming(s, unit, add) -> None:
         is_global = s.keyword == "is" and s.value is not None and s.body is None
         if is_global:
             if not (SNAKE.match(name) or UPPER.match(name)):
-                add("C001", f"global '{name}' should be snake_case or UPPER_CASE", s.path.span, Severity.INFO)
+                add(registry.NAMING_CONVENTION, f"global '{name}' should be snake_case or UPPER_CASE", s.path.span, Severity.INFO)
         elif not s.const and not PASCAL.match(name):
-            add("C001", f"model name '{name}' should be PascalCase", s.path.span, Severity.INFO)
+            add(registry.NAMING_CONVENTION, f"model name '{name}' should be PascalCase", s.path.span, Severity.INFO)
         for m in s.body or []:
             _attribute_naming(m, add)
 
@@ -106,7 +104,7 @@ def _attribute_naming(m, add) -> None:
     if isinstance(m, ast.Declaration) and m.keyword == "is" and len(m.path.parts) == 1:
         n = m.path.parts[0].name
         if not m.path.parts[0].backtick and not SNAKE.match(n):
-            add("C001", f"attribute name '{n}' should be snake_case", m.path.span, Severity.INFO,
+            add(registry.NAMING_CONVENTION, f"attribute name '{n}' should be snake_case", m.path.span, Severity.INFO,
                 _attribute_name_help(n))
 
 
@@ -115,13 +113,13 @@ def _attribute_name_help(name: str) -> str:
     path scripts and scenarios use (`boxTruck.front_left_drive_motor` in the tutorial's step 11)."""
     snake = re.sub(r"(?<=[a-z0-9])([A-Z])", r"_\1", name).lower()
     return (f"'{snake}' follows the convention; scripts reach objects by these names, so to keep "
-            "'" + name + "' add 'C001' to `ignore` in plx.toml (it is a convention, not an error)")
+            "'" + name + f"' add '{registry.NAMING_CONVENTION}' to `ignore` in plx.toml (it is a convention, not an error)")
 
 
 def _caused(tree) -> set[int]:
     """Lines where the parser already reported the cause of an odd indentation (S015, a tab)."""
     return {d.span.start.line for d in tree.diagnostics
-            if d.code in (TAB_INDENTATION, INDENTATION_BETWEEN_LEVELS) and d.severity is Severity.ERROR}
+            if d.code in (registry.TAB_INDENTATION, registry.INDENTATION_BETWEEN_LEVELS) and d.severity is Severity.ERROR}
 
 
 def _misaligned(body: list, parent_col: int, caused: set[int], add) -> None:
@@ -130,7 +128,7 @@ def _misaligned(body: list, parent_col: int, caused: set[int], add) -> None:
     col = _block_column(body, parent_col)
     for s in body:
         if s.header.start.column != col and s.header.start.line not in caused:
-            add(MISALIGNED_INDENTATION, f"this line is indented {s.header.start.column} spaces but the other lines "
+            add(registry.MISALIGNED_INDENTATION, f"this line is indented {s.header.start.column} spaces but the other lines "
                 f"of its block are indented {col}", s.header, Severity.INFO,
                 f"indent it {col} spaces; a missing ':' on the line above would also cause this "
                 "(`plx fmt` aligns siblings)")
@@ -164,13 +162,13 @@ def _unused(name: str, sym: ModelSym, unit, add) -> None:
     """C003 for one top-level model, trait or imported name that nothing in the file names."""
     span = sym.stmt.name.span if isinstance(sym.stmt, ast.TraitDef) else sym.stmt.path.span
     if sym.kind != "import":
-        add("C003", f"{'trait' if sym.is_trait else 'model'} '{name}' is defined but never used in this file",
+        add(registry.UNUSED_MODEL, f"{'trait' if sym.is_trait else 'model'} '{name}' is defined but never used in this file",
             span, Severity.WARNING, "use it, move it into a bundle, or remove it")
         return
     if getattr(sym, "opaque", False) and any(getattr(a, "import_stmt", None) is sym.import_stmt
                                              for a in (getattr(unit, "archive", None) or {}).values()):
         return  # names from the archive are used (model/program.py archive_name)
-    add("C003", f"imported name '{name}' is never used in this file", span, Severity.WARNING,
+    add(registry.UNUSED_MODEL, f"imported name '{name}' is never used in this file", span, Severity.WARNING,
         "use it or remove the import")
 
 
@@ -183,13 +181,13 @@ def _root_kind(program: Program, unit, root: ModelSym, used: set[int], add) -> M
     stray = [sym for sym in unit.locals.values() if isinstance(sym, ModelSym) and sym is not root
              and id(sym) not in used and isinstance(system, ModelSym) and program.is_subtype(sym, system)]
     if not is_system and stray:
-        add("C007", f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
+        add(registry.ROOT_NOT_SYSTEM, f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
             f"and the System '{stray[0].name}' above it is used by nothing",
             root.stmt.path.span, Severity.WARNING,
             f"a scene is loaded from the last model; move '{stray[0].name}' to the end of the file")
         return stray[0]
     if not _loadable_root(program, unit, root):
-        add("C007", f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
+        add(registry.ROOT_NOT_SYSTEM, f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
             f"a rigid body or a material",
             root.stmt.path.span, Severity.WARNING,
             "a scene is loaded from the last model; make it a Physics3D.System or move the scene last")

@@ -12,9 +12,9 @@ from dataclasses import dataclass, field
 
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity
 from plxtools.syntax import ast
+from plxtools.rules import registry
 
 # the code of an unused suppression, raised here; analysis.py, ide/ and lsp/ recognise it by this name
-UNUSED_SUPPRESSION = "C002"
 
 _RE = re.compile(r"#\s*plx:\s*(ignore-file|ignore)\b(?:\[([^\]]*)\])?")
 
@@ -112,7 +112,7 @@ def apply(tree: ast.File, diags: list[Diagnostic], report_unused: bool = True) -
                         while start > 0 and tree.text[start - 1] in " \t":
                             start -= 1
                     fix = Fix("remove the unused suppression", (Edit(start, end, ""),), safe=True)
-                kept.append(Diagnostic(UNUSED_SUPPRESSION, f"unused suppression: {what} matched no diagnostic",
+                kept.append(Diagnostic(registry.UNUSED_SUPPRESSION, f"unused suppression: {what} matched no diagnostic",
                                        s.comment.span, Severity.WARNING, file=tree.path,
                                        help="remove it, or the code it names", fix=fix))
     return kept

@@ -41,6 +41,9 @@ from plxtools.check.mujoco.simulate import (
     simulate_compiled,
 )
 from plxtools.check.scene import Scene
+from plxtools.rules import registry
+from plxtools.check.mujoco.notes import note_from_compile_error
+from plxtools.fileio import write_output
 
 __all__ = [
     "ActuatorInfo",
@@ -93,21 +96,18 @@ def export_mjcf(compiled: CompiledScene, path: str | None = None) -> str:
     :class:`ExportError` names the element and its OpenPLX source."""
     import mujoco
 
-    from plxtools.check.mujoco.notes import note_from_compile_error
-
     if compiled.spec is None:
         raise ValueError("nothing to export: the scene has no MjSpec")
     xml = compiled.spec.to_xml()
     if path is None:
         return xml
-    from plxtools.fileio import write_output
 
     def loads_back(tmp: str) -> None:
         try:
             mujoco.MjModel.from_xml_path(tmp)
         except ValueError as exc:
             note = note_from_compile_error(exc, compiled.names)
-            note.code = "A132"
+            note.code = registry.MJCF_EXPORT_UNLOADABLE
             note.message = note.message.replace("MuJoCo rejected the model", "MuJoCo cannot load the exported MJCF", 1)
             raise ExportError(note) from None
 

@@ -30,8 +30,6 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mujoco.drivetrain import add_couplings, add_shaft_motors, add_shafts
-from plxtools.check.assemble import CONNECTOR_COUNT, MATE_SAME_BODY, ZERO_MAIN_AXIS
-from plxtools.check.coverage import NOT_SIMULATED
 from plxtools.check.mujoco.context import BuildContext, CompileFailed
 from plxtools.check.mujoco.controllers import add_controllers, add_keyframe
 from plxtools.check.mujoco.geoms import add_contact_pairs, add_excludes, add_geoms, set_inertials, set_restitution
@@ -41,7 +39,7 @@ from plxtools.check.mujoco.poses import angle_between, quat_normalize, quat_to_m
 from plxtools.check.mujoco.notes import INFO, WARNING, BackendNote
 from plxtools.check.mujoco.results import VISUAL_GROUP, ActuatorInfo, CompiledScene, MateMonitor
 from plxtools.check.scene import Connector, Mate, Scene, default_normal, orthogonalize
-from plxtools.rules.literals import NEGATIVE_MASS
+from plxtools.rules import registry
 
 __all__ = ["VISUAL_GROUP", "ActuatorInfo", "BackendNote", "CompiledScene", "MateMonitor", "compile_scene"]
 
@@ -129,7 +127,7 @@ def build(ctx: BuildContext) -> None:
         ctx.body_index[body.path] = i
         ctx.names.add("body", body.path, body.source)
         if body.mass < 0:
-            ctx.invariant(NEGATIVE_MASS,
+            ctx.invariant(registry.NEGATIVE_MASS,
                 f"{body.path}: negative mass {body.mass}; using the geometry mass",
                 body,
             )
@@ -203,10 +201,10 @@ def _buildable(ctx: BuildContext, m: Mate) -> bool:
         ctx.disabled(f"{m.path} is disabled and not simulated", m)
         return False
     if m.kind not in TREE_PRIORITY and m.kind != "distance":
-        ctx.invariant(NOT_SIMULATED, f"{m.path}: unknown mate kind {m.kind!r}; ignored", m)
+        ctx.invariant(registry.NOT_SIMULATED, f"{m.path}: unknown mate kind {m.kind!r}; ignored", m)
         return False
     if len(m.connectors) != 2:
-        ctx.invariant(CONNECTOR_COUNT, f"{m.path}: a mate needs exactly 2 connectors", m)
+        ctx.invariant(registry.CONNECTOR_COUNT, f"{m.path}: a mate needs exactly 2 connectors", m)
         return False
     c0, c1 = m.connectors
     n0, n1 = node(ctx, c0), node(ctx, c1)
@@ -215,13 +213,13 @@ def _buildable(ctx: BuildContext, m: Mate) -> bool:
         ctx.inconsistent(f"{m.path}: connector {bad[0].path} belongs to unknown body {bad[0].body}", m)
         return False
     if c0.body is not None and c0.body == c1.body:
-        ctx.invariant(MATE_SAME_BODY, f"{m.path}: both connectors belong to {c0.body}; ignored", m)
+        ctx.invariant(registry.MATE_SAME_BODY, f"{m.path}: both connectors belong to {c0.body}; ignored", m)
         return False
     if n0 == WORLD and n1 == WORLD:
         return False  # no effect; the static checks own this finding (A017)
     for c in (c0, c1):
         if float(np.linalg.norm(c.main_axis)) == 0.0:
-            ctx.invariant(ZERO_MAIN_AXIS, f"connector {c.path} has a zero main_axis", c)
+            ctx.invariant(registry.ZERO_MAIN_AXIS, f"connector {c.path} has a zero main_axis", c)
     return True
 
 
@@ -342,7 +340,7 @@ def add_static_bodies(ctx: BuildContext) -> None:
             ctx.out.kinematic.append(path)
             ctx.note(
                 INFO,
-                "A121",
+                registry.KINEMATIC_BODY,
                 f"{path} is kinematic: it moves with its velocity whatever hits it (a MuJoCo mocap body; "
                 "contacts see where it is, not how fast it moves, so friction does not carry things on it)",
                 body,
@@ -460,7 +458,7 @@ def add_loop_closures(ctx: BuildContext, loops: list[Mate]) -> None:
             connect(ctx, m.path, ":b", b0, b1, p0 - HINGE_LOOP_HALF_LENGTH * a0, m)
             ctx.note(
                 INFO,
-                "A114",
+                registry.LOOP_CLOSURE,
                 f"{m.path} closes a kinematic loop: two connect equalities on its axis (free rotation kept)",
                 m,
             )
@@ -474,18 +472,18 @@ def add_loop_closures(ctx: BuildContext, loops: list[Mate]) -> None:
             data[0:3] = p1  # anchor in body2; relpose zeros -> taken from the assembled pose
             data[10] = 1.0
             e.data = data
-            ctx.note(INFO, "A114", f"{m.path} closes a kinematic loop: weld equality", m)
+            ctx.note(INFO, registry.LOOP_CLOSURE, f"{m.path} closes a kinematic loop: weld equality", m)
         else:
             ctx.note(
                 WARNING,
-                "A115",
+                registry.LOOP_CLOSURE_UNSUPPORTED,
                 f"{m.path}: a loop-closing {m.kind} mate cannot be expressed in MuJoCo; it is NOT enforced",
                 m,
             )
             add_monitor(ctx, m, "open")
             continue
         if m.kind == "ball":
-            ctx.note(INFO, "A114", f"{m.path} closes a kinematic loop: connect equality", m)
+            ctx.note(INFO, registry.LOOP_CLOSURE, f"{m.path} closes a kinematic loop: connect equality", m)
         add_monitor(ctx, m, "loop")
 
 
@@ -519,7 +517,7 @@ def pull_together(ctx: BuildContext, m: Mate) -> None:
             data = np.zeros(len(e.data))
             data[10] = 1.0
             e.data = data
-    ctx.note(INFO, "A114", f"{m.path} starts apart (A016); an equality constraint between its connector frames "
+    ctx.note(INFO, registry.LOOP_CLOSURE, f"{m.path} starts apart (A016); an equality constraint between its connector frames "
              "pulls the two parts together, as a runtime does", m)
 
 
@@ -549,7 +547,7 @@ def add_distance_mates(ctx: BuildContext, mates: list[Mate]) -> None:
             )
             ctx.note(
                 WARNING,
-                "A116",
+                registry.DISTANCE_MATE_APPROXIMATED,
                 f"{m.path}: Distance mate with zero distance approximated as a ball (connect) constraint",
                 m,
             )
@@ -575,7 +573,7 @@ def add_distance_mates(ctx: BuildContext, mates: list[Mate]) -> None:
         e.data = data
         ctx.note(
             WARNING,
-            "A116",
+            registry.DISTANCE_MATE_APPROXIMATED,
             f"{m.path}: Distance mate approximated by a tendon-length equality (target {target:g} m)",
             m,
         )

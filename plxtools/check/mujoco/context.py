@@ -13,10 +13,9 @@ from typing import Any
 from plxtools.check.mujoco.notes import ERROR, INFO, BackendNote, NameMap, note_from_compile_error
 from plxtools.check.mujoco.results import CompiledScene
 from plxtools.check.scene import Body, Scene
+from plxtools.rules import registry
 
 
-DISABLED_ELEMENT = "A129"
-SCENE_INCONSISTENT = "A131"
 
 
 class CompileFailed(Exception):
@@ -76,11 +75,11 @@ class BuildContext:
 
     def inconsistent(self, message: str, item: Any = None, path: str | None = None) -> None:
         """A131: the scene contradicts itself (a duplicate path, a reference to an unknown body)."""
-        self.note(ERROR, SCENE_INCONSISTENT, message, item, path)
+        self.note(ERROR, registry.SCENE_INCONSISTENT, message, item, path)
 
     def disabled(self, message: str, item: Any) -> None:
         """A129: an element the model disables (``enabled: false``) is left out of the MuJoCo model."""
-        self.note(INFO, DISABLED_ELEMENT, message, item)
+        self.note(INFO, registry.DISABLED_ELEMENT, message, item)
 
     def compile(self, stage: str) -> Any:
         try:

@@ -17,9 +17,6 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.assemble import CONNECTOR_COUNT
-from plxtools.check.checks import CONTROLLER_DOF_MISMATCH, CONTROLLER_WITHOUT_MATE, INVERTED_LIMITS
-from plxtools.check.coverage import NOT_SIMULATED
 from plxtools.check.mapped_types import FREE_DOFS
 from plxtools.check.mujoco import velocity_constraint
 from plxtools.check.mujoco.context import BuildContext
@@ -27,6 +24,7 @@ from plxtools.check.mujoco.poses import quat_to_mat
 from plxtools.check.mujoco.notes import ERROR, INFO, WARNING
 from plxtools.check.mujoco.results import ActuatorInfo
 from plxtools.check.scene import Controller, Mate
+from plxtools.rules import registry
 
 KV_STEPS = 10.0
 KV_STEPS_LIMITED = 1.0
@@ -38,12 +36,12 @@ BIG_FORCE = velocity_constraint.BIG_EFFORT  # N m or N: the bound of an unlimite
 # -- controllers -----------------------------------------------------------------------------
 def note_gain_clamped(ctx: BuildContext, severity: str, message: str, item: Any) -> None:
     """A111, for mate motors here and drive-train motors (mujoco.drivetrain): one home for the code."""
-    ctx.note(severity, "A111", message, item)
+    ctx.note(severity, registry.VELOCITY_MOTOR_GAIN_CLAMPED, message, item)
 
 
 def note_on_loop_mate(ctx: BuildContext, message: str, item: Any) -> None:
     """A124: a controller or hinge actuator on a mate that closes a loop (no joint to act on)."""
-    ctx.note(WARNING, "A124", message, item)
+    ctx.note(WARNING, registry.CONTROLLER_ON_LOOP_MATE, message, item)
 
 
 def add_controllers(ctx: BuildContext, model: Any) -> None:
@@ -60,7 +58,7 @@ def add_controllers(ctx: BuildContext, model: Any) -> None:
         elif ctl.kind == "spring":
             add_spring(ctx, ctl, joint, sign, ieff)
         else:
-            ctx.invariant(NOT_SIMULATED,
+            ctx.invariant(registry.NOT_SIMULATED,
                 f"{ctl.path}: controller kind {ctl.kind!r} unsupported; ignored",
                 ctl,
             )
@@ -82,14 +80,14 @@ def bind_controllers(ctx: BuildContext, model: Any) -> list[Binding]:
             ctx.disabled(f"{ctl.path} is disabled", ctl)
             continue
         if len(ctl.connectors) != 2:
-            ctx.invariant(CONNECTOR_COUNT, f"{ctl.path}: needs exactly 2 connectors", ctl)
+            ctx.invariant(registry.CONNECTOR_COUNT, f"{ctl.path}: needs exactly 2 connectors", ctl)
             continue
         a, b = ctl.connectors[0].path, ctl.connectors[1].path
         mate, reversed_ = mates.get((a, b)), False
         if mate is None and (b, a) in mates:
             mate, reversed_ = mates[(b, a)], True
         if mate is None:
-            ctx.invariant(CONTROLLER_WITHOUT_MATE,
+            ctx.invariant(registry.CONTROLLER_WITHOUT_MATE,
                 f"{ctl.path}: no mate uses the connector pair ({a}, {b}); controller ignored",
                 ctl,
             )
@@ -101,7 +99,7 @@ def bind_controllers(ctx: BuildContext, model: Any) -> list[Binding]:
         if reversed_:
             ctx.note(
                 INFO,
-                "A122",
+                registry.CONTROLLER_REVERSED,
                 f"{ctl.path} lists the connectors of {mate.path} in the opposite order: its coordinate is the negated mate coordinate",
                 ctl,
             )
@@ -126,7 +124,7 @@ def choose_timestep(ctx: BuildContext, bound: list[Binding]) -> None:
     new_h = max(need, MIN_TIMESTEP)
     new_h = h / math.ceil(h / new_h)  # a whole number of steps per default step keeps sampling exact
     ctx.spec.option.timestep = new_h
-    ctx.note(INFO, "A133", f"time step shortened from {h:g} s to {new_h:.4g} s so that {stiffest.path} "
+    ctx.note(INFO, registry.TIMESTEP_SHORTENED, f"time step shortened from {h:g} s to {new_h:.4g} s so that {stiffest.path} "
              f"(stiffness {stiffest.stiffness:g}) is simulated as stiff as the model says"
              + ("" if new_h <= need * (1 + 1e-9) else f"; the floor is {MIN_TIMESTEP:g} s"), stiffest)
 
@@ -134,13 +132,13 @@ def choose_timestep(ctx: BuildContext, bound: list[Binding]) -> None:
 def controller_joint(ctx: BuildContext, ctl: Controller, mate: Mate) -> str | None:
     if not mate.enabled:
         ctx.note(
-            WARNING, "A123", f"{ctl.path}: its mate {mate.path} is disabled", ctl
+            WARNING, registry.CONTROLLER_ON_DISABLED_MATE, f"{ctl.path}: its mate {mate.path} is disabled", ctl
         )
         return None
     joints = ctx.out.joints.get(mate.path)
     fits = FREE_DOFS.get(mate.kind, ())
     if ctl.dof not in fits:
-        ctx.invariant(CONTROLLER_DOF_MISMATCH,
+        ctx.invariant(registry.CONTROLLER_DOF_MISMATCH,
             f"{ctl.path}: a {ctl.dof} controller cannot drive the {mate.kind} mate {mate.path}",
             ctl,
         )
@@ -157,7 +155,7 @@ def controller_joint(ctx: BuildContext, ctl: Controller, mate: Mate) -> str | No
 def effort_range(ctx: BuildContext, ctl: Controller, act: Any) -> None:
     lo, hi = float(ctl.min_effort), float(ctl.max_effort)
     if lo > hi:
-        ctx.invariant(INVERTED_LIMITS,
+        ctx.invariant(registry.INVERTED_LIMITS,
             f"{ctl.path}: min_effort {lo:g} > max_effort {hi:g}; effort left unlimited",
             ctl,
         )
@@ -178,7 +176,7 @@ def add_velocity_motor(ctx: BuildContext, model: Any, ctl: Controller, mate: Mat
     if ctl.gain <= 0:
         ctx.note(
             ERROR,
-            "A130",
+            registry.INVALID_CONTROLLER_PARAMETER,
             f"{ctl.path}: gain {ctl.gain:g} must be positive; motor ignored",
             ctl,
         )
@@ -251,10 +249,10 @@ def add_effort_motor(ctx: BuildContext, ctl: Controller, mate: Mate, joint: str,
 
 def add_range(ctx: BuildContext, ctl: Controller, joint: str, sign: int) -> None:
     if ctl.start is None or ctl.end is None:
-        ctx.note(ERROR, "A130", f"{ctl.path}: range needs start and end", ctl)
+        ctx.note(ERROR, registry.INVALID_CONTROLLER_PARAMETER, f"{ctl.path}: range needs start and end", ctl)
         return
     if ctl.start > ctl.end:
-        ctx.invariant(INVERTED_LIMITS,
+        ctx.invariant(registry.INVERTED_LIMITS,
             f"{ctl.path}: start {ctl.start:g} > end {ctl.end:g}; range ignored",
             ctl,
         )
@@ -263,7 +261,7 @@ def add_range(ctx: BuildContext, ctl: Controller, joint: str, sign: int) -> None
     if joint in ctx.joint_limits:
         plo, phi = ctx.joint_limits[joint]
         lo, hi = max(lo, plo), min(hi, phi)
-        ctx.note(INFO, "A125", f"{ctl.path}: several ranges on one DOF are intersected", ctl)
+        ctx.note(INFO, registry.STACKED_CONTROLLERS, f"{ctl.path}: several ranges on one DOF are intersected", ctl)
     ctx.joint_limits[joint] = [lo, hi]
     j = ctx.spec.joint(joint)
     j.limited = ctx.mj.mjtLimited.mjLIMITED_TRUE
@@ -277,7 +275,7 @@ def add_range(ctx: BuildContext, ctl: Controller, joint: str, sign: int) -> None
     if math.isfinite(ctl.max_effort) or (math.isfinite(ctl.min_effort) and ctl.min_effort != 0):
         ctx.note(
             INFO,
-            "A119",
+            registry.RANGE_EFFORT_IGNORED,
             f"{ctl.path}: range effort limits are not modelled (hard MuJoCo joint limit)",
             ctl,
         )
@@ -288,7 +286,7 @@ def add_spring(ctx: BuildContext, ctl: Controller, joint: str, sign: int, ieff: 
     if ctl.stiffness <= 0:
         ctx.note(
             ERROR,
-            "A130",
+            registry.INVALID_CONTROLLER_PARAMETER,
             f"{ctl.path}: stiffness {ctl.stiffness:g} must be positive; spring ignored",
             ctl,
         )
@@ -296,7 +294,7 @@ def add_spring(ctx: BuildContext, ctl: Controller, joint: str, sign: int, ieff: 
     if ctl.damping < 0 or not math.isfinite(ctl.damping):
         ctx.note(
             ERROR,
-            "A130",
+            registry.INVALID_CONTROLLER_PARAMETER,
             f"{ctl.path}: damping ({ctl.damping_from or ctl.damping}) must be a finite number >= 0; spring ignored",
             ctl,
         )
@@ -306,7 +304,7 @@ def add_spring(ctx: BuildContext, ctl: Controller, joint: str, sign: int, ieff: 
     if k < ctl.stiffness:
         ctx.note(
             WARNING,
-            "A112",
+            registry.SPRING_STIFFNESS_CLAMPED,
             f"{ctl.path}: stiffness {ctl.stiffness:g} would be unstable even at the shortest time step {h:g} s; "
             f"simulated with {k:.4g} "
             f"(natural frequency x timestep <= {SPRING_OMEGA_H:g} for effective inertia {ieff:.4g})",
@@ -317,7 +315,7 @@ def add_spring(ctx: BuildContext, ctl: Controller, joint: str, sign: int, ieff: 
     if n:
         ctx.note(
             INFO,
-            "A125",
+            registry.STACKED_CONTROLLERS,
             f"{ctl.path}: several springs on one DOF act as one: stiffness and damping summed, rest at the "
             f"stiffness-weighted mean of their rests (the same force and, up to a constant, the same energy)",
             ctl,
@@ -371,7 +369,7 @@ def _joint_velocities(ctx: BuildContext, model: Any, path: str, body: Any, v: np
             left_w = np.zeros(3)
     scale = max(float(np.linalg.norm(dv)), float(np.linalg.norm(dw)), 1e-12)
     if max(float(np.linalg.norm(left_v)), float(np.linalg.norm(left_w))) > 1e-6 * scale:
-        ctx.note(INFO, "A120", f"{path}: the part of its initial velocity that its mate does not allow is ignored "
+        ctx.note(INFO, registry.INITIAL_VELOCITY_IGNORED, f"{path}: the part of its initial velocity that its mate does not allow is ignored "
                  f"(it starts with the joint speed that the velocity gives; left out, beyond what that joint speed "
                  f"moves: linear {_fmt(left_v)} m/s, angular {_fmt(left_w)} rad/s)", body)
 
@@ -399,7 +397,7 @@ def _train_state(ctx: BuildContext, model: Any, joint: str, own: bool, members: 
         ctx.out.shafts[s.path].offset = float(s.angle) - f * q0
         v = float(s.velocity)
         if abs(v - f * v0) > 1e-9 * max(abs(v), abs(f * v0), 1.0):
-            ctx.note(INFO, "A120", f"{s.path}: its initial velocity {v:g} rad/s is not the {f * v0:.4g} rad/s "
+            ctx.note(INFO, registry.INITIAL_VELOCITY_IGNORED, f"{s.path}: its initial velocity {v:g} rad/s is not the {f * v0:.4g} rad/s "
                      "its drive train starts with (the gears and hinge actuators let the train turn only as one; "
                      "it starts at the train's speed)", s)
 

@@ -7,16 +7,13 @@ from typing import Any
 
 import numpy as np
 
-from plxtools.check.checks import DUPLICATE_CONTACT_MODEL, INVALID_INERTIA, ZERO_MASS_DYNAMIC_BODY
-from plxtools.check.convert import MISSING_FILE
-from plxtools.check.coverage import NOT_SIMULATED
 from plxtools.check.mujoco.context import BuildContext
 from plxtools.check.mujoco.poses import Z_TO_Y_QUAT, quat_mul, quat_normalize
 from plxtools.check.mujoco.notes import INFO, WARNING
 from plxtools.check.mujoco.restitution import restitution_solref
 from plxtools.check.mujoco.results import VISUAL_GROUP
 from plxtools.check.scene import GEOM_KINDS, Body, Geom
-from plxtools.rules.literals import INVALID_CONTACT_PARAMETER, NON_POSITIVE_SIZE
+from plxtools.rules import registry
 
 MESH_EXTENSIONS = (".stl", ".obj", ".msh")
 PALETTE = [
@@ -50,14 +47,14 @@ def geom_size_ok(ctx: BuildContext, g: Geom) -> bool:
     elif k == "mesh" and min(g.mesh_scale) <= 0:
         bad = f"mesh scale {tuple(g.mesh_scale)} must be positive"
     if bad:
-        ctx.invariant(NON_POSITIVE_SIZE, f"{g.path}: {bad}; geometry skipped", g)
+        ctx.invariant(registry.NON_POSITIVE_SIZE, f"{g.path}: {bad}; geometry skipped", g)
         return False
     return True
 
 
 def add_geom(ctx: BuildContext, mb: Any, body: Body, g: Geom) -> None:
     if g.kind not in GEOM_KINDS:
-        ctx.invariant(NOT_SIMULATED,
+        ctx.invariant(registry.NOT_SIMULATED,
             f"{g.path}: geometry kind {g.kind!r} is not supported; skipped",
             g,
         )
@@ -92,7 +89,7 @@ def _shape(ctx: BuildContext, body: Body, g: Geom, kw: dict[str, Any]) -> Any:
         quat = quat_mul(quat, Z_TO_Y_QUAT)
     elif g.kind == "plane":
         if body.is_dynamic:
-            ctx.note(WARNING, "A127", f"{g.path}: planes can only be static in MuJoCo; skipped", g)
+            ctx.note(WARNING, registry.PLANE_ON_DYNAMIC_BODY, f"{g.path}: planes can only be static in MuJoCo; skipped", g)
             return None
         kw.update(type=mj.mjtGeom.mjGEOM_PLANE, size=[g.size[0] / 2.0, g.size[1] / 2.0, 1.0])
     elif g.kind == "mesh":
@@ -131,13 +128,13 @@ def add_mesh(ctx: BuildContext, g: Geom) -> str | None:
         if not os.path.isabs(f) and ctx.scene.base_dir:
             f = os.path.join(ctx.scene.base_dir, f)
         if not os.path.isfile(f):
-            ctx.invariant(MISSING_FILE, f"{g.path}: mesh file not found: {f}; geometry skipped", g
+            ctx.invariant(registry.MISSING_FILE, f"{g.path}: mesh file not found: {f}; geometry skipped", g
             )
             return None
         if not f.lower().endswith(MESH_EXTENSIONS):
             ctx.note(
                 WARNING,
-                "A118",
+                registry.MESH_FORMAT_UNSUPPORTED,
                 f"{g.path}: MuJoCo reads only {', '.join(MESH_EXTENSIONS)} meshes, not {f}; skipped",
                 g,
             )
@@ -148,7 +145,7 @@ def add_mesh(ctx: BuildContext, g: Geom) -> str | None:
         if g.mesh_indices:
             kw["userface"] = [int(i) for i in g.mesh_indices]
     else:
-        ctx.invariant(NON_POSITIVE_SIZE, f"{g.path}: mesh has neither a file nor vertices; skipped", g)
+        ctx.invariant(registry.NON_POSITIVE_SIZE, f"{g.path}: mesh has neither a file nor vertices; skipped", g)
         return None
     if g.visual_only:
         # a visual never changes the physics: no mass from it (its geom has density 0), its
@@ -157,12 +154,12 @@ def add_mesh(ctx: BuildContext, g: Geom) -> str | None:
         kw["inertia"] = ctx.mj.mjtMeshInertia.mjMESH_INERTIA_SHELL
         problem = visual_mesh_problem(ctx.mj, kw)
         if problem is not None:
-            ctx.note(INFO, "A138", f"{g.path}: visual mesh left out of the MuJoCo scene ({problem}); "
+            ctx.note(INFO, registry.VISUAL_MESH_SKIPPED, f"{g.path}: visual mesh left out of the MuJoCo scene ({problem}); "
                      f"it has no effect on the physics", g)
             return None
     elif not g.convex and g.enable_collisions:
         ctx.note(
-            INFO, "A117", f"{g.path}: MuJoCo collides with the convex hull of this mesh", g
+            INFO, registry.CONCAVE_MESH_HULL, f"{g.path}: MuJoCo collides with the convex hull of this mesh", g
         )
     ctx.spec.add_mesh(**kw)
     return name
@@ -217,7 +214,7 @@ def add_contact_pairs(ctx: BuildContext) -> None:
             continue
         key = frozenset((cm.material1, cm.material2))
         if key in seen:
-            ctx.invariant(DUPLICATE_CONTACT_MODEL,
+            ctx.invariant(registry.DUPLICATE_CONTACT_MODEL,
                 f"{cm.path}: material pair already has contact model {seen[key]}; ignored",
                 cm,
             )
@@ -229,14 +226,14 @@ def add_contact_pairs(ctx: BuildContext) -> None:
             else (ctx.scene.default_friction if ctx.scene.default_friction is not None else 1.0)
         )
         if mu < 0:
-            ctx.invariant(INVALID_CONTACT_PARAMETER, f"{cm.path}: friction coefficient {mu} < 0; using 0", cm
+            ctx.invariant(registry.INVALID_CONTACT_PARAMETER, f"{cm.path}: friction coefficient {mu} < 0; using 0", cm
             )
             mu = 0.0
         if cm.friction_model not in ("dry", "dry_cone"):
             if cm.friction_model.startswith("dry"):
                 ctx.note(
                     INFO,
-                    "A113",
+                    registry.FRICTION_MODEL_APPROXIMATED,
                     f"{cm.path}: {cm.friction_model} friction approximated by MuJoCo's Coulomb cone with mu={mu:g}",
                     cm,
                 )
@@ -248,7 +245,7 @@ def add_contact_pairs(ctx: BuildContext) -> None:
             missing = cm.material1 if not g1 else cm.material2
             ctx.note(
                 INFO,
-                "A128",
+                registry.CONTACT_MODEL_UNUSED,
                 f"{cm.path}: no colliding geometry uses material {missing}",
                 cm,
             )
@@ -271,7 +268,7 @@ def add_contact_pairs(ctx: BuildContext) -> None:
                 if bouncy:
                     ctx.bouncy_pairs.append((pair, float(cm.restitution)))
         if bouncy and made:
-            ctx.note(INFO, "A137", f"{cm.path}: normal_restitution {cm.restitution:g} simulated by a contact "
+            ctx.note(INFO, registry.RESTITUTION_APPROXIMATED, f"{cm.path}: normal_restitution {cm.restitution:g} simulated by a contact "
                      f"spring-damper with that restitution (MuJoCo solref in direct form; see docs/physics.md)", cm)
 
 
@@ -301,7 +298,7 @@ def set_inertials(ctx: BuildContext, model: Any) -> None:
         cm = np.asarray(body.cm_pos, dtype=float) if body.cm_pos is not None else None
         if tensor is None and mass == 0.0 and cm is None:
             if geom_mass == 0.0:
-                ctx.invariant(ZERO_MASS_DYNAMIC_BODY,
+                ctx.invariant(registry.ZERO_MASS_DYNAMIC_BODY,
                     f"{path}: dynamic body with mass 0 and no mass-contributing geometry; simulated with 1 kg",
                     body,
                 )
@@ -310,7 +307,7 @@ def set_inertials(ctx: BuildContext, model: Any) -> None:
         if mass == 0.0:
             mass = geom_mass
             if mass == 0.0:
-                ctx.invariant(ZERO_MASS_DYNAMIC_BODY,
+                ctx.invariant(registry.ZERO_MASS_DYNAMIC_BODY,
                     f"{path}: dynamic body with mass 0 and no mass-contributing geometry; simulated with 1 kg",
                     body,
                 )
@@ -336,7 +333,7 @@ def set_inertials(ctx: BuildContext, model: Any) -> None:
         else:
             ctx.note(
                 WARNING,
-                "A126",
+                registry.MASS_WITHOUT_GEOMETRY,
                 f"{path}: mass {mass:g} kg given but no geometry to shape the inertia; using a 0.1 m solid sphere",
                 body,
             )
@@ -372,7 +369,7 @@ def valid_tensor(ctx: BuildContext, body: Body) -> np.ndarray | None:
             if a + b < c * (1 - 1e-9):
                 problem = f"breaks the triangle inequality (principal moments {[round(x, 6) for x in (a, b, c)]})"
     if problem:
-        ctx.invariant(INVALID_INERTIA,
+        ctx.invariant(registry.INVALID_INERTIA,
             f"{body.path}: inertia tensor {problem}; computed from geometry instead",
             body,
         )

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from plxtools.check.scene import Source
+from plxtools.rules import registry
 
 ERROR = "error"
 WARNING = "warning"
@@ -112,4 +113,4 @@ def note_from_compile_error(err: Exception, names: NameMap) -> BackendNote:
     src = names.sources.get(path) if path else None
     where = f" (OpenPLX element {path})" if path else ""
     text = msg.replace("\n", " ")
-    return BackendNote(ERROR, "A110", f"MuJoCo rejected the model{where}: {text}", src, path)
+    return BackendNote(ERROR, registry.MUJOCO_COMPILE_ERROR, f"MuJoCo rejected the model{where}: {text}", src, path)

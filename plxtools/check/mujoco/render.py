@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mujoco.compile import VISUAL_GROUP, CompiledScene
+from plxtools.fileio import write_output
 
 
 class RenderUnavailable(RuntimeError):
@@ -37,8 +38,6 @@ def write_png(path: str, rgb: np.ndarray) -> None:
             + payload
             + struct.pack(">I", zlib.crc32(tag + payload) & 0xFFFFFFFF)
         )
-
-    from plxtools.fileio import write_output  # the one safe writer: no half image, no replaced device
 
     write_output(path, b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
                  + chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b""))

@@ -15,14 +15,10 @@ from plxtools.check.mujoco.kinematic import KinematicMover, Stepper, body_veloci
 from plxtools.check.mujoco.poses import angle_between
 from plxtools.check.mujoco.velocity_constraint import reference_dof, reference_energy
 from plxtools.check.mujoco.notes import ERROR, INFO, WARNING, BackendNote
+from plxtools.rules import registry
 
 # The codes of the run's findings that other modules recognise (plx test, the report, the static
 # checks): each is named here, where it is raised, and imported from here.
-FELL_THROUGH = "A102"  # a dynamic body fell through static geometry, or out of the world
-MATE_DRIFT = "A103"  # a mate's connectors drift apart
-OVERLAP_AT_START = "A104"  # geometries start deeper than the tolerance in each other
-MOTOR_OFF_TARGET = "A106"  # a velocity motor misses its target speed
-ENERGY_GAIN = "A134"  # energy gained that no motor supplied
 
 
 @dataclass(slots=True)
@@ -407,12 +403,12 @@ def initial_penetrations(run: SimRun, deadline: float | None = None) -> bool:
 
     for done, j in enumerate(by_depth):
         if done == MAX_OVERLAPS_LISTED:
-            run.add(WARNING, OVERLAP_AT_START, f"{len(by_depth) - done} more pairs of geometries overlap at t=0 (the "
+            run.add(WARNING, registry.OVERLAP_AT_START, f"{len(by_depth) - done} more pairs of geometries overlap at t=0 (the "
                     f"{done} deepest are listed)", None)
             break
         if deadline is not None and done % 256 == 0 and time.perf_counter() > deadline:
             left = len(by_depth) - done
-            run.add(ERROR, "A109", f"the check of initial overlaps was stopped by the time limit "
+            run.add(ERROR, registry.SIMULATION_TIMEOUT, f"the check of initial overlaps was stopped by the time limit "
                     f"({_limit(run.opt)}) after {done} of {len(by_depth)} overlapping pairs "
                     f"({left} not reported); the simulation did not run", None)
             return False
@@ -422,7 +418,7 @@ def initial_penetrations(run: SimRun, deadline: float | None = None) -> bool:
         depth = float(-dist[k])
         run.res.penetrations.append({"geom1": g1, "geom2": g2, "depth": depth, "contacts": int(counts[j]),
                                      "pos": _vec(pos[k])})
-        run.add(WARNING, OVERLAP_AT_START, f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
+        run.add(WARNING, registry.OVERLAP_AT_START, f"{g1} and {g2} overlap by {depth:.4g} m at t=0", g1)
     return True
 
 
@@ -468,7 +464,7 @@ class BlowUp:
     def report(self, run: SimRun, t: float, step: int, reason: str) -> None:
         worst = max(run.speed, key=lambda p: run.speed[p]) if run.speed else None
         run.res.blowup = {"time": t, "step": step, "reason": reason, "fastest_body": worst}
-        run.add(ERROR, "A101", f"numerical blow-up at t={t:.3f} s: {reason}"
+        run.add(ERROR, registry.SIMULATION_BLOWUP, f"numerical blow-up at t={t:.3f} s: {reason}"
                 + (f" (fastest body before: {worst})" if worst else ""), worst)
 
 
@@ -484,7 +480,7 @@ class BadControl(Monitor):
 
     def finish(self, run: SimRun) -> None:
         if self._count(run) > self.count0:
-            run.add(ERROR, "A107", "MuJoCo rejected a NaN/huge actuator control (> 1e10) and zeroed the controls", None)
+            run.add(ERROR, registry.BAD_CONTROL, "MuJoCo rejected a NaN/huge actuator control (> 1e10) and zeroed the controls", None)
 
 
 class Trace(Monitor):
@@ -647,7 +643,7 @@ def fell_out_of_world(path: str, message: str, source: Any) -> BackendNote:
     """The A102 note for a body that left the world without crossing static geometry (which
     :class:`FallThrough` would have seen): ``checks.bodies_out_of_world`` decides that after the
     run from where the bodies started and ended."""
-    return BackendNote(ERROR, FELL_THROUGH, message, source, path)
+    return BackendNote(ERROR, registry.FELL_THROUGH, message, source, path)
 
 
 class FallThrough(Monitor):
@@ -701,7 +697,7 @@ class FallThrough(Monitor):
                     self.fell[p] = t
                     gp = run.compiled.names.path("geom", run.model.geom(g).name)
                     run.res.fall_through.append({"body": p, "time": t, "ground": gp, "com": _vec(xipos[i])})
-                    run.add(ERROR, FELL_THROUGH, f"{p} fell through static geometry {gp} at t={t:.3f} s", p, at=at)
+                    run.add(ERROR, registry.FELL_THROUGH, f"{p} fell through static geometry {gp} at t={t:.3f} s", p, at=at)
                     break
 
 
@@ -769,10 +765,10 @@ class MateSeparation(Monitor):
                 tr.initial_misalignment, tr.max_misalignment, tr.max_misalignment_time, pulled,
                 tr.separation, tr.misalignment)
             if pulled and m.role == "pulled":
-                run.add(WARNING, MATE_DRIFT, f"{m.path} started {tr.initial_separation:.4g} m apart and is still "
+                run.add(WARNING, registry.MATE_DRIFT, f"{m.path} started {tr.initial_separation:.4g} m apart and is still "
                         f"{tr.separation:.4g} m apart at the end (axes {math.degrees(tr.misalignment):.3g} deg)", m.path)
             elif pulled:
-                run.add(WARNING, MATE_DRIFT,
+                run.add(WARNING, registry.MATE_DRIFT,
                         f"{m.path} came apart: max separation {tr.max_separation:.4g} m at t="
                         f"{tr.max_separation_time:.3f} s, max axis misalignment "
                         f"{math.degrees(tr.max_misalignment):.3g} deg at t={tr.max_misalignment_time:.3f} s", m.path)
@@ -889,7 +885,7 @@ class JointLimits(Monitor):
             if v > run.opt.limit_tol:
                 jp = run.compiled.names.path("joint", run.model.joint(j).name)
                 run.res.joint_limit_violations.append({"mate": jp, "violation": v, "time": t})
-                run.add(WARNING, "A105", f"{jp} exceeded its range by {v:.4g} at t={t:.3f} s", jp)
+                run.add(WARNING, registry.JOINT_LIMIT_EXCEEDED, f"{jp} exceeded its range by {v:.4g} at t={t:.3f} s", jp)
 
 
 class MotorTracking(Monitor):
@@ -937,7 +933,7 @@ class MotorTracking(Monitor):
             if err is not None and self.count and err > TRACKING_TOL * abs(a.target_speed) + TRACKING_ABS:
                 pct = f" ({100 * err / abs(a.target_speed):.3g} % off)" if a.target_speed else ""
                 why = _tracking_why(a)
-                run.add(WARNING, MOTOR_OFF_TARGET, f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g}{pct} over "
+                run.add(WARNING, registry.MOTOR_OFF_TARGET, f"{a.path}: mean speed {mean_v:.4g} vs target {a.target_speed:g}{pct} over "
                         f"the last 20 % of the run, with a mean effort of {mean_f:.4g}{why}", a.path)
 
 
@@ -1095,7 +1091,7 @@ class Energy(Monitor):
             m = run.model
             name = {int(run.mujoco.mjtIntegrator.mjINT_RK4): "rk4", int(run.mujoco.mjtIntegrator.mjINT_EULER): "euler",
                     int(run.mujoco.mjtIntegrator.mjINT_IMPLICIT): "implicit"}.get(int(m.opt.integrator), "implicitfast")
-            run.add(WARNING, ENERGY_GAIN,
+            run.add(WARNING, registry.ENERGY_GAIN,
                     f"the energy of this conservative scene (no contacts, damping, friction, limits or motors) drifted "
                     f"by {self.drift:.4g} J ({100 * self.drift / scale:.3g} % of its energy scale {scale:.4g} J; "
                     f"tolerance {100 * run.opt.drift_tol:g} %), largest at t={self.drift_time:.3f} s with the "
@@ -1108,7 +1104,7 @@ class Energy(Monitor):
         bodies = run.res.bodies
         if bodies:
             worst = max(bodies, key=lambda b: bodies[b].max_kinetic_energy if bodies[b].dynamic else -1.0)
-        run.add(WARNING, ENERGY_GAIN,
+        run.add(WARNING, registry.ENERGY_GAIN,
                 f"the scene gained {self.gain:.4g} J of energy that no motor supplied "
                 f"({100 * self.gain / scale:.3g} % of its energy scale {scale:.4g} J), largest at "
                 f"t={self.gain_time:.3f} s" + (f"; the most energetic body is {worst}" if worst else "")
@@ -1168,7 +1164,7 @@ class Plausibility(Monitor):
                 v, t = float(sp[k, cols[c]]), float(b.t[k])
                 v0, ff, mot, spr = self.parts
                 run.res.implausible_speeds.append({"body": p, "time": t, "speed": v, "bound": self.bound})
-                run.add(WARNING, "A135",
+                run.add(WARNING, registry.IMPLAUSIBLE_SPEED,
                         f"{p} reached {v:.4g} m/s at t={t:.3f} s, more than the scene explains "
                         f"({self.explained:.3g} m/s: start {v0:.3g} + free fall over the run {ff:.3g} + motors "
                         f"{mot:.3g} + springs {spr:.3g}; twice that plus 1 m/s is tolerated)", p, at=k)
@@ -1346,7 +1342,7 @@ class _Loop:
         if self.primed:
             run.mujoco.mj_forward(run.model, run.data)
         self.batch.flush(run, self.batched)
-        run.add(ERROR, "A109", f"the simulation was stopped by the time limit ({_limit(run.opt)}) "
+        run.add(ERROR, registry.SIMULATION_TIMEOUT, f"the simulation was stopped by the time limit ({_limit(run.opt)}) "
                 f"at t={self.done * self.h:.3f} s of {run.duration:g} s; the motion after that is not checked", None)
 
     def finish(self) -> None:
@@ -1356,7 +1352,7 @@ class _Loop:
         res.simulated_time = self.done * h
         for m in self.monitors:
             m.finish(run)
-        timed_out = any(n.code == "A109" for n in res.notes)
+        timed_out = any(n.code == registry.SIMULATION_TIMEOUT for n in res.notes)
         if res.blowup is None and not timed_out and res.simulated_time < run.duration - h / 2:
-            run.add(INFO, "A108", f"simulated {res.simulated_time:.3f} of {run.duration:g} s", None)
+            run.add(INFO, registry.SIMULATION_INCOMPLETE, f"simulated {res.simulated_time:.3f} of {run.duration:g} s", None)
         res.ok = not any(n.severity == ERROR for n in res.notes)

@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import gc
 import os
+from plxtools.syntax import ast
 
 
 def memory_report() -> dict:
     """The syntax trees alive (path and length of their text, found by the collector, frozen objects
     included), resident memory, and Python's own allocations when tracemalloc traces."""
-    from plxtools.syntax import ast
 
     gc.unfreeze()  # frozen objects are invisible to gc.get_objects(); freezing again is constant time
     try:

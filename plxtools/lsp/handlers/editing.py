@@ -14,7 +14,8 @@ from plxtools.ide import migrate_action
 from plxtools.ide.runtime.collector import no_gc
 from plxtools.lsp.convert import Positions
 from plxtools.lsp.protocol import RequestFailed
-from plxtools.model.workspace import VERSION_CODES
+from plxtools.rules import registry
+from plxtools.ide.signature import param_label_offsets
 
 if TYPE_CHECKING:
     from plxtools.lsp.server import PlxServer
@@ -100,7 +101,6 @@ def register(server, server_feature) -> None:
             return None
         offsets = ls.cap("text_document.signature_help.signature_information.parameter_information."
                          "label_offset_support")
-        from plxtools.ide.signature import param_label_offsets
 
         sigs = []
         for s in res.signatures:
@@ -186,7 +186,7 @@ def _code_action(ls: PlxServer, st, pos, a, sent: list[types.Diagnostic]) -> typ
 def _migrate_action(ls: PlxServer, st, only, sent: list[types.Diagnostic]) -> types.CodeAction | None:
     """ "Migrate this file" (ide/migrate_action.py). Where the version diagnostic is (VS Code's Ctrl+.
     shows quick fixes, not source actions) it is also a quick fix of it; elsewhere a source action only."""
-    version_diags = [x for x in sent if x.code in VERSION_CODES]
+    version_diags = [x for x in sent if x.code in registry.tagged("version")]
     as_quickfix = bool(version_diags) and (only is None or any(k in ("quickfix", "") for k in only))
     m = ls.migrations.offer(ls.host, st, None if as_quickfix else only)
     if m is None:

@@ -9,6 +9,7 @@ from lsprotocol import types
 
 from plxtools import ide
 from plxtools.lsp.protocol import RequestFailed
+from plxtools.ide.context import resolve_at
 
 if TYPE_CHECKING:
     from plxtools.lsp.server import PlxServer
@@ -47,7 +48,6 @@ def register(server, server_feature) -> None:
             offset = pos.offset(params.position)
             targets = fn(st, offset)
             origin = None
-            from plxtools.ide.context import resolve_at
 
             r = resolve_at(st, offset) if targets else None
             if r is not None:

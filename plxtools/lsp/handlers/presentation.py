@@ -8,6 +8,7 @@ from lsprotocol import types
 
 from plxtools import ide
 from pygls.uris import from_fs_path
+from plxtools.ide.tokens import encode
 
 if TYPE_CHECKING:
     from plxtools.lsp.server import PlxServer
@@ -21,7 +22,6 @@ def register(server, server_feature) -> None:
         if st is None:
             return None
         pos = ls.positions(st.path, st)
-        from plxtools.ide.tokens import encode
 
         return types.SemanticTokens(data=encode(ide.semantic_tokens(st), pos.length))
 

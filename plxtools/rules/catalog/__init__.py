@@ -1,3 +1,4 @@
-"""Rule catalogues, one module per family; importing this package registers every rule."""
+"""The pages of the rules not in the module form, one module per family (rules/registry.py holds
+their codes, severities and stages)."""
 
-from plxtools.rules.catalog import assembly, hygiene, migration, semantic, syntax  # noqa: F401
+from plxtools.rules.catalog import assembly, hygiene, migration, pages, semantic, syntax  # noqa: F401

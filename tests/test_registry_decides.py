@@ -1,7 +1,8 @@
-"""A code's severity is the registry's, in `plx lint`, `plx check` and the language server (issue 38).
+"""What the registry says is what every command prints (issue 38): a code's severity, in `plx lint`,
+`plx check` and the language server, and which of two findings of one fault on a line stands (`owns`).
 
-Each test changes one code's severity in the registry (a rule raised by the model, one raised by
-check's evaluation, one in the module form) and reads what the three surfaces print."""
+Each test changes one entry of the registry (a rule raised by the model, one raised by check's
+evaluation, one in the module form) and reads what the surfaces print."""
 
 from __future__ import annotations
 
@@ -82,3 +83,18 @@ def test_check_prints_the_registry_severity(monkeypatch, tmp_path):
     r = plx_here("check", str(path))
     assert reported(r.stdout, "A004") == {"warning"}
     assert "Found 1 error" not in r.stdout
+
+
+def test_a_code_another_owns_is_not_reported_on_its_line(monkeypatch):
+    """connectors.openplx line 32: check's A013 (the mate has one connector) beside lint's A043 (its
+    connector is another mate's). Two faults, so both stand; once the registry says A043 owns A013,
+    only A043 is reported there, and A013 elsewhere is untouched."""
+    case = "tests/cases/check/connectors.openplx"
+    on_32 = lambda out: {ln.split()[2] for ln in out.splitlines() if ln.startswith(f"{case}:32:")}  # noqa: E731
+    before = plx_here("check", case).stdout
+    assert on_32(before) == {"A013", "A043"}, before
+    rule = registry.get("A043")
+    monkeypatch.setitem(registry.RULES, "A043", replace(rule, owns=rule.owns + ("A013",)))
+    after = plx_here("check", case).stdout
+    assert on_32(after) == {"A043"}, after
+    assert len(after.splitlines()) == len(before.splitlines()) - 2  # the A013 line and its help line
