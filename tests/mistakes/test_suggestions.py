@@ -86,3 +86,6 @@ def test_signals_in_the_runtime_api(truck):
     with pytest.raises(Exception) as err:
         sim.scene().getObject("boxTruck.front_left_drive_motor.target_speed_input")
     assert "did you mean 'boxTruck.front_left_drive_motor.target_angular_velocity_input'?" in str(err.value)
+    with pytest.raises(Exception) as err:
+        sim.scene().getObject("boxTruck.chassis.velocity_output")
+    assert "did you mean 'boxTruck.chassis.linear_velocity_world_output'?" in str(err.value)
