@@ -98,3 +98,18 @@ def test_a_code_another_owns_is_not_reported_on_its_line(monkeypatch):
     after = plx_here("check", case).stdout
     assert on_32(after) == {"A043"}, after
     assert len(after.splitlines()) == len(before.splitlines()) - 2  # the A013 line and its help line
+
+
+def test_an_owner_stands_only_when_at_least_as_grave():
+    """S003 owns A004 (a block that did not parse explains a missing value), but a tab's warning on
+    the declaration's line does not hide the missing value's error; the tab's error form does."""
+    from plxtools.diagnostics import EMPTY_SPAN, Diagnostic
+    from plxtools.rules.consequences import drop_owned
+
+    def on_line(code: str, severity: Severity) -> Diagnostic:
+        return Diagnostic(code, "", EMPTY_SPAN, severity, file="m.openplx")
+
+    assert "A004" in registry.get("S003").owns
+    missing = on_line("A004", Severity.ERROR)
+    assert missing in drop_owned([on_line("S003", Severity.WARNING), missing])
+    assert missing not in drop_owned([on_line("S003", Severity.ERROR), missing])

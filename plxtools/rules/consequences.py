@@ -33,11 +33,16 @@ def drop_consequences(diags: list[Diagnostic]) -> list[Diagnostic]:
 
 def drop_owned(diags: list[Diagnostic]) -> list[Diagnostic]:
     """`diags` without a finding whose code another finding on the same line owns (the registry's
-    `owns`): one fault seen by a lint rule and a check rule is reported once, by its owner."""
-    owned = {(d.file, d.span.start.line, code) for d in diags for code in registry.owned_by((d.code,))}
-    if not owned:
+    `owns`) and reports at least as gravely: one fault seen by a lint rule and a check rule is
+    reported once, by its owner (a tab's warning does not hide a missing value's error)."""
+    owners: dict[tuple, int] = {}
+    for d in diags:
+        for code in registry.owned_by((d.code,)):
+            key = (d.file, d.span.start.line, code)
+            owners[key] = max(owners.get(key, -1), d.severity.rank)
+    if not owners:
         return diags
-    return [d for d in diags if (d.file, d.span.start.line, d.code) not in owned]
+    return [d for d in diags if owners.get((d.file, d.span.start.line, d.code), -1) < d.severity.rank]
 
 
 def report_order(d: Diagnostic) -> tuple:

@@ -82,8 +82,9 @@ def entry(code: str, name: str, severity: Severity, *, stage: str = "lint", fix:
 # plxtools/rules/) and documented by that module's docstring; the others by `doc()` in catalog/.
 # `stage`: who reports it (syntax, lint, check, simulate); `fix`: none, safe or unsafe; `graver`:
 # the severity of its graver form; `tags`: deprecated, unnecessary (how an editor draws it), layout
-# (decides which block a line is read into), version (a name of an older bundle version: migrate); `owns`: codes its error makes redundant in the same
-# file (check does not make A004, a missing value, where lint reports M007 or a syntax error).
+# (decides which block a line is read into), version (a name of an older bundle version: migrate);
+# `owns`: codes it makes redundant: dropped on its line when it is at least as grave, and not made
+# by check's evaluator in a file where it is an error (no A004, a missing value, after M007).
 E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
 
 # ---------------------------------------------------------------- syntax (docs: catalog/syntax.py)

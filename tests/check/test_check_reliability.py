@@ -299,9 +299,10 @@ def test_model_used_as_a_value_is_one_error(tmp_path):
 
 def test_model_used_as_a_value_names_const_when_check_reports_it(check_text, monkeypatch):
     """Where check is the one to report it, the message names the user's concept, not a class."""
-    from plxtools.check import pipeline
+    from plxtools.rules import registry
 
-    monkeypatch.setattr(pipeline, "_owned_by_lint", lambda lint: frozenset())
+    # no code owns another (the registry's `owns`): check makes A005 and it stands beside T001
+    monkeypatch.setattr(registry, "owned_by", lambda codes: frozenset())
     fc = check_text(MISSING_CONST)
     [d] = [d for d in fc.diagnostics if d.code == "A005"]
     assert "'Steel' is a model, not an object" in d.message and "TypeObj" not in d.message
