@@ -38,6 +38,7 @@ from plxtools.check.api import ANGULAR_OUTPUTS, BODY_QUANTITIES, component_index
 from plxtools.check.mapped_types import CONTROLLERS, MATES
 from plxtools.check.scenecounts import PREFIX
 from plxtools.check.signals import COMPONENTS, RPY_COMPONENTS, RPY_QUANTITIES
+from plxtools.model import suggest
 
 SUFFIX = ".scenario.toml"
 TOP_KEYS = ("model", "root", "duration", "name", "description", "input", "expect")
@@ -677,10 +678,8 @@ def discover(paths: list[str]) -> list[Path]:
 
 
 def _body_quantity_hint(tail: str, body_q: dict) -> str:
-    """"; did you mean 'vx', 'vy', 'vz' (its linear_velocity_world_output)?": the quantities of the
+    """"did you mean 'vx' or 'vy' or ... (the body's linear_velocity_world_output)?": the quantities of the
     body output that means what `tail` says (model/suggest.py ranks the outputs by meaning)."""
-    from plxtools.model import suggest
-
     by_output: dict[str, list[str]] = {}
     for q, (out, _idx) in body_q.items():
         by_output.setdefault(out, []).append(q)
