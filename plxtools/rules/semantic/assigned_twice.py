@@ -31,11 +31,17 @@ from plxtools.syntax import ast
 
 def check(facts, report) -> None:
     tree, path = facts.tree, facts.path
+    # a line with an error of its own (an unknown attribute, a syntax error) is that error's: not
+    # also said to be a second value
+    broken = {d.span.start.line for d in list(tree.diagnostics) + list(facts.analysis.diagnostics)
+              if d.severity.value == "error"}
     stack = [s.body for s in tree.statements if ast.body_of(s)]
     while stack:
         body = stack.pop()
         seen: dict[tuple[str, ...], ast.Stmt] = {}
         for key, stmt, value in _values(body, ()):
+            if stmt.header.start.line in broken:
+                continue
             first = seen.get(key)
             if first is None:
                 seen[key] = stmt
