@@ -531,6 +531,8 @@ class Checker:
         if verdict == "no":
             help_, fix = self._literal_help(expr, expected)
             if help_ is None and isinstance(expr, ast.String):
+                help_, fix = _unquoted(expr, expected)
+            if help_ is None and isinstance(expr, ast.String):
                 help_, fix = self._const_named(expr, expected)
             self.report(TYPE_MISMATCH, f"expected {expected.display()}, found {got.display()}", expr.span,
                         help=help_ or self._mismatch_help(got, expected), fix=fix)
@@ -743,6 +745,9 @@ class Checker:
             return UNKNOWN
         options = list(self.p.members_of(Ty(self.outer))) if self.outer is not None else []
         options += list(self.unit.locals) + list(self.unit.namespace.symbols)
+        if name in ("True", "False", "TRUE", "FALSE"):
+            self.report(UNRESOLVED_NAME, f"unknown name '{name}'", ident.span, suggest=name.lower())
+            return UNKNOWN
         self._unknown(UNRESOLVED_NAME, f"unknown name '{name}'", ident.span, name, options)
         return UNKNOWN
 
@@ -1002,3 +1007,21 @@ def _default_edges(body, prefix: str, edges: dict, spans: dict) -> None:
                 spans.setdefault(key, s.path.span)
             if getattr(s, "body", None):
                 _default_edges(s.body, key + ".", edges, spans)
+
+
+def _unquoted(expr: ast.String, expected: Ty) -> tuple[str | None, Fix | None]:
+    """`is_dynamic: "false"`, `radius: "0.3"`: a Bool or a number written in quotes."""
+    text = expr.value.strip()
+    ok = {"Bool": text in ("true", "false"), "Real": _is_number(text), "Int": text.lstrip("-").isdigit()}
+    if not ok.get(expected.primitive or "", False) or expected.array:
+        return None, None
+    return (f"write {text} without quotes: a {expected.primitive} is not a string",
+            Fix(f"write {text}", (Edit(expr.span.start.offset, expr.span.end.offset, text),), safe=False))
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True

@@ -316,6 +316,9 @@ def _syntax_error(exc: "UnexpectedInput", line: LogicalLine) -> Diagnostic:
             and tok.type == "NAME" and len(line.tokens) > 1 and line.tokens[1] is tok:
         help_ = "declare with 'name is Type', or give a value with 'name: value'"
     fix = None
+    value_after_is = _value_after_is(line, tok)
+    if value_after_is is not None:
+        help_, fix = value_after_is
     braces = _paren_vector(line, tok) if tok is not None and tok.type == "COMMA" else None
     if braces is not None:
         (a, b), text = braces
@@ -328,6 +331,23 @@ def _syntax_error(exc: "UnexpectedInput", line: LogicalLine) -> Diagnostic:
             help_ = f"did you mean '{kw}'?"
             fix = Fix(f"replace with '{kw}'", (Edit(span.start.offset, span.end.offset, kw),), safe=False)
     return Diagnostic("S011", msg, span, Severity.ERROR, help=help_, fix=fix)
+
+
+_VALUE_START = frozenset({"NUMBER", "STRING", "TRUE", "FALSE", "MINUS", "LBRACE", "LSQB"})
+
+
+def _value_after_is(line: LogicalLine, tok):
+    """`inertia.mass is 15`: a value after `is`, where `:` gives one: (help, fix) or None."""
+    if tok is None or tok.type not in _VALUE_START:
+        return None
+    toks = line.tokens
+    at = next((i for i, t in enumerate(toks) if t is tok), None)
+    if not at or toks[at - 1].type != "IS":
+        return None
+    is_tok = toks[at - 1]
+    a, b = _sp(toks[at - 2]) if at >= 2 else _sp(is_tok), _sp(is_tok)
+    return ("'is' declares an attribute and its type; a value is given with ':'",
+            Fix("give the value with ':'", (Edit(a.end.offset, b.end.offset, ":"),), safe=False))
 
 
 def _paren_vector(line: LogicalLine, comma: Token):
