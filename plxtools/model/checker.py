@@ -1010,18 +1010,9 @@ def _default_edges(body, prefix: str, edges: dict, spans: dict) -> None:
 
 
 def _unquoted(expr: ast.String, expected: Ty) -> tuple[str | None, Fix | None]:
-    """`is_dynamic: "false"`, `radius: "0.3"`: a Bool or a number written in quotes."""
+    """`is_dynamic: "false"`: a Bool written in quotes (a number in quotes has _mismatch_help's)."""
     text = expr.value.strip()
-    ok = {"Bool": text in ("true", "false"), "Real": _is_number(text), "Int": text.lstrip("-").isdigit()}
-    if not ok.get(expected.primitive or "", False) or expected.array:
+    if expected.primitive != "Bool" or expected.array or text not in ("true", "false"):
         return None, None
     return (f"write {text} without quotes: a {expected.primitive} is not a string",
             Fix(f"write {text}", (Edit(expr.span.start.offset, expr.span.end.offset, text),), safe=False))
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
