@@ -42,6 +42,7 @@ from plxtools.check.report import Reporter
 from plxtools.model.program import Program
 from plxtools.rules import registry
 
+
 # The codes this module raises (their home); the MuJoCo build names them when a hand-built scene
 # breaks what the assembler guarantees, the pipeline knows A016's scene is as written.
 

@@ -26,6 +26,7 @@ from plxtools.syntax import ast
 from plxtools.rules import registry
 from plxtools.check.signals import classify
 
+
 # The codes this module raises (their home).  The MuJoCo build names them when it meets a scene these
 # checks should have rejected (BuildContext.invariant); `plx check`'s summary lists the motion ones.
 # found by these checks, not by the simulation: what they say about how the scene moves (or fails to)

@@ -38,6 +38,7 @@ from plxtools.model.symbols import FileUnit, ModelSym, Ty
 from plxtools.syntax import ast
 from plxtools.rules import registry
 
+
 DECL, VALUE, WITH = 0, 1, 2
 MAX_DEPTH = 48  # nesting of owned objects from which a model met again among the owners contains itself
 MAX_NESTING = 500  # distinct models nested deeper than this are not instantiated: a limit, not a cycle
@@ -106,6 +107,7 @@ class Obj:
     order: list = field(default_factory=list)  # member names in declaration order
     explicit: bool = False  # an owner routed a value to it (or below it): "declared" by the user
     singleton: bool = False
+    cut: bool = False  # a model containing itself starts to repeat here: dropped by its owner (A009)
 
     @property
     def display(self) -> str:
@@ -293,6 +295,12 @@ class Builder:
         loop = _same_model_above(obj) if depth <= MAX_NESTING else None
         if loop is None and depth <= MAX_NESTING:
             return False
+        cut = _first_repeat(obj) if loop is not None else None
+        if cut is not None:
+            # the ring is cut where it starts: the first object that repeats an owner's model is not
+            # built at all, so nothing below it (bodies without mass, unplaced) is reported as well
+            cut.cut = True
+            obj = cut
         self.too_deep.append(obj)
         if self.report is not None:
             self.report(registry.INSTANTIATION_TOO_DEEP, _too_deep_message(obj, depth, loop), obj)
@@ -329,6 +337,8 @@ class Builder:
         child = Obj(name, path, cmodel, ctraits, obj, e)
         obj.children[name] = child
         self._build(child, cmodel, ctraits, sub, depth + 1)
+        if child.cut:
+            del obj.children[name]
 
 
 def _merge_received(obj: Obj, info: tuple, received: list) -> tuple[dict, dict, dict]:
@@ -387,6 +397,21 @@ def _same_model_above(obj: Obj) -> list[Obj] | None:
         if o.model is obj.model and o.traits == obj.traits:
             return chain[::-1]
         o = o.owner
+    return None
+
+
+def _first_repeat(obj: Obj) -> Obj | None:
+    """The highest object above (or at) `obj` whose model and traits an owner of it already has:
+    where a model that contains itself starts to repeat."""
+    chain = []
+    o = obj
+    while o is not None:
+        chain.append(o)
+        o = o.owner
+    chain.reverse()  # root first
+    for i, o in enumerate(chain):
+        if any(a.model is o.model and a.traits == o.traits for a in chain[:i]):
+            return o
     return None
 
 

@@ -318,9 +318,13 @@ def _owned_by_lint(lint: list[Diagnostic]) -> frozenset[str]:
 
 def _merge(lint: list[Diagnostic], check: list[Diagnostic]) -> list[Diagnostic]:
     """Lint's findings, then check's, without the ones lint already made on the same line (a
-    literal value out of its physical range is lint's, see rules/literals.py)."""
+    literal value out of its physical range is lint's, see rules/literals.py). A model that
+    contains itself is lint's wherever check meets the ring (lint names the attribute that closes
+    it, check the object where it stopped: one cause, said once)."""
     made = {(d.code, d.span.start.line) for d in lint}
-    return lint + [d for d in check if (d.code, d.span.start.line) not in made]
+    rings = any(d.code == registry.INSTANTIATION_TOO_DEEP for d in lint)
+    return lint + [d for d in check if (d.code, d.span.start.line) not in made
+                   and not (rings and d.code == registry.INSTANTIATION_TOO_DEEP)]
 
 
 def _finish(tree: ast.File, diags: list[Diagnostic], cfg) -> list[Diagnostic]:

@@ -38,6 +38,7 @@ from plxtools.check.api import ANGULAR_OUTPUTS, BODY_QUANTITIES, component_index
 from plxtools.check.mapped_types import CONTROLLERS, MATES
 from plxtools.check.scenecounts import PREFIX
 from plxtools.check.signals import COMPONENTS, RPY_COMPONENTS, RPY_QUANTITIES
+from plxtools.model import suggest
 
 SUFFIX = ".scenario.toml"
 TOP_KEYS = ("model", "root", "duration", "name", "description", "input", "expect")
@@ -623,7 +624,9 @@ def _bind_subject(e: Expect, by_path: dict, bodies: list[str], outputs: list[str
             e.output, e.index, e.norm = info.path, idx, idx is None
             return None if info.path in bound else unbound.get(info.path, f"{info.path} is not simulated")
         elif head in bodies:
-            return f"{tail!r} is not a body quantity; use one of {', '.join(body_q)}"
+            hint = _body_quantity_hint(tail, body_q)
+            return f"{tail!r} is not a body quantity; " + (f"{hint} (all: {', '.join(body_q)})" if hint else
+                                                          f"use one of {', '.join(body_q)}")
     if info is None:
         cands = outputs + [f"{b}.{q}" for b in bodies for q in ("x", "y", "z", "yaw")]
         hint = did_you_mean(path, cands)
@@ -675,3 +678,17 @@ def discover(paths: list[str]) -> list[Path]:
             seen.add(r)
             uniq.append(x)
     return uniq
+
+
+def _body_quantity_hint(tail: str, body_q: dict) -> str:
+    """"did you mean 'vx' or 'vy' or ... (the body's linear_velocity_world_output)?": the quantities of the
+    body output that means what `tail` says (model/suggest.py ranks the outputs by meaning)."""
+    by_output: dict[str, list[str]] = {}
+    for q, (out, _idx) in body_q.items():
+        by_output.setdefault(out, []).append(q)
+    near = suggest.best(tail, list(body_q) + list(by_output), cutoff=0.6)
+    if near is None:
+        return ""
+    if near in by_output:
+        return f"did you mean {' or '.join(repr(q) for q in by_output[near])} (the body's {near})?"
+    return f"did you mean {near!r}?"

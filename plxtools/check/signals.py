@@ -26,6 +26,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
+from plxtools.model import suggest
 from plxtools.check.bindings import Binding, Unbindable, rpy_of_mat  # noqa: F401 (rpy_of_mat: read from here too)
 from plxtools.check.mapped_types import CONTROLLERS, MATES
 from plxtools.model.resolve import linearize
@@ -665,15 +666,16 @@ def _bound_elsewhere(quantity: str | None) -> Callable[[SignalRuntime, SignalInf
 
 
 def did_you_mean(name: str, candidates: list[str]) -> str | None:
-    """The candidate closest to ``name`` (same last part first), or None."""
+    """The candidate to offer for ``name`` (model/suggest.py's ranking: meaning, then spelling; a
+    candidate with the same last part when nothing else is close), or None."""
     import difflib
 
     if not candidates:
         return None
     last = name.rsplit(".", 1)[-1]
-    close = difflib.get_close_matches(name, candidates, n=1, cutoff=0.6)
+    close = suggest.best(name, candidates, cutoff=0.6)
     if close:
-        return close[0]
+        return close
     same_tail = [c for c in candidates if c.rsplit(".", 1)[-1] == last]
     if same_tail:
         return difflib.get_close_matches(name, same_tail, n=1, cutoff=0.0)[0]

@@ -12,6 +12,7 @@ from plxtools.cache import reads
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity, Span
 from plxtools.model import resolve
 from plxtools.model.program import Program, compose_type
+from plxtools.model import suggest
 from plxtools.model.symbols import (
     BOOL,
     INT,
@@ -67,6 +68,8 @@ class Checker:
         # same few functions many times: Vec3.from_xyz); the program does not change during a check
         self._signatures: dict[int, tuple[MethodSym, list[Ty], Ty | None]] = {}
         self._found: dict[tuple[str, ...], object] = {}  # dotted name -> what it names from this file
+        # attribute paths set as if they had `becomes` (N002 with that help): the subtype meant
+        self._becomes_blocks: dict[tuple[int, tuple[str, ...]], ModelSym] = {}
 
     # ------------------------------------------------------------------ reporting
 
@@ -83,11 +86,8 @@ class Checker:
         self.occurrences.append(Occurrence(span, target, kind))
 
     def _closest(self, name: str, options) -> str | None:
-        import difflib  # (only a file with an unknown name needs it)
-
         self._suggests = True  # the answer depends on every name in scope (model/reuse.py)
-        close = difflib.get_close_matches(name, list(options), n=1, cutoff=0.7)
-        return close[0] if close else None
+        return suggest.best(name, options)
 
     def _suggest(self, name: str, options) -> str | None:
         close = self._closest(name, options)
@@ -285,6 +285,10 @@ class Checker:
         self._suggests = True
         if len(parts) >= 2:
             ns = self.p.lookup(parts[:-1], self.unit)
+            if not isinstance(ns, Namespace):
+                fixed = self._corrected_path(parts)
+                if fixed is not None:
+                    return None, fixed
             if isinstance(ns, Namespace):
                 close = self._closest(parts[-1], list(ns.symbols) + list(ns.children)) if parts[-1] else None
                 if close:
@@ -293,6 +297,25 @@ class Checker:
                 if names:
                     return f"{ns.dotted} has: " + ", ".join(names) + (" ..." if len(ns.symbols) > 8 else ""), None
         return None, None
+
+    def _corrected_path(self, parts: list[str]) -> str | None:
+        """`Physics3d.Bodies.RigidBody` -> `Physics3D.Bodies.RigidBody`: each part that does not
+        resolve replaced by the best suggestion among what the part before it holds."""
+        ns = self.p.root
+        out = []
+        for i, part in enumerate(parts):
+            last = i == len(parts) - 1
+            names = list(ns.children) + (list(ns.symbols) if last else [])
+            word = part if part in names else self._closest(part, names)
+            if word is None:
+                return None
+            out.append(word)
+            if not last:
+                ns = ns.children.get(word)
+                if ns is None:
+                    return None
+        fixed = ".".join(out)
+        return fixed if fixed != ".".join(parts) and isinstance(self.p.lookup(out, self.unit), ModelSym) else None
 
     def _type_expr(self, texpr: ast.TypeExpr | None, want: str | None = None) -> Ty:
         if texpr is None:
@@ -449,8 +472,19 @@ class Checker:
                     self._unknown(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span, part.name,
                                   list(mems))
                 else:
-                    self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span,
-                                suggest=self._closest(part.name, list(mems)))
+                    meant = self._becomes_blocks.get((id(self.outer), path))
+                    if meant is not None and part.name in self.p.all_members(meant):
+                        return UNKNOWN, None  # follows from the missing `becomes` reported above
+                    kind = self._subtype_with(cur.model, part.name) if cur.model is not None else None
+                    if kind is not None:
+                        self._becomes_blocks[(id(self.outer), path)] = kind
+                        self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}, but of "
+                                    f"{kind.name}, a kind of it", part.span,
+                                    help=f"use becomes to make '{'.'.join(path)}' a {kind.name}: write "
+                                         f"'{path[-1] if path else 'it'} becomes {kind.qname}:' above")
+                    else:
+                        self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span,
+                                    suggest=self._closest(part.name, list(mems)))
                 return UNKNOWN, None
             mem = found
             self.occ(part.span, mem, "attribute")
@@ -458,6 +492,15 @@ class Checker:
             cur = self.p.member_type(mem)
             path = path + (part.name,)
         return cur, mem
+
+    def _subtype_with(self, model: ModelSym, name: str) -> ModelSym | None:
+        """The one named model that is a kind of `model` and has an attribute `name` (None: none or
+        several), for the help of an attribute set on the declared type instead of `becomes`."""
+        self._suggests = True  # the answer depends on every model in the program (model/reuse.py)
+        found = [m for m in self.p.all_models() if not m.anonymous and not m.is_trait and m is not model
+                 and name in self.p.all_members(m) and self.p.is_subtype(m, model)]
+        found = [m for m in found if not any(o is not m and self.p.is_subtype(m, o) for o in found)]
+        return found[0] if len(found) == 1 else None
 
     def _deprecated_check(self, mem: MemberSym, span: Span) -> None:
         for owner in (mem.owner,):
@@ -481,16 +524,40 @@ class Checker:
             return
         got = self._expr(expr, expected)
         if not isinstance(got, Ty):
-            self._not_a_value(TYPE_MISMATCH, got, expr.span)
+            if not self._becomes_meant(got, expected, expr.span):
+                self._not_a_value(TYPE_MISMATCH, got, expr.span)
             return
         verdict = self.p.assignable(got, expected)
         if verdict == "no":
             help_, fix = self._literal_help(expr, expected)
+            if help_ is None and isinstance(expr, ast.String):
+                help_, fix = _unquoted(expr, expected)
+            if help_ is None and isinstance(expr, ast.String):
+                help_, fix = self._const_named(expr, expected)
             self.report(TYPE_MISMATCH, f"expected {expected.display()}, found {got.display()}", expr.span,
                         help=help_ or self._mismatch_help(got, expected), fix=fix)
         elif verdict == "warn":
             self.report("T002", "a Real is given where an Int is expected", expr.span, W,
                         help="write a whole number, or use Math.Functions.round/floor/ceil")
+
+    def _const_named(self, expr: ast.String, expected: Ty) -> tuple[str | None, Fix | None]:
+        """A material's `unique_name` string where the material is expected: the const model whose
+        attribute holds that string, by name (`material: "Tutorial_WheelMaterial"` -> WheelMaterial)."""
+        want = expected.model if not expected.array and not expected.alts else None
+        if want is None:
+            return None, None
+        self._suggests = True  # the answer depends on every const model in the program (model/reuse.py)
+        for m in self.p.all_models():
+            if not m.const or m.is_trait or not self.p.is_subtype(m, want):
+                continue
+            for a in m.assignments:
+                if isinstance(a.value, ast.String) and a.value.value == expr.value:
+                    name = m.name if m.unit is self.unit else m.qname
+                    attr = ".".join(p.name for p in a.path.parts)
+                    return (f"did you mean {name}? (\"{expr.value}\" is its {attr}; give the const itself, without "
+                            "quotes)", Fix(f"replace with '{name}'", (Edit(expr.span.start.offset, expr.span.end.offset,
+                                                                             name),), safe=False))
+        return None, None
 
     def _literal_help(self, expr: ast.Expr, expected: Ty) -> tuple[str | None, Fix | None]:
         """How a value of a positional model (a vector, a quaternion) is written, when an array
@@ -529,6 +596,20 @@ class Checker:
         if isinstance(v, MethodRef):
             return f"method '{v.method.name}' must be called: it"
         return "this"
+
+    def _becomes_meant(self, v, expected: Ty, span: Span) -> bool:
+        """`friction: Physics...DryConstantNormalForceFriction`: a model that is a kind of the
+        attribute's type, given as its value, where `becomes` was meant (T001 with that fix)."""
+        sym = v.sym if isinstance(v, TypeObj) else None
+        want = expected.model if not expected.array and not expected.alts else None
+        if not isinstance(sym, ModelSym) or sym.is_trait or sym.const or want is None or sym is want \
+                or sym.unit is self.unit or not self.p.is_subtype(sym, want):
+            return False  # (a model of this file given as a value most often lacks `const`: _not_a_value)
+        self.report(TYPE_MISMATCH, f"'{sym.qname}' is a model, not a value; it is a kind of "
+                    f"{self.p.concrete(want).qname}, the attribute's type", span,
+                    help=f"use becomes to make the attribute a {sym.name}: write '<attribute> becomes {sym.qname}' "
+                         "(its settings in an indented block below)")
+        return True
 
     def _not_a_value(self, code: str, v, span: Span) -> None:
         """A type, namespace or method where a value is needed. A model named as a value most often
@@ -664,6 +745,9 @@ class Checker:
             return UNKNOWN
         options = list(self.p.members_of(Ty(self.outer))) if self.outer is not None else []
         options += list(self.unit.locals) + list(self.unit.namespace.symbols)
+        if name in ("True", "False", "TRUE", "FALSE"):
+            self.report(UNRESOLVED_NAME, f"unknown name '{name}'", ident.span, suggest=name.lower())
+            return UNKNOWN
         self._unknown(UNRESOLVED_NAME, f"unknown name '{name}'", ident.span, name, options)
         return UNKNOWN
 
@@ -923,3 +1007,12 @@ def _default_edges(body, prefix: str, edges: dict, spans: dict) -> None:
                 spans.setdefault(key, s.path.span)
             if getattr(s, "body", None):
                 _default_edges(s.body, key + ".", edges, spans)
+
+
+def _unquoted(expr: ast.String, expected: Ty) -> tuple[str | None, Fix | None]:
+    """`is_dynamic: "false"`: a Bool written in quotes (a number in quotes has _mismatch_help's)."""
+    text = expr.value.strip()
+    if expected.primitive != "Bool" or expected.array or text not in ("true", "false"):
+        return None, None
+    return (f"write {text} without quotes: a {expected.primitive} is not a string",
+            Fix(f"write {text}", (Edit(expr.span.start.offset, expr.span.end.offset, text),), safe=False))

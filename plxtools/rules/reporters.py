@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import os
+import re
 import sys
+import textwrap
 from collections import Counter
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -35,6 +37,29 @@ def text_line(d: Diagnostic) -> str:
     return f"{_loc(d)}: {d.severity.value} {d.code}"
 
 
+WIDTH = 200  # the longest line text output prints; JSON, SARIF and GitHub keep the whole message
+_REPEAT = re.compile(r"\b(\w+)((?:\.\1){3,})\b")
+_DOTTED = re.compile(r"\b[A-Za-z_]\w*(?:\.[A-Za-z_]\w*){7,}\b")
+
+
+def shorten(text: str) -> str:
+    """Long object paths made readable: `a.spare.spare.spare.spare` -> `a.spare.spare(x4)`,
+    a dotted path of more than 8 parts -> its first 3 and last 2 around `...`."""
+    text = _REPEAT.sub(lambda m: f"{m.group(1)}(x{m.group(0).count('.') + 1})", text)
+    return _DOTTED.sub(lambda m: ".".join(m.group(0).split(".")[:3] + ["..."] + m.group(0).split(".")[-2:]), text)
+
+
+def fit(first: str, text: str, indent: str = "    ") -> str:
+    """`first` + `text`, with a message longer than WIDTH made readable: long object paths
+    shortened, then wrapped at spaces onto indented continuation lines of at most WIDTH characters
+    (nothing is cut). The width is the message's: a long file path before it is the user's own."""
+    if len(text) <= WIDTH:
+        return first + text
+    line = first + shorten(text)
+    return "\n".join(textwrap.wrap(line, max(WIDTH, len(first) + 80), subsequent_indent=indent,
+                                    break_long_words=False, break_on_hyphens=False))
+
+
 def render_text(diags: list[Diagnostic], stream: TextIO, *, show_fix_hint: bool = True,
                 summary: bool = True, files_checked: int | None = None) -> None:
     if _use_color(stream):
@@ -42,9 +67,9 @@ def render_text(diags: list[Diagnostic], stream: TextIO, *, show_fix_hint: bool 
         return
     for d in diags:
         fixable = " [*]" if d.fix is not None and d.fix.safe and show_fix_hint else ""
-        stream.write(printable(f"{text_line(d)}{fixable} {d.message}") + "\n")
+        stream.write(fit(printable(f"{text_line(d)}{fixable} "), printable(d.message)) + "\n")
         if d.help:
-            stream.write(printable(f"  help: {d.help}") + "\n")
+            stream.write(fit("  help: ", printable(d.help)) + "\n")
     if summary:
         stream.write(_summary_line(diags, files_checked) + "\n")
 
@@ -79,10 +104,11 @@ def _render_rich(diags: list[Diagnostic], stream: TextIO, *, summary: bool, file
         t.append(f"{d.severity.value} {d.code}", style=styles[d.severity])
         if d.fix is not None and d.fix.safe:
             t.append(" [*]", style="cyan")
-        t.append(" " + printable(d.message))
+        head = len(t.plain) + 1
+        t.append(" " + fit(" " * head, printable(d.message))[head:])
         console.print(t)
         if d.help:
-            console.print(Text("  help: ", style="cyan") + Text(printable(d.help)))
+            console.print(Text("  help: ", style="cyan") + Text(fit("  help: ", printable(d.help))[8:]))
     if summary:
         console.print(_summary_line(diags, files_checked), style="bold" if diags else "green")
 

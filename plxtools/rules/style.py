@@ -147,11 +147,14 @@ def style_of_file(program: Program, unit, used_names: set[str], root: ModelSym |
     chosen = root is not None  # --model NAME: that model is the root, wherever it is in the file
     root = root or root_model(program, unit)
     used = {id(sym) for name, sym in unit.locals.items() if name in used_names}
-    for name, sym in unit.locals.items():
-        if isinstance(sym, ModelSym) and sym is not root and id(sym) not in used:
-            _unused(name, sym, unit, add)
+    stray = None
     if root is not None and not chosen:  # a root chosen by name is not "the last model"
-        _root_kind(program, unit, root, used, add)
+        stray = _root_kind(program, unit, root, used, add)
+    for name, sym in unit.locals.items():
+        # (the scene C007 says was meant to be last is that finding's, not also an unused model)
+        if isinstance(sym, ModelSym) and sym is not root and id(sym) not in used and sym is not stray:
+            _unused(name, sym, unit, add)
+    out.sort(key=lambda d: d.span.start.offset)
     return out
 
 
@@ -169,8 +172,9 @@ def _unused(name: str, sym: ModelSym, unit, add) -> None:
         "use it or remove the import")
 
 
-def _root_kind(program: Program, unit, root: ModelSym, used: set[int], add) -> None:
-    """C007: the file's last model is not what importers load (a System, a body, a material)."""
+def _root_kind(program: Program, unit, root: ModelSym, used: set[int], add) -> ModelSym | None:
+    """C007: the file's last model is not what importers load (a System, a body, a material).
+    Returns the unused System above the root that it names, if any."""
     system = program.lookup(["Physics3D", "System"], unit)
     is_system = isinstance(system, ModelSym) and program.is_subtype(root, system)
     # a scene above the root that nothing uses: the scene was meant to be last
@@ -181,7 +185,8 @@ def _root_kind(program: Program, unit, root: ModelSym, used: set[int], add) -> N
             f"and the System '{stray[0].name}' above it is used by nothing",
             root.stmt.path.span, Severity.WARNING,
             f"a scene is loaded from the last model; move '{stray[0].name}' to the end of the file")
-    elif not _loadable_root(program, unit, root):
+        return stray[0]
+    if not _loadable_root(program, unit, root):
         add(registry.ROOT_NOT_SYSTEM, f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
             f"a rigid body or a material",
             root.stmt.path.span, Severity.WARNING,

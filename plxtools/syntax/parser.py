@@ -318,12 +318,81 @@ def _syntax_error(exc: "UnexpectedInput", line: LogicalLine) -> Diagnostic:
             and tok.type == "NAME" and len(line.tokens) > 1 and line.tokens[1] is tok:
         help_ = "declare with 'name is Type', or give a value with 'name: value'"
     fix = None
+    value_after_is = _value_after_is(line, tok)
+    if value_after_is is not None:
+        help_, fix = value_after_is
+    braces = _paren_vector(line, tok) if tok is not None and tok.type == "COMMA" else None
+    if braces is not None:
+        (a, b), text = braces
+        help_ = f"a vector is written in braces: {text}"
+        fix = Fix(f"write {text}", (Edit(a.start.offset, a.end.offset, "{"), Edit(b.start.offset, b.end.offset, "}")),
+                  safe=False)
     if tok is not None and tok.type == "NAME":
         kw = closest_keyword(str(tok), set(getattr(exc, "expected", None) or ()))
         if kw is not None:
             help_ = f"did you mean '{kw}'?"
             fix = Fix(f"replace with '{kw}'", (Edit(span.start.offset, span.end.offset, kw),), safe=False)
     return Diagnostic("S011", msg, span, Severity.ERROR, help=help_, fix=fix)
+
+
+_VALUE_START = frozenset({"NUMBER", "STRING", "TRUE", "FALSE", "MINUS", "LBRACE", "LSQB"})
+
+
+def _value_after_is(line: LogicalLine, tok):
+    """`inertia.mass is 15`: a value after `is`, where `:` gives one: (help, fix) or None."""
+    if tok is None or tok.type not in _VALUE_START:
+        return None
+    toks = line.tokens
+    at = next((i for i, t in enumerate(toks) if t is tok), None)
+    if not at or toks[at - 1].type != "IS":
+        return None
+    is_tok = toks[at - 1]
+    a, b = _sp(toks[at - 2]) if at >= 2 else _sp(is_tok), _sp(is_tok)
+    return ("'is' declares an attribute and its type; a value is given with ':'",
+            Fix("give the value with ':'", (Edit(a.end.offset, b.end.offset, ":"),), safe=False))
+
+
+def _paren_vector(line: LogicalLine, comma: Token):
+    """`(1, 0, 0)` where `{1, 0, 0}` was meant: the spans of the parentheses around `comma` (not a
+    call's) and the text in braces, or None."""
+    toks = line.tokens
+    at = next((i for i, t in enumerate(toks) if t is comma), None)
+    if at is None:
+        return None
+    depth, opener = 0, None
+    for i in range(at - 1, -1, -1):
+        kind = toks[i].type
+        if kind in ("RPAR", "RSQB", "RBRACE"):
+            depth += 1
+        elif kind in ("LPAR", "LSQB", "LBRACE"):
+            if depth == 0:
+                opener = i
+                break
+            depth -= 1
+    if opener is None or toks[opener].type != "LPAR" or (opener > 0 and toks[opener - 1].type in ("NAME", "TICKNAME", "RPAR")):
+        return None
+    depth = 0
+    for j in range(opener + 1, len(toks)):
+        kind = toks[j].type
+        if kind in ("LPAR", "LSQB", "LBRACE"):
+            depth += 1
+        elif kind in ("RPAR", "RSQB", "RBRACE"):
+            if depth == 0:
+                if kind != "RPAR":
+                    return None
+                a, b = _sp(toks[opener]), _sp(toks[j])
+                inner = line_text_between(toks, opener, j)
+                return (a, b), "{" + inner + "}"
+            depth -= 1
+    return None
+
+
+def line_text_between(toks, i: int, j: int) -> str:
+    """The tokens strictly between `i` and `j`, with a space after each comma."""
+    out = ""
+    for t in toks[i + 1:j]:
+        out += str(t) + (" " if t.type == "COMMA" else "")
+    return out
 
 
 def _expected_here(expected: set[str], line: LogicalLine, tok: Token) -> set[str]:

@@ -1,7 +1,11 @@
 """Two mates in one model name the same connector: the second can only close by moving the body
 the first one places. Reported by `plx lint` at the mate that is most likely wrong: when another
 body of the same type has that connector unused and the mate's name is closer to that body, that
-mate, with the connector it probably meant; otherwise the later mate.
+mate, with the connector it probably meant; otherwise the later mate. And a mate whose two
+connectors belong to the same body (A015): `plx lint` reports it at the second connector when the
+file says so (`[chassis.a, chassis.b]`), with the unused connector of a sibling it most likely
+meant, and does not count it as holding either connector; `plx check` reports the cases only the
+assembled scene shows (both on the world or on one system).
 
 ## Why it matters
 
@@ -48,6 +52,7 @@ from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast
 
 MATE = ("Physics3D", "Interactions", "Mate")
+SHARED, SAME_BODY = "connector-used-by-two-mates", "mate-same-body"
 
 
 def check(facts, report) -> None:
@@ -75,9 +80,11 @@ def _connectors(stmt: ast.Declaration) -> list[ast.Expr] | None:
     return None
 
 
-def _one_block(program, unit, mate: ModelSym, body: list, report) -> None:
+def _mates_of_block(program, unit, mate: ModelSym, body: list):
+    """The block's mates with their connector lists, and each attribute's type as written (to find
+    same-typed siblings)."""
     mates: list[tuple[ast.Declaration, list[ast.Expr]]] = []
-    types: dict[str, str] = {}  # attribute name -> its type as written (to find same-typed siblings)
+    types: dict[str, str] = {}
     for s in body:
         if not isinstance(s, ast.Declaration) or s.keyword != "is" or len(s.path.parts) != 1:
             continue
@@ -90,6 +97,12 @@ def _one_block(program, unit, mate: ModelSym, body: list, report) -> None:
         if ty.model is None or not program.is_subtype(ty.model, mate):
             continue
         mates.append((s, items))
+    return mates, types
+
+
+def _one_block(program, unit, mate: ModelSym, body: list, report) -> None:
+    mates, types = _mates_of_block(program, unit, mate, body)
+    mates = [m for m in mates if not _same_body(unit, m, types, mates, report)]
     used: dict[str, list[tuple[ast.Declaration, ast.Expr]]] = {}
     for s, items in mates:
         for e in items:
@@ -111,7 +124,40 @@ def _one_block(program, unit, mate: ModelSym, body: list, report) -> None:
                                                           f"{meant}.{member}"),), safe=False) if meant else None)
             report(f"'{conn}' is already used by mate '{other.path.text}' (line {line}): this mate "
                    f"can only close by moving '{holder}', which that mate places", e.span, help=help_, fix=fix,
+                   rule=SHARED,
                    related=[(unit.path, other.header, f"'{conn}' is also used by '{other.path.text}'")])
+
+
+def _same_body(unit, mate, types: dict[str, str], mates, report) -> bool:
+    """A015 for a mate whose two connectors are on one body (`[chassis.a, chassis.b]`), with the
+    connector it most likely meant: the same connector of a sibling that no mate holds yet."""
+    s, items = mate
+    texts = [_text(unit, e) for e in items]
+    if len(texts) != 2 or not all("." in t for t in texts) or texts[0] == texts[1]:
+        return False  # (one connector twice: A014's, plx check)
+    holders = {t.rsplit(".", 1)[0] for t in texts}
+    if len(holders) != 1:
+        return False
+    holder = holders.pop()
+    used = {_text(unit, e) for _m, its in mates for e in its}
+    # the connector other mates join to bodies of one type, on a sibling of that type no mate holds
+    spare = []
+    for _m, its in mates:
+        for e in its:
+            t = _text(unit, e)
+            if "." in t and t.rsplit(".", 1)[0] != holder:
+                h, member = t.rsplit(".", 1)
+                spare += [f"{n}.{member}" for n, ty in types.items() if ty == types.get(h) and n != holder
+                          and f"{n}.{member}" not in used]
+    name = s.path.parts[0].name
+    meant = max(spare, key=lambda c: difflib.SequenceMatcher(None, name, c.split(".")[0]).ratio()) if spare else None
+    e = items[1]
+    help_ = (f"did you mean '{meant}' for the second connector? (one connector on each body the mate joins)"
+             if meant else "one connector must belong to each of the two bodies the mate joins")
+    fix = (Fix(f"use '{meant}'", (Edit(e.span.start.offset, e.span.end.offset, meant),), safe=False) if meant else None)
+    report(f"mate '{s.path.text}': both connectors belong to '{holder}', so it joins nothing", e.span, help=help_,
+           fix=fix, rule=SAME_BODY)
+    return True
 
 
 def _blame(uses, holder: str, spare: list[str]):

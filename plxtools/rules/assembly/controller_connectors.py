@@ -1,0 +1,211 @@
+"""A controller (a motor, range or spring: any `Physics.Interactions.Interaction1DOF`) names the
+connectors of a mate that another controller of its kind already drives, while a mate of the same
+kind in the same block has none (A046, at the controller whose name is closer to the idle mate,
+with that mate's connectors as the fix). And a mate or a 1-DOF controller that does not have
+exactly two MateConnectors (A013): `plx lint` reports one declared with no `connectors` at all, at
+its declaration, with the connectors of the mate in its block whose name is closest; `plx check`
+reports the other counts.
+
+## Why it matters
+
+Both slips load and run without an error: a hinge with two motors is driven twice as hard (or the
+two fight), the hinge that was meant to be driven turns freely, and a controller without
+connectors drives nothing. The truck then pulls to one side or does not move, and nothing says why.
+
+## Example
+
+```openplx
+    front_left_motor is Physics3D.Interactions.RotationalVelocityMotor:
+        connectors: front_left_hinge.connectors
+    front_right_motor is Physics3D.Interactions.RotationalVelocityMotor:
+        connectors: front_left_hinge.connectors
+```
+
+## Use instead
+
+```openplx
+    front_left_motor is Physics3D.Interactions.RotationalVelocityMotor:
+        connectors: front_left_hinge.connectors
+    front_right_motor is Physics3D.Interactions.RotationalVelocityMotor:
+        connectors: front_right_hinge.connectors
+```
+"""
+
+from __future__ import annotations
+
+import bisect
+import difflib
+
+from plxtools.diagnostics import Severity
+from plxtools.model.symbols import ModelSym
+from plxtools.syntax import ast
+
+OTHER_MATE, COUNT = "controller-on-other-mate", "connector-count"
+CONTROLLER = ("Physics", "Interactions", "Interaction1DOF")
+MATE = ("Physics3D", "Interactions", "Mate")
+
+
+def check(facts, report) -> None:
+    """A declaration with an error in its block (a misspelt or renamed `connectors`) is not also
+    said to have none."""
+    program, unit = facts.program, facts.unit
+    found = list(facts.tree.diagnostics) + list(facts.analysis.diagnostics)
+    if unit.official:
+        return
+    controller = program.lookup_outside_visibility(list(CONTROLLER))
+    mate = program.lookup_outside_visibility(list(MATE))
+    if not isinstance(controller, ModelSym) or not isinstance(mate, ModelSym):
+        return
+    assigned = _assigned_connectors(unit.tree)
+    errors = sorted(d.span.start.offset for d in found if d.severity is Severity.ERROR)
+    out = report
+    stack = [s for s in unit.tree.statements if isinstance(s, ast.Declaration) and s.body]
+    while stack:
+        owner = stack.pop()
+        body = owner.body or []
+        _one_block(program, unit, controller, mate, body, assigned, out, errors)
+        stack.extend(s for s in body if isinstance(s, ast.Declaration) and s.body)
+
+
+def _assigned_connectors(tree: ast.File) -> set[str]:
+    """The names whose `connectors` some statement of the file assigns from outside
+    (`motor.connectors: ...`)."""
+    out = set()
+    for s in ast.walk_statements(tree.statements):
+        parts = [p.name for p in s.path.parts] if isinstance(s, (ast.Assignment, ast.Declaration)) else []
+        if len(parts) >= 2 and parts[-1] == "connectors":
+            out.add(parts[-2])
+    return out
+
+
+def _connectors(stmt: ast.Declaration):
+    for s in stmt.body or []:
+        if isinstance(s, (ast.Assignment, ast.Declaration)) and [p.name for p in s.path.parts] == ["connectors"]:
+            return s
+    return None
+
+
+def _text(unit, node) -> str:
+    return "".join(unit.tree.text[node.span.start.offset:node.span.end.offset].split())
+
+
+def family(program, model: ModelSym, controller: ModelSym) -> ModelSym | None:
+    """The controller family of `model`: its ancestor right below Interaction1DOF (VelocityMotor,
+    RangeInteraction1DOF, SpringInteraction1DOF, TorqueMotor, ...)."""
+    chain = [model] + [m for m in program.ancestors(model) if isinstance(m, ModelSym)]
+    for m in chain:
+        base = program.base_of(m)
+        if base is not None and base.model is controller:
+            return m
+    return None
+
+
+def _sets_connectors(program, model: ModelSym) -> bool:
+    for layer in program.linearize(model):
+        if "connectors" in layer.members and layer.members["connectors"].value is not None:
+            return True
+        for a in layer.assignments:
+            if a.path.parts and a.path.parts[0].name == "connectors":
+                return True
+    return False
+
+
+def _one_block(program, unit, controller, mate, body, assigned, out, errors) -> None:
+    mates: dict[str, tuple[ast.Declaration, ModelSym, str]] = {}  # name -> (stmt, model, connectors text)
+    ctrls: list[tuple[ast.Declaration, ModelSym, object]] = []
+    for s in body:
+        if not isinstance(s, ast.Declaration) or s.keyword != "is" or len(s.path.parts) != 1 or s.type is None:
+            continue
+        ty = program.resolve_type_expr(s.type, unit)
+        model = ty.model
+        if model is None or ty.array:
+            continue
+        is_mate = program.is_subtype(model, mate)
+        is_ctrl = not is_mate and program.is_subtype(model, controller)
+        if not (is_mate or is_ctrl):
+            continue
+        conn = _connectors(s)
+        name = s.path.parts[0].name
+        if conn is None and name not in assigned and not _has_error(s, errors) and not _sets_connectors(program, model):
+            _no_connectors(out, s, name, is_ctrl, mates)
+            continue
+        if is_mate:
+            mates[name] = (s, program.concrete(model), _text(unit, conn.value) if conn and conn.value else "")
+        elif conn is not None and conn.value is not None:
+            ctrls.append((s, family(program, model, controller), conn, program.concrete(model).name))
+    _shared(unit, mates, ctrls, out)
+
+
+def _has_error(s, errors: list[int]) -> bool:
+    i = bisect.bisect_left(errors, s.span.start.offset)
+    return i < len(errors) and errors[i] <= s.span.end.offset
+
+
+def _no_connectors(report, s, name: str, is_ctrl: bool, mates) -> None:
+    what = "controller" if is_ctrl else "mate"
+    if is_ctrl and mates:
+        near = max(mates, key=lambda m: difflib.SequenceMatcher(None, name, m).ratio())
+        help_ = f"give it the connectors of the mate it drives: connectors: {near}.connectors"
+    elif is_ctrl:
+        help_ = "give it the connectors of the mate it drives: connectors: some_hinge.connectors"
+    else:
+        help_ = "give it one connector on each of the two bodies it joins: connectors: [a.connector, b.connector]"
+    report(f"{what} '{name}' has no connectors, so it {'drives' if is_ctrl else 'joins'} nothing", s.header,
+           help=help_, rule=COUNT)
+
+
+def _mate_of(unit, conn, mates) -> str | None:
+    """The mate whose connectors a controller's `connectors:` names (`hinge.connectors` or the list)."""
+    v = conn.value
+    if isinstance(v, ast.Member) and v.name.name == "connectors" and isinstance(v.obj, ast.Name):
+        return v.obj.ident.name if v.obj.ident.name in mates else None
+    text = _text(unit, v)
+    for name, (_s, _m, ctext) in mates.items():
+        if ctext and (ctext == text or sorted(ctext.strip("[]").split(",")) == sorted(text.strip("[]").split(","))):
+            return name
+    return None
+
+
+def _shared(unit, mates, ctrls, out) -> None:
+    on: dict[tuple[int, str], list] = {}  # (family, mate) -> [(stmt, conn)]
+    names: dict[int, str] = {}
+    for s, fam, conn, kind_name in ctrls:
+        m = _mate_of(unit, conn, mates)
+        if m is not None and fam is not None:
+            on.setdefault((id(fam), m), []).append((s, conn))
+            names[id(s)] = kind_name
+    for (fam, m), uses in on.items():
+        if len(uses) < 2:
+            continue
+        kind = mates[m][1]
+        idle = [n for n, (_s, k, _t) in mates.items() if k is kind and (fam, n) not in on]
+        if not idle:
+            continue
+        s, conn, meant = _blame(uses, m, idle)
+        other = next(o for o, _c in uses if o is not s)
+        line = other.header.start.line + 1
+        fam_name = names[id(s)]
+        help_ = (f"did you mean connectors: {meant}.connectors? (no {fam_name} drives '{meant}')"
+                 if meant else f"give it the connectors of the mate it should drive (no {fam_name} drives "
+                               f"{', '.join(idle)})")
+        idle_text = f"'{meant}'" if meant else ", ".join(f"'{n}'" for n in idle)
+        out(f"'{s.path.text}' drives '{m}', which '{other.path.text}' (line {line}) already drives, while "
+            f"{idle_text} {'gets' if meant or len(idle) == 1 else 'get'} no {fam_name}", conn.value.span, help=help_,
+            related=[(unit.path, other.header, f"'{other.path.text}' also drives '{m}'")], rule=OTHER_MATE)
+
+
+def _blame(uses, mate: str, idle: list[str]):
+    def close(a: str, b: str) -> float:
+        return difflib.SequenceMatcher(None, a, b).ratio()
+
+    best = None
+    for s, conn in uses:
+        name = s.path.parts[0].name
+        for n in idle:
+            gain = close(name, n) - close(name, mate)
+            if gain > 0 and (best is None or gain > best[0]):
+                best = (gain, s, conn, n)
+    if best is not None:
+        return best[1], best[2], best[3]
+    s, conn = uses[-1]
+    return s, conn, idle[0] if len(idle) == 1 else None

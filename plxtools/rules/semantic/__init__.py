@@ -1,0 +1,1 @@
+"""Rules in the module form about names, types and model structure (one module per rule)."""
