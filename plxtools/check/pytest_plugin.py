@@ -11,7 +11,6 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from plxtools.check.testrun import PASSED, run_scenario
 
 SUFFIX = ".scenario.toml"
 
@@ -50,12 +49,12 @@ class ScenarioItem(pytest.Item):
     def runtest(self) -> None:
         from importlib.util import find_spec
 
-        from plxtools.check.testrun import PASSED, run_scenario
-
         missing = [m for m in ("numpy", "mujoco") if find_spec(m) is None]
         if missing:  # the `sim` extra is not installed: said plainly, before any work
             pytest.fail(f"scenario files need {' and '.join(missing)}, not installed: pip install 'plxtools[sim]' "
                         "(or '-p no:plx_scenarios' to leave them out)", pytrace=False)
+        from plxtools.check.testrun import PASSED, run_scenario  # here: it needs numpy and MuJoCo
+
         result = run_scenario(self.path, bundle_path=self.config.getoption("plx_bundle_path"))
         self.user_properties.append(("simulated_time", result.simulated_time))
         if result.status != PASSED:

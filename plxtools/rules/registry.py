@@ -38,6 +38,9 @@ class Rule:
     # the severity of the code's graver form, when the raising site tells two forms apart (S003: a
     # tab that makes a line's block ambiguous is an error); None: one severity for every finding
     graver: Severity | None = None
+    # the severity of the code's milder form (A031: a missing visual mesh, or a file behind an
+    # environment variable, is a warning where a missing file is otherwise an error)
+    milder: Severity | None = None
 
     def page(self) -> str:
         """The rule's documentation page as Markdown."""
@@ -59,20 +62,21 @@ RULES: dict[str, Rule] = {}
 
 def rule(code: str, name: str, severity: Severity, summary: str = "", why: str = "", *, example: str = "",
          use_instead: str = "", fix: str = "none", stage: str = "lint", module: str | None = None,
-         tags: tuple[str, ...] = (), owns: tuple[str, ...] = (), graver: Severity | None = None) -> Rule:
+         tags: tuple[str, ...] = (), owns: tuple[str, ...] = (), graver: Severity | None = None,
+         milder: Severity | None = None) -> Rule:
     if code in RULES:
         raise ValueError(f"duplicate rule code {code}")
-    r = Rule(code, name, severity, summary, why, example, use_instead, fix, stage, module, tags, owns, graver)
+    r = Rule(code, name, severity, summary, why, example, use_instead, fix, stage, module, tags, owns, graver, milder)
     RULES[code] = r
     return r
 
 
 def entry(code: str, name: str, severity: Severity, *, stage: str = "lint", fix: str = "none",
           module: str | None = None, tags: tuple[str, ...] = (), owns: tuple[str, ...] = (),
-          graver: Severity | None = None) -> str:
+          graver: Severity | None = None, milder: Severity | None = None) -> str:
     """Register one code (its documentation comes later: `doc()` or its module's docstring) and
     return it, so that the table below gives every code its constant."""
-    rule(code, name, severity, stage=stage, fix=fix, module=module, tags=tags, owns=owns, graver=graver)
+    rule(code, name, severity, stage=stage, fix=fix, module=module, tags=tags, owns=owns, graver=graver, milder=milder)
     return code
 
 
@@ -175,7 +179,7 @@ ANGLE_PROBABLY_DEGREES = entry("A022", "angle-probably-degrees", I, stage="check
 MIRRORED_DRIVE_MOTORS = entry("A023", "mirrored-drive-motors", I, stage="check")
 INVERTED_LIMITS = entry("A024", "inverted-limits", E, stage="check")
 NON_POSITIVE_SIZE = entry("A030", "non-positive-size", E, stage="check")
-MISSING_FILE = entry("A031", "missing-file", E, stage="check")
+MISSING_FILE = entry("A031", "missing-file", E, stage="check", milder=W)
 NEGATIVE_MASS = entry("A032", "negative-mass", E, stage="check")
 ZERO_MASS_DYNAMIC_BODY = entry("A033", "zero-mass-dynamic-body", E, stage="check")
 INVALID_INERTIA = entry("A034", "invalid-inertia", E, stage="check")
@@ -199,7 +203,7 @@ BAD_CONTROL = entry("A107", "bad-control", E, stage="simulate")
 SIMULATION_INCOMPLETE = entry("A108", "simulation-incomplete", I, stage="simulate")
 SIMULATION_TIMEOUT = entry("A109", "simulation-timeout", E, stage="simulate")
 MUJOCO_COMPILE_ERROR = entry("A110", "mujoco-compile-error", E, stage="simulate")
-VELOCITY_MOTOR_GAIN_CLAMPED = entry("A111", "velocity-motor-gain-clamped", I, stage="simulate")
+VELOCITY_MOTOR_GAIN_CLAMPED = entry("A111", "velocity-motor-gain-clamped", I, stage="simulate", graver=W)
 SPRING_STIFFNESS_CLAMPED = entry("A112", "spring-stiffness-clamped", W, stage="simulate")
 FRICTION_MODEL_APPROXIMATED = entry("A113", "friction-model-approximated", I, stage="simulate")
 LOOP_CLOSURE = entry("A114", "loop-closure", I, stage="simulate")
@@ -223,7 +227,7 @@ SCENE_INCONSISTENT = entry("A131", "scene-inconsistent", E, stage="simulate")
 TIMESTEP_SHORTENED = entry("A133", "timestep-shortened", I, stage="simulate")
 ENERGY_GAIN = entry("A134", "energy-gain", W, stage="simulate")
 IMPLAUSIBLE_SPEED = entry("A135", "implausible-speed", W, stage="simulate")
-RESTITUTION_APPROXIMATED = entry("A137", "restitution-approximated", I, stage="simulate")
+RESTITUTION_APPROXIMATED = entry("A137", "restitution-approximated", I, stage="simulate", graver=W)
 VISUAL_MESH_SKIPPED = entry("A138", "visual-mesh-skipped", I, stage="simulate")
 MJCF_EXPORT_UNLOADABLE = entry("A132", "mjcf-export-unloadable", E, stage="simulate")
 EXPECTATION_FAILED = entry("A140", "expectation-failed", E, stage="test")
@@ -320,14 +324,16 @@ def _one_paragraph(text: str) -> str:
 
 def severity_of(code: str, raised: Severity) -> Severity:
     """The severity every command reports `code` with: the registry's (`raised`, the raising site's,
-    for an unknown code). A site may only say that a finding is the graver form of its code (a
-    severity above the default) when the registry names that form (`graver`)."""
+    for an unknown code). A site may only say that a finding is the graver (or milder) form of its
+    code when the registry names that form (`graver`, `milder`)."""
     _load()
     r = RULES.get(code)
     if r is None:
         return raised
     if r.graver is not None and raised.rank > r.severity.rank:
         return r.graver
+    if r.milder is not None and raised.rank < r.severity.rank:
+        return r.milder
     return r.severity
 
 
