@@ -164,7 +164,7 @@ class IntInputSignal(_InputSignal):
     kind, type_name = "int", "IntInputSignal"
 
 
-_SIGNAL_FOR_KIND = {"real": "RealInputSignal", "vec2": "RealRangeInputSignal", "vec3": "Vec3InputSignal"}
+_SIGNAL_FOR_KIND = {"bool": "BoolInputSignal", "real": "RealInputSignal", "vec2": "RealRangeInputSignal", "vec3": "Vec3InputSignal"}
 
 
 # ----------------------------------------------------------------------------- loading

@@ -420,7 +420,7 @@ def to_scene(asm: Assembly, col: Collector, rep: Reporter, base_dir: str | None)
     scene.excludes = _excludes(col, rep)
     from plxtools.check import drivetrain
 
-    scene.shafts, scene.shaft_couplings, scene.shaft_motors = drivetrain.collect(
+    scene.shafts, scene.shaft_couplings, scene.shaft_motors, scene.shaft_parts = drivetrain.collect(
         asm, col, rep, _source, {m.path for m in scene.mates if m.kind in ("hinge", "cylindrical")})
     gravity = _gravity(asm, col)
     if gravity is not None:

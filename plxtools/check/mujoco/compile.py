@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mujoco.drivetrain import add_couplings, add_shaft_motors, add_shafts
+from plxtools.check.mujoco.shaft_parts import add_shaft_parts
 from plxtools.check.assemble import CONNECTOR_COUNT, MATE_SAME_BODY, ZERO_MAIN_AXIS
 from plxtools.check.coverage import NOT_SIMULATED
 from plxtools.check.mujoco.context import BuildContext, CompileFailed
@@ -159,6 +160,7 @@ def build(ctx: BuildContext) -> None:
     add_controllers(ctx, model)
     add_shaft_motors(ctx, model)
     add_keyframe(ctx, model)
+    add_shaft_parts(ctx)  # after the keyframe: a differential holds the shafts' starting angles
     set_restitution(ctx)
     # pass 3: final
     ctx.out.model = ctx.compile("final")

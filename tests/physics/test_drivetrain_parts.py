@@ -1,0 +1,113 @@
+"""Brakes, clutches and differentials against their closed forms (check/mujoco/shaft_parts.py):
+a brake holds any torque up to its capacity and slips beyond it, a clutch passes up to its capacity
+and nothing once released, an open differential keeps w_left + w_right = 2 w_drive / ratio with
+equal torques on its axles; their engage / engagement / lock inputs and outputs through the API."""
+
+from __future__ import annotations
+
+import pytest
+
+pytest.importorskip("mujoco")
+
+from physics_cases import MODELS  # noqa: E402
+
+from plxtools.check.api import load  # noqa: E402
+
+W = "angular_velocity_output"
+
+
+@pytest.mark.parametrize("torque", [4.0, 9.9, -9.9])
+def test_a_brake_holds_a_torque_up_to_its_capacity(torque):
+    sim = load(MODELS / "brake_hold.openplx")
+    sim.set("drive.torque_input", torque)
+    sim.step(0.5)
+    assert abs(sim.read(f"shaft.{W}")) < 1e-5  # held (what creeps: the constraint's softness, 4e-7 rad/s per N m)
+    assert sim.read("brake.torque_output") == pytest.approx(torque, rel=1e-6)
+
+
+@pytest.mark.parametrize("torque", [12.0, -25.0])
+def test_a_brake_slips_beyond_its_capacity(torque):
+    sim = load(MODELS / "brake_hold.openplx")
+    sim.set("drive.torque_input", torque)
+    sim.step(0.5)
+    excess = torque - 10.0 * (1 if torque > 0 else -1)
+    assert sim.read(f"shaft.{W}") == pytest.approx(excess / 0.5 * 0.5, rel=1e-3)
+    assert abs(sim.read("brake.torque_output")) == pytest.approx(10.0, rel=1e-9)
+    assert sim.read("brake.slip_velocity_output") == pytest.approx(sim.read(f"shaft.{W}"), rel=1e-9)
+
+
+def test_a_half_engaged_brake_holds_half_its_capacity():
+    sim = load(MODELS / "brake_hold.openplx")
+    sim.set("brake.engagement_fraction_input", 0.5)
+    sim.set("drive.torque_input", 7.0)
+    sim.step(0.5)
+    assert sim.read(f"shaft.{W}") == pytest.approx((7.0 - 5.0) / 0.5 * 0.5, rel=1e-3)
+    assert sim.read("brake.engagement_fraction_output") == 0.5
+
+
+def test_an_automatic_brake_stops_the_shaft_when_engaged():
+    sim = load(MODELS / "brake_engage.openplx")
+    sim.step(0.2)
+    assert sim.read(f"shaft.{W}") == pytest.approx(1.0, abs=1e-12)  # released: it turns on
+    assert sim.read("brake.engaged_output") is False
+    sim.set("brake.engage_input", True)
+    sim.step(0.01)
+    assert abs(sim.read(f"shaft.{W}")) < 1e-9  # 100 N m stops 0.5 kg m^2 at 1 rad/s in 5 ms
+    sim.step(1.0)
+    assert abs(sim.read(f"shaft.{W}")) < 1e-9
+    assert sim.read("brake.engaged_output") is True
+    sim.set("brake.engage_input", False)
+    sim.step(0.1)
+    assert sim.read("brake.engaged_output") is False
+
+
+def test_a_clutch_passes_up_to_its_capacity_then_the_load_and_nothing_released():
+    sim = load(MODELS / "clutch_transmit.openplx")
+    sim.set("load.torque_input", -3.0)
+    sim.step(1.0)  # slipping: the output gains (20 - 3) / 2 rad/s^2
+    assert sim.read(f"output_shaft.{W}") == pytest.approx(8.5, rel=1e-6)
+    assert sim.read("clutch.torque_output") == pytest.approx(20.0, rel=1e-9)
+    assert sim.read("clutch.engaged_output") is True
+    sim.step(0.5)  # at 10 / 8.5 s it sticks: the clutch passes the load
+    assert sim.read(f"output_shaft.{W}") == pytest.approx(10.0, rel=1e-5)
+    assert sim.read("clutch.torque_output") == pytest.approx(3.0, rel=1e-3)
+    sim.set("clutch.engage_input", False)
+    sim.step(0.5)  # released: the load slows the output at 3 / 2 rad/s^2
+    assert sim.read("clutch.torque_output") == 0.0
+    assert sim.read("clutch.engaged_output") is False
+    assert sim.read(f"output_shaft.{W}") == pytest.approx(10.0 - 1.5 * 0.5, rel=1e-3)
+
+
+def test_an_overloaded_clutch_slips_at_its_capacity():
+    sim = load(MODELS / "clutch_transmit.openplx")
+    sim.set("load.torque_input", -25.0)
+    sim.step(0.5)
+    assert sim.read(f"output_shaft.{W}") == pytest.approx((20.0 - 25.0) / 2.0 * 0.5, rel=1e-6)
+    assert sim.read("clutch.torque_output") == pytest.approx(20.0, rel=1e-9)
+    assert sim.read("clutch.slip_velocity_output") == pytest.approx(10.0 + 1.25, rel=1e-4)
+
+
+def test_a_differential_splits_the_speed_with_equal_torques():
+    sim = load(MODELS / "differential_split.openplx")
+    sim.step(0.1)
+    w_in, w_l, w_r = (sim.read(f"{s}.{W}") for s in ("drive_shaft", "left", "right"))
+    assert w_l + w_r == pytest.approx(2 * w_in / 2.0, rel=1e-6)
+    assert (w_l, w_r) == pytest.approx((3.0, 1.0), rel=1e-6)  # equal torques: 1 kg m^2 x 3 = 3 kg m^2 x 1
+    assert sim.read("differential.locked_up_output") is False
+    sim.set("differential.lock_up_input", True)
+    sim.step(0.5)
+    assert sim.read(f"left.{W}") == pytest.approx(sim.read(f"right.{W}"), rel=1e-4)
+    assert sim.read(f"left.{W}") == pytest.approx(2.0, rel=1e-4)
+    assert sim.read("differential.locked_up_output") is True
+
+
+def test_a_held_drive_shaft_turns_the_axles_opposite(tmp_path):
+    f = tmp_path / "held.openplx"
+    f.write_text((MODELS / "differential_split.openplx").read_text().replace("target_speed: 4.0", "target_speed: 0.0")
+                 + "    spin is Physics1D.Interactions.RotationalVelocityMotor:\n"
+                   "        connectors: [left.output]\n        target_speed: 1.5\n")
+    sim = load(f)
+    sim.step(0.2)
+    w1, w2 = sim.read(f"left.{W}"), sim.read(f"right.{W}")
+    assert abs(w1) >= 0.1 and w1 == pytest.approx(1.5, rel=1e-6)
+    assert w2 == pytest.approx(-w1, rel=1e-5)  # two rigid velocity constraints against one soft equality
