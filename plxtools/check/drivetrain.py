@@ -155,13 +155,20 @@ class _DriveTrain:
         capacity = self.a.real(o, "torque_capacity", math.nan)
         if not math.isfinite(capacity) or capacity < 0:
             return self.unsupported(o, f"a {kind} needs a finite torque_capacity >= 0 (got {capacity:g})")
-        if any(self.k.isa(o, t) for t in AUTOMATIC):
+        automatic = any(self.k.isa(o, t) for t in AUTOMATIC)
+        times = (0.0, 0.0)
+        if automatic:
             engagement = 1.0 if self.a.get(o, "initially_engaged", False) is True else 0.0
+            times = (self.a.real(o, "engagement_duration", 0.0), self.a.real(o, "disengagement_duration", 0.0))
+            if not all(math.isfinite(t) and t >= 0 for t in times):
+                return self.unsupported(o, f"an automatic {kind} needs finite engagement and disengagement durations "
+                                        f">= 0 (got {times[0]:g}, {times[1]:g})")
         else:
             engagement = self.a.real(o, "initial_engagement_fraction", math.nan)
             if not math.isfinite(engagement):
                 return self.unsupported(o, f"a {kind} needs a finite initial_engagement_fraction (got {engagement:g})")
         return [S.ShaftPart(o.display, kind, tuple(e.path for e in on), capacity, max(engagement, 0.0),
+                            automatic=automatic, engage_time=times[0], release_time=times[1],
                             source=self.source(self.rep, o))]
 
     def differential(self, o: Obj) -> list[S.ShaftPart]:

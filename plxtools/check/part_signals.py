@@ -2,9 +2,10 @@
 
 * engagement (``FractionInput`` / ``FractionOutput``): the fraction of the torque capacity the
   part holds with; writing it sets the friction tendon's bound to fraction x capacity, from the
-  step it is written at (see :func:`_remake`).  An engage
-  input (``EngageInput``: true / false) sets it to 1 or 0 at once; engaged (``EngagedOutput``) is
-  true while it is above 0.
+  step it is written at (see :func:`_remake`).  An engage input (``EngageInput``: true / false)
+  of an automatic part ramps it to 1 or 0 over its engagement or disengagement duration
+  (``mujoco.shaft_parts.Engagements``); engaged (``EngagedOutput``) is the state it was told (a
+  manual part: engagement above 0).
 * torque (``Torque1DOutput``): the torque the part passes from its first shaft to its second (a
   brake on one shaft: to the ground), the friction constraint's force of the last step, 0 when
   released or when nothing loads it.
@@ -45,13 +46,11 @@ def bind_part(rt: Any, info: Any) -> Any:
         return b
     tid = int(model.tendon(part.tendon).id)
     friction = int(rt.mujoco.mjtConstraint.mjCNSTR_FRICTION_TENDON)
-    state = rt.engagements
-    state.setdefault(part.path, part.engagement)
     if q in ("engagement", "engaged"):
         if q == "engagement":
-            b.read = lambda m, d: state[part.path]
+            b.read = lambda m, d: rt.engagements.now[part.path]
         else:
-            b.read = lambda m, d: state[part.path] > 0.0
+            b.read = lambda m, d: rt.engagements.engaged[part.path]
 
         def refuse(v):
             if q == "engagement" and v < 0:
@@ -62,9 +61,11 @@ def bind_part(rt: Any, info: Any) -> Any:
             why = refuse(v)
             if why is not None:
                 raise SignalValueError(why)
-            f = (1.0 if v else 0.0) if q == "engaged" else float(v)
-            state[part.path] = f
-            m.tendon_frictionloss[tid] = f * part.capacity
+            if q == "engaged":
+                if not rt.engagements.engage(m, part.path, bool(v), float(d.time)):
+                    return  # a ramp, from the next step on
+            else:
+                rt.engagements.set_fraction(m, part.path, float(v))
             _remake(rt.mujoco, m, d)
 
         b.read, b.write, b.refuse = b.read, write_engagement, refuse

@@ -298,6 +298,9 @@ class ShaftPart:
     engagement: float = 0.0  # the fraction engaged at the start
     ratio: float = 1.0
     locked: bool = False
+    automatic: bool = False  # engaged by a boolean input, over these durations (s)
+    engage_time: float = 0.0
+    release_time: float = 0.0
     source: Source | None = None
 
 

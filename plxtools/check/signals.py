@@ -127,8 +127,8 @@ _GEARBOX = "its source in the bundles is DriveTrain.GearBox (the selected gear a
 _REACTION = ("constraint forces of mates are not read: the bundle gives neither the point nor the frame they are "
              "measured at, and a MuJoCo tree joint has no reaction force of its own (cfrc_int also holds the "
              "child body's inertial load)")
-_DURATION = ("an automatic clutch or brake engages and releases at once on the MuJoCo run (its engagement and "
-             "disengagement durations are not simulated)")
+_DURATION = ("an automatic clutch's or brake's engagement and disengagement durations are simulated with the model's "
+             "values, which no signal changes or reads during a run")
 REFUSED: dict[str, str] = {
     "Physics.Signals.Input": "the abstract base of inputs",
     "Physics.Signals.Output": "the abstract base of outputs",
@@ -451,7 +451,7 @@ class SignalRuntime:
     loads: dict[tuple[int, int], dict] = field(default_factory=dict)  # body loads (check/body_loads.py)
     movers: dict[str, Any] = field(default_factory=dict)  # kinematic bodies of the run (attach_movers)
     offsets: dict[str, float] = field(default_factory=dict)  # constraint motors' effort offsets now, by path
-    engagements: dict[str, float] = field(default_factory=dict)  # brakes' and clutches' engagement now (part_signals)
+    engagements: Any = None  # the run's brakes and clutches (mujoco.shaft_parts.Engagements, attach_movers)
     _initial: Any = None
 
     @classmethod
@@ -653,9 +653,11 @@ class SignalRuntime:
 
         return write
 
-    def attach_movers(self, movers: list) -> None:
-        """The kinematic bodies' movers of the run this runtime writes to (see mujoco.kinematic)."""
+    def attach_movers(self, movers: list, engagements: Any = None) -> None:
+        """The kinematic bodies' movers of the run this runtime writes to (see mujoco.kinematic), and
+        its brakes' and clutches' engagements (mujoco.shaft_parts)."""
         self.movers = {mv.path: mv for mv in movers}
+        self.engagements = engagements
 
     # -- use --------------------------------------------------------------------------------------
 

@@ -51,14 +51,24 @@ def test_an_automatic_brake_stops_the_shaft_when_engaged():
     assert sim.read(f"shaft.{W}") == pytest.approx(1.0, abs=1e-12)  # released: it turns on
     assert sim.read("brake.engaged_output") is False
     sim.set("brake.engage_input", True)
-    sim.step(0.01)
-    assert abs(sim.read(f"shaft.{W}")) < 1e-9  # 100 N m stops 0.5 kg m^2 at 1 rad/s in 5 ms
+    sim.step(0.02)
+    assert sim.read("brake.engaged_output") is True  # told to engage; the torque ramps up
+    # the torque ramps over engagement_duration 0.1 s: 1000 t N m on 0.5 kg m^2, w = 1 - 1000 t^2 (the
+    # engagement of each step is the one at its start: up to a step behind)
+    assert 1 - 1000 * 0.02 ** 2 <= sim.read(f"shaft.{W}") <= 1 - 1000 * 0.018 ** 2
+    assert 0 < sim.read("brake.engagement_fraction_output") < 0.21
+    sim.step(0.016)  # stopped after sqrt(1e-3) = 31.6 ms
+    assert abs(sim.read(f"shaft.{W}")) < 1e-9
     sim.step(1.0)
+    assert sim.read("brake.engagement_fraction_output") == 1.0
     assert abs(sim.read(f"shaft.{W}")) < 1e-9
     assert sim.read("brake.engaged_output") is True
     sim.set("brake.engage_input", False)
-    sim.step(0.1)
+    sim.step(0.05)
     assert sim.read("brake.engaged_output") is False
+    assert sim.read("brake.engagement_fraction_output") == pytest.approx(0.5, abs=0.021)  # released over 0.1 s
+    sim.step(0.06)
+    assert sim.read("brake.engagement_fraction_output") == 0.0
 
 
 def test_a_clutch_passes_up_to_its_capacity_then_the_load_and_nothing_released():

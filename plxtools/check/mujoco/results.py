@@ -74,6 +74,9 @@ class PartInfo:
     equality: str | None = None  # differential: w_l + w_r = 2 w_in / ratio
     lock: str | None = None  # differential: w_l = w_r, active while locked up
     locked: bool = False  # at the start
+    automatic: bool = False  # engaged by a boolean input over these durations (s)
+    engage_time: float = 0.0
+    release_time: float = 0.0
 
 
 @dataclass(slots=True)

@@ -19,10 +19,15 @@ differential) and ``-2 / ratio`` times it on the drive shaft.  ``locked_up`` add
 A shaft's angle is ``factor x`` its MuJoCo joint's plus an offset (``mujoco.drivetrain``), so each
 tendon wraps the joints with the shafts' coefficients times their factors; shafts sharing one joint
 (a rigid gear train) add up.
+
+An automatic brake or clutch engages over ``engagement_duration`` (from released to fully engaged;
+from part way, the rest of it at the same rate) and releases over ``disengagement_duration``: its
+engagement is a ramp in time, set before every step of a run (:class:`Engagements`).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -89,7 +94,9 @@ def _friction(ctx: BuildContext, part: Any) -> None:
     t.solref_friction = [-0.0, -1.0 / h]  # direct: the whole slip speed in one step (velocity_constraint)
     d = velocity_constraint.MAX_IMPEDANCE
     t.solimp_friction = [d, d, 0.001, 0.5, 2.0]
-    ctx.out.parts[part.path] = PartInfo(part.path, part.kind, name, float(part.capacity), float(part.engagement))
+    ctx.out.parts[part.path] = PartInfo(part.path, part.kind, name, float(part.capacity), float(part.engagement),
+                                        automatic=part.automatic, engage_time=float(part.engage_time),
+                                        release_time=float(part.release_time))
 
 
 def _equality(ctx: BuildContext, part: Any, tendon: str, value: float, suffix: str) -> str:
@@ -122,3 +129,55 @@ def _differential(ctx: BuildContext, part: Any) -> None:
         lock_eq = _equality(ctx, part, _tendon(ctx, part, lock[0], ":lock"), lock[1], ":lock")
         ctx.spec.equality(lock_eq).active = bool(part.locked)
     ctx.out.parts[part.path] = PartInfo(part.path, part.kind, None, equality=eq, lock=lock_eq, locked=part.locked)
+
+
+@dataclass
+class Engagements:
+    """The engagement of every brake and clutch of one run, and the ramps of the automatic ones
+    (set by their inputs, advanced by the stepper before each step, mujoco.kinematic.Stepper)."""
+
+    parts: dict[str, PartInfo]
+    tendons: dict[str, int]
+    now: dict[str, float] = field(default_factory=dict)
+    engaged: dict[str, bool] = field(default_factory=dict)  # an automatic part's commanded state
+    ramps: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)  # t0, f0, target, rate
+
+    @classmethod
+    def of(cls, compiled: Any, model: Any) -> "Engagements":
+        parts = {p.path: p for p in compiled.parts.values() if p.tendon is not None}
+        e = cls(parts, {path: int(model.tendon(p.tendon).id) for path, p in parts.items()})
+        e.now = {path: p.engagement for path, p in parts.items()}
+        e.engaged = {path: p.engagement > 0 for path, p in parts.items()}
+        return e
+
+    def _put(self, model: Any, path: str, f: float) -> None:
+        self.now[path] = f
+        model.tendon_frictionloss[self.tendons[path]] = f * self.parts[path].capacity
+
+    def set_fraction(self, model: Any, path: str, f: float) -> None:
+        """A manual engagement: at once, ending any ramp."""
+        self.ramps.pop(path, None)
+        self.engaged[path] = f > 0
+        self._put(model, path, f)
+
+    def engage(self, model: Any, path: str, on: bool, t: float) -> bool:
+        """An automatic part told to engage (``on``) or release at time ``t``; True when the change
+        is immediate (a duration of 0), False when it ramps from the next step on."""
+        p, target = self.parts[path], 1.0 if on else 0.0
+        self.engaged[path] = bool(on)
+        duration = p.engage_time if on else p.release_time
+        if duration <= 0 or self.now[path] == target:
+            self.ramps.pop(path, None)
+            self._put(model, path, target)
+            return True
+        self.ramps[path] = (t, self.now[path], target, 1.0 / duration)
+        return False
+
+    def advance(self, model: Any, t: float) -> None:
+        """Each ramping part's engagement at time ``t`` (the start of the next step)."""
+        for path, (t0, f0, target, rate) in list(self.ramps.items()):
+            step = rate * max(t - t0, 0.0)
+            f = min(f0 + step, target) if target > f0 else max(f0 - step, target)
+            self._put(model, path, f)
+            if f == target:
+                del self.ramps[path]
