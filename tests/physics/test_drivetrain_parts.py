@@ -121,3 +121,57 @@ def test_a_held_drive_shaft_turns_the_axles_opposite(tmp_path):
     w1, w2 = sim.read(f"left.{W}"), sim.read(f"right.{W}")
     assert abs(w1) >= 0.1 and w1 == pytest.approx(1.5, rel=1e-6)
     assert w2 == pytest.approx(-w1, rel=1e-5)  # two rigid velocity constraints against one soft equality
+
+
+_SCENARIO = """model = "brake_engage.openplx"
+duration = 0.5
+
+[[input]]
+at = 0.2
+signal = "brake.engage_input"
+value = true
+
+[[expect]]
+at = 0.19
+of = "shaft.angular_velocity_output"
+equals = 1.0
+tolerance = 1e-9
+
+[[expect]]
+at = 0.3
+of = "shaft.angular_velocity_output"
+abs_below = 1e-6
+
+[[expect]]
+at = 0.3
+of = "brake.engaged_output"
+equals = {engaged}
+tolerance = 0
+"""
+
+
+@pytest.mark.parametrize("engaged, code", [(1, 0), (0, 1)])
+def test_plx_test_engages_a_brake_and_reads_engaged(tmp_path, engaged, code):
+    from tests.conftest import run_plx
+
+    (tmp_path / "brake_engage.openplx").write_text((MODELS / "brake_engage.openplx").read_text())
+    (tmp_path / "brake.scenario.toml").write_text(_SCENARIO.format(engaged=engaged))
+    r = run_plx("test", str(tmp_path / "brake.scenario.toml"))
+    assert r.returncode == code, r.stdout + r.stderr
+    if code:  # the wrong expectation fails on the engaged output, measured true (1)
+        assert "brake.engaged_output at t=0.300 s: expected 0 +- 0, measured 1" in r.stdout
+
+
+def test_an_engage_input_takes_a_boolean_signal():
+    from plxtools.check.api import BoolInputSignal, RealInputSignal, SignalValueError
+
+    sim = load(MODELS / "brake_engage.openplx")
+    engage = sim.getObject("brake.engage_input")
+    with pytest.raises(SignalValueError, match="takes true or false"):
+        sim.set("brake.engage_input", 1)
+    with pytest.raises(SignalValueError, match="BoolInputSignal"):
+        sim.send(RealInputSignal.create(1.0, engage))
+    sim.send(BoolInputSignal.create(True, engage))
+    sim.step(0.1)
+    assert sim.read("brake.engaged_output") is True
+    assert abs(sim.read(f"shaft.{W}")) < 1e-9
