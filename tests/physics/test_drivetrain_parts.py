@@ -175,3 +175,26 @@ def test_an_engage_input_takes_a_boolean_signal():
     sim.step(0.1)
     assert sim.read("brake.engaged_output") is True
     assert abs(sim.read(f"shaft.{W}")) < 1e-9
+
+
+@pytest.mark.parametrize("torque", [0.5, 3.0])
+def test_a_brake_on_a_geared_wheel_train(tmp_path, torque):
+    """A 1 N m brake on the input shaft of gear_train.openplx (4:1 gear, a hinge actuator turning a
+    4 kg wheel of radius 0.25 m): the train is one coordinate, the brake a tendon on it. It holds
+    0.5 N m; under 3 N m the input accelerates at (3 - 1) / (0.5 + (2 + 0.125) / 16)."""
+    f = tmp_path / "geared_brake.openplx"
+    f.write_text((MODELS / "gear_train.openplx").read_text().replace(
+        "    drive is Physics1D.Interactions.RotationalVelocityMotor:\n        connectors: [input_shaft.input]\n"
+        "        target_speed: 8.0\n",
+        "    drive is DriveTrain.TorqueMotor:\n        connectors: [input_shaft.input]\n"
+        "    brake is DriveTrain.ManualBrake:\n        connectors: [input_shaft.output]\n        torque_capacity: 1.0\n"
+        "        initial_engagement_fraction: 1.0\n        min_relative_slip_ratio: 0.0\n"))
+    sim = load(f)
+    sim.set("drive.torque_input", torque)
+    sim.step(0.5)
+    w = sim.read(f"input_shaft.{W}")
+    if torque < 1.0:
+        assert abs(w) < 1e-5 and sim.read("brake.torque_output") == pytest.approx(torque, rel=1e-6)
+    else:
+        assert w == pytest.approx((torque - 1.0) / (0.5 + (2.0 + 0.125) / 16) * 0.5, rel=1e-6)
+        assert sim.read(f"wheel_drive.mate_3d.{W}") == pytest.approx(w / 4.0, rel=1e-6)
