@@ -38,7 +38,11 @@ def bind_part(rt: Any, info: Any) -> Any:
         eid = int(model.equality(part.lock).id)
         b.read = lambda m, d: bool(d.eq_active[eid])
 
+        lock_tendon = int(model.eq_obj1id[eid])
+
         def write_lock(m, d, v):
+            if v and not d.eq_active[eid]:  # lock the axles where they are now, not where they started
+                m.eq_data[eid, 0] = float(d.ten_length[lock_tendon])
             d.eq_active[eid] = 1 if v else 0
             _remake(rt.mujoco, m, d)
 

@@ -105,7 +105,12 @@ def test_a_differential_splits_the_speed_with_equal_torques():
     assert (w_l, w_r) == pytest.approx((3.0, 1.0), rel=1e-6)  # equal torques: 1 kg m^2 x 3 = 3 kg m^2 x 1
     assert sim.read("differential.locked_up_output") is False
     sim.set("differential.lock_up_input", True)
+    sim.step()
+    apart = sim.read("left.angle_output") - sim.read("right.angle_output")
+    assert apart == pytest.approx(0.2, rel=0.05)  # (3 - 1) rad/s for 0.1 s
     sim.step(0.5)
+    # locked where they were (not pulled back to their starting angles), turning as one
+    assert sim.read("left.angle_output") - sim.read("right.angle_output") == pytest.approx(apart, abs=1e-6)
     assert sim.read(f"left.{W}") == pytest.approx(sim.read(f"right.{W}"), rel=1e-4)
     assert sim.read(f"left.{W}") == pytest.approx(2.0, rel=1e-4)
     assert sim.read("differential.locked_up_output") is True

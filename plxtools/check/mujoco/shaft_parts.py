@@ -14,7 +14,8 @@ then adds no constraint at all (a released clutch transmits nothing).
 A **differential** is the tendon equality ``q_left + q_right - 2 q_drive / ratio = const``: one
 constraint, whose one force acts equally on both axle shafts (equal torques, the open
 differential) and ``-2 / ratio`` times it on the drive shaft.  ``locked_up`` adds a second one,
-``q_left - q_right = const``, switched by the lock-up input (``eq_active``).
+``q_left - q_right = const``, switched by the lock-up input (``eq_active``; the constant is set to
+the axles' angle difference when the lock engages, part_signals).
 
 A shaft's angle is ``factor x`` its MuJoCo joint's plus an offset (``mujoco.drivetrain``), so each
 tendon wraps the joints with the shafts' coefficients times their factors; shafts sharing one joint
