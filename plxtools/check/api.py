@@ -145,7 +145,7 @@ class IntInputSignal(_InputSignal):
     kind, type_name = "int", "IntInputSignal"
 
 
-_SIGNAL_FOR_KIND = {"real": "RealInputSignal", "vec2": "RealRangeInputSignal", "vec3": "Vec3InputSignal"}
+_SIGNAL_FOR_KIND = {"bool": "BoolInputSignal", "real": "RealInputSignal", "vec2": "RealRangeInputSignal", "vec3": "Vec3InputSignal"}
 
 
 # ----------------------------------------------------------------------------- loading
@@ -305,7 +305,7 @@ class Simulation:
         mujoco.mj_forward(self.model, self.data)
         self.runtime = SignalRuntime.bind(mujoco, c, prepared.signals)
         self._stepper = Stepper(mujoco, c, self.model, self.data)  # the step plx check and plx test take
-        self.runtime.attach_movers(self._stepper.movers)  # velocity inputs of kinematic bodies
+        self.runtime.attach_movers(self._stepper.movers, self._stepper.engagements)  # velocity inputs of kinematic bodies
         self.timestep = float(self.model.opt.timestep)
         self.steps = 0
         self._pending: list[tuple[str, Any]] = []

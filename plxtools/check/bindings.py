@@ -20,6 +20,10 @@ class Binding:
     refuse: Callable[[Any], str | None] | None = None  # a value this binding cannot take: why
 
 
+class SignalValueError(ValueError):
+    """A value of the wrong kind for a signal (the message says which kind it takes)."""
+
+
 class Unbindable(Exception):
     """A mapped signal that cannot act on this compiled model (the message says why)."""
 

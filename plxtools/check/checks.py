@@ -36,7 +36,7 @@ STATIC_MOTION_CODES = frozenset({registry.MATE_WITHOUT_DYNAMIC_BODY, registry.HI
 TWO_PI = 2.0 * math.pi
 UNSUPPORTED_BUNDLES = {
     "Physics1D": "Physics1D (1D shafts and interactions)",
-    "DriveTrain": "DriveTrain (engines, gears, clutches, actuators)",
+    "DriveTrain": "DriveTrain (engines, gear boxes, torque converters, limited-slip differentials, actuators)",
     "Terrain": "Terrain (deformable terrain)",
     "Sensors": "Sensors",
     "Vehicles": "Vehicles (tracks, suspensions, tyres)",

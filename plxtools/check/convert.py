@@ -419,7 +419,7 @@ def to_scene(asm: Assembly, col: Collector, rep: Reporter, base_dir: str | None)
                             for cr in col.contacts if cr.key1 is not None and cr.key2 is not None]
     scene.excludes = _excludes(col, rep)
 
-    scene.shafts, scene.shaft_couplings, scene.shaft_motors = drivetrain.collect(
+    scene.shafts, scene.shaft_couplings, scene.shaft_motors, scene.shaft_parts = drivetrain.collect(
         asm, col, rep, _source, {m.path for m in scene.mates if m.kind in ("hinge", "cylindrical")})
     gravity = _gravity(asm, col)
     if gravity is not None:

@@ -1,7 +1,8 @@
-"""Drive trains in the scene: the Physics1D shafts, DriveTrain gears, hinge actuators and the 1D
-motors that the MuJoCo backend maps (``mujoco.drivetrain``).  Every other Physics1D / DriveTrain
-object (engines, clutches, brakes, differentials, gear boxes, torque converters, linear bodies,
-prismatic actuators) stays named as unsupported (A040) by the static checks.
+"""Drive trains in the scene: the Physics1D shafts, DriveTrain gears, hinge actuators, 1D motors,
+brakes, clutches and differentials that the MuJoCo backend maps (``mujoco.drivetrain``,
+``mujoco.shaft_parts``).  Every other Physics1D / DriveTrain object (engines, gear boxes, torque
+converters, limited-slip differentials, linear bodies, prismatic actuators) stays named as
+unsupported (A040) by the static checks.
 
 Read here, once, from the instance tree; the static checks ask :func:`mapped` which objects this
 module takes, so the two never disagree."""
@@ -20,10 +21,15 @@ GEAR = "DriveTrain.Gear"
 HINGE_ACTUATOR = "DriveTrain.HingeActuator"
 VELOCITY_MOTOR_1D = "Physics1D.Interactions.RotationalVelocityMotor"
 TORQUE_MOTOR_1D = "DriveTrain.TorqueMotor"
-MAPPED = (SHAFT, GEAR, HINGE_ACTUATOR, VELOCITY_MOTOR_1D, TORQUE_MOTOR_1D)
+BRAKE = "DriveTrain.ManualBrake"
+CLUTCH = "DriveTrain.ManualClutch"
+AUTOMATIC = ("DriveTrain.AutomaticBrake", "DriveTrain.AutomaticClutch")  # engaged by a boolean, not a fraction
+DIFFERENTIAL = "DriveTrain.Differential"
+PARTS = (BRAKE, CLUTCH, DIFFERENTIAL)
+MAPPED = (SHAFT, GEAR, HINGE_ACTUATOR, VELOCITY_MOTOR_1D, TORQUE_MOTOR_1D, *PARTS)
 
 
-EXACT = frozenset({*MAPPED, "DriveTrain.Shaft"})
+EXACT = frozenset({*MAPPED, *AUTOMATIC, "DriveTrain.Shaft"})
 
 
 def mapped(kinds: Any, obj: Obj) -> bool:
@@ -38,9 +44,9 @@ def mapped(kinds: Any, obj: Obj) -> bool:
     return any(kinds.isa(obj, t) for t in MAPPED)
 
 
-def collect(asm: Any, col: Any, rep: Any, source: Any, mate_paths: set[str]) -> tuple[list, list, list]:
-    """(shafts, couplings, motors) of the assembled tree, with A040 for drive-train objects this
-    mapping cannot take (a gear on something that is not a shaft, a motor between two shafts)."""
+def collect(asm: Any, col: Any, rep: Any, source: Any, mate_paths: set[str]) -> tuple[list, list, list, list]:
+    """(shafts, couplings, motors, parts) of the assembled tree, with A040 for drive-train objects
+    this mapping cannot take (a gear on something that is not a shaft, a motor between two shafts)."""
     d = _DriveTrain(col.k, col.a, rep, source)
     objs = [o for o in asm.owned if isinstance(o, Obj) and mapped(col.k, o)]
     for o in objs:
@@ -48,6 +54,7 @@ def collect(asm: Any, col: Any, rep: Any, source: Any, mate_paths: set[str]) -> 
             d.shaft(o)
     couplings: list[S.ShaftCoupling] = []
     motors: list[S.ShaftMotor] = []
+    parts: list[S.ShaftPart] = []
     for o in objs:
         if col.k.isa(o, SHAFT) or not col.a.get(o, "enabled", True):
             continue
@@ -55,9 +62,13 @@ def collect(asm: Any, col: Any, rep: Any, source: Any, mate_paths: set[str]) -> 
             couplings.extend(d.gear(o))
         elif col.k.isa(o, HINGE_ACTUATOR):
             couplings.extend(d.hinge_actuator(o, mate_paths))
+        elif col.k.isa(o, DIFFERENTIAL):
+            parts.extend(d.differential(o))
+        elif col.k.isa(o, BRAKE) or col.k.isa(o, CLUTCH):
+            parts.extend(d.friction_part(o, "brake" if col.k.isa(o, BRAKE) else "clutch"))
         else:
             motors.extend(d.motor(o))
-    return list(d.shafts.values()), couplings, motors
+    return list(d.shafts.values()), couplings, motors, parts
 
 
 class _DriveTrain:
@@ -129,3 +140,46 @@ class _DriveTrain:
         else:
             m.effort = self.a.real(o, "default_torque", 0.0)
         return [m]
+
+    def friction_part(self, o: Obj, kind: str) -> list[S.ShaftPart]:
+        """A brake (against the ground on one shaft, or between two) or a clutch (between two
+        shafts): a friction torque of at most engagement x torque_capacity.  An automatic one
+        starts fully engaged or released (``initially_engaged``), a manual one at
+        ``initial_engagement_fraction``."""
+        ends = [self.shaft_of(c) for c in self.connectors(o)]
+        on = list({id(e): e for e in ends if e is not None}.values())
+        if None in ends or not ends or len(on) > 2 or (kind == "clutch" and len(on) != 2):
+            need = "two connectors on two different shafts" if kind == "clutch" else \
+                "its connectors on one shaft (braking it against the ground) or on two shafts"
+            return self.unsupported(o, f"a {kind} needs {need}")
+        capacity = self.a.real(o, "torque_capacity", math.nan)
+        if not math.isfinite(capacity) or capacity < 0:
+            return self.unsupported(o, f"a {kind} needs a finite torque_capacity >= 0 (got {capacity:g})")
+        automatic = any(self.k.isa(o, t) for t in AUTOMATIC)
+        times = (0.0, 0.0)
+        if automatic:
+            engagement = 1.0 if self.a.get(o, "initially_engaged", False) is True else 0.0
+            times = (self.a.real(o, "engagement_duration", 0.0), self.a.real(o, "disengagement_duration", 0.0))
+            if not all(math.isfinite(t) and t >= 0 for t in times):
+                return self.unsupported(o, f"an automatic {kind} needs finite engagement and disengagement durations "
+                                        f">= 0 (got {times[0]:g}, {times[1]:g})")
+        else:
+            engagement = self.a.real(o, "initial_engagement_fraction", math.nan)
+            if not math.isfinite(engagement):
+                return self.unsupported(o, f"a {kind} needs a finite initial_engagement_fraction (got {engagement:g})")
+        return [S.ShaftPart(o.display, kind, tuple(e.path for e in on), capacity, max(engagement, 0.0),
+                            automatic=automatic, engage_time=times[0], release_time=times[1],
+                            source=self.source(self.rep, o))]
+
+    def differential(self, o: Obj) -> list[S.ShaftPart]:
+        """An open differential: connectors (drive, left, right) on three different shafts."""
+        ends = [self.shaft_of(c) for c in self.connectors(o)]
+        if len(ends) != 3 or None in ends or len({id(e) for e in ends}) != 3:
+            return self.unsupported(o, "a differential needs three connectors (drive shaft, left and right axle "
+                                    "shafts) on three different shafts")
+        ratio = self.a.real(o, "gear_ratio", 1.0)
+        if not math.isfinite(ratio) or ratio == 0:
+            return self.unsupported(o, f"differential gear_ratio {ratio:g} must be finite and not zero")
+        locked = self.a.get(o, "locked_up", False) is True
+        return [S.ShaftPart(o.display, "differential", tuple(e.path for e in ends), ratio=ratio, locked=locked,
+                            source=self.source(self.rep, o))]

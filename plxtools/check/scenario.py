@@ -637,7 +637,7 @@ def _bind_subject(e: Expect, by_path: dict, bodies: list[str], outputs: list[str
         return unbound.get(info.path, f"{info.path} is not simulated")
     kind = info.value_kind
     e.output = info.path
-    if kind == "real":
+    if kind in ("real", "bool"):  # a true / false output is compared as 1 / 0
         if comp is not None:
             return f"{info.path} is a single number; it has no component '{comp}'"
         return None

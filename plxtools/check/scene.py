@@ -284,6 +284,27 @@ class ShaftMotor:
 
 
 @dataclass(slots=True)
+class ShaftPart:
+    """A drive-train part between shafts (check/mujoco/shaft_parts.py).  ``brake``: a friction
+    torque of at most ``engagement x capacity`` against ``shafts[0]`` turning (against the ground)
+    or, with two shafts, against their relative turning; ``clutch``: the same between two shafts;
+    ``differential``: ``shafts`` = (drive, left, right) with ``w_left + w_right = 2 w_drive / ratio``
+    (and ``w_left = w_right`` while ``locked``)."""
+
+    path: str
+    kind: str  # brake | clutch | differential
+    shafts: tuple[str, ...]
+    capacity: float = 0.0  # N m, at engagement 1
+    engagement: float = 0.0  # the fraction engaged at the start
+    ratio: float = 1.0
+    locked: bool = False
+    automatic: bool = False  # engaged by a boolean input, over these durations (s)
+    engage_time: float = 0.0
+    release_time: float = 0.0
+    source: Source | None = None
+
+
+@dataclass(slots=True)
 class Scene:
     name: str
     bodies: list[Body] = field(default_factory=list)
@@ -300,6 +321,7 @@ class Scene:
     shafts: list[Shaft] = field(default_factory=list)
     shaft_couplings: list[ShaftCoupling] = field(default_factory=list)
     shaft_motors: list[ShaftMotor] = field(default_factory=list)
+    shaft_parts: list[ShaftPart] = field(default_factory=list)
     source: Source | None = None
 
     def body(self, path: str) -> Body | None:

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from plxtools.model import suggest
-from plxtools.check.bindings import Binding, Unbindable, rpy_of_mat  # noqa: F401 (rpy_of_mat: read from here too)
+from plxtools.check.bindings import Binding, SignalValueError, Unbindable, rpy_of_mat  # noqa: F401 (rpy_of_mat, SignalValueError: read from here too)
 from plxtools.check.mapped_types import CONTROLLERS, MATES
 from plxtools.model.resolve import linearize
 
@@ -44,6 +44,10 @@ SOURCE_KINDS = {
     "Physics1D.Interactions.RotationalVelocityMotor": "rotational_velocity_motor_1d",
     "DriveTrain.TorqueMotor": "torque_motor_1d",
     "Physics1D.Bodies.RotationalBody": "shaft",
+    # brakes, clutches and differentials (check/mujoco/shaft_parts.py); the automatic ones derive from these
+    "DriveTrain.ManualBrake": "brake",
+    "DriveTrain.ManualClutch": "clutch",
+    "DriveTrain.Differential": "differential",
 }
 ROT_MOTOR = SOURCE_KINDS["Physics3D.Interactions.RotationalVelocityMotor"]
 LIN_MOTOR = SOURCE_KINDS["Physics3D.Interactions.LinearVelocityMotor"]
@@ -60,6 +64,9 @@ INPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
     ("Physics.Signals.ForceRangeInput", (LIN_MOTOR,), "effort_range"),
     ("Physics.Signals.AngleInput", ("torsion_spring",), "spring_rest"),
     ("Physics.Signals.Position1DInput", ("linear_spring",), "spring_rest"),
+    ("Physics.Signals.FractionInput", ("brake", "clutch"), "engagement"),
+    ("Physics.Signals.EngageInput", ("brake", "clutch"), "engaged"),
+    ("Physics.Signals.BoolInput", ("differential",), "locked_up"),
     ("Physics3D.Signals.LinearVelocity3DInput", ("body",), "body_linear_velocity"),
     ("Physics3D.Signals.AngularVelocity3DInput", ("body",), "body_angular_velocity"),
     # an external load on a body (check/body_loads.py): the body must say it takes one
@@ -95,6 +102,11 @@ OUTPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
     ("Physics.Signals.Force1DOutput", ("linear_spring",), "spring_effort"),
     ("Physics.Signals.TorqueRangeOutput", (ROT_MOTOR, ROT_MOTOR_1D), "effort_range"),
     ("Physics.Signals.ForceRangeOutput", (LIN_MOTOR,), "effort_range"),
+    ("Physics.Signals.FractionOutput", ("brake", "clutch"), "engagement"),
+    ("Physics.Signals.EngagedOutput", ("brake", "clutch"), "engaged"),
+    ("Physics.Signals.Torque1DOutput", ("brake", "clutch"), "part_torque"),
+    ("Physics.Signals.RelativeVelocity1DOutput", ("brake", "clutch"), "slip_velocity"),
+    ("Physics.Signals.BoolOutput", ("differential",), "locked_up"),
     ("Physics3D.Signals.Position3DOutput", ("body",), "body_position"),
     ("Physics3D.Signals.RPYOutput", ("body",), "body_rpy"),
     ("Physics3D.Signals.LinearVelocity3DOutput", ("body",), "body_linear_velocity"),
@@ -118,34 +130,27 @@ _GEARBOX = "its source in the bundles is DriveTrain.GearBox (the selected gear a
 _REACTION = ("constraint forces of mates are not read: the bundle gives neither the point nor the frame they are "
              "measured at, and a MuJoCo tree joint has no reaction force of its own (cfrc_int also holds the "
              "child body's inertial load)")
+_DURATION = ("an automatic clutch's or brake's engagement and disengagement durations are simulated with the model's "
+             "values, which no signal changes or reads during a run")
 REFUSED: dict[str, str] = {
     "Physics.Signals.Input": "the abstract base of inputs",
     "Physics.Signals.Output": "the abstract base of outputs",
     "Physics.Signals.ActivateInput": _SWITCH,
     "Physics.Signals.ActivatedOutput": _SWITCH,
-    "Physics.Signals.BoolInput": _SWITCH,
-    "Physics.Signals.BoolOutput": _SWITCH,
     "Physics.Signals.IntInput": _GEARBOX,
     "Physics.Signals.IntOutput": _GEARBOX,
-    "Physics.Signals.DurationInput": "its sources in the bundles are automatic clutches and brakes, which are not "
-                                     "simulated",
-    "Physics.Signals.DurationOutput": "its sources in the bundles are automatic clutches and brakes, which are not "
-                                      "simulated",
-    "Physics.Signals.FractionInput": "gear ratios, clutch and brake engagement fractions are fixed in the MuJoCo model",
-    "Physics.Signals.FractionOutput": "gear ratios, clutch and brake engagement fractions are fixed in the MuJoCo model",
-    "Physics.Signals.EngageInput": "clutches and brakes are not simulated",
-    "Physics.Signals.EngagedOutput": "clutches and brakes are not simulated",
+    "Physics.Signals.DurationInput": _DURATION,
+    "Physics.Signals.DurationOutput": _DURATION,
     "Physics.Signals.EnableInteractionInput": "interactions cannot be switched on or off during a run",
     "Physics.Signals.InteractionEnabledOutput": "interactions cannot be switched on or off during a run",
     "Physics.Signals.RatioOutput": _GEARBOX,
-    "Physics.Signals.RelativeVelocity1DOutput": "clutches and brakes are not simulated",
     "Physics3D.Signals.Force3DOutput": _REACTION,
     "Physics3D.Signals.Torque3DOutput": _REACTION,
     "Physics3D.Signals.MateConnector.Output": "the abstract base of mate connector outputs",
-    "DriveTrain.Signals.AutomaticClutchDisengagementDurationInput": "clutches and brakes are not simulated",
-    "DriveTrain.Signals.AutomaticClutchEngagementDurationInput": "clutches and brakes are not simulated",
-    "DriveTrain.Signals.AutomaticClutchDisengagementDurationOutput": "clutches and brakes are not simulated",
-    "DriveTrain.Signals.AutomaticClutchEngagementDurationOutput": "clutches and brakes are not simulated",
+    "DriveTrain.Signals.AutomaticClutchDisengagementDurationInput": _DURATION,
+    "DriveTrain.Signals.AutomaticClutchEngagementDurationInput": _DURATION,
+    "DriveTrain.Signals.AutomaticClutchDisengagementDurationOutput": _DURATION,
+    "DriveTrain.Signals.AutomaticClutchEngagementDurationOutput": _DURATION,
     "DriveTrain.Signals.TorqueConverterLockUpInput": "torque converters are not simulated",
     "DriveTrain.Signals.TorqueConverterLockedUpOutput": "torque converters are not simulated",
     "DriveTrain.Signals.TorqueConverterPumpTorqueOutput": "torque converters are not simulated",
@@ -153,6 +158,11 @@ REFUSED: dict[str, str] = {
     "Robotics.Signals.RobotInput": "robot-level signals are not simulated",
     "Robotics.Signals.RobotOutput": "robot-level signals are not simulated",
     "Sensors.Signals.LidarOutput": "sensors are not simulated",
+}
+# signals of simulated sources that are not read, by the source's type
+SOURCE_REFUSED: dict[str, str] = {
+    "DriveTrain.Gear": "gear ratios are fixed in the MuJoCo model, and a gear's torque is not read (the gears of a "
+                       "rigid train are one coordinate, with no constraint force)",
 }
 VALUE_KIND = {
     "shaft_position": "real", "shaft_velocity": "real", "shaft_rpm": "real", "joint_rpm": "real", "body_mass": "real",
@@ -162,10 +172,11 @@ VALUE_KIND = {
     "body_force": "vec3", "body_torque": "vec3",
     "connector_position": "vec3", "connector_rpy": "vec3", "connector_linear_velocity": "vec3",
     "connector_angular_velocity": "vec3", "connector_acceleration": "vec3", "connector_angular_acceleration": "vec3",
+    "engagement": "real", "engaged": "bool", "part_torque": "real", "slip_velocity": "real", "locked_up": "bool",
 }
 RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)  # RpmOutput: revolutions per minute
 # what a value kind looks like, for messages
-KIND_TEXT = {"real": "a number", "vec2": "two numbers [min, max]", "vec3": "three numbers [x, y, z]"}
+KIND_TEXT = {"bool": "true or false", "real": "a number", "vec2": "two numbers [min, max]", "vec3": "three numbers [x, y, z]"}
 # the components an expectation may pick from a vector output
 COMPONENTS = {"vec3": ("x", "y", "z"), "vec2": ("min", "max")}
 RPY_COMPONENTS = ("roll", "pitch", "yaw")
@@ -238,6 +249,8 @@ def classify(obj: Any, ev: Any, kinds: Any) -> SignalInfo | None:
         if info.quantity is not None:
             return info
     refused = next((REFUSED[t] for t in _lineage(obj, kinds) if t in REFUSED and t not in (INPUT, OUTPUT)), None)
+    if refused is None and src is not None:
+        refused = next((SOURCE_REFUSED[t] for t in _lineage(src, kinds) if t in SOURCE_REFUSED), None)
     if refused is not None:
         of = f" of a {skind.replace('_', ' ')}" if skind else ""
         info.why = f"{qn}{of} is not mapped: {refused}"
@@ -312,10 +325,6 @@ def mapping_summary() -> dict[str, list[str]]:
 # ---------------------------------------------------------------------------------------------- runtime
 
 
-class SignalValueError(ValueError):
-    """A value of the wrong kind for a signal (the message says which kind it takes)."""
-
-
 def _num(x: Any) -> float | None:
     """``x`` as a float when it is a real number (not a boolean), else None."""
     if isinstance(x, bool) or type(x).__name__ == "bool_":
@@ -332,6 +341,10 @@ def coerce(info: SignalInfo, value: Any) -> Any:
     """``value`` as the signal takes it (a float, or a tuple of floats), or SignalValueError."""
     kind = info.value_kind or "real"
     wrong = SignalValueError(f"{info.path} takes {KIND_TEXT[kind]}, not {_describe(value)}")
+    if kind == "bool":
+        if isinstance(value, bool) or type(value).__name__ == "bool_":
+            return bool(value)
+        raise wrong
     if kind == "real":
         v = _num(value)
         if v is None:
@@ -428,6 +441,7 @@ class SignalRuntime:
     loads: dict[tuple[int, int], dict] = field(default_factory=dict)  # body loads (check/body_loads.py)
     movers: dict[str, Any] = field(default_factory=dict)  # kinematic bodies of the run (attach_movers)
     offsets: dict[str, float] = field(default_factory=dict)  # constraint motors' effort offsets now, by path
+    engagements: Any = None  # the run's brakes and clutches (mujoco.shaft_parts.Engagements, attach_movers)
     _initial: Any = None
 
     @classmethod
@@ -629,9 +643,11 @@ class SignalRuntime:
 
         return write
 
-    def attach_movers(self, movers: list) -> None:
-        """The kinematic bodies' movers of the run this runtime writes to (see mujoco.kinematic)."""
+    def attach_movers(self, movers: list, engagements: Any = None) -> None:
+        """The kinematic bodies' movers of the run this runtime writes to (see mujoco.kinematic), and
+        its brakes' and clutches' engagements (mujoco.shaft_parts)."""
         self.movers = {mv.path: mv for mv in movers}
+        self.engagements = engagements
 
     # -- use --------------------------------------------------------------------------------------
 
@@ -653,10 +669,12 @@ class SignalRuntime:
 
 def _bound_elsewhere(quantity: str | None) -> Callable[[SignalRuntime, SignalInfo], Binding] | None:
     """The binder of a quantity kept in a module of its own (connector outputs, loads on bodies)."""
-    from plxtools.check import body_loads, connector_signals
+    from plxtools.check import body_loads, connector_signals, part_signals
 
     if quantity in connector_signals.CONNECTOR_QUANTITIES:
         return connector_signals.bind_connector
+    if quantity in part_signals.PART_QUANTITIES:
+        return part_signals.bind_part
     if quantity in body_loads.LOAD_QUANTITIES:
         return body_loads.bind_load
     return body_loads.bind_mass if quantity == "body_mass" else None

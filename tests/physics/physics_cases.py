@@ -299,6 +299,30 @@ CASES: list[Case] = [
          "gear, hinge actuator, wheel) is one MuJoCo coordinate and the motor a velocity constraint on it, so the "
          "hinge is at its speed after one step, as in the real runtime (tests/check/test_drivetrain_one_step.py, "
          "tests/check/test_velocity_constraint.py: also on a cart driven over the ground)."),
+    Case("brake: a braked shaft slows at capacity / inertia", "brake_stop.openplx", 1.0,
+         "shaft speed at t = 0.2 s (rad/s)", 4.0 - 0.5 * 10.0 / 0.5 * 0.2,
+         lambda r: at(r.trace.t, r.trace["shaft.qdot"], 0.2), 1e-3,
+         "DriveTrain.ManualBrake, torque_capacity 10 N m at engagement 0.5, on a 0.5 kg m^2 shaft at 4 rad/s: it "
+         "slips with 5 N m, so w = 4 - 10 t (a friction-loss tendon whose bound is engagement x capacity)."),
+    Case("brake: the stopped shaft stays held", "brake_stop.openplx", 1.0, "shaft speed at the end (rad/s)", 0.0,
+         lambda r: float(r.trace["shaft.qdot"][-1]), 1e-6,
+         "Stopped at t = 0.4 s, nothing loads it: dry friction holds it (no creep, no reversal).", absolute=True),
+    Case("clutch: the output slips up to the input's speed", "clutch_transmit.openplx", 2.0,
+         "output shaft speed at t = 0.5 s (rad/s)", 20.0 / 2.0 * 0.5,
+         lambda r: at(r.trace.t, r.trace["output_shaft.qdot"], 0.5), 1e-3,
+         "DriveTrain.AutomaticClutch (initially engaged) of 20 N m between an input held at 10 rad/s and a free "
+         "2 kg m^2 output: it passes its capacity while slipping, 10 rad/s^2."),
+    Case("clutch: then it sticks", "clutch_transmit.openplx", 2.0, "output shaft speed at the end (rad/s)", 10.0,
+         lambda r: float(r.trace["output_shaft.qdot"][-1]), 1e-4,
+         "From t = 1 s on the plates stick: the output turns with the input."),
+    Case("differential: equal torques split the speed", "differential_split.openplx", 1.0,
+         "left axle speed (rad/s)", 3.0, lambda r: float(r.trace["left.qdot"][-1]), 1e-4,
+         "DriveTrain.Differential, gear_ratio 2, drive at 4 rad/s: w_l + w_r = 2 x 4 / 2 = 4; equal torques on "
+         "axles of 1 and 3 kg m^2 from rest give w_l = 3 w_r, so 3 and 1 rad/s (a tendon equality)."),
+    Case("differential: the sum of the axle speeds", "differential_split.openplx", 1.0,
+         "(w_left + w_right) / w_drive", 2.0 / 2.0,
+         lambda r: float((r.trace["left.qdot"][-1] + r.trace["right.qdot"][-1]) / r.trace["drive_shaft.qdot"][-1]),
+         1e-4, "w_l + w_r = 2 w_drive / gear_ratio."),
     Case("restitution 0.5: rebound height", "bouncing_ball.openplx", 1.5, "rebound height / drop height",
          0.5 ** 2, lambda r: rebound(r.trace["ball.z"], 0.1) / 1.0, 0.03,
          "Dropped from h = 1 m with normal_restitution e = 0.5: it leaves at e v, so it rises to e^2 h. The "

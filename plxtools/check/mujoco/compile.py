@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from plxtools.check.mujoco.drivetrain import add_couplings, add_shaft_motors, add_shafts
+from plxtools.check.mujoco.shaft_parts import add_shaft_parts
 from plxtools.check.mujoco.context import BuildContext, CompileFailed
 from plxtools.check.mujoco.controllers import add_controllers, add_keyframe
 from plxtools.check.mujoco.kinematic import add_kinematic_joint, exclude_kinematic_contacts, set_kinematic_inertia
@@ -157,6 +158,7 @@ def build(ctx: BuildContext) -> None:
     add_controllers(ctx, model)
     add_shaft_motors(ctx, model)
     add_keyframe(ctx, model)
+    add_shaft_parts(ctx)  # after the keyframe: a differential holds the shafts' starting angles
     set_restitution(ctx)
     # pass 3: final
     ctx.out.model = ctx.compile("final")

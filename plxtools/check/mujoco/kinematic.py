@@ -195,6 +195,9 @@ class Stepper:
         self.mujoco, self.model, self.data = mujoco, model, data
         self.movers = kinematic_movers(compiled, model, data)
         apply_offsets(model, data, compiled.actuators)  # velocity constraints' constant efforts
+        from plxtools.check.mujoco.shaft_parts import Engagements
+
+        self.engagements = Engagements.of(compiled, model)  # automatic brakes' and clutches' ramps
         self.h = float(model.opt.timestep)
         self.rk4 = int(model.opt.integrator) == int(mujoco.mjtIntegrator.mjINT_RK4)
 
@@ -202,6 +205,8 @@ class Stepper:
         """Advance from step ``done`` (time ``done * h``) to the next."""
         for mv in self.movers:
             mv.place(self.data, done * self.h)
+        if self.engagements.ramps:
+            self.engagements.advance(self.model, done * self.h)
         if hook is None:
             self.mujoco.mj_step(self.model, self.data)
         else:

@@ -62,6 +62,24 @@ class ShaftCoordinate:
 
 
 @dataclass(slots=True)
+class PartInfo:
+    """A brake, clutch or differential in the MuJoCo model (``mujoco.shaft_parts``): its friction
+    tendon (the bound is engagement x capacity) or its tendon equality, and its lock's."""
+
+    path: str
+    kind: str  # brake | clutch | differential
+    tendon: str | None  # brake / clutch: the friction tendon (its length: the slip angle)
+    capacity: float = 0.0
+    engagement: float = 0.0  # at the start
+    equality: str | None = None  # differential: w_l + w_r = 2 w_in / ratio
+    lock: str | None = None  # differential: w_l = w_r, active while locked up
+    locked: bool = False  # at the start
+    automatic: bool = False  # engaged by a boolean input over these durations (s)
+    engage_time: float = 0.0
+    release_time: float = 0.0
+
+
+@dataclass(slots=True)
 class CompiledScene:
     scene: Scene
     spec: Any = None  # mujoco.MjSpec
@@ -79,6 +97,7 @@ class CompiledScene:
     prescribed_cache: Any = None  # mujoco.kinematic.prescribed: (model, body id -> prescribed velocity)
     actuators: list[ActuatorInfo] = field(default_factory=list)
     shafts: dict[str, ShaftCoordinate] = field(default_factory=dict)  # shaft path -> its coordinate
+    parts: dict[str, PartInfo] = field(default_factory=dict)  # brakes, clutches, differentials by path
     monitors: list[MateMonitor] = field(default_factory=list)
     compile_ms: float = 0.0
 

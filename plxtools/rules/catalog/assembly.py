@@ -202,8 +202,10 @@ doc("BODY_NOT_IN_SYSTEM",
     "`RigidBodyOwnerNotSystemError`).",
     "Bodies belong directly to systems; to attach one body to another use a mate (a Lock).")
 doc("NOT_SIMULATED",
-    "Something that the MuJoCo backend of `plx check --simulate` cannot represent: Physics1D, DriveTrain, "
-    "Terrain, Sensors, Vehicles and Robotics objects, signals it does not map (see docs/testing.md), KinematicLock, tangential restitution, non-dry "
+    "Something that the MuJoCo backend of `plx check --simulate` cannot represent: Physics1D and DriveTrain "
+    "objects other than shafts, gears, hinge actuators, 1D motors on one shaft, brakes, clutches and open "
+    "differentials (engines, gear boxes, torque converters, limited-slip differentials, flexible and viscous "
+    "gears, prismatic actuators, motors between two shafts), Terrain, Sensors, Vehicles and Robotics objects, signals it does not map (see docs/testing.md), KinematicLock, tangential restitution, non-dry "
     "friction models, oriented (anisotropic) friction and surface viscosity traits, any attribute a bundle "
     "trait adds to a mapped object that the backend does not simulate (named with the trait, on the line "
     "that gives it), PointGravitationalField, unknown mate or interaction types.",
