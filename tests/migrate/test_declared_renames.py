@@ -73,10 +73,14 @@ def test_explain_names_each_declared_rename_with_its_source():
 SIGNALS_0151 = """\
 # Signals as OpenPLX 0.15.1 wrote them (plxtools' own test model).
 Rig is Physics3D.System:
-    a is Physics3D.Bodies.RigidBody
-    b is Physics3D.Bodies.RigidBody
-    hinge is Physics3D.Interactions.Hinge
+    a is Physics3D.Bodies.RigidBody:
+        c is Physics3D.Charges.MateConnector
+    b is Physics3D.Bodies.RigidBody:
+        c is Physics3D.Charges.MateConnector
+    hinge is Physics3D.Interactions.Hinge:
+        charges: [a.c, b.c]
     motor is Physics3D.Interactions.RotationalVelocityMotor:
+        charges: hinge.charges
         desired_speed: 1.5
     speed is Physics3D.Signals.HingeAngularVelocityOutput:
         hinge: hinge
@@ -108,7 +112,7 @@ def test_migrate_rewrites_declared_renames_attributes_too_and_the_result_lints_c
 
 def test_lint_suggests_the_declared_target_not_a_look_alike(tmp_path):
     f = tmp_path / "speed.openplx"
-    f.write_text("Rig is Physics3D.System:\n    hinge is Physics3D.Interactions.Hinge\n"
+    f.write_text("Rig is Physics3D.System:\n"
                  "    speed is Physics3D.Signals.HingeAngularVelocityOutput\n", encoding="utf-8")
     [d] = json.loads(plx_here("lint", "--output-format", "json", str(f)).stdout)
     assert d["code"] == "U001", d

@@ -100,6 +100,11 @@ def family(program, model: ModelSym, controller: ModelSym) -> ModelSym | None:
     return None
 
 
+def _has_connectors(program, model: ModelSym) -> bool:
+    """Whether the bundles in use give `model` an attribute called `connectors`."""
+    return any("connectors" in layer.members for layer in program.linearize(model))
+
+
 def _sets_connectors(program, model: ModelSym) -> bool:
     for layer in program.linearize(model):
         if "connectors" in layer.members and layer.members["connectors"].value is not None:
@@ -124,6 +129,8 @@ def _one_block(program, unit, controller, mate, body, assigned, out, errors) -> 
         is_ctrl = not is_mate and program.is_subtype(model, controller)
         if not (is_mate or is_ctrl):
             continue
+        if not _has_connectors(program, model):
+            continue  # an older release names them otherwise (0.17's `charges`): check judges it
         conn = _connectors(s)
         name = s.path.parts[0].name
         if conn is None and name not in assigned and not _has_error(s, errors) and not _sets_connectors(program, model):
