@@ -3,6 +3,7 @@ actions (quick fixes, "fix all", suppressions and "migrate this file")."""
 
 from __future__ import annotations
 
+import asyncio
 import os
 import time
 from typing import TYPE_CHECKING
@@ -23,9 +24,14 @@ if TYPE_CHECKING:
 def register(server, server_feature) -> None:
     @server_feature(types.TEXT_DOCUMENT_COMPLETION,
                     types.CompletionOptions(trigger_characters=[".", " "], resolve_provider=True))
-    def completion(ls: PlxServer, params: types.CompletionParams):
-        if ls.warming is not None:  # the bundles are loading: nothing to offer yet, ask again
-            return types.CompletionList(is_incomplete=True, items=[])
+    async def completion(ls: PlxServer, params: types.CompletionParams):
+        if ls.warming is not None:
+            # the bundles are loading (a fraction of a second from plx's cache): wait for them, then
+            # answer from the buffer's parse and symbols without its check, which waits for this
+            # answer. An empty list is no answer: Neovim does not ask again after one
+            ls.waiting_for_bundles += 1  # the first check waits until this answer is sent (server.checks)
+            asyncio.current_task().add_done_callback(ls.bundles_waiter_done)  # after pygls's reply
+            await asyncio.shield(ls.warming)
         t0, c0 = time.perf_counter(), time.process_time()
         ctx = params.context
         trigger = ctx.trigger_character if ctx is not None and ctx.trigger_kind == \
