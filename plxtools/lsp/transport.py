@@ -156,6 +156,21 @@ class Dispatcher:
     def dispatch(self, raw) -> None:
         with self._inbox_lock:
             self.inbox -= 1
+        try:
+            self._dispatch(raw)
+        finally:
+            self._forget_finished()
+
+    def _forget_finished(self) -> None:
+        """Drop the finished futures pygls keeps per message. A request's is removed when its reply
+        is sent, but a notification's (pygls runs didOpen/didChange/didClose through a generator, under
+        a fresh uuid) never is: one Future per keystroke, for as long as the server runs (issue 40.3)."""
+        futures = getattr(self.protocol, "_request_futures", None)
+        if futures:
+            for key in [k for k, f in futures.items() if f.done()]:
+                futures.pop(key, None)
+
+    def _dispatch(self, raw) -> None:
         if not isinstance(raw, dict) or raw.get("jsonrpc") != "2.0":
             if isinstance(raw, dict) and "method" in raw and _valid_id(raw.get("id")):
                 self.reply_error(raw["id"], INVALID_REQUEST, "not a JSON-RPC 2.0 message")
