@@ -10,7 +10,9 @@ read from it):
 - the completion round trip (request sent right after didOpen, to its answer) and how many items
   it had: an empty answer counts as a failure, since Neovim does not ask again;
 - didOpen to the first published diagnostics, and whether the completion came first;
-- the server's CPU time up to the completion's answer.
+- the server's CPU time up to the completion's answer;
+- a second file opened once the server is up, completion asked at once: its round trip (the file's
+  first check waits for the answer).
 
 The peer is the same server before issue 40 (`--peer-ref GIT_REF`, optional, run from a git
 worktree of that ref), which answered at once with an empty list while the bundles loaded.
@@ -81,9 +83,20 @@ def one_start(cmd: list[str], cwd: Path, cache: Path, folder: Path) -> dict:
     result = msg.get("result") or {}
     items = result.get("items", []) if isinstance(result, dict) else result
     t_diag, _ = client.wait_diagnostics(uri, since, timeout=120)
+    # a second file opened once the server is up, completion asked at once (before its first check)
+    other = folder / "other.openplx"
+    other.write_text(text, encoding="utf-8")
+    since2 = client.notify("textDocument/didOpen", {"textDocument": {"uri": other.resolve().as_uri(),
+                                                                     "languageId": "openplx", "version": 1,
+                                                                     "text": text}})
+    dt2, msg2 = client.request("textDocument/completion", {"textDocument": {"uri": other.resolve().as_uri()},
+                                                           "position": {"line": line, "character": 4}}, timeout=120)
+    result2 = msg2.get("result") or {}
+    items2 = result2.get("items", []) if isinstance(result2, dict) else result2
+    client.wait_diagnostics(other.resolve().as_uri(), since2, timeout=120)
     client.close()
     return {"init": t_init, "completion": dt, "items": len(items), "diag": t_diag - since,
-            "first": t_answer <= t_diag, "cpu": cpu}
+            "first": t_answer <= t_diag, "cpu": cpu, "second": dt2 if items2 else float("inf")}
 
 
 def series(name: str, cmd: list[str], cwd: Path, runs: int) -> list[tuple]:
@@ -133,9 +146,11 @@ def main() -> None:
             first = sum(1 for r in rs if r["first"] and r["items"] > 0)
             out.append((name, label, f"{med('init'):.0f}", f"{med('completion'):.0f}",
                         f"{real}/{len(rs)} ({statistics.median(r['items'] for r in rs):.0f} items)",
-                        f"{first}/{len(rs)}", f"{med('diag'):.0f}", f"{med('cpu'):.0f}"))
+                        f"{first}/{len(rs)}", f"{med('diag'):.0f}", f"{med('cpu'):.0f}", f"{med('second'):.0f}"))
     print(table(out, ("server", "cache", "spawn->initialize", "open->completion", "real items",
-                      "before 1st check", "open->1st diagnostics", "server CPU to answer")))
+                      "before 1st check", "open->1st diagnostics", "server CPU to answer",
+                      "2nd file: open->completion")))
+    print("(2nd file: opened once the server is up; inf = an empty answer)")
     print("(with the server cwd in each tree: `python -m plxtools` runs that tree's code)")
 
 

@@ -35,7 +35,8 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
     import mujoco
     import mujoco.viewer
 
-    from plxtools.check.mujoco.video import COLLISION_BEHIND_VISUALS, floor_grid, floor_height, show_visuals
+    from plxtools.check.mujoco.video import (COLLISION_BEHIND_VISUALS, floor_grid, floor_height, show_visuals,
+                                             wheel_marks)
     from plxtools.check.mujoco.results import VISUAL_GROUP
     from plxtools.check.mujoco.render import frame_camera
 
@@ -130,6 +131,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                 if handle.user_scn is not None:  # a 1 m grid on the floor, around where the camera looks
                     handle.user_scn.ngeom = 0
                     floor_grid(handle.user_scn, floor_height(session.sim.model, session.sim.data), handle.cam.lookat)
+                    wheel_marks(handle.user_scn, session.sim.model, session.sim.data)
                 status = session.status()
                 signals = _fit(session.signals())
             handle.sync()
