@@ -35,9 +35,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
     import mujoco
     import mujoco.viewer
 
-    from plxtools.check.mujoco.video import (COLLISION_BEHIND_VISUALS, floor_grid, floor_height, show_visuals,
-                                             wheel_marks)
-    from plxtools.check.mujoco.results import VISUAL_GROUP
+    from plxtools.check.mujoco.video import show_visuals
     from plxtools.check.mujoco.render import frame_camera
 
     session.load()
@@ -123,15 +121,9 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
             drawn = drawn or _first_frame_drawn(handle)
             with handle.lock():
                 now = time.perf_counter()
-                if drawn:
-                    session.advance(now - last)
+                session.advance(now - last if drawn else 0.0)  # (nothing before the first frame)
                 last = now
-                handle.opt.geomgroup[VISUAL_GROUP] = 0 if session.show_collision else 1
-                handle.opt.geomgroup[COLLISION_BEHIND_VISUALS] = 1 if session.show_collision else 0
-                if handle.user_scn is not None:  # a 1 m grid on the floor, around where the camera looks
-                    handle.user_scn.ngeom = 0
-                    floor_grid(handle.user_scn, floor_height(session.sim.model, session.sim.data), handle.cam.lookat)
-                    wheel_marks(handle.user_scn, session.sim.model, session.sim.data)
+                _decorate(handle, session)
                 status = session.status()
                 signals = _fit(session.signals())
             handle.sync()
@@ -151,6 +143,20 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
     finally:
         handle.close()
     return 0
+
+
+def _decorate(handle: Any, session: ViewSession) -> None:
+    """Visuals or collision geometry (G), a 1 m grid on the floor around where the camera looks, and
+    crosses on the wheels."""
+    from plxtools.check.mujoco.results import VISUAL_GROUP
+    from plxtools.check.mujoco.video import COLLISION_BEHIND_VISUALS, floor_grid, floor_height, wheel_marks
+
+    handle.opt.geomgroup[VISUAL_GROUP] = 0 if session.show_collision else 1
+    handle.opt.geomgroup[COLLISION_BEHIND_VISUALS] = 1 if session.show_collision else 0
+    if handle.user_scn is not None:
+        handle.user_scn.ngeom = 0
+        floor_grid(handle.user_scn, floor_height(session.sim.model, session.sim.data), handle.cam.lookat)
+        wheel_marks(handle.user_scn, session.sim.model, session.sim.data)
 
 
 def frame_statistic(model: Any, data: Any) -> None:
