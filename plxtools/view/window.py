@@ -73,7 +73,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
         _set_camera(handle.cam, frame_camera(sim.model, sim.data))  # = Ctrl+A (frame_statistic)
     handle.sync()
     last = time.perf_counter()
-    drawn = False  # the clock starts at the first drawn frame: nothing falls out of view unseen
+    drawn = not OVERLAY  # the clock starts at the first drawn frame: nothing falls out of view unseen
     next_poll = last + POLL_S
     shown_texts: tuple[str, str] = ("", "")
     swapping: threading.Thread | None = None
@@ -118,7 +118,6 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                 swapping.start()
                 shown = session.generation
                 continue
-            drawn = drawn or _first_frame_drawn(handle)
             with handle.lock():
                 now = time.perf_counter()
                 session.advance(now - last if drawn else 0.0)  # (nothing before the first frame)
@@ -135,6 +134,9 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                                   (mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_BOTTOMRIGHT, texts[1],
                                    "")])
                 shown_texts, texts_at = texts, time.perf_counter()
+                # set_texts returns once the render thread took the text, to draw it: the first
+                # frame is on its way, and the clock starts now
+                last, drawn = (last, drawn) if drawn else (texts_at, True)
             spare = FRAME_S - (time.perf_counter() - now)
             if spare > 0:
                 time.sleep(spare)
@@ -174,15 +176,6 @@ def frame_statistic(model: Any, data: Any) -> None:
     model.vis.global_.azimuth = float(cam.azimuth)
     model.vis.global_.elevation = float(cam.elevation)
     model.vis.map.zfar = max(far, 50.0 * extent) / extent
-
-
-def _first_frame_drawn(handle: Any) -> bool:
-    """Whether the viewer has drawn a frame (its viewport is known once it has)."""
-    try:
-        vp = handle.viewport
-    except Exception:  # noqa: BLE001 - an older viewer without it: start the clock at once
-        return True
-    return vp is not None and getattr(vp, "width", 0) > 0
 
 
 def _fit(lines: list[str]) -> list[str]:
