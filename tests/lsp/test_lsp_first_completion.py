@@ -6,7 +6,9 @@ Code's (Neovim does not ask again after an empty answer)."""
 
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
 import sys
 import tempfile
 
@@ -21,7 +23,8 @@ EVERY_CLIENT = True
 pytestmark = [pytest.mark.asyncio(loop_scope="function"),
               pytest.mark.filterwarnings("error::pytest_lsp.LspSpecificationWarning")]
 
-COLD = tempfile.mkdtemp(prefix="plx-first-completion-")
+COLD = tempfile.mkdtemp(prefix="plx-first-completion-")  # an empty plx cache for these servers
+atexit.register(shutil.rmtree, COLD, True)
 SERVER = ClientServerConfig(server_command=[sys.executable, "-m", "plxtools", "lsp"],
                             server_env={**os.environ, "PLX_CACHE_DIR": COLD})
 
