@@ -67,7 +67,7 @@ class PlxServer(Publishing, LanguageServer):
                                            self._background_failed)
         # documents waiting for a check (uri -> cascade), oldest first
         self.checks = CheckQueue(self._check_one, self._parse_ahead,
-                                 lambda: self.dispatcher.inbox > 0 or self.waiting_for_bundles > 0,
+                                 lambda: self.dispatcher.inbox > 0 or self.dispatcher.prompt > 0,
                                  lambda: self.warming is not None, lambda: self.loop)
         self.migrations = Migrations()  # "migrate this file", once per version of the text
         # set while `initialized` loads the bundles in a thread (issue 32.12): completion waits for
@@ -75,7 +75,6 @@ class PlxServer(Publishing, LanguageServer):
         # and a request that needs the model (hover, go-to) waits for it (the host's lock) rather
         # than loading it twice
         self.warming: asyncio.Future | None = None
-        self.waiting_for_bundles = 0  # completions waiting for that load: answered before any check
 
     def report_server_error(self, error: Exception, source) -> None:
         """Errors outside a request (a failing notification, a bad message) are logged; the editor is
@@ -92,10 +91,6 @@ class PlxServer(Publishing, LanguageServer):
                                                            message=f"plx: internal error: {key}"))
         except Exception:  # noqa: BLE001 - reporting must never raise
             pass
-
-    def bundles_waiter_done(self, _task=None) -> None:
-        """A completion that waited for the bundles has been answered (or cancelled)."""
-        self.waiting_for_bundles -= 1
 
     # -------------------------------------------------------------- paths and positions
 

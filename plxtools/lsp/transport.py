@@ -121,6 +121,9 @@ def _valid_id(msg_id) -> bool:
     return isinstance(msg_id, str) or (isinstance(msg_id, int) and not isinstance(msg_id, bool))
 
 
+PROMPT = frozenset({"textDocument/completion"})  # answered before a queued check runs, even when async
+
+
 class Dispatcher:
     """Validates each decoded message and hands it to the pygls protocol, or answers it itself."""
 
@@ -130,6 +133,7 @@ class Dispatcher:
         self.cancelled = Cancelled()
         self.initialized = False
         self.inbox = 0  # messages read but not yet dispatched (the analysis scheduler yields to them)
+        self.prompt = 0  # PROMPT requests dispatched and not answered yet (the scheduler yields to them too)
         self._inbox_lock = threading.Lock()
 
     # ------------------------------------------------------------------ answering
@@ -160,6 +164,9 @@ class Dispatcher:
             self._dispatch(raw)
         finally:
             self._forget_finished()
+
+    def _prompt_done(self, _fut) -> None:
+        self.prompt -= 1
 
     def _forget_finished(self) -> None:
         """Drop the finished futures pygls keeps per message. A request's is removed when its reply
@@ -217,6 +224,14 @@ class Dispatcher:
         if method == "initialize":
             self.initialized = True
         self.protocol.handle_message(message)
+        if method in PROMPT:
+            fut = self.protocol._request_futures.get(msg_id)
+            if fut is not None and not fut.done():
+                # a coroutine handler starts on the next turn of the loop: a queued check must not
+                # run first (the scheduler waits while `prompt` > 0); pygls' reply callback was added
+                # before this one, so the count drops once the reply is sent
+                self.prompt += 1
+                fut.add_done_callback(self._prompt_done)
 
     def _notification(self, raw: dict, method) -> None:
         if method == "$/cancelRequest":

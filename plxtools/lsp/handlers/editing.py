@@ -29,8 +29,7 @@ def register(server, server_feature) -> None:
             # the bundles are loading (a fraction of a second from plx's cache): wait for them, then
             # answer from the buffer's parse and symbols without its check, which waits for this
             # answer. An empty list is no answer: Neovim does not ask again after one
-            ls.waiting_for_bundles += 1  # the first check waits until this answer is sent (server.checks)
-            asyncio.current_task().add_done_callback(ls.bundles_waiter_done)  # after pygls's reply
+            # (the first check waits until this answer is sent: transport.PROMPT)
             await asyncio.shield(ls.warming)
         t0, c0 = time.perf_counter(), time.process_time()
         ctx = params.context
