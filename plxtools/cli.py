@@ -91,6 +91,8 @@ def _add_check(sub) -> None:
     p.add_argument("--video", metavar="FILE.gif|FILE.mp4",
                    help=f"with --simulate, record the run offscreen, the camera following the bodies ({DOCS_BASE_URL}view/)")
     p.add_argument("--fps", type=float, default=25.0, metavar="N", help="frames per simulated second of --video (default 25)")
+    p.add_argument("--video-camera", choices=("follow", "fixed"), default="follow",
+                   help="--video's camera: follow the bodies (default) or stay where it framed them at the start")
     p.add_argument("--trace", metavar="FILE.csv",
                    help="write the simulated motion (every body's pose and velocity, every mate's coordinate, "
                    "every 0.01 s) as CSV; implies --simulate")

@@ -309,6 +309,7 @@ class Simulation:
         self.timestep = float(self.model.opt.timestep)
         self.steps = 0
         self._pending: list[tuple[str, Any]] = []
+        self.sent: dict[str, Any] = {}  # input path -> the last value sent (what `plx view` shows)
         self._stale = False
         self._scene = Scene(self)
         self.frames: dict = {}  # systems moved by place(): their frame now (plxtools.check.api_place)
@@ -385,6 +386,7 @@ class Simulation:
         if why is not None:
             raise SignalValueError(why)
         self._pending.append((path, value))
+        self.sent[path] = value
 
     # -- stepping -------------------------------------------------------------------------------
 

@@ -400,7 +400,7 @@ def _write_video(fc, out: Path, args) -> int:
         print(f"plx check: {fc.path}: cannot write {out}: {why}", file=sys.stderr)
         return 2
     try:
-        record(fc.compiled, str(out), args.duration, fps=args.fps)
+        record(fc.compiled, str(out), args.duration, fps=args.fps, camera=getattr(args, "video_camera", "follow"))
     except VideoError as exc:
         print(f"plx check: cannot write {out}: {exc}", file=sys.stderr)
         return 2

@@ -373,6 +373,7 @@ def _value_items(st: FileState, line_no: int, line: str, lc: LineContext, head: 
             fits = _fits(p, ty, expected)
             it = _attribute_item(st, mem, outer, set(), RANK_BEST if fits == "exact" else RANK_OK)
             items.append(it)
+        items += _nested_fits(st, outer, expected)
     # globals and const models in scope, and const-model members that fit (enum-like tables)
     for sym in _local_symbols(st):
         items.extend(_global_items(st, sym, sym.name, expected))
@@ -390,6 +391,25 @@ def _value_items(st: FileState, line_no: int, line: str, lc: LineContext, head: 
     for ns in _visible_roots(st):
         items.append(_ns_item(ns, RANK_REST))
     return items
+
+
+def _nested_fits(st: FileState, outer: ModelSym, expected: Ty) -> list[CompletionItem]:
+    """`chassis.left_hub` for a connector: an attribute's attribute whose type fits a model type that
+    is expected (the connectors of a joint sit on the bodies it joins), ranked first."""
+    p = st.program
+    if expected.unknown or expected.model is None or expected.array:
+        return []
+    out = []
+    for mem in p.all_members(outer).values():
+        ty = p.member_type(mem)
+        if ty.unknown or ty.model is None or ty.array or ty.alts:
+            continue
+        for sub in p.members_of(ty).values():
+            if _fits(p, p.member_type(sub), expected) == "exact":
+                label = f"{mem.name}.{sub.name}"
+                out.append(CompletionItem(label, "attribute", p.member_type(sub).display(), None,
+                                          sort_text=RANK_BEST + label, key=("member", sub, None)))
+    return out
 
 
 def _near(st: FileState, sym: ModelSym) -> bool:

@@ -153,6 +153,11 @@ def describe_member(program, mem: MemberSym, context: ModelSym | None = None,
     unit = mem.owner.unit
     decl = header_text(mem.stmt, unit.tree.text) if unit is not None else mem.name
     parts = [f"```openplx\n{decl}\n```"]
+    if context is not None and path:
+        # the value in force first: the declaration's default below would otherwise read as it
+        found = find_value(program, context, path, skip_self=skip_context)
+        if found is not None:
+            parts.insert(0, value_in_force(program, path[-1], found, mem, context))
     facts = [f"`{ty.display()}`"]
     flags = [w for w, on in (("optional", mem.optional), ("reference", mem.reference)) if on]
     if flags:
@@ -161,13 +166,6 @@ def describe_member(program, mem: MemberSym, context: ModelSym | None = None,
     if mem.value is not None:
         facts.append(f"default `{expr_text(mem.value, unit)}`")
     parts.append(" · ".join(facts))
-    if context is not None and path:
-        found = find_value(program, context, path, skip_self=skip_context)
-        if found is not None:
-            expr, setter, setter_unit = found
-            shown = program.concrete(setter) if setter.anonymous else setter
-            if not (expr is mem.value):
-                parts.append(f"value from `{shown.qname}`: `{expr_text(expr, setter_unit)}`")
     note = trim_doc(mem.doc) or attribute_note(mem.owner.doc, mem.name)
     if note:
         parts.append(note)
@@ -176,6 +174,22 @@ def describe_member(program, mem: MemberSym, context: ModelSym | None = None,
         if tdoc:
             parts.append(f"`{program.concrete(ty.model).name}`: " + tdoc.split("\n\n", 1)[0])
     return "\n\n".join(parts)
+
+
+def value_in_force(program, name: str, found, mem: MemberSym, context: ModelSym) -> str:
+    """`mass: 1000` · set at line 3 in `Chassis` (or at file:line in another file; or the default)."""
+    expr, setter, setter_unit = found
+    shown = program.concrete(setter) if setter.anonymous else setter
+    value = f"**`{name}: {expr_text(expr, setter_unit)}`**"
+    if expr is mem.value:
+        return f"{value} · the default, declared in `{shown.qname}`"
+    line = expr.span.start.line + 1
+    here = context.unit
+    if setter_unit is not None and (here is None or setter_unit.path != here.path):
+        where_ = f"`{os.path.basename(setter_unit.path)}:{line}`"
+    else:
+        where_ = f"line {line}"
+    return f"{value} · set at {where_} in `{shown.qname}`"
 
 
 def describe_global(program, g: GlobalSym) -> str:

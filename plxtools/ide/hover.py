@@ -47,18 +47,16 @@ def hover(st: FileState, offset: int) -> HoverResult | None:
 
 
 def _own_line_value(text: str, st: FileState, stmt: ast.Stmt) -> str:
-    """On the line that gives the value, say so ("value 1000, set on this line in Chassis"): the
-    default alone would read as the value that applies (issue 32.9)."""
+    """On the line that gives the value, say so (`mass: 1000` · set on this line in `Chassis`)."""
     value = getattr(stmt, "value", None)
     if value is None:
         return text
     own = expr_text(value, st.unit)
-    lines = text.split("\n\n")
-    for i, ln in enumerate(lines):
-        if ln.startswith("value from ") and ln.endswith(f": `{own}`"):
-            setter = ln[len("value from "): -len(f": `{own}`")]
-            lines[i] = f"value `{own}`, set on this line in {setter}"
-    return "\n\n".join(lines)
+    first, sep, rest = text.partition("\n\n")
+    mark = f": {own}`** · set at line {value.span.start.line + 1} in "
+    if first.startswith("**`") and mark in first:
+        first = first.replace(f" · set at line {value.span.start.line + 1} in ", " · set on this line in ", 1)
+    return first + sep + rest
 
 
 def _member_context(st: FileState, offset: int, res):

@@ -4,8 +4,9 @@ of a whole buffer, from the OpenPLX version it was written for to the workspace'
 Offered when the file has U001/U002 diagnostics (names of an older version) or its bundle pins an
 older version than the workspace uses. The version it was written for is the pin, else the oldest
 version those diagnostics point at (U001: the newest older version that has the old name; U002: the
-version before the rename). Its bundles must be on this machine (installed or in plx's cache: `plx
-bundles install VERSION`); the server never fetches them. The rewrite and its safety checks are
+version before the rename). Its bundles must be on this machine (installed or in plx's cache); when
+they are not, the action offered instead runs `plx bundles install VERSION`'s fetch (the command
+`plx.fetchBundles`, only when the user picks it), after which the migration itself is offered. The rewrite and its safety checks are
 `plxtools.migrate.rewrite.migrate_text`, exactly as on the command line; the models of both versions
 are separate from the server's own (its open buffers are never touched).
 
@@ -39,6 +40,19 @@ class Migration:
     new_text: str | None  # None: refused (see `reason`)
     reason: str | None = None
     changes: int = 0
+    fetch: str | None = None  # refused only because this version's bundles are not on the machine
+
+
+FETCH_COMMAND = "plx.fetchBundles"  # workspace/executeCommand: `plx bundles install VERSION`'s fetch
+EXPLAIN_COMMAND = "plx.explainMigration"  # shows why a migration is refused (clients without disabledSupport)
+
+
+def fetch_bundles(version: str) -> str:
+    """What `plx bundles install VERSION` does (pip, then the cache); returns the folder. Raises
+    BundleSetError with the reason when it cannot."""
+    from plxtools.model.versions import install
+
+    return str(install(version))
 
 
 def wanted(only: list[str] | None) -> bool:
@@ -94,8 +108,9 @@ def migration(host, st) -> Migration | None:
 
         have = [v for v in versions() if version_key(v) <= version_key(from_v) and cached_root(v) is not None]
         if not have:
-            return Migration(title, None, f"the bundles of OpenPLX {from_v} are not on this machine: "
-                                          f"`plx bundles install {from_v}`, then try again")
+            return Migration(f"Fetch the bundles of OpenPLX {from_v} to migrate this file to {to_v} "
+                             f"(plx bundles install {from_v})", None,
+                             f"the bundles of OpenPLX {from_v} are not on this machine", fetch=from_v)
         from_v = have[-1]
         title = f"Migrate this file from OpenPLX {from_v} to {to_v}"
 
@@ -145,3 +160,7 @@ class Migrations:
             m = None
         self._last = (st.path, st.text, m)
         return m
+
+    def forget(self) -> None:
+        """Bundles were fetched: the next request computes the action again."""
+        self._last = None

@@ -67,12 +67,14 @@ class PlxServer(Publishing, LanguageServer):
         self.background = BackgroundChecks(self.stats, self._decode_diagnostics, self._background_done,
                                            self._background_failed)
         # documents waiting for a check (uri -> cascade), oldest first
-        self.checks = CheckQueue(self._check_one, self._parse_ahead, lambda: self.dispatcher.inbox > 0,
+        self.checks = CheckQueue(self._check_one, self._parse_ahead,
+                                 lambda: self.dispatcher.inbox > 0 or self.dispatcher.prompt > 0,
                                  lambda: self.warming is not None, lambda: self.loop)
         self.migrations = Migrations()  # "migrate this file", once per version of the text
-        # set while `initialized` loads the bundles in a thread (issue 32.12): completion is answered
-        # at once meanwhile (nothing yet, ask again), checks wait for the load, and a request that
-        # needs the model (hover, go-to) waits for it (the host's lock) rather than loading it twice
+        # set while `initialized` loads the bundles in a thread (issue 32.12): completion waits for
+        # the load and is answered before the first checks (issue 40.1), checks wait for the load,
+        # and a request that needs the model (hover, go-to) waits for it (the host's lock) rather
+        # than loading it twice
         self.warming: asyncio.Future | None = None
 
     def report_server_error(self, error: Exception, source) -> None:

@@ -121,6 +121,9 @@ def _valid_id(msg_id) -> bool:
     return isinstance(msg_id, str) or (isinstance(msg_id, int) and not isinstance(msg_id, bool))
 
 
+PROMPT = frozenset({"textDocument/completion"})  # answered before a queued check runs, even when async
+
+
 class Dispatcher:
     """Validates each decoded message and hands it to the pygls protocol, or answers it itself."""
 
@@ -130,6 +133,7 @@ class Dispatcher:
         self.cancelled = Cancelled()
         self.initialized = False
         self.inbox = 0  # messages read but not yet dispatched (the analysis scheduler yields to them)
+        self.prompt = 0  # PROMPT requests dispatched and not answered yet (the scheduler yields to them too)
         self._inbox_lock = threading.Lock()
 
     # ------------------------------------------------------------------ answering
@@ -156,6 +160,24 @@ class Dispatcher:
     def dispatch(self, raw) -> None:
         with self._inbox_lock:
             self.inbox -= 1
+        try:
+            self._dispatch(raw)
+        finally:
+            self._forget_finished()
+
+    def _prompt_done(self, _fut) -> None:
+        self.prompt -= 1
+
+    def _forget_finished(self) -> None:
+        """Drop the finished futures pygls keeps per message. A request's is removed when its reply
+        is sent, but a notification's (pygls runs didOpen/didChange/didClose through a generator, under
+        a fresh uuid) never is: one Future per keystroke, for as long as the server runs (issue 40.3)."""
+        futures = getattr(self.protocol, "_request_futures", None)
+        if futures:
+            for key in [k for k, f in futures.items() if f.done()]:
+                futures.pop(key, None)
+
+    def _dispatch(self, raw) -> None:
         if not isinstance(raw, dict) or raw.get("jsonrpc") != "2.0":
             if isinstance(raw, dict) and "method" in raw and _valid_id(raw.get("id")):
                 self.reply_error(raw["id"], INVALID_REQUEST, "not a JSON-RPC 2.0 message")
@@ -202,6 +224,14 @@ class Dispatcher:
         if method == "initialize":
             self.initialized = True
         self.protocol.handle_message(message)
+        if method in PROMPT:
+            fut = self.protocol._request_futures.get(msg_id)
+            if fut is not None and not fut.done():
+                # a coroutine handler starts on the next turn of the loop: a queued check must not
+                # run first (the scheduler waits while `prompt` > 0); pygls' reply callback was added
+                # before this one, so the count drops once the reply is sent
+                self.prompt += 1
+                fut.add_done_callback(self._prompt_done)
 
     def _notification(self, raw: dict, method) -> None:
         if method == "$/cancelRequest":

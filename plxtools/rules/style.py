@@ -145,14 +145,17 @@ def style_of_file(program: Program, unit, used_names: set[str], root: ModelSym |
         return out
     # C003: models defined in a loose file that nothing uses; C007: root that is not a System
     chosen = root is not None  # --model NAME: that model is the root, wherever it is in the file
-    root = root or root_model(program, unit)
+    default_root = root_model(program, unit)
+    root = root or default_root
     used = {id(sym) for name, sym in unit.locals.items() if name in used_names}
     stray = None
     if root is not None and not chosen:  # a root chosen by name is not "the last model"
         stray = _root_kind(program, unit, root, used, add)
     for name, sym in unit.locals.items():
-        # (the scene C007 says was meant to be last is that finding's, not also an unused model)
-        if isinstance(sym, ModelSym) and sym is not root and id(sym) not in used and sym is not stray:
+        # unused or not, whichever root `--model` chose: the file's findings (and the suppressions
+        # written for them) stay those of a plain check (issue 40.7); the scene C007 says was meant
+        # to be last is that finding's, not also an unused model
+        if isinstance(sym, ModelSym) and sym is not default_root and id(sym) not in used and sym is not stray:
             _unused(name, sym, unit, add)
     out.sort(key=lambda d: d.span.start.offset)
     return out

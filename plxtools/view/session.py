@@ -213,7 +213,9 @@ class ViewSession:
     def status(self) -> list[str]:
         lines = []
         if self.error:
-            lines.append(f"LOAD FAILED: {self.error}" + (" (showing the last good scene)" if self.sim else ""))
+            lines += _error_lines(self.error, self.path)
+            if self.sim:
+                lines.append("  (showing the last good scene)")
         if self.sim is None:
             return lines
         state = "paused (E plays)" if self.paused else "running"
@@ -234,18 +236,63 @@ class ViewSession:
             if info.path not in self.sim.runtime.bindings:
                 continue
             b = self.sim.runtime.bindings[info.path]
+            if info.direction == "input":
+                # what was sent, not what the body does now: a motor's input read back as the joint's
+                # velocity looked as if something were pushing it (issue 40.6)
+                sent = getattr(self.sim, "sent", {}).get(info.path)
+                if sent is not None:  # (an input nothing was sent to is left out)
+                    out.append(f"in  {_short_path(info.path)} <- {_value_text(sent)}")
+                continue
             if b.read is None:
-                out.append(f"in  {info.path}")
                 continue
             try:
                 self.sim._fresh()
                 v = b.read(self.sim.model, self.sim.data)
             except Exception:  # noqa: BLE001 - a value that cannot be read is left out
                 continue
-            text = _num(v) if isinstance(v, float) else "(" + ", ".join(_num(x) for x in v) + ")" \
-                if isinstance(v, tuple) else str(v)
-            out.append(f"{'in ' if info.direction == 'input' else 'out'} {info.path} = {text}")
+            out.append(f"out {_short_path(info.path)} = {_value_text(v)}")
         return out
+
+
+MAX_PATH = 56  # characters of a signal's path in the panel: it stays clear of MuJoCo's F1 help
+
+
+def _short_path(path: str) -> str:
+    """A long dotted path without its first parts (`….front_left_drive_motor.target_speed_input`):
+    the end names the signal, the root is the same for all."""
+    if len(path) <= MAX_PATH:
+        return path
+    parts = path.split(".")
+    kept: list[str] = []
+    while parts and len(".".join([parts[-1], *kept])) + 2 <= MAX_PATH:
+        kept.insert(0, parts.pop())
+    return "…." + ".".join(kept) if kept else "…" + path[-(MAX_PATH - 1):]
+
+
+def _value_text(v: Any) -> str:
+    if isinstance(v, (int, float)) and not isinstance(v, bool):
+        return _num(float(v))
+    if isinstance(v, (tuple, list)):
+        return "(" + ", ".join(_num(float(x)) if isinstance(x, (int, float)) else str(x) for x in v) + ")"
+    return str(v)
+
+
+def _error_lines(error: str, path: str, width: int = 64) -> list[str]:
+    """LOAD FAILED, where (file:line:col, once) and why, wrapped: MuJoCo's overlay cuts a long line at
+    the window's edge."""
+    import re
+    import textwrap
+
+    text = error
+    for prefix in (f"{path}: ", f"{os.path.abspath(path)}: "):
+        if text.startswith(prefix):
+            text = text[len(prefix):]
+    m = re.search(r"(\S+?):(\d+):(\d+): ", text)
+    where = os.path.basename(path)
+    if m is not None:
+        where = f"{os.path.basename(m.group(1))}:{m.group(2)}:{m.group(3)}"
+        text = text[:m.start()] + text[m.end():]
+    return [f"LOAD FAILED at {where}:"] + ["  " + ln for ln in textwrap.wrap(text, width)]
 
 
 def _num(x: float) -> str:

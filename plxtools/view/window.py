@@ -35,8 +35,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
     import mujoco
     import mujoco.viewer
 
-    from plxtools.check.mujoco.video import COLLISION_BEHIND_VISUALS, floor_grid, floor_height, show_visuals
-    from plxtools.check.mujoco.results import VISUAL_GROUP
+    from plxtools.check.mujoco.video import show_visuals
     from plxtools.check.mujoco.render import frame_camera
 
     session.load()
@@ -63,6 +62,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
 
     def _open(sim: Any) -> Any:
         show_visuals(sim.model)
+        frame_statistic(sim.model, sim.data)
         return mujoco.viewer.launch_passive(sim.model, sim.data, key_callback=on_key,
                                             show_left_ui=False, show_right_ui=False)  # Tab / Shift+Tab show them
 
@@ -70,9 +70,10 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
     handle = _open(sim)
     shown = session.generation
     with handle.lock():
-        _set_camera(handle.cam, frame_camera(sim.model, sim.data))
+        _set_camera(handle.cam, frame_camera(sim.model, sim.data))  # = Ctrl+A (frame_statistic)
     handle.sync()
     last = time.perf_counter()
+    drawn = not OVERLAY  # the clock starts at the first drawn frame: nothing falls out of view unseen
     next_poll = last + POLL_S
     shown_texts: tuple[str, str] = ("", "")
     swapping: threading.Thread | None = None
@@ -109,6 +110,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                 kept = mujoco.MjvCamera()
                 _set_camera(kept, handle.cam)
                 show_visuals(session.sim.model)
+                frame_statistic(session.sim.model, session.sim.data)
                 # the viewer's load() returns once its render thread has taken the model, which in
                 # passive mode needs this loop's sync() calls: so it runs on a helper thread
                 swapping = threading.Thread(target=handle._get_sim().load, daemon=True,
@@ -118,22 +120,23 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                 continue
             with handle.lock():
                 now = time.perf_counter()
-                session.advance(now - last)
+                session.advance(now - last if drawn else 0.0)  # (nothing before the first frame)
                 last = now
-                handle.opt.geomgroup[VISUAL_GROUP] = 0 if session.show_collision else 1
-                handle.opt.geomgroup[COLLISION_BEHIND_VISUALS] = 1 if session.show_collision else 0
-                if handle.user_scn is not None:  # a 1 m grid on the floor, around where the camera looks
-                    handle.user_scn.ngeom = 0
-                    floor_grid(handle.user_scn, floor_height(session.sim.model, session.sim.data), handle.cam.lookat)
+                _decorate(handle, session)
                 status = session.status()
                 signals = _fit(session.signals())
             handle.sync()
             # outside our lock (set_texts waits for the render thread to take the previous text)
             texts = ("\n".join(status), "\n".join(signals))
             if texts != shown_texts and OVERLAY:
-                handle.set_texts([(mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_TOPLEFT, texts[0], ""),
-                                  (mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_BOTTOMLEFT, texts[1], "")])
+                # on the right: MuJoCo draws its F1 help top left and its F2 info bottom left
+                handle.set_texts([(mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_TOPRIGHT, texts[0], ""),
+                                  (mujoco.mjtFontScale.mjFONTSCALE_100, mujoco.mjtGridPos.mjGRID_BOTTOMRIGHT, texts[1],
+                                   "")])
                 shown_texts, texts_at = texts, time.perf_counter()
+                # set_texts returns once the render thread took the text, to draw it: the first
+                # frame is on its way, and the clock starts now
+                last, drawn = (last, drawn) if drawn else (texts_at, True)
             spare = FRAME_S - (time.perf_counter() - now)
             if spare > 0:
                 time.sleep(spare)
@@ -142,6 +145,37 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
     finally:
         handle.close()
     return 0
+
+
+def _decorate(handle: Any, session: ViewSession) -> None:
+    """Visuals or collision geometry (G), a 1 m grid on the floor around where the camera looks, and
+    crosses on the wheels."""
+    from plxtools.check.mujoco.results import VISUAL_GROUP
+    from plxtools.check.mujoco.video import COLLISION_BEHIND_VISUALS, floor_grid, floor_height, wheel_marks
+
+    handle.opt.geomgroup[VISUAL_GROUP] = 0 if session.show_collision else 1
+    handle.opt.geomgroup[COLLISION_BEHIND_VISUALS] = 1 if session.show_collision else 0
+    if handle.user_scn is not None:
+        handle.user_scn.ngeom = 0
+        floor_grid(handle.user_scn, floor_height(session.sim.model, session.sim.data), handle.cam.lookat)
+        wheel_marks(handle.user_scn, session.sim.model, session.sim.data)
+
+
+def frame_statistic(model: Any, data: Any) -> None:
+    """Make MuJoCo's "reset view" (Ctrl+A: a free camera from `stat.center`, 1.5 `stat.extent` away,
+    at `vis.global` azimuth and elevation) the opening camera, which frames the bodies, where it
+    framed the model's whole extent (the 100 m ground: the truck a few pixels). The far clipping
+    plane stays where it was (it is a multiple of the extent)."""
+    from plxtools.check.mujoco.render import frame_camera
+
+    cam = frame_camera(model, data)
+    far = float(model.vis.map.zfar) * float(model.stat.extent)
+    extent = max(float(cam.distance) / 1.5, 1e-3)
+    model.stat.center[:] = cam.lookat
+    model.stat.extent = extent
+    model.vis.global_.azimuth = float(cam.azimuth)
+    model.vis.global_.elevation = float(cam.elevation)
+    model.vis.map.zfar = max(far, 50.0 * extent) / extent
 
 
 def _fit(lines: list[str]) -> list[str]:

@@ -155,3 +155,19 @@ def test_space_triggers_only_where_a_type_or_value_starts(example):
     assert complete(example.st, at, trigger=" ").items
     at = edit(example, "    inertia.mass: 10\n", "    inertia.mass: 10 \n", "    inertia.mass: 10 ")
     assert complete(example.st, at, trigger=" ").items == []
+
+
+def test_connectors_of_a_joint_list_the_connectors_first(scratch):
+    """Issue 40.4: in `connectors: [`, the connectors on the bodies come first (they are one level
+    down: `chassis.hub`), not the bodies, signals or vectors of the model."""
+    d = scratch("Body is Physics3D.Bodies.RigidBody:\n"
+                "    hub is Physics3D.Interactions.MateConnector\n"
+                "    offset is Math.Vec3: {0, 0, 1}\n"
+                "Joint is Physics3D.System:\n"
+                "    a is Body\n"
+                "    b is Body\n"
+                "    h is Physics3D.Interactions.Hinge:\n"
+                "        connectors: [\n")
+    got = labels(complete(d.st, d.end_of("connectors: [")))
+    assert got[:2] == ["a.hub", "b.hub"], got[:6]
+    assert "a.offset" not in got

@@ -52,7 +52,9 @@ def test_hover_reference_in_expression_shows_where_value_comes_from(example):
     at = example.at("geometry.size.x * 0.31", len("geometry.size."))
     h = hover(example.st, at)
     assert "`Real`" in h.markdown
-    assert "value from `Chassis`: `3.3`" in h.markdown
+    line = example.text[:example.text.index("x: 3.3")].count("\n") + 1
+    # the value in force comes first, before the declaration and its default
+    assert h.markdown.split("\n\n")[0] == f"**`x: 3.3`** · set at line {line} in `Chassis`"
 
 
 def test_hover_on_const_model_reference(example):

@@ -55,8 +55,12 @@ async def test_hover_shows_the_value_that_applies_and_who_sets_it(client):
             "Scene is Physics3D.System:\n    truck is Heavy:\n        inertia.mass: 1500\n")
     await open_and_wait(client, uri, text)
     h = await hover(client, uri, text, "inertia.mass: 1000", len("inertia.") + 1)
-    assert "value `1000`, set on this line in `Chassis`" in h.contents.value
+    # issue 40.4: the first line is the value in force and where it is set, the default after it
+    first = h.contents.value.split("\n\n")[0]
+    assert first == "**`mass: 1000`** · set on this line in `Chassis`", h.contents.value
     assert "default `0.0`" in h.contents.value  # the declared default is still shown, as the default
     h = await hover(client, uri, text, "inertia.mass: 1500", len("inertia.") + 1)
-    assert "value `1500`, set on this line in `Scene`" in h.contents.value, h.contents.value
+    assert h.contents.value.startswith("**`mass: 1500`** · set on this line in `Scene`"), h.contents.value
+    h = await hover(client, uri, text, "is_dynamic: true", 1)
+    assert h.contents.value.startswith("**`is_dynamic: true`** · set on this line in `Heavy`"), h.contents.value
     close(client, uri)

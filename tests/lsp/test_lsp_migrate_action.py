@@ -86,5 +86,45 @@ def test_a_refused_migration_is_a_disabled_action_with_the_reason(tmp_path, fetc
         s.notification("textDocument/publishDiagnostics", timeout=120, where=lambda p: p["uri"] == uri)
         got = [a for a in actions(s, uri, ["source"]) if a.get("kind") == "source.migrate.plx"]
         assert len(got) == 1 and "syntax errors" in got[0]["disabled"]["reason"] and "edit" not in got[0]
+        assert "syntax errors" in got[0]["title"]  # Neovim shows the title and "(disabled)" only
+    finally:
+        s.close()
+
+
+def test_missing_bundles_are_offered_to_be_fetched_then_the_migration(tmp_path, fetched):  # noqa: F811
+    """Issue 40.4: with the old version's bundles not on the machine, the action is not hidden: it
+    offers to fetch them (`plx bundles install`'s fetch, run by the command it carries); after
+    that the migration itself is offered. The fetch here unpacks the wheel `plx bundles install`
+    left in the test cache (pip is not asked: no network in tests)."""
+    import shutil
+
+    from plxtools.model.versions import _wheel_dir
+
+    fetched("0.18.10")  # the version OLD's U001/U002 diagnostics point at (the oldest of them)
+    wheels = sorted(_wheel_dir().glob("openplx_bundles-0.18.10-*.whl"))
+    assert wheels, "plx bundles install keeps the wheel it fetched"
+    cache = tmp_path / "cache"
+    (cache / "plxtools" / "wheels").mkdir(parents=True)
+    shutil.copy(wheels[0], cache / "plxtools" / "wheels" / wheels[0].name)
+    f = tmp_path / "pendulum.openplx"
+    f.write_text(OLD, encoding="utf-8")
+    (tmp_path / "plx.toml").write_text('openplx-version = "0.19.0"\n', encoding="utf-8")
+    uri = f.as_uri()
+    s = RawServer(env={"PLX_CACHE_DIR": str(cache), "PIP_INDEX_URL": "http://127.0.0.1:9/simple",
+                       "PLX_PIP_TIMEOUT": "2"})
+    try:
+        init = s.initialize({"textDocument": {"codeAction": {"disabledSupport": True}}}, {"diagnosticMode": "push"})
+        assert "plx.fetchBundles" in init["result"]["capabilities"]["executeCommandProvider"]["commands"]
+        s.open(uri, OLD)
+        s.notification("textDocument/publishDiagnostics", timeout=120, where=lambda p: p["uri"] == uri)
+        (offer,) = [a for a in actions(s, uri, ["source"]) if a.get("kind") == "source.migrate.plx"]
+        assert "disabled" not in offer and "Fetch the bundles of OpenPLX 0.18.10" in offer["title"], offer
+        assert offer["command"]["command"] == "plx.fetchBundles" and offer["command"]["arguments"] == ["0.18.10"]
+        got = s.request("workspace/executeCommand", offer["command"], timeout=120)
+        assert "error" not in got and got["result"]["fetched"], got
+        assert got["result"]["fetched"].startswith(str(cache))  # into this server's cache, as the CLI does
+        (action,) = [a for a in actions(s, uri, ["source"]) if a.get("kind") == "source.migrate.plx"]
+        assert action["title"].startswith("Migrate this file from OpenPLX 0.18.10 to 0.19.0"), action
+        assert apply(OLD, action["edit"]["changes"][uri][0]) == NEW
     finally:
         s.close()

@@ -75,7 +75,9 @@ def test_a_model_that_stops_compiling_keeps_the_last_good_scene_and_says_why(tru
     assert r is not None and not r.ok
     assert s.sim is good and s.generation == 1
     assert s.error and "truck.openplx" in s.error
-    assert s.status()[0].startswith("LOAD FAILED") and "last good scene" in s.status()[0]
+    status = s.status()
+    assert status[0].startswith("LOAD FAILED at truck.openplx:"), status
+    assert any("showing the last good scene" in ln for ln in status), status
     assert any("still showing the last good scene" in line for line in lines)
     assert any(":" in d and "truck.openplx:" in d for d in r.details)  # located findings
     _touch_edit(truck, "radius: \n", "radius: 0.3\n")
@@ -89,7 +91,11 @@ def test_a_model_that_never_loads_gives_a_located_message(tmp_path):
     r = s.load()
     assert not r.ok and s.sim is None
     assert "bad.openplx" in s.error
-    assert s.status() == [f"LOAD FAILED: {s.error}"]
+    # issue 40.6: where once (file:line:col, no second path), then why, wrapped to fit the window
+    status = s.status()
+    assert status[0] == "LOAD FAILED at bad.openplx:3:9:", status  # the first finding's place
+    assert all(len(ln) <= 70 for ln in status) and "".join(status).count("bad.openplx") == 1, status
+    assert " ".join(ln.strip() for ln in status[1:]) == s.error.replace(f"{bad}:3:9: ", "").replace(f"{bad}: ", "")
     assert lines and lines[0].startswith("cannot load:")
 
 
@@ -218,7 +224,8 @@ def test_every_example_and_tutorial_step_loads_and_runs(model):
     r = s.load()
     assert r.ok, lines
     assert s.advance(0.05) == 25 and s.status()
-    assert all(" = " in line or line.startswith("in ") for line in s.signals())
+    assert all(line.startswith("out ") and " = " in line or line.startswith("in ") and " <- " in line
+               for line in s.signals())
 
 
 def test_a_saved_edit_of_an_imported_bundle_file_shows(tmp_path):
@@ -237,3 +244,26 @@ def test_a_saved_edit_of_an_imported_bundle_file_shows(tmp_path):
     _touch_edit(tmp_path / "ub" / "Parts" / "Wheels" / "SolidWheel.openplx", "radius is Real: 0.15", "radius is Real: 0.5")
     r = s.poll()
     assert r is not None and r.ok and radii() == {0.5}
+
+
+
+def test_choosing_another_root_gives_the_findings_of_a_plain_check(tmp_path):
+    """Issue 40.7: `plx view --model Wheel` on a file whose scene is `Scene` reported C003 "Scene never
+    used" and C002 (the `ignore[C003]` on Wheel unused), and a --fix would have removed that comment.
+    A file with a model that nothing uses yet, suppressed as the tutorial does, and one that is not."""
+    f = tmp_path / "parts.openplx"
+    f.write_text("Wheel is Physics3D.Bodies.RigidBody:  # plx: ignore[C003]\n"
+                 "    geometry is Physics3D.Geometries.Cylinder:\n        radius: 0.3\n        height: 0.2\n"
+                 "    inertia.mass: 10\n\n"
+                 "Axle is Physics3D.Bodies.RigidBody:\n    inertia.mass: 2\n\n"
+                 "Scene is Physics3D.System:\n    ground is Physics3D.Bodies.RigidBody:\n"
+                 "        is_dynamic: false\n        inertia.mass: 1\n")
+    findings = {}
+    for model in (None, "Wheel", "Axle"):
+        s, _ = _session(f, model=model)
+        r = s.load()
+        assert r.ok, r.details
+        findings[model] = [d.split(": ", 1)[1] for d in r.details]
+    assert findings["Wheel"] == findings[None] == findings["Axle"], findings
+    assert any("C003" in d and "'Axle'" in d for d in findings[None])  # Axle is unused, whoever is root
+    assert not any("C002" in d or "'Scene'" in d for d in findings["Wheel"])

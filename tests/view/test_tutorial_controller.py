@@ -77,8 +77,10 @@ def tutorial_controller(tmp_path) -> tuple[Path, Path, list[tuple[str, str]]]:
 def _targets(s: ViewSession) -> tuple[float, float]:
     """The two motors' target speeds as the view's signal panel shows them (after one step applies them)."""
     s.sim.step(0.01)
-    values = dict(line[3:].strip().split(" = ") for line in s.signals() if line.startswith("in ") and " = " in line)
-    return float(values[LEFT]), float(values[RIGHT])
+    # issue 40.6: an input shows what was sent to it (`in  ….path <- 3`), the root's name elided
+    sent = dict(line[3:].strip().split(" <- ") for line in s.signals() if line.startswith("in ") and " <- " in line)
+    values = {full: float(v) for shown, v in sent.items() for full in (LEFT, RIGHT) if full.endswith(shown.lstrip("…"))}
+    return values[LEFT], values[RIGHT]
 
 
 def test_only_the_import_lines_change(tutorial_controller):

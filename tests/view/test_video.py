@@ -73,3 +73,16 @@ def test_a_model_that_cannot_simulate_writes_no_video(tmp_path):
     assert r.returncode != 0 and not out.exists()
     assert "cannot write" in r.stderr or "nothing to" in r.stderr
     assert [p.name for p in tmp_path.iterdir()] == []  # no half-written temporary file either
+
+
+def test_a_fixed_camera_keeps_the_ground_still_and_the_follow_camera_does_not(tmp_path):
+    """Issue 40.6: with the following camera a driving truck looked parked (only the grid moved);
+    `--video-camera fixed` keeps the camera where it framed the scene at the start."""
+    fixed = _gif_frames(_video(tmp_path, "fixed.gif", "--video-camera", "fixed"))
+    follow = _gif_frames(_video(tmp_path, "follow.gif"))
+    corner = lambda f: f[:120, :160].astype(int)  # noqa: E731 - ground and sky far from the truck
+    still = float(np.abs(corner(fixed[-1]) - corner(fixed[0])).mean())
+    moving = float(np.abs(corner(follow[-1]) - corner(follow[0])).mean())
+    assert still < 0.5 < moving, (still, moving)
+    # the truck itself moves in the fixed view: the whole picture changes
+    assert float(np.abs(fixed[-1].astype(int) - fixed[0].astype(int)).mean()) > 0.5

@@ -104,3 +104,30 @@ def test_holding_up_drives_the_truck_and_releasing_stops_it(truck, tmp_path):
     start, released, later, last = states
     assert released["t"] > start["t"] and released["x"] < start["x"] - 0.2, states  # forward is -x
     assert abs(later["vx"]) < 0.05 and abs(last["x"] - later["x"]) < 0.02, states  # stopped
+
+
+def test_reset_view_frames_the_model_and_panels_sit_on_the_right(truck, tmp_path):
+    """Issue 40.6: Ctrl+A (MuJoCo's reset view) framed the 100 m ground, the truck a few pixels; now
+    it is the opening camera. Our status and signal panels are drawn on the right, where MuJoCo's F1
+    help and F2 info (on the left) do not cover them. Paused: the pictures compare like for like."""
+    with ViewInXvfb([truck.name, "--paused"], truck.parent) as v:
+        v.wait_for("loaded Scene")
+        time.sleep(2.5)
+        opening = v.screenshot(tmp_path / "opening.png")
+        for _ in range(12):  # zoom with the wheel
+            v.xdotool("click", "5")
+            time.sleep(0.05)
+        time.sleep(1.0)
+        zoomed = v.screenshot(tmp_path / "zoomed.png")
+        v.xdotool("key", "ctrl+a")
+        time.sleep(1.5)
+        reset = v.screenshot(tmp_path / "reset.png")
+        v.xdotool("key", "F1")
+        time.sleep(1.5)
+        helped = v.screenshot(tmp_path / "help.png")
+    diff = lambda a, b: np.abs(a.astype(int) - b.astype(int)).mean()  # noqa: E731
+    assert diff(zoomed, opening) > 2 * diff(reset, opening), (diff(zoomed, opening), diff(reset, opening))
+    # the panels' text is on the right half; the help's box on the left half does not reach it
+    h, w, _ = opening.shape
+    right = lambda img: img[: h // 3, w // 2:]  # noqa: E731
+    assert np.abs(right(helped).astype(int) - right(reset).astype(int)).mean() < 1.0

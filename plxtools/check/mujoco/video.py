@@ -1,7 +1,9 @@
 """`plx check --simulate --video FILE.gif|FILE.mp4`: an offscreen recording of the simulation.
 
 The camera follows the dynamic bodies (its look-at point moves with their centre, its distance is
-the one that framed them at the start).  Frames are taken at ``fps`` per simulated second, the
+the one that framed them at the start), or with `--video-camera fixed` stays where it framed them at
+the start, so that motion shows against the ground. Cylinders of moving bodies carry a cross on
+their faces, so that a turning wheel looks turning.  Frames are taken at ``fps`` per simulated second, the
 first at t = 0, so a run of D seconds gives round(D * fps) frames.
 
 Encoders (the ``video`` extra, see docs/view.md): Pillow writes GIF (MIT-CMU licence, about 7 MB);
@@ -72,9 +74,13 @@ def encoder_module(suffix: str) -> Any:
         raise VideoError(f"writing {suffix} needs {lib}: pip install 'plxtools[video]'") from None
 
 
+CAMERAS = ("follow", "fixed")  # --video-camera
+
+
 def record(compiled: Any, path: str, duration: float, fps: float = 25.0, width: int = 640,
-           height: int = 480) -> dict[str, Any]:
-    """Simulate ``compiled`` from its initial state for ``duration`` s and write the video."""
+           height: int = 480, camera: str = "follow") -> dict[str, Any]:
+    """Simulate ``compiled`` from its initial state for ``duration`` s and write the video; the camera
+    follows the bodies, or stays where it framed them at the start (``camera="fixed"``)."""
     import mujoco
 
     check_target(path)
@@ -109,9 +115,11 @@ def record(compiled: Any, path: str, duration: float, fps: float = 25.0, width: 
             target = int(round(k / fps / dt))
             while data.time < target * dt - dt / 2:
                 mujoco.mj_step(model, data)
-            cam.lookat[:] = _centre(model, data) + offset
+            if camera != "fixed":
+                cam.lookat[:] = _centre(model, data) + offset
             mujoco.mjv_updateScene(model, data, opt, None, cam, mujoco.mjtCatBit.mjCAT_ALL, scn)
             floor_grid(scn, floor, cam.lookat)
+            wheel_marks(scn, model, data)
             mujoco.mjr_render(rect, scn, con)
             rgb = np.empty((height, width, 3), dtype=np.uint8)
             mujoco.mjr_readPixels(rgb, None, rect, con)
@@ -158,6 +166,32 @@ def floor_grid(scn: Any, floor: float | None, centre: Any, extent: int = 12, rgb
                                 np.array(rgba, dtype=np.float32))
             mujoco.mjv_connector(g, mujoco.mjtGeom.mjGEOM_LINE, 2.0, np.array([a[0], a[1], z]), np.array([b[0], b[1], z]))
             scn.ngeom += 1
+
+
+def wheel_marks(scn: Any, model: Any, data: Any, rgba=(0.95, 0.95, 0.9, 1.0)) -> None:
+    """A cross on both faces of every cylinder of a moving body: a plain cylinder turning about its
+    axis looks still, and a driving truck looked parked (issue 40.6)."""
+    import mujoco
+
+    cyl = mujoco.mjtGeom.mjGEOM_CYLINDER
+    colour = np.array(rgba, dtype=np.float32)
+    for g in range(model.ngeom):
+        if model.geom_type[g] != cyl or model.body_weldid[model.geom_bodyid[g]] == 0 \
+                or model.geom_rgba[g][3] == 0 or model.geom_group[g] > 5:
+            continue
+        radius, half = float(model.geom_size[g][0]), float(model.geom_size[g][1])
+        rot = data.geom_xmat[g].reshape(3, 3)
+        axis = rot[:, 2]
+        for side in (1.0, -1.0):
+            centre = data.geom_xpos[g] + axis * side * (half + 0.002)
+            for turn in (0, 1):  # two bars across the face, at right angles
+                if scn.ngeom >= scn.maxgeom:
+                    return
+                size = np.array([radius * 0.85, radius * 0.09, 0.002]) if turn == 0 else \
+                    np.array([radius * 0.09, radius * 0.85, 0.002])
+                mujoco.mjv_initGeom(scn.geoms[scn.ngeom], mujoco.mjtGeom.mjGEOM_BOX, size, centre,
+                                    rot.reshape(-1), colour)
+                scn.ngeom += 1
 
 
 def _centre(model: Any, data: Any) -> np.ndarray:

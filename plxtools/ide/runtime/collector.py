@@ -25,9 +25,16 @@ _checks_since_sweep = 0
 
 class no_gc:
     """No cyclic garbage collection while a file is checked (or completed while typing) and the
-    result is sent, and none forced after it either (see the module's docstring)."""
+    result is sent, and none forced after it either (see the module's docstring).
+
+    Before it, one collection over what is not frozen: only what requests and edits allocated since
+    the last check (everything older is frozen), so it is short, but without it the cyclic garbage
+    they left (a request's exception and its traceback, the formatter's parse) was frozen by the
+    check's `gc.freeze()` and never collected while the user kept typing (issue 40.3)."""
 
     def __enter__(self):
+        if gc.isenabled():
+            gc.collect()
         gc.disable()
 
     def __exit__(self, *exc):

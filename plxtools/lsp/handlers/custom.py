@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from plxtools.ide.runtime.memory import memory_report
+from plxtools.ide.runtime.memory import allocation_growth, memory_report
 
 if TYPE_CHECKING:
     from plxtools.lsp.server import PlxServer
@@ -20,8 +20,13 @@ def register(server, server_feature) -> None:
     def memory(ls: PlxServer, params) -> dict:
         """What the server holds (for tests and bench/lsp_large_doc.py): the syntax trees alive
         (path and length of their text, found by the collector, frozen objects included), resident
-        memory, and Python's own allocations when tracemalloc traces."""
-        return memory_report()
+        memory, and Python's own allocations when tracemalloc traces; with `{"growth": "start"}` or
+        `{"growth": "diff"}` also where allocations grew since a baseline (bench/lsp_soak.py)."""
+        out = memory_report()
+        action = params.get("growth") if isinstance(params, dict) else getattr(params, "growth", None)
+        if action in ("start", "diff", "sweep"):
+            out["growth"] = allocation_growth(action)
+        return out
 
     @server.feature("plx/documentText")
     def document_text(ls: PlxServer, params) -> dict | None:

@@ -3,6 +3,7 @@ actions (quick fixes, "fix all", suppressions and "migrate this file")."""
 
 from __future__ import annotations
 
+import asyncio
 import os
 import time
 from typing import TYPE_CHECKING
@@ -24,9 +25,13 @@ if TYPE_CHECKING:
 def register(server, server_feature) -> None:
     @server_feature(types.TEXT_DOCUMENT_COMPLETION,
                     types.CompletionOptions(trigger_characters=[".", " "], resolve_provider=True))
-    def completion(ls: PlxServer, params: types.CompletionParams):
-        if ls.warming is not None:  # the bundles are loading: nothing to offer yet, ask again
-            return types.CompletionList(is_incomplete=True, items=[])
+    async def completion(ls: PlxServer, params: types.CompletionParams):
+        if ls.warming is not None:
+            # the bundles are loading (a fraction of a second from plx's cache): wait for them, then
+            # answer from the buffer's parse and symbols without its check, which waits for this
+            # answer. An empty list is no answer: Neovim does not ask again after one
+            # (the first check waits until this answer is sent: transport.PROMPT)
+            await asyncio.shield(ls.warming)
         t0, c0 = time.perf_counter(), time.process_time()
         ctx = params.context
         trigger = ctx.trigger_character if ctx is not None and ctx.trigger_kind == \
@@ -166,6 +171,43 @@ def register(server, server_feature) -> None:
             out.append(migrate)
         return out
 
+    @server.command(migrate_action.FETCH_COMMAND)
+    async def fetch_bundles(ls, *args):  # (no annotations: pygls reads them to convert the arguments)
+        """Fetch an OpenPLX version's bundles (as `plx bundles install`), in a thread; then the
+        migrate action offers the migration itself."""
+        args = _arguments(args)
+        version = args[0] if args and isinstance(args[0], str) else None
+        if version is None:
+            raise RequestFailed(f"{migrate_action.FETCH_COMMAND} needs a version, such as 0.17.26")
+        from plxtools.model.versions import BundleSetError
+
+        try:
+            where = await asyncio.get_running_loop().run_in_executor(None, migrate_action.fetch_bundles, version)
+        except BundleSetError as exc:
+            ls.window_show_message(types.ShowMessageParams(
+                type=types.MessageType.Error, message=f"plx: cannot fetch the bundles of OpenPLX {version}: {exc}"))
+            return {"fetched": None, "error": str(exc)}
+        ls.migrations.forget()
+        ls.window_show_message(types.ShowMessageParams(
+            type=types.MessageType.Info,
+            message=f"plx: fetched the bundles of OpenPLX {version}; ask for code actions again to migrate"))
+        return {"fetched": where}
+
+    @server.command(migrate_action.EXPLAIN_COMMAND)
+    def explain_refusal(ls, *args):
+        """Why a migration is not possible (for clients that cannot show a disabled action's reason)."""
+        args = _arguments(args)
+        reason = args[0] if args else "refused"
+        ls.window_show_message(types.ShowMessageParams(type=types.MessageType.Warning,
+                                                       message=f"plx: cannot migrate this file: {reason}"))
+
+
+def _arguments(args: tuple) -> list:
+    """A command's arguments, whether pygls passed them spread out or as one list."""
+    if len(args) == 1 and isinstance(args[0], (list, tuple)):
+        return list(args[0])
+    return list(args)
+
 
 def _code_action(ls: PlxServer, st, pos, a, sent: list[types.Diagnostic]) -> types.CodeAction:
     """An ide.CodeAction in LSP terms; its diagnostics are the client's own objects where it sent them."""
@@ -191,11 +233,20 @@ def _migrate_action(ls: PlxServer, st, only, sent: list[types.Diagnostic]) -> ty
     m = ls.migrations.offer(ls.host, st, None if as_quickfix else only)
     if m is None:
         return None
+    kind = types.CodeActionKind.QuickFix if as_quickfix else migrate_action.KIND
+    if m.fetch is not None:  # the old version's bundles are missing: offer to fetch them
+        return types.CodeAction(title=m.title, kind=kind, diagnostics=version_diags or None,
+                                command=types.Command(title=m.title, command=migrate_action.FETCH_COMMAND,
+                                                      arguments=[m.fetch]))
     if m.new_text is None:
-        if not ls.cap("text_document.code_action.disabled_support"):
-            return None
-        return types.CodeAction(title=m.title, kind=migrate_action.KIND,
-                                disabled=types.CodeActionDisabled(reason=m.reason or "refused"))
+        # always shown, with its reason in the title too: Neovim lists a disabled action as
+        # "(disabled)" only, and a client without disabledSupport would hide it
+        title = f"{m.title}: not possible, {m.reason or 'refused'}"
+        if ls.cap("text_document.code_action.disabled_support"):
+            return types.CodeAction(title=title, kind=kind,
+                                    disabled=types.CodeActionDisabled(reason=m.reason or "refused"))
+        return types.CodeAction(title=title, kind=kind, command=types.Command(
+            title=title, command=migrate_action.EXPLAIN_COMMAND, arguments=[m.reason or "refused"]))
     pos = ls.positions(st.path, st)
     edit = types.WorkspaceEdit(changes={ls.uri_of(st.path): [
         types.TextEdit(range=pos.offsets_range(0, len(st.text)), new_text=m.new_text)]})

@@ -54,7 +54,7 @@ def register(server, server_feature) -> None:
         start, end = pos.offset(params.range.start), pos.offset(params.range.end)
         kinds = {"type": types.InlayHintKind.Type, "parameter": types.InlayHintKind.Parameter}
         return [types.InlayHint(position=pos.position(h.line, h.column), label=h.label, kind=kinds[h.kind],
-                                padding_left=h.padding_left or None, padding_right=h.padding_right or None)
+                                tooltip=h.tooltip, padding_left=h.padding_left or None, padding_right=h.padding_right or None)
                 for h in ide.inlay_hints(st, start, end)]
 
     return server
