@@ -92,7 +92,10 @@ def _carried(sim: Any, path: str, under: list[str], kin: dict) -> tuple[set[int]
             continue
         root = int(m.body_rootid[bid])
         rpath = names.path("body", m.body(root).name)
-        if rpath not in p.compiled.free_roots or (path and rpath != path and not rpath.startswith(path + ".")):
+        inside = not path or rpath == path or rpath.startswith(path + ".")
+        if inside and int(m.body_jntnum[root]) == 0:  # hangs from a static body moved with it
+            continue
+        if rpath not in p.compiled.free_roots or not inside:
             raise NotSimulatedError(f"cannot move {path or 'the root model'}: {b} hangs from "
                                     f"{rpath or 'the world'}, outside it (a mate to the world or to another model)")
         roots.add(root)

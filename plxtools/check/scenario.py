@@ -16,8 +16,15 @@ Format (docs/testing.md)::
     at = 2.0
     of = "box_truck.chassis.x"   # an output path (+ .x/.y/.z, .roll/.pitch/.yaw) or <body>.x|y|z|roll|...
                                  # or a count of the assembled scene: scene.bodies, scene.mates.hinge, ...
+                                 # or <geometry>.material.density, contact_model(M1, M2).friction,
+                                 # <connector>.position.x (check/scenario_objects.py)
     below = -1.0                 # and/or above, abs_below, between = [lo, hi], equals + tolerance
     unit = "deg"                 # optional: thresholds of angles in degrees (deg/s for angular speeds)
+
+    [[place]]                    # at `at`, move a root/system/free body as sim.place does
+    at = 1.0
+    path = "box_truck"
+    position = [0, 0, 2]         # and/or rotation = [w, x, y, z]
 
 :func:`parse` checks the file on its own (TOML, keys, kinds of values); :func:`bind` checks it
 against the loaded model (paths, value kinds, times).  Every problem is a :class:`ScenarioError`
@@ -41,8 +48,9 @@ from plxtools.check.signals import COMPONENTS, RPY_COMPONENTS, RPY_QUANTITIES
 from plxtools.model import suggest
 
 SUFFIX = ".scenario.toml"
-TOP_KEYS = ("model", "root", "duration", "name", "description", "input", "expect")
+TOP_KEYS = ("model", "root", "duration", "name", "description", "input", "expect", "place")
 INPUT_KEYS = ("at", "signal", "value")
+PLACE_KEYS = ("at", "path", "position", "rotation")
 EXPECT_KEYS = ("at", "during", "of", "below", "above", "abs_below", "between", "equals", "tolerance", "unit")
 COMPARATORS = ("below", "above", "abs_below", "between", "equals")
 _STRICT = frozenset({"below", "above", "abs_below"})  # the comparisons that fail at equality
@@ -81,6 +89,18 @@ class InputStep:
 
 
 @dataclass
+class PlaceStep:
+    """``[[place]]``: at ``at``, move the object at ``path`` ("" the root model) as ``sim.place`` does."""
+
+    at: float
+    path: str
+    position: tuple[float, float, float] | None
+    rotation: tuple[float, float, float, float] | None  # (w, x, y, z)
+    loc: Loc
+    keys: dict[str, Loc]
+
+
+@dataclass
 class Expect:
     at: float | None
     during: tuple[float, float] | None
@@ -96,6 +116,8 @@ class Expect:
     norm: bool = False  # |v| of a vector output ("speed")
     angular: bool = False
     count: int | None = None  # `of = "scene.bodies"`: a count of the assembled scene (check/scenecounts.py)
+    fixed: float | None = None  # a material's or contact model's value (check/scenario_objects.py)
+    connector: tuple | None = None  # (placement, vector, component) of a connector's world frame
 
     def _condition(self, op: str, v, of: str | None) -> str:
         """One comparison as written: about ``of`` (``x between 1 and 2``) or alone (``between 1 and 2``)."""
@@ -169,14 +191,15 @@ class Scenario:
     duration_loc: Loc | None
     inputs: list[InputStep] = field(default_factory=list)
     expects: list[Expect] = field(default_factory=list)
+    places: list[PlaceStep] = field(default_factory=list)
 
     @property
     def end(self) -> float:
         """The run's length: ``duration`` or the latest time named."""
         if self.duration is not None:
             return self.duration
-        times = [i.at for i in self.inputs] + [e.at if e.at is not None else e.during[1]  # type: ignore[index]
-                                               for e in self.expects]
+        times = [i.at for i in [*self.inputs, *self.places]]
+        times += [e.at if e.at is not None else e.during[1] for e in self.expects]  # type: ignore[index]
         return max(times, default=0.0)
 
 
@@ -262,7 +285,7 @@ def parse(path: Path) -> tuple[Scenario | None, list[ScenarioError]]:
     duration, dur_loc = _duration(doc.get("duration"), lines.top.get("duration"), first, errors)
     sc = Scenario(file, _name(doc.get("name"), path), model_file, model_loc, root, root_loc,
                   float(duration) if duration else None, dur_loc)
-    for kind, keys_allowed in (("input", INPUT_KEYS), ("expect", EXPECT_KEYS)):
+    for kind, keys_allowed in (("input", INPUT_KEYS), ("expect", EXPECT_KEYS), ("place", PLACE_KEYS)):
         _parse_tables(doc, kind, keys_allowed, lines, sc, errors)
     if not errors and not sc.expects:
         errors.append(ScenarioError("the scenario expects nothing: add an [[expect]] table", first))
@@ -354,7 +377,8 @@ def _parse_tables(doc: dict, kind: str, keys_allowed: tuple[str, ...], lines: _L
         errors.append(ScenarioError(f"'{kind}' must be tables written [[{kind}]]",
                                     lines.top.get(kind, Loc(lines.file, 1))))
         return
-    parse_row, into = (_parse_input, sc.inputs) if kind == "input" else (_parse_expect, sc.expects)
+    parse_row, into = {"input": (_parse_input, sc.inputs), "expect": (_parse_expect, sc.expects),
+                       "place": (_parse_place, sc.places)}[kind]
     for i, row in enumerate(rows):
         loc, keys = lines.table(kind, i)
         _unknown_keys(row, keys_allowed, keys, loc, errors, where=f" in [[{kind}]]", help=f"[[{kind}]] keys")
@@ -385,6 +409,39 @@ def _parse_input(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[Scenari
     if len(errors) > n:
         return None
     return InputStep(at, sig, row["value"], loc, keys)  # type: ignore[arg-type]
+
+
+def _parse_place(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[ScenarioError]) -> PlaceStep | None:
+    n = len(errors)
+    at = _time(row.get("at", 0.0), "at", keys.get("at", loc), errors)
+    path = row.get("path")
+    if not isinstance(path, str):
+        errors.append(ScenarioError("[[place]] needs path = \"a.system.or.body\" (\"\" for the root model)"
+                                    if path is None else f"path must be a dotted path, not {_kind(path)}",
+                                    keys.get("path", loc)))
+    pose = [_numbers(row, key, size, keys.get(key, loc), errors) for key, size in (("position", 3), ("rotation", 4))]
+    if "position" not in row and "rotation" not in row:
+        errors.append(ScenarioError("[[place]] moves nothing: add position = [x, y, z] and/or "
+                                    "rotation = [w, x, y, z]", loc))
+    if pose[1] is not None and math.sqrt(sum(x * x for x in pose[1])) < 1e-12:
+        errors.append(ScenarioError("rotation = [0, 0, 0, 0] is no rotation: give a quaternion [w, x, y, z]",
+                                    keys.get("rotation", loc)))
+    if len(errors) > n:
+        return None
+    return PlaceStep(at, path, pose[0], pose[1], loc, keys)  # type: ignore[arg-type]
+
+
+def _numbers(row: dict, key: str, size: int, kl: Loc, errors: list[ScenarioError]) -> Any:
+    """``position = [x, y, z]`` / ``rotation = [w, x, y, z]``: ``size`` finite numbers, or None if absent."""
+    v = row.get(key)
+    if v is None:
+        return None
+    if not (isinstance(v, list) and len(v) == size and all(_is_num(x) and math.isfinite(x) for x in v)):
+        form = "[x, y, z]" if size == 3 else "[w, x, y, z] (a quaternion)"
+        got = v if isinstance(v, list) else _kind(v)
+        errors.append(ScenarioError(f"{key} must be {size} numbers {form}, not {got}", kl))
+        return None
+    return tuple(float(x) for x in v)
 
 
 def _parse_expect(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[ScenarioError]) -> Expect | None:
@@ -478,10 +535,12 @@ def _tolerance(row: dict, loc: Loc, keys: dict[str, Loc], errors: list[ScenarioE
 
 
 def bind(sc: Scenario, signals: list[SignalInfo], bodies: list[str], bound: set[str],
-         unbound: dict[str, str], model_file: str, counts: dict[str, int] | None = None) -> list[ScenarioError]:
+         unbound: dict[str, str], model_file: str, counts: dict[str, int] | None = None,
+         objects: Any = None) -> list[ScenarioError]:
     """Check the scenario's paths, values and times against the loaded model; fills in what each
     input and expectation refers to.  ``bound`` are the signal paths that act on the MuJoCo model,
-    ``unbound`` why the others do not; ``counts`` what the assembled scene holds (`scene.bodies`)."""
+    ``unbound`` why the others do not; ``counts`` what the assembled scene holds (`scene.bodies`);
+    ``objects`` its materials, contact models and connectors (check/scenario_objects.py)."""
     errors: list[ScenarioError] = []
     model = _Model(signals, bodies, bound, unbound, model_file, counts)
     if sc.duration is not None:
@@ -490,8 +549,15 @@ def bind(sc: Scenario, signals: list[SignalInfo], bodies: list[str], bound: set[
         err = _bind_input(step, model)
         if err is not None:
             errors.append(err)
+    for place in sc.places:
+        why = objects.unknown_place(place.path) if objects is not None else None
+        if why:
+            errors.append(ScenarioError(why, place.keys.get("path", place.loc)))
     for e in sc.expects:
-        err = _bind_count(e, model) if model.is_count(e.of) else _bind_expect(e, model)
+        if objects is not None and e.of not in model.by_path and objects.claims(e.of):
+            err = _bind_object(e, objects)
+        else:
+            err = _bind_count(e, model) if model.is_count(e.of) else _bind_expect(e, model)
         if err is not None:
             errors.append(err)
     return errors
@@ -531,7 +597,7 @@ COUNTED = ("bodies", "mates", "controllers", "shafts", "shaft_couplings", "shaft
 
 def _after_the_end(sc: Scenario, duration: float) -> list[ScenarioError]:
     out = []
-    for x in [*sc.inputs, *sc.expects]:
+    for x in [*sc.inputs, *sc.places, *sc.expects]:
         t = x.at if x.at is not None else x.during[1]  # type: ignore[union-attr,index]
         if t > duration + 1e-12:
             key = "at" if x.at is not None else "during"
@@ -582,6 +648,15 @@ def _bind_count(e: Expect, model: _Model) -> ScenarioError | None:
     return ScenarioError(f"the scene has no count '{what}' (counts: bodies, mates, controllers, "
                          "shafts, shaft_couplings, shaft_motors, and per kind such as mates.hinge)"
                          + (f"; did you mean '{PREFIX}{hint}'?" if hint else ""), e.keys.get("of", e.loc))
+
+
+def _bind_object(e: Expect, objects: Any) -> ScenarioError | None:
+    """An expectation on a material, a contact model or a connector: none of them is an angle."""
+
+    if e.unit is not None:
+        return ScenarioError(f"{e.of} is not an angle; it takes no unit", e.keys.get("unit", e.loc))
+    why = objects.bind(e)
+    return ScenarioError(why, e.keys.get("of", e.loc)) if why else None
 
 
 def _known_kinds(group: str) -> set[str]:

@@ -23,6 +23,7 @@ from plxtools.rules import registry
 from plxtools.check.api import ModelError, prepare
 from plxtools.check.scenario import discover
 from plxtools.check.scenecounts import scene_counts
+from plxtools.check.scenario_objects import Placer, SceneObjects, read_connector
 from plxtools.check.signals import SignalRuntime
 
 PASSED, FAILED, ERROR = "passed", "failed", "error"
@@ -136,7 +137,7 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
     res.model = prep.model
     runtime = SignalRuntime.bind(mujoco, prep.compiled, prep.signals)
     errors = bind(sc, prep.signals, prep.bodies, set(runtime.bindings), runtime.unbound, model_file,
-                  scene_counts(prep.compiled.scene))
+                  scene_counts(prep.compiled.scene), SceneObjects(prep, runtime))
     errors += [ScenarioError(why, step.loc) for step in sc.inputs
                if step.signal in runtime.bindings and step.coerced is not None
                and (why := runtime.refusal(step.signal, step.coerced))]
@@ -144,9 +145,13 @@ def _run(sc: Scenario, res: ScenarioResult, bundle_path, openplx_version) -> Non
         _error(res, errors)
         return
     res.outcomes = [Outcome(e) for e in sc.expects]
-    driver = _Driver(sc, runtime, res.outcomes, float(prep.compiled.model.opt.timestep))
+    driver = _Driver(sc, runtime, res.outcomes, float(prep.compiled.model.opt.timestep), Placer(prep, runtime))
     sim = simulate_compiled(prep.compiled, sc.end, controller=driver)
     res.simulated_time, res.steps = sim.simulated_time, sim.steps
+    if driver.refused:  # a [[place]] that cannot be carried out: the scenario's error
+        res.outcomes = []
+        _error(res, driver.refused)
+        return
     for o in res.outcomes:
         if not o.passed:
             res.diagnostics.append(diag(registry.EXPECTATION_FAILED, o.message(), o.expect.loc))
@@ -176,11 +181,17 @@ def _prepare(sc: Scenario, res: ScenarioResult, model_file: str, bundle_path, op
 
 class _Driver:
     """The controller of a scenario's run (called before every step and once after the last): it
-    sends each ``[[input]]`` when its time comes and measures each ``[[expect]]`` at its time (or at
-    every step of its ``during``), within half a step."""
+    sends each ``[[input]]`` and carries out each ``[[place]]`` when its time comes, and measures each
+    ``[[expect]]`` at its time (or at every step of its ``during``), within half a step."""
 
-    def __init__(self, sc: Scenario, runtime: Any, outcomes: list[Outcome], h: float) -> None:
+    def __init__(self, sc: Scenario, runtime: Any, outcomes: list[Outcome], h: float, placer: Any = None) -> None:
+        import mujoco
+
+        self.mujoco = mujoco
         self.runtime = runtime
+        self.placer = placer
+        self.places = sorted(sc.places, key=lambda s: s.at)
+        self.refused: list[ScenarioError] = []
         self.half = h / 2
         self.inputs = sorted(sc.inputs, key=lambda s: s.at)
         self.next_input = 0
@@ -188,6 +199,8 @@ class _Driver:
         self.during = [o for o in outcomes if o.expect.during is not None]
 
     def __call__(self, t: float, m: Any, d: Any) -> None:
+        if self.places:
+            self._place(t, m, d)
         self._send(t, m, d)
         if self.pending_at:
             self._measure_due(t, m, d)
@@ -203,6 +216,13 @@ class _Driver:
             self.runtime.write(step.signal, step.coerced, m, d)
             self.next_input += 1
 
+    def _place(self, t: float, m: Any, d: Any) -> None:
+        while self.places and self.places[0].at <= t + self.half:
+            step = self.places.pop(0)
+            why = None if self.refused else self.placer.place(self.mujoco, step, t, m, d)
+            if why:
+                self.refused.append(ScenarioError(why, step.keys.get("path", step.loc)))
+
     def _measure_due(self, t: float, m: Any, d: Any) -> None:
         due = [o for o in self.pending_at if o.expect.at <= t + self.half]  # type: ignore[operator]
         for o in due:
@@ -214,6 +234,10 @@ class _Driver:
     def measure(self, e: Expect, m: Any, d: Any) -> float:
         if e.count is not None:
             return float(e.count)
+        if e.fixed is not None:
+            return e.fixed
+        if e.connector is not None:
+            return read_connector(d, e.connector)
         v = self.runtime.read(e.output, m, d)
         if e.norm:
             return math.sqrt(sum(x * x for x in v))

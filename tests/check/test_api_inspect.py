@@ -84,3 +84,13 @@ def test_moving_the_whole_scene_moves_its_static_ground_too():
     assert sim.body("ground").position == pytest.approx((0.0, 0.0, 3.0), abs=1e-12)
     sim.step(0.5)
     assert sim.body("box_truck.chassis").position[2] > 3.9  # it rests on the moved ground
+
+
+def test_moving_the_whole_scene_carries_bodies_hung_from_its_static_ones():
+    sim = load(ROOT / "tests" / "physics" / "models" / "double_pendulum.openplx")
+    before = {b: sim.body(b).position for b in ("support", "upper", "lower")}
+    sim.place("", position=(0.0, 0.0, 1.0))  # the support is fixed in the world; the rods hang from it
+    for b, p in before.items():
+        assert sim.body(b).position == pytest.approx((p[0], p[1], p[2] + 1.0), abs=1e-9)
+    with pytest.raises(Exception, match="upper hangs from support, outside it"):
+        sim.place("upper", position=(0.0, 0.0, 0.0))  # alone, it cannot leave its hinge

@@ -423,8 +423,10 @@ doc("EXPECTATION_FAILED",
     example='[[expect]]\nat = 2.0\nof = "box_truck.chassis.x"\nbelow = -1.0')
 doc("INVALID_SCENARIO",
     "A scenario file cannot be run as written: invalid TOML, an unknown key, an unknown signal or body "
-    "path (with a did-you-mean), a value of the wrong kind for an input, a time before 0 or after the "
-    "run's `duration`, or a `root` model that is not in the model file.",
+    "path (with a did-you-mean), a geometry, contact model or connector the scene does not hold, a "
+    "value of the wrong kind for an input, a time before 0 or after the run's `duration`, a `root` "
+    "model that is not in the model file, or a `[[place]]` that cannot be carried out (an unknown "
+    "path, or an object with a body hanging by a mate from something outside it).",
     "`plx test` reports it at the line of the scenario and exits 2, like a pytest collection error: "
     "the scenario says nothing about the model until it is fixed.")
 doc("SCENARIO_MODEL_NOT_SIMULATED",
