@@ -25,7 +25,7 @@ from plxtools.syntax import ast, parse_text
 from plxtools.fmt import format_text
 from plxtools.model.symbols import MemberSym
 from plxtools.rules.analysis import analyse_file, final_diagnostics
-from plxtools.syntax.lexer import lex
+from plxtools.syntax.dotted import dotted_runs
 
 
 @dataclass(frozen=True)
@@ -81,23 +81,13 @@ def type_edits(tree: ast.File, types: dict[str, str]) -> list[Edit]:
     out: list[Edit] = []
     if not types:
         return out
-    for line in lex(tree.text).lines:
-        toks = line.tokens
-        i = 0
-        while i < len(toks):
-            if toks[i].type != "NAME" or (i > 0 and toks[i - 1].type == "DOT"):
-                i += 1
-                continue
-            j = i  # the dotted run toks[i..j]
-            while j + 2 < len(toks) and toks[j + 1].type == "DOT" and toks[j + 2].type == "NAME":
-                j += 2
-            parts = [str(toks[k]) for k in range(i, j + 1, 2)]
-            for n in range(len(parts), 1, -1):
-                new = types.get(".".join(parts[:n]))
-                if new is not None:
-                    out.append(Edit(toks[i].start_pos, toks[i + 2 * (n - 1)].end_pos, new))
-                    break
-            i = j + 1
+    for run in dotted_runs(tree.text):
+        parts = [str(t) for t in run]
+        for n in range(len(parts), 1, -1):
+            new = types.get(".".join(parts[:n]))
+            if new is not None:
+                out.append(Edit(run[0].start_pos, run[n - 1].end_pos, new))
+                break
     return out
 
 

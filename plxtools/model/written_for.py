@@ -47,23 +47,9 @@ class Inference:
 
 def _dotted_names(text: str) -> set[str]:
     """Every dotted name of two parts or more in the code (not in comments or strings)."""
-    from plxtools.syntax.lexer import lex
+    from plxtools.syntax.dotted import dotted_runs
 
-    out: set[str] = set()
-    for line in lex(text).lines:
-        toks = line.tokens
-        i = 0
-        while i < len(toks):
-            if toks[i].type != "NAME" or (i > 0 and toks[i - 1].type == "DOT"):
-                i += 1
-                continue
-            j = i
-            while j + 2 < len(toks) and toks[j + 1].type == "DOT" and toks[j + 2].type == "NAME":
-                j += 2
-            if j > i:
-                out.add(".".join(str(toks[k]) for k in range(i, j + 1, 2)))
-            i = j + 1
-    return out
+    return {".".join(str(t) for t in run) for run in dotted_runs(text) if len(run) > 1}
 
 
 def _official_names(text: str, occurrences) -> dict[str, list[str]]:

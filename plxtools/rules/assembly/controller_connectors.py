@@ -38,6 +38,7 @@ import difflib
 
 from plxtools.diagnostics import Severity
 from plxtools.model.symbols import ModelSym
+from plxtools.rules.blocks import declaration_blocks
 from plxtools.syntax import ast
 
 OTHER_MATE, COUNT = "controller-on-other-mate", "connector-count"
@@ -59,12 +60,8 @@ def check(facts, report) -> None:
     assigned = _assigned_connectors(unit.tree)
     errors = sorted(d.span.start.offset for d in found if d.severity is Severity.ERROR)
     out = report
-    stack = [s for s in unit.tree.statements if isinstance(s, ast.Declaration) and s.body]
-    while stack:
-        owner = stack.pop()
-        body = owner.body or []
+    for _owner, body in declaration_blocks(unit.tree):
         _one_block(program, unit, controller, mate, body, assigned, out, errors)
-        stack.extend(s for s in body if isinstance(s, ast.Declaration) and s.body)
 
 
 def _assigned_connectors(tree: ast.File) -> set[str]:

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 
+from plxtools.rules.blocks import declaration_blocks, written_static
 from plxtools.rules.literals import literal
 from plxtools.syntax import ast
 
@@ -53,12 +54,8 @@ def check(facts, report) -> None:
     tree = facts.tree
     target = None
     consts = _const_densities(tree)
-    stack = [s for s in tree.statements if isinstance(s, ast.Declaration) and s.body]
-    while stack:
-        owner = stack.pop()
-        body = owner.body or []
-        stack.extend(s for s in body if isinstance(s, ast.Declaration) and s.body)
-        if _static(body):
+    for owner, body in declaration_blocks(tree):
+        if written_static(body):
             continue
         for stmt, value in _mass_values(body):
             if literal(value) != 0.0:
@@ -69,12 +66,6 @@ def check(facts, report) -> None:
             if getattr(target.get((last.span.start.offset, last.span.end.offset)), "qname", None) != MASS:
                 continue
             _report(report, owner, body, value, consts)
-
-
-def _static(body) -> bool:
-    """(Anything but a written `is_dynamic: true` counts as static: a wrong value has its own error.)"""
-    return any(isinstance(s, ast.Assignment) and [p.name for p in s.path.parts] == ["is_dynamic"]
-               and not (isinstance(s.value, ast.Bool) and s.value.value) for s in body)
 
 
 def _mass_values(body):

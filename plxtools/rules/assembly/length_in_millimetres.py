@@ -42,6 +42,7 @@ Chassis is Physics3D.Bodies.RigidBody:
 from __future__ import annotations
 
 from plxtools.model.symbols import ModelSym
+from plxtools.rules.blocks import declaration_blocks, written_static
 from plxtools.rules.literals import literal
 from plxtools.syntax import ast
 
@@ -55,24 +56,14 @@ def check(facts, report) -> None:
     base = program.lookup_outside_visibility(list(GEOMETRY))
     if unit.official or not isinstance(base, ModelSym):
         return
-    stack = [s for s in unit.tree.statements if isinstance(s, ast.Declaration) and s.body]
-    while stack:
-        owner = stack.pop()
-        body = owner.body or []
-        stack.extend(s for s in body if isinstance(s, ast.Declaration) and s.body)
-        if _static(body):
+    for owner, body in declaration_blocks(unit.tree):
+        if written_static(body):
             continue
         for g in body:
             if isinstance(g, ast.Declaration) and g.body and g.type is not None and g.keyword in ("is", "becomes"):
                 ty = program.resolve_type_expr(g.type, unit)
                 if ty.model is not None and not ty.array and program.is_subtype(ty.model, base):
                     _judge(program, ty.model, base, owner, g, report)
-
-
-def _static(body) -> bool:
-    """(Anything but a written `is_dynamic: true` counts as static: a wrong value has its own error.)"""
-    return any(isinstance(s, ast.Assignment) and [p.name for p in s.path.parts] == ["is_dynamic"]
-               and not (isinstance(s.value, ast.Bool) and s.value.value) for s in body)
 
 
 def _length_names(program, model: ModelSym, base: ModelSym) -> set[str]:

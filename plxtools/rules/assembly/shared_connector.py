@@ -49,6 +49,7 @@ import difflib
 
 from plxtools.diagnostics import Edit, Fix
 from plxtools.model.symbols import ModelSym
+from plxtools.rules.blocks import declaration_blocks
 from plxtools.syntax import ast
 
 MATE = ("Physics3D", "Interactions", "Mate")
@@ -60,12 +61,8 @@ def check(facts, report) -> None:
     mate = program.lookup_outside_visibility(list(MATE))
     if not isinstance(mate, ModelSym):
         return
-    stack = [s for s in unit.tree.statements if isinstance(s, ast.Declaration) and s.body]
-    while stack:
-        owner = stack.pop()
-        body = owner.body or []
+    for _owner, body in declaration_blocks(unit.tree):
         _one_block(program, unit, mate, body, report)
-        stack.extend(s for s in body if isinstance(s, ast.Declaration) and s.body)
 
 
 def _text(unit, node) -> str:
