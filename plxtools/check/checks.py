@@ -23,6 +23,7 @@ from plxtools.check.frames import angle_between, compose
 from plxtools.check.instance import Obj
 from plxtools.check.report import Reporter
 from plxtools.syntax import ast
+from plxtools.diagnostics import Severity
 from plxtools.rules import registry
 from plxtools.check.signals import classify
 
@@ -290,8 +291,8 @@ class StaticChecks:
                 v = self.a.real(obj, "target_speed", 0.0)
                 if abs(v) > TWO_PI:
                     self.add_at(registry.ANGLE_PROBABLY_DEGREES, f"{c.path}: target_speed {v:g} rad/s is more than 2 pi: is it in degrees "
-                                f"per second?", obj, "target_speed",
-                                help=f"Math.Functions.deg_to_rad({v:g}) if it is")
+                                f"per second?", obj, "target_speed", severity=Severity.INFO,
+                                help=f"Math.Functions.deg_to_rad({v:g}) if it is")  # (wheels often turn faster)
             if c.kind == "range":
                 start = self.a.real(obj, "start", math.nan)
                 end = self.a.real(obj, "end", math.nan)

@@ -245,7 +245,7 @@ MODULE_RULES = (
     ("A009", "instantiation-too-deep", E, "assembly.self_containing", dict(stage="lint")),
     ("A013", "connector-count", E, "assembly.controller_connectors", dict(stage="lint")),
     ("A015", "mate-same-body", E, "assembly.shared_connector", dict(fix="unsafe", stage="lint")),
-    ("A022", "angle-probably-degrees", W, "assembly.angle_in_degrees", dict(fix="unsafe", stage="lint")),
+    ("A022", "angle-probably-degrees", W, "assembly.angle_in_degrees", dict(fix="unsafe", stage="lint", milder=I)),
     ("A043", "connector-used-by-two-mates", E, "assembly.shared_connector", dict(fix="unsafe")),
     ("A046", "controller-on-other-mate", W, "assembly.controller_connectors", dict()),
     ("A047", "explicit-zero-mass", W, "assembly.explicit_zero_mass", dict()),

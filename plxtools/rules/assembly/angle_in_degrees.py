@@ -1,8 +1,9 @@
 """An angle is more than one full turn (2 pi): a number written for any angle-taking function
 argument or attribute of the bundles (`Math.Quat.angle_axis(90, ...)`, `from_euler_angles(...)`,
 `initial_angle`, a rotational range's ends), reported by `plx lint` at the number; and, by
-`plx check`, a computed initial angle, rotational range end or rotational motor speed. Which values
-are angles is read from the bundles (names and documentation); the plausibility model is in
+`plx check`, a computed initial angle or rotational range end. A rotational motor's target speed
+above one turn per second is only an info (a wheel of 0.3 m at 10 m/s turns at 33 rad/s). Which
+values are angles is read from the bundles (names and documentation); the plausibility model is in
 docs/plausibility.md.
 
 ## Why it matters
