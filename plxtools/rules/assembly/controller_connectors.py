@@ -64,20 +64,23 @@ def check(facts, report) -> None:
         _one_block(program, unit, controller, mate, body, assigned, out, errors)
 
 
+CONNECTOR_ATTRS = ("connectors", "charges")  # (`charges` until OpenPLX 0.18)
+
+
 def _assigned_connectors(tree: ast.File) -> set[str]:
     """The names whose `connectors` some statement of the file assigns from outside
     (`motor.connectors: ...`)."""
     out = set()
     for s in ast.walk_statements(tree.statements):
         parts = [p.name for p in s.path.parts] if isinstance(s, (ast.Assignment, ast.Declaration)) else []
-        if len(parts) >= 2 and parts[-1] == "connectors":
+        if len(parts) >= 2 and parts[-1] in CONNECTOR_ATTRS:
             out.add(parts[-2])
     return out
 
 
-def _connectors(stmt: ast.Declaration):
+def _connectors(stmt: ast.Declaration, attr: str = "connectors"):
     for s in stmt.body or []:
-        if isinstance(s, (ast.Assignment, ast.Declaration)) and [p.name for p in s.path.parts] == ["connectors"]:
+        if isinstance(s, (ast.Assignment, ast.Declaration)) and [p.name for p in s.path.parts] == [attr]:
             return s
     return None
 
@@ -97,17 +100,18 @@ def family(program, model: ModelSym, controller: ModelSym) -> ModelSym | None:
     return None
 
 
-def _has_connectors(program, model: ModelSym) -> bool:
-    """Whether the bundles in use give `model` an attribute called `connectors`."""
-    return any("connectors" in layer.members for layer in program.linearize(model))
+def _connectors_attr(program, model: ModelSym) -> str | None:
+    """What the bundles in use call `model`'s connectors: `connectors`, or `charges` before 0.18."""
+    layers = program.linearize(model)
+    return next((a for a in CONNECTOR_ATTRS if any(a in layer.members for layer in layers)), None)
 
 
-def _sets_connectors(program, model: ModelSym) -> bool:
+def _sets_connectors(program, model: ModelSym, attr: str) -> bool:
     for layer in program.linearize(model):
-        if "connectors" in layer.members and layer.members["connectors"].value is not None:
+        if attr in layer.members and layer.members[attr].value is not None:
             return True
         for a in layer.assignments:
-            if a.path.parts and a.path.parts[0].name == "connectors":
+            if a.path.parts and a.path.parts[0].name == attr:
                 return True
     return False
 
@@ -126,12 +130,13 @@ def _one_block(program, unit, controller, mate, body, assigned, out, errors) -> 
         is_ctrl = not is_mate and program.is_subtype(model, controller)
         if not (is_mate or is_ctrl):
             continue
-        if not _has_connectors(program, model):
-            continue  # an older release names them otherwise (0.17's `charges`): check judges it
-        conn = _connectors(s)
+        attr = _connectors_attr(program, model)
+        if attr is None:
+            continue
+        conn = _connectors(s, attr)
         name = s.path.parts[0].name
-        if conn is None and name not in assigned and not _has_error(s, errors) and not _sets_connectors(program, model):
-            _no_connectors(out, s, name, is_ctrl, mates)
+        if conn is None and name not in assigned and not _has_error(s, errors) and not _sets_connectors(program, model, attr):
+            _no_connectors(out, s, name, is_ctrl, mates, attr)
             continue
         if is_mate:
             mates[name] = (s, program.concrete(model), _text(unit, conn.value) if conn and conn.value else "")
@@ -145,15 +150,15 @@ def _has_error(s, errors: list[int]) -> bool:
     return i < len(errors) and errors[i] <= s.span.end.offset
 
 
-def _no_connectors(report, s, name: str, is_ctrl: bool, mates) -> None:
+def _no_connectors(report, s, name: str, is_ctrl: bool, mates, attr: str = "connectors") -> None:
     what = "controller" if is_ctrl else "mate"
     if is_ctrl and mates:
         near = max(mates, key=lambda m: difflib.SequenceMatcher(None, name, m).ratio())
-        help_ = f"give it the connectors of the mate it drives: connectors: {near}.connectors"
+        help_ = f"give it the connectors of the mate it drives: {attr}: {near}.{attr}"
     elif is_ctrl:
-        help_ = "give it the connectors of the mate it drives: connectors: some_hinge.connectors"
+        help_ = f"give it the connectors of the mate it drives: {attr}: some_hinge.{attr}"
     else:
-        help_ = "give it one connector on each of the two bodies it joins: connectors: [a.connector, b.connector]"
+        help_ = f"give it one connector on each of the two bodies it joins: {attr}: [a.connector, b.connector]"
     report(f"{what} '{name}' has no connectors, so it {'drives' if is_ctrl else 'joins'} nothing", s.header,
            help=help_, rule=COUNT)
 
