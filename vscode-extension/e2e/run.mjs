@@ -229,7 +229,8 @@ async function main() {
       await goTo(5, 16);
       await page.keyboard.press('End');
       await page.keyboard.press('Shift+Home');
-      await page.keyboard.type('inertia.mass: 5', { delay: 20 });
+      // (not `inertia.mass: 5`: line 4 sets the mass already, and a value given twice is M010)
+      await page.keyboard.type('is_dynamic: true', { delay: 20 });
       await page.keyboard.press('Escape');
       await waitFor('no error squiggle', async () => (await squiggles('error')) === 0, SERVER_TIMEOUT);
       await page.waitForTimeout(1500); // and it stays so
@@ -241,9 +242,9 @@ async function main() {
     await step('completion offers an attribute of the body', async () => {
       await page.keyboard.press('End');
       await page.keyboard.press('Enter');
-      await page.keyboard.type('is_dyn', { delay: 20 });
+      await page.keyboard.type('kinem', { delay: 20 });
       await page.keyboard.press('Control+Space');
-      const item = page.locator('.suggest-widget .monaco-list-row', { hasText: 'is_dynamic' }).first();
+      const item = page.locator('.suggest-widget .monaco-list-row', { hasText: 'kinematics' }).first();
       await item.waitFor({ timeout: SERVER_TIMEOUT });
       const labels = await page.locator('.suggest-widget .monaco-list-row .label-name').allInnerTexts();
       console.log(`      suggestions: ${labels.slice(0, 5).join(', ')}`);
