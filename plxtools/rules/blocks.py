@@ -3,6 +3,7 @@ body, a body's geometry, a system's mates): one walk, so every such rule sees th
 
 from __future__ import annotations
 
+import difflib
 from collections.abc import Iterator
 
 from plxtools.syntax import ast
@@ -23,3 +24,21 @@ def written_static(body) -> bool:
     error, so it counts as static here)."""
     return any(isinstance(s, ast.Assignment) and [p.name for p in s.path.parts] == ["is_dynamic"]
                and not (isinstance(s.value, ast.Bool) and s.value.value) for s in body)
+
+
+def likeliest_meant(uses, taken: str, spare: list[str]):
+    """Of `uses` (statement, value) pairs that name `taken`, the one whose own name is most
+    clearly closer to one of the `spare` names than to `taken`, with that name: (use, name), or
+    None when no use leans towards a spare name. (A copied line with one name left unchanged is
+    usually the one that meant the spare.)"""
+    def close(a: str, b: str) -> float:
+        return difflib.SequenceMatcher(None, a, b).ratio()
+
+    best = None
+    for use in uses:
+        name = use[0].path.parts[0].name
+        for n in spare:
+            gain = close(name, n) - close(name, taken)
+            if gain > 0 and (best is None or gain > best[0]):
+                best = (gain, use, n)
+    return None if best is None else (best[1], best[2])

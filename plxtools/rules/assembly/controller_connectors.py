@@ -38,7 +38,7 @@ import difflib
 
 from plxtools.diagnostics import Severity
 from plxtools.model.symbols import ModelSym
-from plxtools.rules.blocks import declaration_blocks
+from plxtools.rules.blocks import declaration_blocks, likeliest_meant
 from plxtools.syntax import ast
 
 OTHER_MATE, COUNT = "controller-on-other-mate", "connector-count"
@@ -204,17 +204,9 @@ def _shared(unit, mates, ctrls, out) -> None:
 
 
 def _blame(uses, mate: str, idle: list[str]):
-    def close(a: str, b: str) -> float:
-        return difflib.SequenceMatcher(None, a, b).ratio()
-
-    best = None
-    for s, conn in uses:
-        name = s.path.parts[0].name
-        for n in idle:
-            gain = close(name, n) - close(name, mate)
-            if gain > 0 and (best is None or gain > best[0]):
-                best = (gain, s, conn, n)
-    if best is not None:
-        return best[1], best[2], best[3]
+    found = likeliest_meant(uses, mate, idle)
+    if found is not None:
+        (s, conn), meant = found
+        return s, conn, meant
     s, conn = uses[-1]
     return s, conn, idle[0] if len(idle) == 1 else None

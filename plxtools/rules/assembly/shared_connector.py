@@ -49,7 +49,7 @@ import difflib
 
 from plxtools.diagnostics import Edit, Fix
 from plxtools.model.symbols import ModelSym
-from plxtools.rules.blocks import declaration_blocks
+from plxtools.rules.blocks import declaration_blocks, likeliest_meant
 from plxtools.syntax import ast
 
 MATE = ("Physics3D", "Interactions", "Mate")
@@ -159,16 +159,7 @@ def _same_body(unit, mate, types: dict[str, str], mates, report) -> bool:
 
 def _blame(uses, holder: str, spare: list[str]):
     """The mates to report and the body they most likely meant (None: the later uses, no guess)."""
-    def close(a: str, b: str) -> float:
-        return difflib.SequenceMatcher(None, a, b).ratio()
-
-    best = None
-    for s, e in uses:
-        name = s.path.parts[0].name
-        for n in spare:
-            gain = close(name, n) - close(name, holder)
-            if gain > 0 and (best is None or gain > best[0]):
-                best = (gain, (s, e), n)
-    if best is not None:
-        return [best[1]], best[2]
+    found = likeliest_meant(uses, holder, spare)
+    if found is not None:
+        return [found[0]], found[1]
     return [(s, e) for s, e in uses if s is not uses[0][0]], None
