@@ -90,7 +90,8 @@ def _targets(occurrences) -> dict:
 def check(facts, report) -> None:
     program, tree = facts.program, facts.tree
     target = None
-    for node, block in _walk(tree, program, facts.unit):
+    models: dict = {}
+    for node, block in _walk(tree):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Member):
             big = [(i, a) for i, a in enumerate(node.args) if _too_big(a)]
             if not big:
@@ -106,7 +107,7 @@ def check(facts, report) -> None:
             target = target if target is not None else _targets(facts.occurrences)
             last = node.path.parts[-1]
             mem = target.get((last.span.start.offset, last.span.end.offset))
-            if isinstance(mem, MemberSym) and angle_attribute(mem, program, block):
+            if isinstance(mem, MemberSym) and angle_attribute(mem, program, _model_of(block, program, facts.unit, models)):
                 _report(report, node.value, f"'{node.path.text}'")
 
 
@@ -125,9 +126,18 @@ def _report(report, expr, what: str) -> None:
            expr.span, help=f"if it is {v:g} degrees, write Math.Functions.deg_to_rad({v:g}) (= {rad:.4g} rad)", fix=fix)
 
 
-def _walk(tree: ast.File, program, unit):
-    """(node, the model of the block its statement is in) for every statement and expression
-    node of the file, without recursion."""
+def _model_of(decl, program, unit, models: dict):
+    """The model a block's declaration makes (resolved only for the few numbers judged)."""
+    if decl is None:
+        return None
+    if id(decl) not in models:
+        models[id(decl)] = program.resolve_type_expr(decl.type, unit).model
+    return models[id(decl)]
+
+
+def _walk(tree: ast.File):
+    """(node, the declaration of the block its statement is in) for every statement and
+    expression node of the file, without recursion."""
     stack: list = [(s, None) for s in tree.statements]
     while stack:
         node, block = stack.pop()
@@ -135,7 +145,7 @@ def _walk(tree: ast.File, program, unit):
         if isinstance(node, ast.Stmt):
             inner = block
             if isinstance(node, ast.Declaration) and node.body and node.type is not None:
-                inner = program.resolve_type_expr(node.type, unit).model
+                inner = node
             stack.extend((s, inner) for s in ast.body_of(node) or ())
             v = getattr(node, "value", None)
             if v is not None:
