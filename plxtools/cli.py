@@ -488,9 +488,9 @@ def entry() -> None:
     from plxtools import runmemo, runmode
 
     runmode.one_shot(sys.argv[1:2] != ["lsp"])  # the process ends after the command (the server lives on)
-    runmode.watch_interrupts()
     code = runmemo.replay(sys.argv[1:])  # an unchanged one-file run: its output, nothing imported
     if code is None:
+        runmode.watch_interrupts()  # (not before: `signal` and its enums cost a replay ~1-5 ms)
         token = runmemo.start(sys.argv[1:])
         code = main()
         runmemo.finish(token, code)

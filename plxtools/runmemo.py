@@ -26,7 +26,7 @@ from __future__ import annotations
 import os
 import sys
 
-_FORMAT = 2
+_FORMAT = 3
 # per command: options without a value and options with one that change only what is printed or
 # what is decided from the key's inputs, and the options a replayed run must have
 _COMMANDS = {
@@ -91,7 +91,7 @@ def replay(argv: list[str]) -> int | None:
         return None
     from plxtools.cache import reads, store
 
-    entry = store.get_json("replays", _key(argv))
+    entry = store.get_data("replays", _key(argv))
     try:
         deps, out, err, code = entry["deps"], entry["out"], entry["err"], entry["code"]
         if not (isinstance(out, str) and isinstance(err, str) and code in (0, 1)) or not reads.all_hold(deps):
@@ -156,7 +156,7 @@ def finish(token, code: int) -> None:
         return
     from plxtools.cache import reads, store
 
-    store.put_json("replays", _key(argv), {"deps": reads.dedupe(deps), "out": "".join(out.parts),
+    store.put_data("replays", _key(argv), {"deps": reads.dedupe(deps), "out": "".join(out.parts),
                                            "err": "".join(err.parts), "code": code})
 
 

@@ -186,17 +186,22 @@ def is_dir(path) -> bool:
     return kind(path) == "dir"
 
 
+def _folder_sig(names: list[str], st) -> list:
+    return [names, st.st_mtime_ns, st.st_ctime_ns, st.st_ino, st.st_dev, time.time_ns()]
+
+
 def listdir(path) -> list[str]:
-    """A folder's names, sorted, noted (raises OSError as os.listdir does)."""
+    """A folder's names, sorted, noted with the folder's stat (raises OSError as os.listdir does)."""
     p = os.fspath(path)
     try:
+        st = os.stat(p)  # before listing: a change while it lists gives a newer stat next time
         names = sorted(os.listdir(p))
     except OSError:
         if _frames:
             note(["l", p, None])
         raise
     if _frames:
-        note(["l", p, names])
+        note(["d", p, _folder_sig(names, st)])
     return names
 
 
@@ -205,6 +210,7 @@ def scan(path) -> list[tuple[str, bool]]:
     names noted as `listdir` notes them (one scandir: no stat per entry). Raises OSError."""
     p = os.fspath(path)
     try:
+        st = os.stat(p)
         with os.scandir(p) as it:
             got = sorted((e.name, e.is_dir(follow_symlinks=False)) for e in it)
     except OSError:
@@ -212,7 +218,7 @@ def scan(path) -> list[tuple[str, bool]]:
             note(["l", p, None])
         raise
     if _frames:
-        note(["l", p, [n for n, _d in got]])
+        note(["d", p, _folder_sig([n for n, _d in got], st)])
     return got
 
 
@@ -240,6 +246,8 @@ def holds(dep) -> bool:
             return _file_holds(p, value)
         if what == "k":
             return _kind(p) == value
+        if what == "d":
+            return _listing_holds(p, value)
         if what == "l":
             try:
                 return sorted(os.listdir(p)) == value
@@ -252,6 +260,25 @@ def holds(dep) -> bool:
     except (TypeError, ValueError):
         pass
     return False
+
+
+def _listing_holds(p: str, sig) -> bool:
+    """A folder lists the same names when its stat is the one recorded: creating, removing or
+    renaming an entry sets the folder's mtime and ctime (POSIX), a ctime cannot be set by a user,
+    a folder replaced by another has another inode, and one changed within RACY_NS of its record
+    is listed again (as a racily clean file is hashed again). Otherwise it is listed."""
+    names, mtime, ctime, ino, dev, recorded = sig
+    try:
+        st = os.stat(p)
+    except (OSError, ValueError):
+        return False
+    if (st.st_mtime_ns == mtime and st.st_ctime_ns == ctime and st.st_ino == ino and st.st_dev == dev
+            and _stat.S_ISDIR(st.st_mode) and recorded - (mtime if mtime > ctime else ctime) > RACY_NS):
+        return True
+    try:
+        return sorted(os.listdir(p)) == names
+    except OSError:
+        return False
 
 
 def _file_holds(p: str, sig) -> bool:
@@ -307,7 +334,7 @@ def content_digest(deps: list) -> str:
     things have the same digest."""
     h = new_hash()
     for what, p, value in deps:
-        v = value[5] if what == "f" else value
+        v = value[5] if what == "f" else value[0] if what == "d" else value
         h.update(repr((what, p, v)).encode())
     return h.hexdigest()
 
@@ -318,7 +345,8 @@ def dedupe(deps: list) -> list:
     seen: set = set()
     out = []
     for d in deps:
-        k = (d[0], d[1], d[2][5] if d[0] == "f" and d[2] else repr(d[2]))
+        what = d[0]
+        k = (what, d[1], d[2][5] if what == "f" and d[2] else repr(d[2][0] if what == "d" else d[2]))
         if k not in seen:
             seen.add(k)
             out.append(d)

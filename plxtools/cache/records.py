@@ -17,7 +17,7 @@ def set_key(code_stamp: str, set_key_value, official_version) -> str:
 def recorded_digest(key: str) -> str | None:
     """The digest of the last load's reads if every one still holds (they are then noted as this
     run's reads), else None."""
-    entry = store.get_json("bundle-sets", key)
+    entry = store.get_data("bundle-sets", key)
     if not isinstance(entry, dict) or not isinstance(entry.get("digest"), str) or not reads.all_hold(entry.get("deps")):
         return None
     reads.note_all(entry["deps"])

@@ -9,6 +9,7 @@ entry of the cache, `reads`' racy-clean rule): only files whose stat changed are
 from __future__ import annotations
 
 import os
+import time
 
 from plxtools.cache import reads, store
 
@@ -16,9 +17,14 @@ _SUFFIXES = (".py", ".lark", ".json", ".gz", ".toml")
 _stamps: dict[str, str] = {}
 
 
-def package_files(top: str) -> list[str]:
+def package_files(top: str, folders: dict | None = None) -> list[str]:
+    """Every source and data file under `top`, in a fixed order. With `folders`, each folder's
+    stat (taken before it is listed) is kept there by its path relative to `top`."""
     out: list[str] = []
     subs = []
+    if folders is not None:
+        st = os.stat(top)
+        folders[top] = [st.st_mtime_ns, st.st_ctime_ns, st.st_ino, st.st_dev, time.time_ns()]
     with os.scandir(top) as it:
         for e in sorted(it, key=lambda e: e.name):
             if e.is_dir(follow_symlinks=False):
@@ -27,7 +33,7 @@ def package_files(top: str) -> list[str]:
             elif e.name.endswith(_SUFFIXES):
                 out.append(e.path)
     for p in subs:
-        out.extend(package_files(p))
+        out.extend(package_files(p, folders))
     return out
 
 
@@ -39,38 +45,72 @@ def _signature(path: str) -> list:
     return reads._sig(st, data)
 
 
+def _same_listings(top: str, folders) -> bool:
+    """Whether every folder of the last walk has the stat it had then, so that each still lists
+    the same names: adding, removing or renaming an entry (a new subfolder included) sets its
+    folder's mtime and ctime (POSIX), a user cannot set a ctime, and a folder changed within
+    `reads.RACY_NS` of its record is racily clean: it is listed again. A replayed run checks
+    ~80 folders with one stat each instead of listing them."""
+    if not isinstance(folders, dict) or not folders:
+        return False
+    stat = os.stat
+    racy = reads.RACY_NS
+    for rel, (mtime, ctime, ino, dev, recorded) in folders.items():
+        try:
+            st = stat(os.path.join(top, rel) if rel else top)
+        except OSError:
+            return False
+        if not (st.st_mtime_ns == mtime and st.st_ctime_ns == ctime and st.st_ino == ino and st.st_dev == dev
+                and recorded - max(mtime, ctime) > racy):
+            return False
+    return True
+
+
 def tree_digest(top: str, use_index: bool = True) -> str:
     """The digest of every source file's path (relative to `top`) and content."""
     top = os.path.realpath(top)
-    files = package_files(top)
-    key = store.new_hash(f"{top}\0stat-index".encode()).hexdigest()
-    index = store.get_json("stamps", key) if use_index else None
-    old = index if isinstance(index, dict) else {}
+    key = store.new_hash(f"{top}\0stat-index-2".encode()).hexdigest()
+    index = store.get_data("stamps", key) if use_index else None
+    try:
+        old, old_folders = index["files"], index["folders"]
+        if not isinstance(old, dict):
+            raise TypeError
+    except (TypeError, KeyError):
+        old, old_folders = {}, None
+    cut = len(top) + 1
+    if _same_listings(top, old_folders):
+        files = [os.path.join(top, rel) for rel in old]  # (in the walk's order: the index keeps it)
+        folders = old_folders
+    else:
+        walked: dict = {}
+        files = package_files(top, walked)
+        folders = {p[cut:]: v for p, v in walked.items()}
     new: dict = {}
     h = store.new_hash()
-    cut = len(top) + 1
     stat = os.stat
     racy = reads.RACY_NS
-    changed = False
+    changed = folders is not old_folders
     for p in files:
         rel = p[cut:]
         sig = old.get(rel)
         try:
             st = stat(p)
         except OSError:
+            changed = True
             continue
         if not (sig and st.st_mtime_ns == sig[1] and st.st_ctime_ns == sig[2] and st.st_size == sig[0]
                 and st.st_ino == sig[3] and st.st_dev == sig[4] and sig[6] - max(sig[1], sig[2]) > racy):
             try:
                 fresh = _signature(p)
             except OSError:
+                changed = True
                 continue
             changed = changed or fresh != sig
             sig = fresh
         new[rel] = sig
         h.update(f"{rel}\0{sig[5]}\n".encode())
     if use_index and (changed or len(new) != len(old)):
-        store.put_json("stamps", key, new)
+        store.put_data("stamps", key, {"files": new, "folders": folders})
     return h.hexdigest()
 
 

@@ -89,7 +89,7 @@ class ResultCache:
     def get(self, key: str | None) -> list | None:
         """The stored diagnostics when every read their check made still holds (those reads are
         then noted as this run's)."""
-        entry = store.get_json("results", key) if key is not None else None
+        entry = store.get_data("results", key) if key is not None else None
         if not isinstance(entry, dict) or not reads.all_hold(entry.get("deps")):
             return None
         try:
@@ -111,4 +111,4 @@ class ResultCache:
     def put(self, key: str | None, deps: list, diagnostics: list) -> None:
         if key is None or not self.stores(diagnostics):
             return
-        store.put_json("results", key, {"deps": reads.dedupe(deps), "diags": [to_json(d) for d in diagnostics]})
+        store.put_data("results", key, {"deps": reads.dedupe(deps), "diags": [to_json(d) for d in diagnostics]})

@@ -100,7 +100,7 @@ def _load_cached(kind: str, key: str):
 
 
 def _store_cached(writes: list) -> None:
-    """Write cache entries [(kind, key, value, as_json)]. In a one-shot CLI process
+    """Write cache entries [(kind, key, value, as_data)]. In a one-shot CLI process
     (`runmode.is_one_shot()`: only the console entry says so) a forked child writes them: pickling the bundle
     program is about a third of a cold run, and the child does it on a snapshot of the program as
     it is now (copy-on-write, so the file is what the parent would have written) while the parent
@@ -142,9 +142,9 @@ def _write_cached(writes: list) -> None:
     from plxtools.diagnostics import Pos, Span
     from plxtools.pickling import tuple_reducers
 
-    for kind, key, value, as_json in writes:
-        if as_json:
-            if not store.put_json(kind, key, value):
+    for kind, key, value, as_data in writes:
+        if as_data:
+            if not store.put_data(kind, key, value):
                 return
             continue
         import io
@@ -218,7 +218,7 @@ class Workspace:
         if use_cache:  # small: written here, not by a forked child
             from plxtools.cache import store
 
-            store.put_json("bundle-sets", _set_key(bundle_set), {"deps": self.read_deps, "digest": self.read_digest})
+            store.put_data("bundle-sets", _set_key(bundle_set), {"deps": self.read_deps, "digest": self.read_digest})
 
     def _load(self, bundle_set: BundleSet) -> None:
         official, user = self._plan(bundle_set)
@@ -275,7 +275,7 @@ class Workspace:
         bundles = [Bundle(root.name, root, official=True, origin=why) for root, why, _v in plan]
         set_key = store.new_hash(repr((code_stamp(), [str(b.root) for b in bundles])).encode()).hexdigest()
         if self.use_cache:  # the record of the last load: what it read, and the program it built
-            record = store.get_json("bundle-sets", set_key)
+            record = store.get_data("bundle-sets", set_key)
             state = None
             if isinstance(record, dict) and reads.all_hold(record.get("deps")):
                 state = _load_cached("programs", str(record.get("program")))
