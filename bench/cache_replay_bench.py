@@ -100,8 +100,10 @@ def wheel_venv(where: Path) -> Path:
     subprocess.run([str(bin_ / "python"), "-m", "pip", "install", "-q", "--force-reinstall", "--no-deps", str(wheel)],
                    check=True)
     subprocess.run([str(bin_ / "python"), "-m", "pip", "install", "-q", str(wheel)], check=True)  # its dependencies
+    env = env_for()
+    env.pop("PYTHONPATH", None)
     site = subprocess.run([str(bin_ / "python"), "-c", "import plxtools, os; print(os.path.dirname(plxtools.__file__))"],
-                          check=True, capture_output=True, text=True, env=env_for(), cwd=where).stdout.strip()
+                          check=True, capture_output=True, text=True, env=env, cwd=where).stdout.strip()
     if "site-packages" not in site:
         raise SystemExit(f"the wheel venv imports plxtools from {site}, not its site-packages")
     subprocess.run([str(bin_ / "python"), "-m", "compileall", "-q", site], check=True)
@@ -147,6 +149,7 @@ def one_file_rows(args, tmp: Path, flake8: str, wheel_bin: Path | None) -> list[
     if wheel_bin:
         wplx = [str(wheel_bin / "plx"), *lint]
         wenv = env_for(tmp / "wheel-cache")
+        wenv.pop("PYTHONPATH", None)  # the wheel's own plxtools, whatever this process is given
         for _ in range(2):  # the entry written, then replayed
             cpu(wplx, wenv, proj)
             wait_for_writers()
@@ -160,7 +163,7 @@ def one_file_rows(args, tmp: Path, flake8: str, wheel_bin: Path | None) -> list[
         if wheel_bin:
             one.write_text(original)
             cpu(wplx, wenv, proj)  # (after an edit: the entry of this content again)
-            rows["replay"].add(cpu(wplx, wenv, proj), cpu([str(wheel_bin / "python"), "-c", "pass"], env_for()))
+            rows["replay"].add(cpu(wplx, wenv, proj), cpu([str(wheel_bin / "python"), "-c", "pass"], wenv))
         one.write_text(original)
         cpu(plx + lint, env_for(warm), proj)
         rows["replay-dev"].add(cpu(plx + lint, env_for(warm), proj), cpu([sys.executable, "-c", "pass"], env_for()))

@@ -55,9 +55,10 @@ def _same_listings(top: str, folders) -> bool:
         return False
     stat = os.stat
     racy = reads.RACY_NS
+    prefix = top + os.sep  # (concatenated: os.path.join would be a third of a replay's stamp)
     for rel, (mtime, ctime, ino, dev, recorded) in folders.items():
         try:
-            st = stat(os.path.join(top, rel) if rel else top)
+            st = stat(prefix + rel if rel else top)
         except OSError:
             return False
         if not (st.st_mtime_ns == mtime and st.st_ctime_ns == ctime and st.st_ino == ino and st.st_dev == dev
@@ -79,7 +80,8 @@ def tree_digest(top: str, use_index: bool = True) -> str:
         old, old_folders = {}, None
     cut = len(top) + 1
     if _same_listings(top, old_folders):
-        files = [os.path.join(top, rel) for rel in old]  # (in the walk's order: the index keeps it)
+        prefix = top + os.sep
+        files = [prefix + rel for rel in old]  # (in the walk's order: the index keeps it)
         folders = old_folders
     else:
         walked: dict = {}
