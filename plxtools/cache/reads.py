@@ -345,8 +345,14 @@ def dedupe(deps: list) -> list:
     seen: set = set()
     out = []
     for d in deps:
-        what = d[0]
-        k = (what, d[1], d[2][5] if what == "f" and d[2] else repr(d[2][0] if what == "d" else d[2]))
+        what, v = d[0], d[2]
+        if what == "f" and v:
+            v = v[5]  # the content, not the stat
+        elif what == "d":
+            v = tuple(v[0])  # the names, not the stat
+        elif isinstance(v, list):
+            v = tuple(v)
+        k = (what, d[1], v)
         if k not in seen:
             seen.add(k)
             out.append(d)
