@@ -419,8 +419,10 @@ def _constraint_motor_binding(b: Binding, q: str, act: Any, model: Any, aid: int
                 raise SignalValueError(why)
             c, e = vc.split_range(float(v[0]), float(v[1]), act.span)
             d.qfrc_applied[jdof] += float(act.gear) * (c - offsets[act.path])
-            offsets[act.path] = c
             m.tendon_frictionloss[tid] = e
+            vc.refresh_bound(m, d, tid)  # with the offset, in this step (not from the next)
+            vc.anticipate(m, d, tid, vc.reference_dof(m, act.reference), c - offsets[act.path], c)
+            offsets[act.path] = c
 
         b.read, b.write, b.refuse = read_range, write_range, refuse
     else:
@@ -643,11 +645,14 @@ class SignalRuntime:
 
         return write
 
-    def attach_movers(self, movers: list, engagements: Any = None) -> None:
-        """The kinematic bodies' movers of the run this runtime writes to (see mujoco.kinematic), and
-        its brakes' and clutches' engagements (mujoco.shaft_parts)."""
+    def attach_movers(self, movers: list, engagements: Any = None, lag: Any = None) -> None:
+        """The kinematic bodies' movers of the run this runtime writes to (see mujoco.kinematic), its
+        brakes' and clutches' engagements (mujoco.shaft_parts), and its motors' softness correction,
+        which reads the effort offsets the range inputs set (mujoco.velocity_constraint.Lag)."""
         self.movers = {mv.path: mv for mv in movers}
         self.engagements = engagements
+        if lag is not None:
+            lag.offsets = self.offsets
 
     # -- use --------------------------------------------------------------------------------------
 

@@ -26,7 +26,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from plxtools.check.mujoco.velocity_constraint import apply_offsets
+from plxtools.check.mujoco.velocity_constraint import Lag, apply_offsets
 
 
 KINEMATIC_INERTIA = 1e6  # armature per unit of what the dynamic bodies weigh (kg, kg m^2)
@@ -198,6 +198,7 @@ class Stepper:
         from plxtools.check.mujoco.shaft_parts import Engagements
 
         self.engagements = Engagements.of(compiled, model)  # automatic brakes' and clutches' ramps
+        self.lag = Lag(model, compiled.actuators)  # rigid motors' softness, taken out per step (with offsets)
         self.h = float(model.opt.timestep)
         self.rk4 = int(model.opt.integrator) == int(mujoco.mjtIntegrator.mjINT_RK4)
 
@@ -218,3 +219,4 @@ class Stepper:
                 self.mujoco.mj_step2(self.model, self.data)
         for mv in self.movers:  # what its loads moved it by (a millionth) is not its motion
             mv.place(self.data, (done + 1) * self.h)
+        self.lag.apply(self.data)  # for the next step

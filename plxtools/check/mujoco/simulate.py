@@ -1220,7 +1220,7 @@ def _set_up(mujoco: Any, compiled: CompiledScene, res: SimulationResult, opt: Si
     run.movers = stepper.movers
     attach = getattr(getattr(controller, "runtime", None), "attach_movers", None)
     if attach is not None:  # a scenario's inputs may drive kinematic bodies
-        attach(stepper.movers, stepper.engagements)
+        attach(stepper.movers, stepper.engagements, stepper.lag)
     run.controlled = controller is not None
     return run, stepper
 
