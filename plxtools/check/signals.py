@@ -48,6 +48,7 @@ SOURCE_KINDS = {
     "DriveTrain.ManualBrake": "brake",
     "DriveTrain.ManualClutch": "clutch",
     "DriveTrain.Differential": "differential",
+    "DriveTrain.Gear": "gear",  # its torque (check/gear_torque.py); flexible and viscous gears are not simulated
 }
 ROT_MOTOR = SOURCE_KINDS["Physics3D.Interactions.RotationalVelocityMotor"]
 LIN_MOTOR = SOURCE_KINDS["Physics3D.Interactions.LinearVelocityMotor"]
@@ -105,6 +106,7 @@ OUTPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
     ("Physics.Signals.FractionOutput", ("brake", "clutch"), "engagement"),
     ("Physics.Signals.EngagedOutput", ("brake", "clutch"), "engaged"),
     ("Physics.Signals.Torque1DOutput", ("brake", "clutch"), "part_torque"),
+    ("Physics.Signals.Torque1DOutput", ("gear",), "gear_torque"),
     ("Physics.Signals.RelativeVelocity1DOutput", ("brake", "clutch"), "slip_velocity"),
     ("Physics.Signals.BoolOutput", ("differential",), "locked_up"),
     ("Physics3D.Signals.Position3DOutput", ("body",), "body_position"),
@@ -161,8 +163,7 @@ REFUSED: dict[str, str] = {
 }
 # signals of simulated sources that are not read, by the source's type
 SOURCE_REFUSED: dict[str, str] = {
-    "DriveTrain.Gear": "gear ratios are fixed in the MuJoCo model, and a gear's torque is not read (the gears of a "
-                       "rigid train are one coordinate, with no constraint force)",
+    "DriveTrain.Gear": "gear ratios are fixed in the MuJoCo model (a rigid train's gears are one coordinate)",
 }
 VALUE_KIND = {
     "shaft_position": "real", "shaft_velocity": "real", "shaft_rpm": "real", "joint_rpm": "real", "body_mass": "real",
@@ -172,7 +173,7 @@ VALUE_KIND = {
     "body_force": "vec3", "body_torque": "vec3",
     "connector_position": "vec3", "connector_rpy": "vec3", "connector_linear_velocity": "vec3",
     "connector_angular_velocity": "vec3", "connector_acceleration": "vec3", "connector_angular_acceleration": "vec3",
-    "engagement": "real", "engaged": "bool", "part_torque": "real", "slip_velocity": "real", "locked_up": "bool",
+    "engagement": "real", "engaged": "bool", "part_torque": "real", "gear_torque": "real", "slip_velocity": "real", "locked_up": "bool",
 }
 RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)  # RpmOutput: revolutions per minute
 # what a value kind looks like, for messages
@@ -682,6 +683,10 @@ def _bound_elsewhere(quantity: str | None) -> Callable[[SignalRuntime, SignalInf
         return part_signals.bind_part
     if quantity in body_loads.LOAD_QUANTITIES:
         return body_loads.bind_load
+    if quantity == "gear_torque":
+        from plxtools.check.gear_torque import bind_gear_torque
+
+        return bind_gear_torque
     return body_loads.bind_mass if quantity == "body_mass" else None
 
 
