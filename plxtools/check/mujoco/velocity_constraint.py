@@ -204,6 +204,11 @@ class Lag:
         self.dofs = np.array([r[0] for r in self.refs.values()], dtype=int)
         self.offsets: dict[str, float] = {}
 
+    @property
+    def active(self) -> bool:
+        """Whether a motor has an offset now (a run without one steps as MuJoCo's own loop)."""
+        return any(self.offsets.get(path, off) for _d, _a, path, off in self.refs.values())
+
     def apply(self, data: Any) -> None:
         """After a step, for the next: each reference with an offset pushed by ``(armature R + 1) f``
         of its motor's row in the solve just made (a step's own, not one ``mj_forward`` redid
