@@ -204,6 +204,7 @@ class Stepper:
 
         self.engagements = Engagements.of(compiled, model)  # automatic brakes' and clutches' ramps
         self.lag = Lag(model, compiled.actuators)  # rigid motors' softness, taken out per step (with offsets)
+        self.lag.start(data)
         self.h = float(model.opt.timestep)
         self.rk4 = int(model.opt.integrator) == int(mujoco.mjtIntegrator.mjINT_RK4)
 

@@ -203,16 +203,28 @@ class Lag:
             self.refs[tid] = (dof, float(model.dof_armature[dof]), a.path, float(a.offset))
         self.dofs = np.array([r[0] for r in self.refs.values()], dtype=int)
         self.offsets: dict[str, float] = {}
+        self.model = model
 
     @property
     def active(self) -> bool:
         """Whether a motor has an offset now (a run without one steps as MuJoCo's own loop)."""
         return any(self.offsets.get(path, off) for _d, _a, path, off in self.refs.values())
 
+    def start(self, data: Any) -> None:
+        """The first step's push, before any solve: the friction force then is about minus the
+        offset (the load unknown, and small beside an offset that matters), with MuJoCo's ``R``
+        from the tendon's inverse inertia at the initial pose."""
+        d = MAX_IMPEDANCE
+        for tid, (dof, arm, _path, off) in self.refs.items():
+            if off:
+                r = (1.0 - d) / d * float(self.model.tendon_invweight0[tid])
+                data.qfrc_applied[dof] = -(arm * r + 1.0) * off
+
     def apply(self, data: Any) -> None:
         """After a step, for the next: each reference with an offset pushed by ``(armature R + 1) f``
         of its motor's row in the solve just made (a step's own, not one ``mj_forward`` redid
-        between steps, so a run read between its steps steps as one that is not)."""
+        between steps, so a run read between its steps steps as one that is not).  At its effort
+        limit too: the row's force is then the limit, and the push the shift that force needs."""
         if not self.refs:
             return
         data.qfrc_applied[self.dofs] = 0.0
@@ -222,17 +234,11 @@ class Lag:
         rows = np.nonzero(data.efc_type[:n] == FRICTION_TENDON)[0]
         for row in rows:
             got = self.refs.get(int(data.efc_id[row]))
-            if got is None or not self.offsets.get(got[2], got[3]):
-                continue
-            # a motor at its effort limit is not on its target: nothing to take out (and R f there
-            # is the limit, which would push the reference away for good)
-            f = float(data.efc_force[row])
-            if abs(f) < AT_BOUND * float(data.efc_frictionloss[row]):
-                data.qfrc_applied[got[0]] = (got[1] * float(data.efc_R[row]) + 1.0) * f
+            if got is not None and self.offsets.get(got[2], got[3]):
+                data.qfrc_applied[got[0]] = (got[1] * float(data.efc_R[row]) + 1.0) * float(data.efc_force[row])
 
 
 OFFSET_TOLERANCE = 1e-10  # the solver's tolerance in a scene with an effort offset (tighten)
-AT_BOUND = 1.0 - 1e-6  # a friction row's force this close to its bound is at it (the solver clamps it there)
 FRICTION_TENDON = 2  # mujoco.mjtConstraint.mjCNSTR_FRICTION_TENDON (this module imports no mujoco)
 
 
