@@ -266,12 +266,17 @@ def add_contact_pairs(ctx: BuildContext) -> None:
                     condim=3,
                     friction=[mu, mu, 0.005, 0.0001, 0.0001],
                 )
-                if bouncy:
-                    ctx.bouncy_pairs.append((pair, float(cm.restitution)))
-                if b1 in ctx.out.kinematic or b2 in ctx.out.kinematic:
-                    ctx.carrier_pairs.append(pair)
+                _remember_pair(ctx, pair, cm.restitution if bouncy else None, (b1, b2))
         if bouncy and made and cm.restitution > 0.0:  # e = 0 stops an impact exactly: nothing to note
             ctx.bouncy_models.append(cm)
+
+
+def _remember_pair(ctx: BuildContext, pair: Any, restitution: float | None, bodies: tuple[str, str]) -> None:
+    """A pair whose softness set_restitution sets: one with a restitution, one touching a kinematic body."""
+    if restitution is not None:
+        ctx.bouncy_pairs.append((pair, float(restitution)))
+    if any(b in ctx.out.kinematic for b in bodies):
+        ctx.carrier_pairs.append(pair)
 
 
 FRICTION_SOLREF = (0.02, 1.0)  # MuJoCo's default contact softness, kept for friction
