@@ -228,6 +228,8 @@ class Lag:
         if not self.refs:
             return
         data.qfrc_applied[self.dofs] = 0.0
+        if not self.active:  # the BoxTruck's motors: nothing to look up, step after step
+            return
         n = int(data.nefc)
         if not n:
             return
