@@ -305,7 +305,8 @@ class Simulation:
         mujoco.mj_forward(self.model, self.data)
         self.runtime = SignalRuntime.bind(mujoco, c, prepared.signals)
         self._stepper = Stepper(mujoco, c, self.model, self.data)  # the step plx check and plx test take
-        self.runtime.attach_movers(self._stepper.movers, self._stepper.engagements)  # velocity inputs of kinematic bodies
+        # velocity inputs of kinematic bodies, brakes and clutches, range inputs' offsets
+        self.runtime.attach_movers(self._stepper.movers, self._stepper.engagements, self._stepper.lag)
         self.timestep = float(self.model.opt.timestep)
         self.steps = 0
         self._pending: list[tuple[str, Any]] = []

@@ -48,6 +48,7 @@ SOURCE_KINDS = {
     "DriveTrain.ManualBrake": "brake",
     "DriveTrain.ManualClutch": "clutch",
     "DriveTrain.Differential": "differential",
+    "DriveTrain.Gear": "gear",  # its torque (check/gear_torque.py); flexible and viscous gears are not simulated
 }
 ROT_MOTOR = SOURCE_KINDS["Physics3D.Interactions.RotationalVelocityMotor"]
 LIN_MOTOR = SOURCE_KINDS["Physics3D.Interactions.LinearVelocityMotor"]
@@ -105,6 +106,7 @@ OUTPUT_MAP: tuple[tuple[str, tuple[str, ...], str], ...] = (
     ("Physics.Signals.FractionOutput", ("brake", "clutch"), "engagement"),
     ("Physics.Signals.EngagedOutput", ("brake", "clutch"), "engaged"),
     ("Physics.Signals.Torque1DOutput", ("brake", "clutch"), "part_torque"),
+    ("Physics.Signals.Torque1DOutput", ("gear",), "gear_torque"),
     ("Physics.Signals.RelativeVelocity1DOutput", ("brake", "clutch"), "slip_velocity"),
     ("Physics.Signals.BoolOutput", ("differential",), "locked_up"),
     ("Physics3D.Signals.Position3DOutput", ("body",), "body_position"),
@@ -161,8 +163,7 @@ REFUSED: dict[str, str] = {
 }
 # signals of simulated sources that are not read, by the source's type
 SOURCE_REFUSED: dict[str, str] = {
-    "DriveTrain.Gear": "gear ratios are fixed in the MuJoCo model, and a gear's torque is not read (the gears of a "
-                       "rigid train are one coordinate, with no constraint force)",
+    "DriveTrain.Gear": "gear ratios are fixed in the MuJoCo model (a rigid train's gears are one coordinate)",
 }
 VALUE_KIND = {
     "shaft_position": "real", "shaft_velocity": "real", "shaft_rpm": "real", "joint_rpm": "real", "body_mass": "real",
@@ -172,7 +173,7 @@ VALUE_KIND = {
     "body_force": "vec3", "body_torque": "vec3",
     "connector_position": "vec3", "connector_rpy": "vec3", "connector_linear_velocity": "vec3",
     "connector_angular_velocity": "vec3", "connector_acceleration": "vec3", "connector_angular_acceleration": "vec3",
-    "engagement": "real", "engaged": "bool", "part_torque": "real", "slip_velocity": "real", "locked_up": "bool",
+    "engagement": "real", "engaged": "bool", "part_torque": "real", "gear_torque": "real", "slip_velocity": "real", "locked_up": "bool",
 }
 RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)  # RpmOutput: revolutions per minute
 # what a value kind looks like, for messages
@@ -419,8 +420,10 @@ def _constraint_motor_binding(b: Binding, q: str, act: Any, model: Any, aid: int
                 raise SignalValueError(why)
             c, e = vc.split_range(float(v[0]), float(v[1]), act.span)
             d.qfrc_applied[jdof] += float(act.gear) * (c - offsets[act.path])
-            offsets[act.path] = c
             m.tendon_frictionloss[tid] = e
+            vc.refresh_bound(m, d, tid)  # with the offset, in this step (not from the next)
+            vc.anticipate(m, d, tid, vc.reference_dof(m, act.reference), c - offsets[act.path], c)
+            offsets[act.path] = c
 
         b.read, b.write, b.refuse = read_range, write_range, refuse
     else:
@@ -643,11 +646,14 @@ class SignalRuntime:
 
         return write
 
-    def attach_movers(self, movers: list, engagements: Any = None) -> None:
-        """The kinematic bodies' movers of the run this runtime writes to (see mujoco.kinematic), and
-        its brakes' and clutches' engagements (mujoco.shaft_parts)."""
+    def attach_movers(self, movers: list, engagements: Any = None, lag: Any = None) -> None:
+        """The kinematic bodies' movers of the run this runtime writes to (see mujoco.kinematic), its
+        brakes' and clutches' engagements (mujoco.shaft_parts), and its motors' softness correction,
+        which reads the effort offsets the range inputs set (mujoco.velocity_constraint.Lag)."""
         self.movers = {mv.path: mv for mv in movers}
         self.engagements = engagements
+        if lag is not None:
+            lag.offsets = self.offsets
 
     # -- use --------------------------------------------------------------------------------------
 
@@ -677,6 +683,10 @@ def _bound_elsewhere(quantity: str | None) -> Callable[[SignalRuntime, SignalInf
         return part_signals.bind_part
     if quantity in body_loads.LOAD_QUANTITIES:
         return body_loads.bind_load
+    if quantity == "gear_torque":
+        from plxtools.check.gear_torque import bind_gear_torque
+
+        return bind_gear_torque
     return body_loads.bind_mass if quantity == "body_mass" else None
 
 

@@ -87,7 +87,7 @@ def test_drive_train_signals_through_the_api(tmp_path):
     assert sim.read("wheel_shaft.angular_velocity_output") == pytest.approx(2.0, abs=0.02)  # ratio 4
     assert sim.read("motor.target_angular_velocity_output") == 8.0
     assert abs(sim.read("motor.torque_output")) < 1.0  # steady speed, no load
-    with pytest.raises(NotSimulatedError, match="FractionOutput is not mapped: gear ratios"):
+    with pytest.raises(NotSimulatedError, match="FractionOutput of a gear is not mapped: gear ratios"):
         sim.read("gear.ratio_output")
     counts = sim.scene().counts()
     assert counts["shafts"] == 2 and counts["shaft_couplings.gear"] == 1 and counts["bodies"] == 0, counts

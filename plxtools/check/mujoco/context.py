@@ -41,6 +41,7 @@ class BuildContext:
     shaft_trains: dict[str, tuple[bool, list[tuple[Any, float]]]] = field(default_factory=dict)
     bouncy_pairs: list[tuple[Any, float]] = field(default_factory=list)  # (MjsPair, normal restitution)
     bouncy_models: list[Any] = field(default_factory=list)  # contact models with a mapped restitution (A137)
+    carrier_pairs: list[Any] = field(default_factory=list)  # MjsPairs touching a kinematic body (geoms.set_restitution)
 
     @classmethod
     def for_scene(cls, scene: Scene) -> "BuildContext":

@@ -190,7 +190,8 @@ def add_velocity_motor(ctx: BuildContext, model: Any, ctl: Controller, mate: Mat
     split = velocity_constraint.split_range(float(ctl.min_effort), float(ctl.max_effort), span)
     d = velocity_constraint.impedance(ctl.gain, h, velocity_constraint.tendon_invweight(model, joint, float(sign), ieff))
     if split is not None and d is not None:
-        name, ref = velocity_constraint.add(ctx, ctl.path, ctl.source, joint, float(sign), ieff, split[1], d)
+        name, ref = velocity_constraint.add(ctx, ctl.path, ctl.source, joint, float(sign), ieff, split[1], d,
+                                             offset=split[0])
         ctx.out.actuators.append(ActuatorInfo(ctl.path, name, ctl.kind, mate.path, joint, float(sign),
                                               float(ctl.target_speed), velocity_constraint.honoured_gain(ctl.gain, d),
                                               float(ctl.target_speed), reference=ref,

@@ -227,7 +227,7 @@ def _velocity_motor(ctx: BuildContext, model: Any, m: Any, coord: ShaftCoordinat
     target = float(m.target_speed)
     d = velocity_constraint.impedance(m.gain, h, velocity_constraint.tendon_invweight(model, joint, ratio, ieff))
     if split is not None and d is not None:
-        name, ref = velocity_constraint.add(ctx, m.path, m.source, joint, ratio, ieff, split[1], d)
+        name, ref = velocity_constraint.add(ctx, m.path, m.source, joint, ratio, ieff, split[1], d, offset=split[0])
         ctx.out.actuators.append(ActuatorInfo(m.path, name, m.kind, m.shaft, joint, ratio, target,
                                               velocity_constraint.honoured_gain(m.gain, d), target,
                                               reference=ref, tendon=ctx.names.name("tendon", m.path),

@@ -1220,7 +1220,7 @@ def _set_up(mujoco: Any, compiled: CompiledScene, res: SimulationResult, opt: Si
     run.movers = stepper.movers
     attach = getattr(getattr(controller, "runtime", None), "attach_movers", None)
     if attach is not None:  # a scenario's inputs may drive kinematic bodies
-        attach(stepper.movers, stepper.engagements)
+        attach(stepper.movers, stepper.engagements, stepper.lag)
     run.controlled = controller is not None
     return run, stepper
 
@@ -1247,13 +1247,15 @@ class _Loop:
         self.h = h = float(model.opt.timestep)
         self.n_steps = max(1, int(round(run.duration / h)))
         self.chunk = max(1, int(round(run.opt.sample_dt / h)))
-        self.split = (controller is None and not run.movers
+        # a motor with an effort offset is corrected after each step (velocity_constraint.Lag): the stepper's path
+        self.own_steps = stepper.lag.active
+        self.split = (controller is None and not run.movers and not self.own_steps
                       and int(model.opt.integrator) != int(mujoco.mjtIntegrator.mjINT_RK4))
         # MotorTracking reads actuator_force
         self.forces_from = MOTOR_WINDOW * run.duration if model.nu else math.inf
         self.primed = False  # mj_step1 of the next step has run
         self.fast_after = None  # the usual run: only one monitor (Energy) records something per step
-        if (controller is None and not run.movers and len(self.per_step) == 1
+        if (controller is None and not run.movers and not self.own_steps and len(self.per_step) == 1
                 and type(self.per_step[0]).before_step is Monitor.before_step):
             self.fast_after = self.per_step[0].after_step
         self.done = 0
@@ -1293,7 +1295,7 @@ class _Loop:
                 mujoco.mj_step(model, data)
                 fast_after(run)
             self.done += k
-        elif run.movers or per_step or self.controller is not None:
+        elif run.movers or per_step or self.controller is not None or self.own_steps:
             stepper, controller, done = self.stepper, self.controller, self.done
             for _ in range(k):
                 for m in per_step:
