@@ -19,7 +19,7 @@ from typing import Any
 
 from plxtools.view.session import ViewSession
 
-POLL_S = 0.2  # how often the watched files are looked at
+POLL_S = 0.1  # how often the watched files are looked at (a stat of each: cheap)
 FRAME_S = 1 / 60
 OVERLAY = True
 # MuJoCo's passive viewer loses a pending overlay text when it loads a model, and set_texts() then
