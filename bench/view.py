@@ -4,7 +4,8 @@
 
 Prints, for the viewer example truck (examples/viewer/truck.openplx) on a warm cache:
 - time to window: from starting the command to a window whose picture is a drawn scene (hundreds
-  of colours), for `plx view` and for `python -m mujoco.viewer --mjcf` on the model plx exports;
+  of colours), for `plx view` and for `python -m mujoco.viewer --mjcf` on the model plx exports,
+  run in turn, with the ratio of each pair and the CPU each process had used by then;
 - reload: from saving an edit to the window showing the new scene (`plx view`; MuJoCo's viewer
   does not watch files);
 - stepping: simulated seconds per wall second of the session's stepping alone, and the CPU
@@ -31,7 +32,13 @@ sys.path.insert(0, str(REPO))
 from tests.view.xvfb_session import ViewInXvfb, missing_tools  # noqa: E402
 
 
-def _drawn(v: ViewInXvfb, shot: Path, seconds: float = 60, unlike=None) -> float:
+def _cpu(pid: int) -> float:
+    """CPU seconds (user + system, all threads: llvmpipe's too) the process has used so far."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _drawn(v: ViewInXvfb, shot: Path, seconds: float = 60, unlike=None, cpu: list | None = None) -> float:
     """Seconds from the command's start until the window shows a drawn scene (unlike ``unlike``)."""
     import numpy as np
 
@@ -43,9 +50,11 @@ def _drawn(v: ViewInXvfb, shot: Path, seconds: float = 60, unlike=None) -> float
             v.window = v._find_window() or v.window
             continue
         t = time.perf_counter()
-        last = img
+        used = _cpu(v.proc.pid)
         if len(np.unique(img.reshape(-1, 3), axis=0)) > 100 and (
                 unlike is None or np.abs(img.astype(int) - unlike.astype(int)).mean() > 0.5):
+            if cpu is not None:
+                cpu.append(used)
             return t
         time.sleep(0.05)
     raise RuntimeError(f"the window never showed the scene (window {v.window}; last picture {shot}); "
@@ -68,10 +77,10 @@ def main() -> int:
         xml = work / "truck.xml"
         subprocess.run([sys.executable, "-m", "plxtools", "check", "--export-mjcf", str(xml), str(model)],
                        check=True, capture_output=True, env=env)  # also warms plx's cache
-        plx_open, mj_open, reloads, ratios = [], [], [], []
+        plx_open, mj_open, reloads, ratios, plx_cpu, mj_cpu = [], [], [], [], [], []
         for _ in range(args.runs):
             with ViewInXvfb([model.name], work) as v:
-                plx_open.append(_drawn(v, work / "s.png") - v.started)
+                plx_open.append(_drawn(v, work / "s.png", cpu=plx_cpu) - v.started)
                 v.wait_for("loaded Scene")
                 time.sleep(0.5)
                 before = v.screenshot(work / "before.png")
@@ -81,7 +90,7 @@ def main() -> int:
                 reloads.append(_drawn(v, work / "r.png", unlike=before) - t0)
                 model.write_text(text)
             with ViewInXvfb(["--mjcf", str(xml)], work, command=[sys.executable, "-m", "mujoco.viewer"]) as v:
-                mj_open.append(_drawn(v, work / "m.png") - v.started)
+                mj_open.append(_drawn(v, work / "m.png", cpu=mj_cpu) - v.started)
             ratios.append(plx_open[-1] / mj_open[-1])  # the pair's ratio: both ran at about the same load
 
     from plxtools.view.session import ViewSession
@@ -116,6 +125,8 @@ def main() -> int:
     print(f"time to window (median of {args.runs}): plx view {med(plx_open):.2f} s; "
           f"MuJoCo's viewer on the exported MJCF {med(mj_open):.2f} s; ratio of the pairs {med(ratios):.2f}x "
           f"(each {', '.join(f'{r:.2f}' for r in ratios)})")
+    print(f"CPU used by then (median of {args.runs}; a loaded machine stretches wall time, not this): "
+          f"plx view {med(plx_cpu):.2f} s; MuJoCo's viewer {med(mj_cpu):.2f} s ({med(plx_cpu) / med(mj_cpu):.2f}x)")
     print(f"saved edit on screen (median of {args.runs}): plx view {med(reloads):.2f} s "
           f"(MuJoCo's viewer: no file watching)")
     print(f"stepping the truck without drawing: {stepping:.1f} simulated s per wall s")

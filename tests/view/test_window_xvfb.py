@@ -72,9 +72,11 @@ def _scene_pixels(img: np.ndarray) -> int:
 def test_window_shows_the_scene_and_reloads_a_saved_edit(truck, tmp_path):
     with ViewInXvfb([truck.name], truck.parent) as v:
         v.wait_for("loaded Scene")
-        time.sleep(1.5)
-        first = v.screenshot(tmp_path / "first.png")
+        # (the window opens on an empty placeholder while the model loads, then shows the scene)
+        first = _until(v, tmp_path / "first.png", lambda img: _scene_pixels(img) > 200)
         assert _scene_pixels(first) > 200, "the window looks blank"
+        time.sleep(1.0)
+        first = v.screenshot(tmp_path / "first.png")
         text = truck.read_text()
         truck.write_text(text.replace("position.z: 1.1", "position.z: 3.0"))
         t0 = time.monotonic()
@@ -97,6 +99,7 @@ def test_holding_up_drives_the_truck_and_releasing_stops_it(truck, tmp_path):
     (truck.parent / "drive.py").write_text(LOGGING_CONTROLLER)
     with ViewInXvfb([truck.name, "--controller", "drive.py"], truck.parent) as v:
         v.wait_for("loaded Scene")
+        _until(v, tmp_path / "shown.png", lambda img: _scene_pixels(img) > 200)
         time.sleep(2.0)  # land
         v.xdotool("key", "l")
         v.xdotool("keydown", "Up")
@@ -122,7 +125,8 @@ def test_reset_view_frames_the_model_and_panels_sit_on_the_right(truck, tmp_path
     help and F2 info (on the left) do not cover them. Paused: the pictures compare like for like."""
     with ViewInXvfb([truck.name, "--paused"], truck.parent) as v:
         v.wait_for("loaded Scene")
-        time.sleep(2.5)
+        _until(v, tmp_path / "opening.png", lambda img: _scene_pixels(img) > 200)
+        time.sleep(1.5)
         opening = v.screenshot(tmp_path / "opening.png")
         for _ in range(12):  # zoom with the wheel
             v.xdotool("click", "5")
