@@ -22,9 +22,6 @@ from plxtools.view.session import ViewSession
 POLL_S = 0.1  # how often the watched files are looked at (a stat of each: cheap)
 FRAME_S = 1 / 60
 OVERLAY = True
-# what the window shows while the model loads: nothing, cheaply (no shadow map, no multisampling)
-PLACEHOLDER = ('<mujoco><visual><quality shadowsize="0" offsamples="0"/><global offwidth="64" offheight="64"/>'
-               '<rgba haze="0 0 0 1"/></visual></mujoco>')
 # MuJoCo's passive viewer loses a pending overlay text when it loads a model, and set_texts() then
 # waits for ever: a swap starts only this long after the last set_texts()
 QUIET_BEFORE_SWAP_S = 0.5
@@ -44,6 +41,17 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
     from plxtools.check.mujoco.video import show_visuals
     from plxtools.check.mujoco.render import frame_camera
 
+    session.load()
+    while session.sim is None:  # nothing to show yet: say why and wait for a fix, never a blank window
+        if not wait_for_fix:
+            return 1
+        print(f"plx view: waiting for a change to {session.path} (Ctrl+C quits)", file=sys.stderr)
+        try:
+            while session.poll() is None:
+                time.sleep(POLL_S)
+        except KeyboardInterrupt:
+            return 1
+
     # GLFW reports errors through the Python glfw package's callback, which needs the GIL; MuJoCo's
     # set_texts() holds the GIL while it waits for the render thread: a GLFW error then (Xvfb has
     # a few) would hang both threads. The viewer works without the report.
@@ -55,37 +63,17 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
         window.setdefault("glfw", glfw.get_current_context())
         keys.put(code)
 
-    def _open(model: Any, data: Any) -> Any:
-        return mujoco.viewer.launch_passive(model, data, key_callback=on_key,
-                                            show_left_ui=False, show_right_ui=False)  # Tab / Shift+Tab show them
-
-    # The window (GLFW, OpenGL, MuJoCo's render context: seconds with software OpenGL) opens on an
-    # empty placeholder while the model loads on another thread; the loaded model then goes in as a
-    # reload does. MuJoCo's own viewer overlaps its window and its file's load the same way.
-    loading = threading.Thread(target=session.load, daemon=True)
-    loading.start()
-    blank = mujoco.MjModel.from_xml_string(PLACEHOLDER)
-    handle = _open(blank, mujoco.MjData(blank))
-    loading.join()
-    shown = 0  # the placeholder: the first good load swaps in below
-    if session.sim is None:  # nothing to show: say why and wait for a fix, never a blank window
-        handle.close()
-        while session.sim is None:
-            if not wait_for_fix:
-                return 1
-            print(f"plx view: waiting for a change to {session.path} (Ctrl+C quits)", file=sys.stderr)
-            try:
-                while session.poll() is None:
-                    time.sleep(POLL_S)
-            except KeyboardInterrupt:
-                return 1
-        sim = session.sim
+    def _open(sim: Any) -> Any:
         show_visuals(sim.model)
         frame_statistic(sim.model, sim.data)
-        handle = _open(sim.model, sim.data)
-        shown = session.generation
-        with handle.lock():
-            _set_camera(handle.cam, frame_camera(sim.model, sim.data))  # = Ctrl+A (frame_statistic)
+        return mujoco.viewer.launch_passive(sim.model, sim.data, key_callback=on_key,
+                                            show_left_ui=False, show_right_ui=False)  # Tab / Shift+Tab show them
+
+    sim = session.sim
+    handle = _open(sim)
+    shown = session.generation
+    with handle.lock():
+        _set_camera(handle.cam, frame_camera(sim.model, sim.data))  # = Ctrl+A (frame_statistic)
     handle.sync()
     last = time.perf_counter()
     drawn = not OVERLAY  # the clock starts at the first drawn frame: nothing falls out of view unseen
@@ -123,8 +111,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                 continue
             if session.generation != shown and session.sim is not None:
                 kept = mujoco.MjvCamera()
-                # the camera stays where the user left it; the placeholder's goes to the bodies
-                _set_camera(kept, handle.cam if shown else frame_camera(session.sim.model, session.sim.data))
+                _set_camera(kept, handle.cam)
                 show_visuals(session.sim.model)
                 frame_statistic(session.sim.model, session.sim.data)
                 # the viewer's load() returns once its render thread has taken the model, which in

@@ -72,7 +72,7 @@ def _scene_pixels(img: np.ndarray) -> int:
 def test_window_shows_the_scene_and_reloads_a_saved_edit(truck, tmp_path):
     with ViewInXvfb([truck.name], truck.parent) as v:
         v.wait_for("loaded Scene")
-        # (the window opens on an empty placeholder while the model loads, then shows the scene)
+        # (a loaded machine may take seconds between the load and the first drawn frame)
         first = _until(v, tmp_path / "first.png", lambda img: _scene_pixels(img) > 200)
         assert _scene_pixels(first) > 200, "the window looks blank"
         time.sleep(1.0)
