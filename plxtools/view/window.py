@@ -126,11 +126,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                 session.advance(now - last if drawn else 0.0)  # (nothing before the first frame)
                 last = now
                 _decorate(handle, session)
-                cols, rows = _panel_room(handle)
-                status = [_cut(line, cols) for line in session.status(cols)]
-                if len(status) > rows - 2:  # a long error: its last lines go, the clock line stays
-                    status = status[: max(1, rows - 4)] + ["  ...", status[-1]]
-                signals = _fit(session.signals(cols), max(1, min(MAX_SIGNAL_LINES, rows // 2, rows - len(status) - 1)))
+                status, signals = _panel_texts(handle, session)
             handle.sync()
             # outside our lock (set_texts waits for the render thread to take the previous text)
             texts = ("\n".join(status), "\n".join(signals))
@@ -182,6 +178,16 @@ def frame_statistic(model: Any, data: Any) -> None:
     model.vis.global_.azimuth = float(cam.azimuth)
     model.vis.global_.elevation = float(cam.elevation)
     model.vis.map.zfar = max(far, 50.0 * extent) / extent
+
+
+def _panel_texts(handle: Any, session: ViewSession) -> tuple[list[str], list[str]]:
+    """The status panel's lines (top right) and the signal panel's (bottom right), fitted to the window."""
+    cols, rows = _panel_room(handle)
+    status = [_cut(line, cols) for line in session.status(cols)]
+    if len(status) > rows - 2:  # a long error: its last lines go, the clock line stays
+        status = status[: max(1, rows - 4)] + ["  ...", status[-1]]
+    most = max(1, min(MAX_SIGNAL_LINES, rows // 2, rows - len(status) - 1))
+    return status, _fit(session.signals(cols), most)
 
 
 def _panel_room(handle: Any) -> tuple[int, int]:
