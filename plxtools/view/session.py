@@ -58,6 +58,7 @@ class ViewSession:
         self._wall = self._simulated = 0.0
         self.diagnostics: list = []  # the last load's findings (a failed load's located errors)
         self.text: str | None = None  # the editor's unsaved content of ``path`` (plx view --web), else the disk's
+        self.waiting: str | None = None  # why the load started paused by itself (it would leave the view)
 
     # -- loading ----------------------------------------------------------------------------------
 
@@ -98,7 +99,20 @@ class ViewSession:
         self.say(msg)
         for f in findings:
             self.say("  " + f)
+        self._wait_if_leaving()
         return LoadResult(True, msg, findings, time.perf_counter() - t0)
+
+    def _wait_if_leaving(self) -> None:
+        """Start paused when the scene would leave the view at once (as the AGX viewer waits for E)."""
+        from plxtools.view.forecast import leaves_view
+
+        self.waiting = None
+        if self.paused:
+            return
+        why = leaves_view(self.sim.model, self.sim.data)
+        if why is not None:
+            self.paused, self.waiting = True, why
+            self.say(f"paused: {why} (E plays)")
 
     def _failed(self, message: str, details: list[str], watched: list[str], before: dict, t0: float) -> LoadResult:
         if self.sim is not None:  # keep watching what the good load read too
@@ -156,7 +170,7 @@ class ViewSession:
             self.load()
             return "reload"
         if code == PAUSE_KEY:
-            self.paused = not self.paused
+            self.paused, self.waiting = not self.paused, None
             return "pause" if self.paused else "play"
         if code == GEOMS_KEY:
             self.show_collision = not self.show_collision
@@ -210,10 +224,10 @@ class ViewSession:
 
     # -- what the screen shows ------------------------------------------------------------------------
 
-    def status(self) -> list[str]:
+    def status(self, width: int = 64) -> list[str]:
         lines = []
         if self.error:
-            lines += _error_lines(self.error, self.path)
+            lines += _error_lines(self.error, self.path, width - 2)
             if self.sim:
                 lines.append("  (showing the last good scene)")
         if self.sim is None:
@@ -221,14 +235,17 @@ class ViewSession:
         state = "paused (E plays)" if self.paused else "running"
         lines.append(f"{self.sim.model_name}  t={self.sim.time:.2f}s  {state}"
                      + ("" if self.realtime > 0.95 or self.paused else f"  slower than real time: x{self.realtime:.2f}"))
+        if self.waiting and self.paused:
+            lines.append(f"  waiting: {self.waiting}")
         for name, code in KeyboardCallback.bindings():
             from plxtools.view.keys import key_name
 
             lines.append(f"key {key_name(code)}: {name}")
         return lines
 
-    def signals(self) -> list[str]:
-        """The scene's inputs and outputs with their current values, one per line."""
+    def signals(self, width: int = 80) -> list[str]:
+        """The scene's inputs and outputs with their current values, one per line of at most
+        ``width`` characters (a long path loses its first parts)."""
         if self.sim is None:
             return []
         out = []
@@ -241,7 +258,8 @@ class ViewSession:
                 # velocity looked as if something were pushing it (issue 40.6)
                 sent = getattr(self.sim, "sent", {}).get(info.path)
                 if sent is not None:  # (an input nothing was sent to is left out)
-                    out.append(f"in  {_short_path(info.path)} <- {_value_text(sent)}")
+                    value = _value_text(sent)
+                    out.append(f"in  {_short_path(info.path, width - 8 - len(value))} <- {value}")
                 continue
             if b.read is None:
                 continue
@@ -250,23 +268,31 @@ class ViewSession:
                 v = b.read(self.sim.model, self.sim.data)
             except Exception:  # noqa: BLE001 - a value that cannot be read is left out
                 continue
-            out.append(f"out {_short_path(info.path)} = {_value_text(v)}")
-        return out
+            value = _value_text(v)
+            out.append(f"out {_short_path(info.path, width - 7 - len(value))} = {value}")
+        return [line if len(line) <= width else line[: width - 3] + "..." for line in out]  # a long value
 
 
-MAX_PATH = 56  # characters of a signal's path in the panel: it stays clear of MuJoCo's F1 help
-
-
-def _short_path(path: str) -> str:
-    """A long dotted path without its first parts (`….front_left_drive_motor.target_speed_input`):
-    the end names the signal, the root is the same for all."""
-    if len(path) <= MAX_PATH:
+def _short_path(path: str, room: int) -> str:
+    """A long dotted path in ``room`` characters: first without its leading parts (the root is the
+    same for all), keeping at least the owner and the signal (`...front_left_drive_motor.target_speed_input`,
+    left and right stay apart), then without the signal's `_input`/`_output` (the line's `in`/`out`
+    says it), then cut at the front. ASCII only: MuJoCo's overlay font has no "…" (it drew a box)."""
+    room = max(room, 12)
+    if len(path) <= room:
         return path
     parts = path.split(".")
-    kept: list[str] = []
-    while parts and len(".".join([parts[-1], *kept])) + 2 <= MAX_PATH:
-        kept.insert(0, parts.pop())
-    return "…." + ".".join(kept) if kept else "…" + path[-(MAX_PATH - 1):]
+    for i in range(1, max(1, len(parts) - 1)):
+        tail = "..." + ".".join(parts[i:])
+        if len(tail) <= room:
+            return tail
+    last = parts[-1]
+    for suffix in ("_input", "_output"):
+        if last.endswith(suffix) and len(last) > len(suffix):
+            last = last[: -len(suffix)]
+            break
+    tail = ".".join([*parts[-2:-1], last])
+    return tail if len(tail) <= room else "..." + tail[-(room - 3):]
 
 
 def _value_text(v: Any) -> str:

@@ -19,14 +19,17 @@ from typing import Any
 
 from plxtools.view.session import ViewSession
 
-POLL_S = 0.2  # how often the watched files are looked at
+POLL_S = 0.1  # how often the watched files are looked at (a stat of each: cheap)
 FRAME_S = 1 / 60
 OVERLAY = True
 # MuJoCo's passive viewer loses a pending overlay text when it loads a model, and set_texts() then
 # waits for ever: a swap starts only this long after the last set_texts()
 QUIET_BEFORE_SWAP_S = 0.5
-MAX_SIGNAL_LINES = 12
+MAX_SIGNAL_LINES = 12  # and at most half the window's height: the scene stays visible
 MAX_OVERLAY_CHARS = 440  # MuJoCo's overlay drops what is past about 500 characters
+# MuJoCo's overlay at font scale 100, measured on screenshots: a character is about 7 px wide, a line
+# 23 px high; its F1 help box reaches 335 px from the left edge (F2's info box less far)
+CHAR_PX, LINE_PX, HELP_PX = 7, 23, 345
 
 
 def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
@@ -123,8 +126,7 @@ def run(session: ViewSession, *, wait_for_fix: bool = True) -> int:
                 session.advance(now - last if drawn else 0.0)  # (nothing before the first frame)
                 last = now
                 _decorate(handle, session)
-                status = session.status()
-                signals = _fit(session.signals())
+                status, signals = _panel_texts(handle, session)
             handle.sync()
             # outside our lock (set_texts waits for the render thread to take the previous text)
             texts = ("\n".join(status), "\n".join(signals))
@@ -178,12 +180,36 @@ def frame_statistic(model: Any, data: Any) -> None:
     model.vis.map.zfar = max(far, 50.0 * extent) / extent
 
 
-def _fit(lines: list[str]) -> list[str]:
-    """As many lines as MuJoCo's overlay shows whole (it cuts long text), then how many are left out."""
+def _panel_texts(handle: Any, session: ViewSession) -> tuple[list[str], list[str]]:
+    """The status panel's lines (top right) and the signal panel's (bottom right), fitted to the window."""
+    cols, rows = _panel_room(handle)
+    status = [_cut(line, cols) for line in session.status(cols)]
+    if len(status) > rows - 2:  # a long error: its last lines go, the clock line stays
+        status = status[: max(1, rows - 4)] + ["  ...", status[-1]]
+    most = max(1, min(MAX_SIGNAL_LINES, rows // 2, rows - len(status) - 1))
+    return status, _fit(session.signals(cols), most)
+
+
+def _panel_room(handle: Any) -> tuple[int, int]:
+    """Characters per line and lines the right-hand panels have: they stay right of MuJoCo's F1 help
+    (the widest thing MuJoCo draws on the left) and the status (top) and signal (bottom) panels
+    share the height, so that no two overlap (issue 40.6)."""
+    vp = getattr(handle, "viewport", None)
+    width, height = (int(vp.width), int(vp.height)) if vp is not None and vp.width > 0 else (1200, 900)
+    return max(24, (width - HELP_PX - 2 * CHAR_PX) // CHAR_PX), max(3, height // LINE_PX - 1)
+
+
+def _cut(line: str, cols: int) -> str:
+    return line if len(line) <= cols else line[: cols - 3] + "..."
+
+
+def _fit(lines: list[str], most: int = MAX_SIGNAL_LINES) -> list[str]:
+    """As many lines as MuJoCo's overlay shows whole (it cuts long text) and the window has room for,
+    then how many are left out."""
     out: list[str] = []
     used = 0
     for i, line in enumerate(lines):
-        if len(out) == MAX_SIGNAL_LINES or used + len(line) + 1 > MAX_OVERLAY_CHARS:
+        if len(out) >= most - 1 and i < len(lines) - 1 or used + len(line) + 1 > MAX_OVERLAY_CHARS:
             out.append(f"... {len(lines) - i} more")
             break
         out.append(line)

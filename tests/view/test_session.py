@@ -216,13 +216,16 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 @pytest.mark.parametrize("model", [
-    *sorted(p.name for p in (EXAMPLES / "tutorial").glob("*.openplx")),
+    *sorted(str(p.relative_to(EXAMPLES / "tutorial")) for p in (EXAMPLES / "tutorial").glob("*/*.openplx")),
     "../boxtruck/boxtruck.openplx", "../user_bundle/cart_scene.openplx", "../viewer/truck.openplx",
 ])
 def test_every_example_and_tutorial_step_loads_and_runs(model):
     s, lines = _session(EXAMPLES / "tutorial" / model)
     r = s.load()
     assert r.ok, lines
+    if s.paused:  # it would leave the view at once (the tutorial's step 3 falls): waits for E, says why
+        assert s.waiting and any("waiting: " in line for line in s.status()), s.status()
+        assert s.advance(0.05) == 0 and s.key(K.KEY_E) == "play" and s.waiting is None
     assert s.advance(0.05) == 25 and s.status()
     assert all(line.startswith("out ") and " = " in line or line.startswith("in ") and " <- " in line
                for line in s.signals())
@@ -267,3 +270,35 @@ def test_choosing_another_root_gives_the_findings_of_a_plain_check(tmp_path):
     assert findings["Wheel"] == findings[None] == findings["Axle"], findings
     assert any("C003" in d and "'Axle'" in d for d in findings[None])  # Axle is unused, whoever is root
     assert not any("C002" in d or "'Scene'" in d for d in findings["Wheel"])
+
+
+def test_a_scene_that_falls_out_of_view_at_once_starts_paused_and_says_why(truck):
+    """Issue 40.6: the tutorial's step 3 (a chassis, no ground) had fallen out of view before the first
+    frame, a black window; like the AGX viewer, the view now waits for E. A truck that lands does not wait."""
+    s, lines = _session(EXAMPLES / "tutorial" / "step03-chassis" / "boxtruck.openplx")
+    assert s.load().ok and s.paused
+    assert any(line.startswith("paused: it leaves the view within") and "(E plays)" in line for line in lines), lines
+    z = s.sim.body("chassis").position[2]
+    assert s.advance(0.5) == 0 and s.sim.body("chassis").position[2] == z  # nothing moved while waiting
+    assert "waiting: it leaves the view" in "\n".join(s.status())
+    assert s.key(K.KEY_E) == "play" and s.advance(0.1) > 0 and s.sim.body("chassis").position[2] < z
+    assert "waiting" not in "\n".join(s.status())
+    landing, _ = _session(truck)
+    assert landing.load().ok and not landing.paused and landing.waiting is None
+    explicit, _ = _session(EXAMPLES / "tutorial" / "step03-chassis" / "boxtruck.openplx", paused=True)
+    assert explicit.load().ok and explicit.paused and explicit.waiting is None  # --paused: no reason needed
+
+
+def test_signal_lines_fit_the_width_given_in_ascii(truck):
+    """The panel's lines fit the room the window gives them (so they stay clear of MuJoCo's F1 help)
+    and use no character MuJoCo's overlay font lacks (a "…" was drawn as a box)."""
+    s, _ = _session(truck)
+    assert s.load().ok
+    s.sim.send(__import__("plxtools.check.api", fromlist=["RealInputSignal"]).RealInputSignal.create(
+        2.5, s.sim.scene().getObject(LEFT)))
+    for width in (40, 60, 100):
+        lines = s.signals(width)
+        assert lines and all(len(line) <= width and line.isascii() for line in lines), (width, lines)
+    assert f"in  {LEFT} <- 2.5" in s.signals(100)  # what was sent, not the joint's velocity
+    # narrower: the root goes, then the `_input` the line's `in` already says; left and right stay apart
+    assert "in  front_left_drive_motor.target_angular_velocity <- 2.5" in s.signals(60)

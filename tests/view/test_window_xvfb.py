@@ -54,6 +54,16 @@ def buildScene():
 '''
 
 
+def _until(v: ViewInXvfb, path, ok, seconds: float = 30.0) -> np.ndarray:
+    """Screenshots until ``ok(picture)`` (a loaded machine draws late); the last one either way."""
+    end = time.monotonic() + seconds
+    while True:
+        img = v.screenshot(path)
+        if ok(img) or time.monotonic() > end:
+            return img
+        time.sleep(0.3)
+
+
 def _scene_pixels(img: np.ndarray) -> int:
     """Distinct colours: a drawn scene has hundreds (shading), a blank or menu-only window a few."""
     return len(np.unique(img.reshape(-1, 3), axis=0))
@@ -62,9 +72,11 @@ def _scene_pixels(img: np.ndarray) -> int:
 def test_window_shows_the_scene_and_reloads_a_saved_edit(truck, tmp_path):
     with ViewInXvfb([truck.name], truck.parent) as v:
         v.wait_for("loaded Scene")
-        time.sleep(1.5)
-        first = v.screenshot(tmp_path / "first.png")
+        # (a loaded machine may take seconds between the load and the first drawn frame)
+        first = _until(v, tmp_path / "first.png", lambda img: _scene_pixels(img) > 200)
         assert _scene_pixels(first) > 200, "the window looks blank"
+        time.sleep(1.0)
+        first = v.screenshot(tmp_path / "first.png")
         text = truck.read_text()
         truck.write_text(text.replace("position.z: 1.1", "position.z: 3.0"))
         t0 = time.monotonic()
@@ -87,6 +99,7 @@ def test_holding_up_drives_the_truck_and_releasing_stops_it(truck, tmp_path):
     (truck.parent / "drive.py").write_text(LOGGING_CONTROLLER)
     with ViewInXvfb([truck.name, "--controller", "drive.py"], truck.parent) as v:
         v.wait_for("loaded Scene")
+        _until(v, tmp_path / "shown.png", lambda img: _scene_pixels(img) > 200)
         time.sleep(2.0)  # land
         v.xdotool("key", "l")
         v.xdotool("keydown", "Up")
@@ -112,7 +125,8 @@ def test_reset_view_frames_the_model_and_panels_sit_on_the_right(truck, tmp_path
     help and F2 info (on the left) do not cover them. Paused: the pictures compare like for like."""
     with ViewInXvfb([truck.name, "--paused"], truck.parent) as v:
         v.wait_for("loaded Scene")
-        time.sleep(2.5)
+        _until(v, tmp_path / "opening.png", lambda img: _scene_pixels(img) > 200)
+        time.sleep(1.5)
         opening = v.screenshot(tmp_path / "opening.png")
         for _ in range(12):  # zoom with the wheel
             v.xdotool("click", "5")
@@ -123,11 +137,42 @@ def test_reset_view_frames_the_model_and_panels_sit_on_the_right(truck, tmp_path
         time.sleep(1.5)
         reset = v.screenshot(tmp_path / "reset.png")
         v.xdotool("key", "F1")
-        time.sleep(1.5)
-        helped = v.screenshot(tmp_path / "help.png")
+        helped = _until(v, tmp_path / "help.png", lambda img: _help_shown(img, reset))
     diff = lambda a, b: np.abs(a.astype(int) - b.astype(int)).mean()  # noqa: E731
     assert diff(zoomed, opening) > 2 * diff(reset, opening), (diff(zoomed, opening), diff(reset, opening))
-    # the panels' text is on the right half; the help's box on the left half does not reach it
+    # the panels are right of the help's box, top to bottom: F1 changes nothing there
+    from plxtools.view.window import HELP_PX
+
     h, w, _ = opening.shape
-    right = lambda img: img[: h // 3, w // 2:]  # noqa: E731
-    assert np.abs(right(helped).astype(int) - right(reset).astype(int)).mean() < 1.0
+    right = lambda img: img[:, HELP_PX + 5:]  # noqa: E731
+    assert np.abs(right(helped).astype(int) - right(reset).astype(int)).max() == 0
+    assert _help_shown(helped, reset)
+
+
+def _help_shown(img: np.ndarray, before: np.ndarray) -> bool:
+    from plxtools.view.window import HELP_PX
+
+    return float(np.abs(img[:, : HELP_PX - 20].astype(int) - before[:, : HELP_PX - 20].astype(int)).mean()) > 5
+
+
+def test_a_scene_that_would_fall_out_of_view_opens_paused_on_the_chassis(tmp_path):
+    """Issue 40.6: the tutorial's step 3 (a chassis, no ground) showed a black window: it had fallen out
+    of view before the first frame. It now opens paused on the chassis and says why; E plays."""
+    import shutil
+    from pathlib import Path
+
+    src = Path(__file__).resolve().parents[2] / "examples" / "tutorial" / "step03-chassis" / "boxtruck.openplx"
+    shutil.copy(src, tmp_path / "boxtruck.openplx")
+    with ViewInXvfb(["boxtruck.openplx"], tmp_path) as v:
+        v.wait_for("paused: it leaves the view")
+        # the chassis fills the middle (reddish, shaded); falling, it leaves the background
+        centre = lambda img: img[img.shape[0] // 4: 3 * img.shape[0] // 4, img.shape[1] // 4: 3 * img.shape[1] // 4]  # noqa: E731
+        red = lambda img: int((centre(img)[..., 0].astype(int) > centre(img)[..., 1].astype(int) + 40).sum())  # noqa: E731
+        big = lambda img: red(img) > 0.1 * centre(img).shape[0] * centre(img).shape[1]  # noqa: E731
+        waiting = _until(v, tmp_path / "waiting.png", big)
+        time.sleep(1.0)
+        still = v.screenshot(tmp_path / "still.png")
+        v.xdotool("key", "e")
+        played = _until(v, tmp_path / "played.png", lambda img: red(img) < red(waiting) / 10)
+    assert big(waiting) and red(still) == red(waiting), (red(waiting), red(still))  # it waits
+    assert red(played) < red(waiting) / 10, (red(played), red(waiting))

@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from plxtools.check.mujoco.kinematic import Stepper
 from plxtools.check.mujoco.render import _gl_context, frame_camera
 from plxtools.check.mujoco.results import VISUAL_GROUP
 
@@ -93,6 +94,7 @@ def record(compiled: Any, path: str, duration: float, fps: float = 25.0, width: 
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, model.key("initial").id)
     mujoco.mj_forward(model, data)
+    stepper = Stepper(mujoco, compiled, model, data)  # the step plx check --simulate takes
     n = max(1, int(round(duration * fps)))
     dt = float(model.opt.timestep)
     frames: list[np.ndarray] = []
@@ -101,7 +103,11 @@ def record(compiled: Any, path: str, duration: float, fps: float = 25.0, width: 
     except Exception as exc:  # RenderUnavailable: the message says which libraries are missing
         raise VideoError(str(exc)) from None
     con = None
+    samples = int(model.vis.quality.offsamples)
     try:
+        # no multisampling: with software OpenGL (llvmpipe, a headless machine's) it doubled the
+        # CPU of every frame, for edges a GIF's palette blurs anyway
+        model.vis.quality.offsamples = 0
         con = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_100)
         mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, con)
         scn = mujoco.MjvScene(model, maxgeom=max(1000, 4 * model.ngeom + 200))
@@ -111,10 +117,12 @@ def record(compiled: Any, path: str, duration: float, fps: float = 25.0, width: 
         offset = start - _centre(model, data)
         floor = floor_height(model, data)
         rect = mujoco.MjrRect(0, 0, width, height)
+        done = 0
         for k in range(n):
             target = int(round(k / fps / dt))
-            while data.time < target * dt - dt / 2:
-                mujoco.mj_step(model, data)
+            while done < target:
+                stepper.step(done)
+                done += 1
             if camera != "fixed":
                 cam.lookat[:] = _centre(model, data) + offset
             mujoco.mjv_updateScene(model, data, opt, None, cam, mujoco.mjtCatBit.mjCAT_ALL, scn)
@@ -125,6 +133,7 @@ def record(compiled: Any, path: str, duration: float, fps: float = 25.0, width: 
             mujoco.mjr_readPixels(rgb, None, rect, con)
             frames.append(np.flipud(rgb))
     finally:
+        model.vis.quality.offsamples = samples
         if con is not None:
             con.free()
         ctx.free()
