@@ -123,6 +123,15 @@ def start(args) -> int:
                 except (OSError, ValueError):
                     pass
             replay = InitReplay(raw["id"], key, result)
+            if result is not None and not os.environ.get("PLX_LSP_NO_EARLY"):
+                # answered: serve completion while the server's modules load (early.py)
+                from plxtools.lsp.early import Early
+
+                early = Early(raw, result, stdin, stdout)
+                early.run()
+                from plxtools.lsp.server import run_server
+
+                return run_server(args, first=body, replay=replay, early=early)
     from plxtools.lsp.server import run_server
 
     return run_server(args, first=body, replay=replay)

@@ -1,0 +1,106 @@
+"""Issue 40.1: on a warm start (the `initialize` reply in plx's cache) a completion asked for right
+after opening is answered before pygls and lsprotocol have loaded (lsp/early.py), and that answer is
+the one the server gives to the same request once it runs; typing before the request is seen, and
+the early items resolve their documentation through the server."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from tests.lsp.rawclient import RawServer
+
+TEXT = """\
+Wheel is Physics3D.Bodies.RigidBody:
+    inertia.mass: 12
+    geometry is Physics3D.Geometries.Cylinder:
+        radius: 0.3
+        height: 0.2
+
+Cart is Physics3D.System:
+    left is Wheel
+    
+"""
+CAPS = {"workspace": {"configuration": True},
+        "textDocument": {"completion": {"completionItem": {
+            "documentationFormat": ["markdown"], "resolveSupport": {"properties": ["documentation"]},
+            "labelDetailsSupport": True}}}}
+
+
+def _start(tmp_path: Path, log: Path) -> RawServer:
+    srv = RawServer("--log-file", str(log), env={"PLX_CACHE_DIR": str(tmp_path / "cache")})
+    srv.send({"jsonrpc": "2.0", "id": 1, "method": "initialize",
+              "params": {"processId": None, "rootUri": tmp_path.as_uri(), "capabilities": CAPS,
+                         "initializationOptions": {"diagnosticMode": "push"}}})
+    assert "capabilities" in srv.response(1, timeout=120)["result"]
+    srv.notify("initialized", {})
+    return srv
+
+
+def _warm(tmp_path: Path) -> None:
+    """A first start fills the cache (the initialize reply and the bundles' program)."""
+    srv = _start(tmp_path, tmp_path / "first.log")
+    try:
+        srv.open((tmp_path / "warm.openplx").as_uri(), TEXT)
+        srv.notification("textDocument/publishDiagnostics", timeout=120)
+    finally:
+        srv.close()
+
+
+def _completion(srv: RawServer, uri: str, line: int, character: int, msg_id: int) -> dict:
+    srv.send({"jsonrpc": "2.0", "id": msg_id, "method": "textDocument/completion",
+              "params": {"textDocument": {"uri": uri}, "position": {"line": line, "character": character}}})
+    return srv.response(msg_id, timeout=120)
+
+
+def _early_count(log: Path) -> int:
+    for line in log.read_text(encoding="utf-8").splitlines():
+        if "completion request(s) before the server loaded" in line:
+            return int(line.split("answered ")[1].split()[0])
+    raise AssertionError("the server did not log its early phase")
+
+
+def test_completion_right_after_opening_is_answered_early_and_as_the_server_would(tmp_path):
+    _warm(tmp_path)
+    log = tmp_path / "second.log"
+    srv = _start(tmp_path, log)
+    try:
+        uri = (tmp_path / "cart.openplx").as_uri()
+        srv.open(uri, TEXT)
+        line = TEXT.split("\n").index("    ")
+        early = _completion(srv, uri, line, 4, 2)
+        srv.notification("textDocument/publishDiagnostics", timeout=120)  # the server runs now
+        late = _completion(srv, uri, line, 4, 3)
+        labels = [it["label"] for it in early["result"]["items"]]
+        assert "reference_body" in labels and "inertia" not in labels[:1], labels  # Wheel's own attributes
+        assert early["result"] == late["result"]
+        # the early items' documentation is resolved by the server, which took over their keys
+        item = next(it for it in early["result"]["items"] if it["label"] == "reference_body")
+        srv.send({"jsonrpc": "2.0", "id": 4, "method": "completionItem/resolve", "params": item})
+        resolved = srv.response(4, timeout=60)["result"]
+        assert resolved.get("documentation", {}).get("value"), resolved
+    finally:
+        srv.close()
+    assert _early_count(log) == 1
+
+
+def test_typing_before_the_request_is_seen_by_the_early_answer(tmp_path):
+    _warm(tmp_path)
+    log = tmp_path / "second.log"
+    srv = _start(tmp_path, log)
+    try:
+        uri = (tmp_path / "cart.openplx").as_uri()
+        srv.open(uri, TEXT)
+        line = TEXT.split("\n").index("    ")
+        typed = "hub is Physics3D.Geometries."
+        srv.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 2}, "contentChanges": [
+            {"range": {"start": {"line": line, "character": 4}, "end": {"line": line, "character": 4}},
+             "text": typed}]})
+        early = _completion(srv, uri, line, 4 + len(typed), 2)
+        srv.notification("textDocument/publishDiagnostics", timeout=120)
+        late = _completion(srv, uri, line, 4 + len(typed), 3)
+        labels = [it["label"] for it in early["result"]["items"]]
+        assert "Box" in labels and "Cylinder" in labels, labels
+        assert early["result"] == late["result"]
+    finally:
+        srv.close()
+    assert _early_count(log) == 1
