@@ -27,6 +27,9 @@ from plxtools.lsp.transport import FrameReader, Writer
 log = logging.getLogger("plxtools.lsp")
 
 CONFIG_ID = "plx-early-configuration"
+SEVERITY = {"error": 1, "warning": 2, "info": 3}  # LSP DiagnosticSeverity by plx's Severity value
+TAGS = {"unnecessary": 1, "deprecated": 2}  # LSP DiagnosticTag by the registry's tag
+ANSWERED = ("textDocument/completion", "textDocument/diagnostic")  # the requests this phase may answer
 EARLY_SIZE = 200_000  # characters: a larger document waits for the server (which checks it in a forked process)
 
 
@@ -73,13 +76,16 @@ class Early:
         self.writer = Writer(stdout)
         self.kept: list[bytes] = []  # bodies for the server, in arrival order
         self.completion_keys: list = []
-        self.answered = 0
+        self.answered = 0  # requests answered here (completion, pulled diagnostics)
+        self.pushed = 0  # diagnostics pushed here
         self.docs: dict[str, list] = {}  # uri -> [text, version, path]; None text: lost track (wait)
         self.host = None
         self.config_pending = False
         self.waiting: list = []  # (body, completion request, its document's text) until the settings come
         self.init_options: dict = {}
         self.max_size = 0  # the maxDocumentSize setting (0: no limit)
+        self.settings = None
+        self.published: dict[str, object] = {}  # uri -> the text whose diagnostics were pushed
         self.ended = False
         threading.Thread(target=self._read, args=(stdin,), name="plx-lsp-reader", daemon=True).start()
 
@@ -120,6 +126,7 @@ class Early:
         host.root = _root_of(self.params)
         got = editor_settings.read(editor_settings.merge(self.init_options, None), host.root)
         host.configure(got.analysis)
+        self.settings = got
         self.max_size = got.max_document_size
         self.host = host
         workspace = self.caps.get("workspace")
@@ -148,6 +155,7 @@ class Early:
             except queue.Empty:
                 if loaded.is_set():
                     break
+                self._push_diagnostics()
                 continue
             if body is None:
                 self.ended = True
@@ -181,12 +189,12 @@ class Early:
                 self._changed(msg["params"])
             elif method == "textDocument/didClose":
                 self._closed(msg["params"]["textDocument"]["uri"])
-            elif method == "textDocument/completion" and "id" in msg:
+            elif method in ANSWERED and "id" in msg:
                 if self.config_pending:
                     doc = self.docs.get(msg["params"]["textDocument"]["uri"])
                     if doc is not None:  # answered when the settings come, if the text is still the same
                         self.waiting.append((body, msg, doc[0]))
-                elif self._complete(msg):
+                elif self._answer(msg):
                     self.kept.pop()
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
             log.info("early phase: %s left to the server (%s)", method, exc)
@@ -198,13 +206,14 @@ class Early:
         self.config_pending = False
         raw = editor_settings.section(result[0]) if isinstance(result, list) and result and isinstance(result[0], dict) else None
         got = editor_settings.read(editor_settings.merge(self.init_options, raw), self.host.root)
+        self.settings = got
         self.max_size = got.max_document_size
         if self.host.configure(got.analysis):
             reload_model(self.host)
         waiting, self.waiting = self.waiting, []
         for body, msg, text in waiting:
             doc = self.docs.get(msg["params"]["textDocument"]["uri"])
-            if doc is not None and doc[0] is text and self._complete(msg):
+            if doc is not None and doc[0] is text and self._answer(msg):
                 self.kept[:] = [k for k in self.kept if k is not body]
 
     def _changed(self, params: dict) -> None:
@@ -228,6 +237,119 @@ class Early:
         if doc is not None and doc[2] is not None:
             self.host.close_document(doc[2])
 
+    # ------------------------------------------------------------------ first diagnostics
+
+    def _pulls(self) -> bool:
+        """The server's choice in `initialize`: pull when the client can and the setting allows."""
+        text_caps = self.caps.get("textDocument")
+        can = isinstance(text_caps, dict) and text_caps.get("diagnostic") is not None
+        return can and self.settings is not None and self.settings.diagnostic_mode != "push"
+
+    def _ready(self, uri: str):
+        """(text, version, path) of an open document this phase may analyse, else None."""
+        doc = self.docs.get(uri)
+        if self.config_pending or self.settings is None or doc is None or doc[0] is None:
+            return None
+        if len(doc[0]) > EARLY_SIZE or (self.max_size and len(doc[0]) > self.max_size):
+            return None
+        text, version, path = doc
+        if path is None:
+            path = doc[2] = _path_of(uri)
+            self.host.open_document(path, text, version)
+        elif self.host.docs[path].text is not text:
+            self.host.update_document(path, text, version)
+        return text, version, path
+
+    def _push_diagnostics(self) -> None:
+        """The first diagnostics of the documents opened meanwhile, pushed as the server will push them
+        (it sends them again after its own check: the same, so the editor shows no change)."""
+        if self._pulls():
+            return
+        for uri in list(self.docs):
+            got = self._ready(uri)
+            if got is None or self.published.get(uri) is got[0] or not self.frames.empty():
+                continue
+            text, version, path = got
+            params = {"uri": uri, "diagnostics": self._diagnostics(uri, path)}
+            if version is not None:
+                params["version"] = version
+            self._send({"jsonrpc": "2.0", "method": "textDocument/publishDiagnostics", "params": params})
+            self.published[uri] = text
+            self.pushed += 1
+
+    def _pull(self, msg: dict) -> bool:
+        if not self._pulls() or not isinstance(msg["id"], (int, str)) or isinstance(msg["id"], bool):
+            return False
+        uri = msg["params"]["textDocument"]["uri"]
+        got = self._ready(uri)
+        if got is None:
+            return False
+        items = self._diagnostics(uri, got[2])
+        self._send({"jsonrpc": "2.0", "id": msg["id"], "result": {
+            "kind": "full", "resultId": f"early:{got[1]}", "items": items}})
+        self.answered += 1
+        return True
+
+    def _diagnostics(self, uri: str, path: str) -> list[dict]:
+        """The document's check as LSP JSON, field for field what `Publishing.lsp_diagnostic` gives."""
+        from plxtools.ide.runtime.collector import no_gc
+        from plxtools.lsp.convert import Positions
+        from plxtools.rules import registry
+
+        with no_gc():
+            st = self.host.state(path)
+        if st is None:
+            return []
+        pos = Positions(st.tree.text, self.encoding, st.tree.index)
+        published = self.caps.get("textDocument", {}).get("publishDiagnostics") or {}
+        out = []
+        for d in st.diagnostics:
+            item = {"range": _span_range(pos, d.span), "message": d.message + (f"\nhelp: {d.help}" if d.help else ""),
+                    "severity": SEVERITY[d.severity.value], "code": d.code, "source": "plx"}
+            if self.settings.rule_docs_url and published.get("codeDescriptionSupport"):
+                item["codeDescription"] = {"href": self.settings.rule_docs_url.replace("{code}", d.code)}
+            rule = registry.RULES.get(d.code)
+            tags = [TAGS[t] for t in (rule.tags if rule is not None else ()) if t in TAGS]
+            if tags and published.get("tagSupport"):
+                item["tags"] = tags
+            if d.related and published.get("relatedInformation"):
+                item["relatedInformation"] = [
+                    {"location": {"uri": self._uri_of(file or "", uri, path),
+                                  "range": _span_range(self._positions_of(file or "", path, pos), span)},
+                     "message": msg} for file, span, msg in d.related]
+            if d.fix is not None:
+                item["data"] = {"fix": {"message": d.fix.message, "safe": d.fix.safe,
+                                        "edits": [[e.start, e.end, e.text] for e in d.fix.edits]}}
+            out.append(item)
+        return out
+
+    def _uri_of(self, file: str, uri: str, path: str) -> str:
+        if file == path:
+            return uri
+        for u, (_t, _v, p) in self.docs.items():
+            if p == file:
+                return u
+        if os.path.isabs(file):
+            from pygls.uris import from_fs_path
+
+            return from_fs_path(file) or file
+        return file
+
+    def _positions_of(self, file: str, path: str, own):
+        from plxtools.lsp.convert import Positions
+
+        if file == path:
+            return own
+        tree = self.host.tree_of(file)
+        if tree is not None:
+            return Positions(tree.text, self.encoding, tree.index)
+        return Positions(self.host.text_of(file) or "", self.encoding)
+
+    def _answer(self, msg: dict) -> bool:
+        if msg["method"] == "textDocument/diagnostic":
+            return self._pull(msg)
+        return self._complete(msg)
+
     def _complete(self, msg: dict) -> bool:
         """Answer a completion request here; False: leave it to the server."""
         from plxtools import ide
@@ -236,18 +358,12 @@ class Early:
         from plxtools.lsp.convert import Positions
 
         params = msg["params"]
-        doc = self.docs.get(params["textDocument"]["uri"])
-        if self.config_pending or doc is None or doc[0] is None or len(doc[0]) > EARLY_SIZE \
-                or (self.max_size and len(doc[0]) > self.max_size):
-            return False
         if not isinstance(msg["id"], (int, str)) or isinstance(msg["id"], bool):
             return False
-        text, version, path = doc
-        if path is None:
-            path = doc[2] = _path_of(params["textDocument"]["uri"])
-            self.host.open_document(path, text, version)
-        elif self.host.docs[path].text is not text:
-            self.host.update_document(path, text, version)
+        got = self._ready(params["textDocument"]["uri"])
+        if got is None:
+            return False
+        path = got[2]
         position = params["position"]
         ctx = params.get("context")
         trigger = ctx.get("triggerCharacter") if isinstance(ctx, dict) and ctx.get("triggerKind") == 2 else None
@@ -268,6 +384,12 @@ class Early:
         self._send({"jsonrpc": "2.0", "id": msg["id"], "result": answer})
         self.answered += 1
         return True
+
+
+def _span_range(pos, span) -> dict:
+    from plxtools.lsp.completion_items import lsp_range
+
+    return lsp_range(pos, span.start.offset, span.end.offset)
 
 
 def _root_of(params: dict) -> str | None:

@@ -240,7 +240,8 @@ def run_server(args, first=None, replay=None, early=None) -> int:
 
     if early is not None:
         server._completion_keys = early.completion_keys
-        log.info("answered %d completion request(s) before the server loaded", early.answered)
+        log.info("answered %d request(s) and pushed diagnostics %d time(s) before the server loaded",
+                 early.answered, early.pushed)
         code = serve(server, sys.stdin.buffer, sys.stdout.buffer, first=[first, *early.kept],
                      next_body=early.next_body, writer=early.writer)
     else:

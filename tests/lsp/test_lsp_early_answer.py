@@ -23,25 +23,29 @@ Cart is Physics3D.System:
 CAPS = {"workspace": {"configuration": True},
         "textDocument": {"completion": {"completionItem": {
             "documentationFormat": ["markdown"], "resolveSupport": {"properties": ["documentation"]},
-            "labelDetailsSupport": True}}}}
+            "labelDetailsSupport": True}},
+            "publishDiagnostics": {"relatedInformation": True, "tagSupport": {"valueSet": [1, 2]},
+                                   "codeDescriptionSupport": True, "versionSupport": True}}}
 
 
-def _start(tmp_path: Path, log: Path) -> RawServer:
+def _start(tmp_path: Path, log: Path, caps: dict = CAPS, mode: str = "push") -> RawServer:
     srv = RawServer("--log-file", str(log), env={"PLX_CACHE_DIR": str(tmp_path / "cache")})
     srv.send({"jsonrpc": "2.0", "id": 1, "method": "initialize",
-              "params": {"processId": None, "rootUri": tmp_path.as_uri(), "capabilities": CAPS,
-                         "initializationOptions": {"diagnosticMode": "push"}}})
+              "params": {"processId": None, "rootUri": tmp_path.as_uri(), "capabilities": caps,
+                         "initializationOptions": {"diagnosticMode": mode,
+                                                   "ruleDocsUrl": "https://example.org/rules/{code}"}}})
     assert "capabilities" in srv.response(1, timeout=120)["result"]
     srv.notify("initialized", {})
     return srv
 
 
-def _warm(tmp_path: Path) -> None:
+def _warm(tmp_path: Path, caps: dict = CAPS, mode: str = "push") -> None:
     """A first start fills the cache (the initialize reply and the bundles' program)."""
-    srv = _start(tmp_path, tmp_path / "first.log")
+    srv = _start(tmp_path, tmp_path / "first.log", caps, mode)
     try:
-        srv.open((tmp_path / "warm.openplx").as_uri(), TEXT)
-        srv.notification("textDocument/publishDiagnostics", timeout=120)
+        uri = (tmp_path / "warm.openplx").as_uri()
+        srv.open(uri, TEXT)
+        _server_runs(srv, uri)
     finally:
         srv.close()
 
@@ -52,11 +56,18 @@ def _completion(srv: RawServer, uri: str, line: int, character: int, msg_id: int
     return srv.response(msg_id, timeout=120)
 
 
-def _early_count(log: Path) -> int:
+def _early_count(log: Path, what: str = "answered") -> int:
+    """Requests answered (`answered`) or diagnostics pushed (`pushed`) before the server loaded."""
     for line in log.read_text(encoding="utf-8").splitlines():
-        if "completion request(s) before the server loaded" in line:
-            return int(line.split("answered ")[1].split()[0])
+        if "request(s) and pushed diagnostics" in line:
+            return int(line.split(what + " ")[1].split()[0] if what == "answered"
+                       else line.split("pushed diagnostics ")[1].split()[0])
     raise AssertionError("the server did not log its early phase")
+
+
+def _server_runs(srv: RawServer, uri: str) -> None:
+    """Returns once the server itself answers (a request the early phase never answers)."""
+    srv.request("textDocument/documentSymbol", {"textDocument": {"uri": uri}}, timeout=120)
 
 
 def test_completion_right_after_opening_is_answered_early_and_as_the_server_would(tmp_path):
@@ -68,7 +79,7 @@ def test_completion_right_after_opening_is_answered_early_and_as_the_server_woul
         srv.open(uri, TEXT)
         line = TEXT.split("\n").index("    ")
         early = _completion(srv, uri, line, 4, 2)
-        srv.notification("textDocument/publishDiagnostics", timeout=120)  # the server runs now
+        _server_runs(srv, uri)
         late = _completion(srv, uri, line, 4, 3)
         labels = [it["label"] for it in early["result"]["items"]]
         assert "reference_body" in labels and "inertia" not in labels[:1], labels  # Wheel's own attributes
@@ -96,7 +107,7 @@ def test_typing_before_the_request_is_seen_by_the_early_answer(tmp_path):
             {"range": {"start": {"line": line, "character": 4}, "end": {"line": line, "character": 4}},
              "text": typed}]})
         early = _completion(srv, uri, line, 4 + len(typed), 2)
-        srv.notification("textDocument/publishDiagnostics", timeout=120)
+        _server_runs(srv, uri)
         late = _completion(srv, uri, line, 4 + len(typed), 3)
         labels = [it["label"] for it in early["result"]["items"]]
         assert "Box" in labels and "Cylinder" in labels, labels
@@ -104,3 +115,51 @@ def test_typing_before_the_request_is_seen_by_the_early_answer(tmp_path):
     finally:
         srv.close()
     assert _early_count(log) == 1
+
+
+BROKEN = """\
+Wheel is Physics3D.Bodies.RigidBody:
+    inertia.mass: 12
+    geometry is Physics3D.Geometries.Sphere:
+        raduis: 0.3
+    spare is Physics3D.Geometries.Box
+"""
+
+
+def test_first_diagnostics_are_pushed_early_and_equal_the_servers(tmp_path):
+    _warm(tmp_path)
+    log = tmp_path / "second.log"
+    srv = _start(tmp_path, log)
+    try:
+        uri = (tmp_path / "wheel.openplx").as_uri()
+        srv.open(uri, BROKEN)
+        first = srv.notification("textDocument/publishDiagnostics", timeout=120, where=lambda p: p["uri"] == uri)
+        assert any("raduis" in d["message"] for d in first["diagnostics"]), first
+        assert all(d["codeDescription"]["href"].endswith(d["code"]) for d in first["diagnostics"])
+        assert any("fix" in d.get("data", {}) for d in first["diagnostics"]), first  # the quick fix travels
+        _server_runs(srv, uri)
+        second = srv.notification("textDocument/publishDiagnostics", timeout=120, where=lambda p: p["uri"] == uri)
+        assert first == second  # the server's own check, pushed again: the same, field for field
+    finally:
+        srv.close()
+    assert _early_count(log, "pushed") == 1
+
+
+def test_pulled_first_diagnostics_are_answered_early_and_equal_the_servers(tmp_path):
+    caps = {**CAPS, "textDocument": {**CAPS["textDocument"], "diagnostic": {"dynamicRegistration": False}}}
+    _warm(tmp_path, caps, "auto")
+    log = tmp_path / "second.log"
+    srv = _start(tmp_path, log, caps, "auto")
+    try:
+        uri = (tmp_path / "wheel.openplx").as_uri()
+        srv.open(uri, BROKEN)
+        early = srv.request("textDocument/diagnostic", {"textDocument": {"uri": uri}}, timeout=120)["result"]
+        _server_runs(srv, uri)
+        late = srv.request("textDocument/diagnostic", {"textDocument": {"uri": uri}}, timeout=120)["result"]
+        assert early["kind"] == late["kind"] == "full"
+        assert any("raduis" in d["message"] for d in early["items"]), early
+        assert early["items"] == late["items"]
+        assert not [m for m in srv.pending if m.get("method") == "textDocument/publishDiagnostics"]  # pulled only
+    finally:
+        srv.close()
+    assert _early_count(log) == 1 and _early_count(log, "pushed") == 0
