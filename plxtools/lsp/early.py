@@ -116,16 +116,11 @@ class Early:
     def run(self) -> None:
         """Load the bundles, then answer completions until the server's modules are imported."""
         from plxtools import ide  # noqa: F401 - before the import thread starts: no waiting on its locks
-        from plxtools.ide.host import AnalysisHost
         from plxtools.ide.runtime import settings as editor_settings
         from plxtools.ide.runtime import collector  # noqa: F401
         from plxtools.lsp import completion_items, convert  # noqa: F401
-        
-        self.init_options = editor_settings.section(self.params.get("initializationOptions")) or {}
-        host = AnalysisHost()
-        host.root = _root_of(self.params)
-        got = editor_settings.read(editor_settings.merge(self.init_options, None), host.root)
-        host.configure(got.analysis)
+
+        host, got, self.init_options = host_for(self.params)
         self.settings = got
         self.max_size = got.max_document_size
         self.host = host
@@ -202,7 +197,7 @@ class Early:
     def _configured(self, result) -> None:
         from plxtools.ide.runtime import settings as editor_settings
         from plxtools.ide.runtime.collector import reload_model
-        
+
         self.config_pending = False
         raw = editor_settings.section(result[0]) if isinstance(result, list) and result and isinstance(result[0], dict) else None
         got = editor_settings.read(editor_settings.merge(self.init_options, raw), self.host.root)
@@ -384,6 +379,20 @@ class Early:
         self._send({"jsonrpc": "2.0", "id": msg["id"], "result": answer})
         self.answered += 1
         return True
+
+
+def host_for(params: dict):
+    """(analysis host, editor settings, initialization options) as the server's `initialize`
+    handler sets them up from the request's params (no bundles loaded yet)."""
+    from plxtools.ide.host import AnalysisHost
+    from plxtools.ide.runtime import settings as editor_settings
+
+    init_options = editor_settings.section(params.get("initializationOptions")) or {}
+    host = AnalysisHost()
+    host.root = _root_of(params)
+    got = editor_settings.read(editor_settings.merge(init_options, None), host.root)
+    host.configure(got.analysis)
+    return host, got, init_options
 
 
 def _span_range(pos, span) -> dict:

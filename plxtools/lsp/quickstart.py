@@ -132,6 +132,10 @@ def start(args) -> int:
                 from plxtools.lsp.server import run_server
 
                 return run_server(args, first=body, replay=replay, early=early)
+            if not os.environ.get("PLX_LSP_NO_EARLY"):
+                from plxtools.lsp import prefetch
+
+                prefetch.start(raw)  # the bundles parsed by a child while pygls loads here
     from plxtools.lsp.server import run_server
 
     return run_server(args, first=body, replay=replay)

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 from lsprotocol import types
 
 from plxtools.ide.runtime.collector import freeze_loaded
+from plxtools.lsp import prefetch
 from plxtools.lsp.handlers import CONFIG_FILES, CONFIG_SECTION, section
 
 if TYPE_CHECKING:
@@ -52,7 +53,7 @@ def register(server, server_feature) -> None:
         if ls.warming is None:
             ls.warming = loop.create_future()
         try:
-            await loop.run_in_executor(None, lambda: ls.host.workspace)
+            await loop.run_in_executor(None, _load, ls)
         except asyncio.CancelledError:
             return  # the editor quit while the bundles were loading
         finally:
@@ -62,6 +63,10 @@ def register(server, server_feature) -> None:
         freeze_loaded()
         ls.notify_messages()
         ls.checks.wake()
+
+    def _load(ls: PlxServer):
+        prefetch.wait()  # a cold start's forked loader (lsp/prefetch.py) fills plx's cache first
+        return ls.host.workspace
 
     async def _watch_files(ls: PlxServer) -> None:
         """Ask the editor to report model and config files changed on disk (a changed config may
