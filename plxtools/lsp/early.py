@@ -86,7 +86,10 @@ class Early:
         self.max_size = 0  # the maxDocumentSize setting (0: no limit)
         self.settings = None
         self.published: dict[str, object] = {}  # uri -> the text whose diagnostics were pushed
+        self.pushing = True  # False after a failure: the server pushes them
         self.ended = False
+        self.imported = threading.Event()  # the server's modules are loaded (set at once if never started)
+        self.import_started = False
         threading.Thread(target=self._read, args=(stdin,), name="plx-lsp-reader", daemon=True).start()
 
     # ------------------------------------------------------------------ frames
@@ -114,6 +117,17 @@ class Early:
     # ------------------------------------------------------------------ the phase
 
     def run(self) -> None:
+        """The phase; never raises: on a failure here the server starts with its own host, and
+        whatever was not answered goes to it (what was is not sent twice)."""
+        try:
+            self._run()
+        except Exception:  # noqa: BLE001 - the server must start whatever happened here
+            log.exception("the early phase failed; the server answers everything")
+            self.host, self.completion_keys = None, []
+            if self.import_started:
+                self.imported.wait()
+
+    def _run(self) -> None:
         """Load the bundles, then answer completions until the server's modules are imported."""
         from plxtools import ide  # noqa: F401 - before the import thread starts: no waiting on its locks
         from plxtools.ide.runtime import settings as editor_settings
@@ -131,26 +145,30 @@ class Early:
             self._send({"jsonrpc": "2.0", "id": CONFIG_ID, "method": "workspace/configuration",
                         "params": {"items": [{"section": editor_settings.CONFIG_SECTION}]}})
         _ = host.workspace
-        loaded = threading.Event()
-        failed: list = []
+        loaded = self.imported
 
         def load_server() -> None:
             try:
                 import plxtools.lsp.handlers.editing  # noqa: F401 - pygls, lsprotocol and the handlers
                 import plxtools.lsp.server  # noqa: F401
-            except BaseException as exc:  # noqa: BLE001 - re-raised by the importing thread below
-                failed.append(exc)
+            except BaseException:  # noqa: BLE001 - run_server imports them again and fails there, loudly
+                pass
             finally:
                 loaded.set()
 
         threading.Thread(target=load_server, name="plx-lsp-import", daemon=True).start()
+        self.import_started = True
         while not self.ended:
             try:
                 body = self.frames.get(timeout=0.01)
             except queue.Empty:
                 if loaded.is_set():
                     break
-                self._push_diagnostics()
+                try:
+                    self._push_diagnostics()
+                except Exception:  # noqa: BLE001 - the server pushes them after its check
+                    log.exception("early phase: diagnostics left to the server")
+                    self.pushing = False
                 continue
             if body is None:
                 self.ended = True
@@ -193,6 +211,8 @@ class Early:
                     self.kept.pop()
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
             log.info("early phase: %s left to the server (%s)", method, exc)
+        except Exception:  # noqa: BLE001 - a failing analysis here: the server answers, and logs its own
+            log.exception("early phase: %s left to the server", method)
 
     def _configured(self, result) -> None:
         from plxtools.ide.runtime import settings as editor_settings
@@ -258,7 +278,7 @@ class Early:
     def _push_diagnostics(self) -> None:
         """The first diagnostics of the documents opened meanwhile, pushed as the server will push them
         (it sends them again after its own check: the same, so the editor shows no change)."""
-        if self._pulls():
+        if self._pulls() or not self.pushing:
             return
         for uri in list(self.docs):
             got = self._ready(uri)

@@ -163,3 +163,21 @@ def test_pulled_first_diagnostics_are_answered_early_and_equal_the_servers(tmp_p
     finally:
         srv.close()
     assert _early_count(log) == 1 and _early_count(log, "pushed") == 0
+
+
+def test_a_request_the_early_phase_cannot_read_goes_to_the_server_which_answers_it(tmp_path):
+    _warm(tmp_path)
+    log = tmp_path / "second.log"
+    srv = _start(tmp_path, log)
+    try:
+        uri = (tmp_path / "cart.openplx").as_uri()
+        srv.open(uri, TEXT)
+        srv.send({"jsonrpc": "2.0", "id": 2, "method": "textDocument/completion",
+                  "params": {"textDocument": {"uri": uri}}})  # no position
+        bad = srv.response(2, timeout=120)
+        assert bad["error"]["code"] == -32602, bad  # the server's InvalidParams, not a crash or silence
+        line = TEXT.split("\n").index("    ")
+        assert _completion(srv, uri, line, 4, 3)["result"]["items"]
+    finally:
+        assert srv.close() == 0
+    assert _early_count(log) == 0
