@@ -76,6 +76,7 @@ class PlxServer(Publishing, LanguageServer):
         # and a request that needs the model (hover, go-to) waits for it (the host's lock) rather
         # than loading it twice
         self.warming: asyncio.Future | None = None
+        self.registering: asyncio.Future | None = None  # the file watchers' registration, not waited for
 
     def report_server_error(self, error: Exception, source) -> None:
         """Errors outside a request (a failing notification, a bad message) are logged; the editor is

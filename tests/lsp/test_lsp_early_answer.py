@@ -181,3 +181,29 @@ def test_a_request_the_early_phase_cannot_read_goes_to_the_server_which_answers_
     finally:
         assert srv.close() == 0
     assert _early_count(log) == 0
+
+
+class _Busy(RawServer):
+    """An editor that never answers client/registerCapability (Emacs in the middle of a go-to-definition
+    answered it late or not at all)."""
+
+    def _answer(self, m: dict) -> None:
+        if m["method"] == "client/registerCapability":
+            self.server_requests.append(m)
+            return
+        super()._answer(m)
+
+
+def test_completion_does_not_wait_for_the_editor_to_answer_the_file_watchers_registration(tmp_path):
+    srv = _Busy(env={"PLX_CACHE_DIR": str(tmp_path / "cache")})
+    try:
+        caps = {**CAPS, "workspace": {"configuration": True, "didChangeWatchedFiles": {"dynamicRegistration": True}}}
+        srv.initialize(caps, {"diagnosticMode": "push"})
+        uri = (tmp_path / "cart.openplx").as_uri()
+        srv.open(uri, TEXT)
+        line = TEXT.split("\n").index("    ")
+        assert _completion(srv, uri, line, 4, 2)["result"]["items"]
+        srv.notification("textDocument/publishDiagnostics", timeout=60, where=lambda p: p["uri"] == uri)
+        assert srv.notification_request("client/registerCapability", timeout=5)  # asked, never answered
+    finally:
+        srv.proc.kill()

@@ -19,6 +19,8 @@ if TYPE_CHECKING:
 
 log = logging.getLogger("plxtools.lsp")
 
+CONFIGURATION_WAIT = 10  # seconds the bundles' load waits for the editor's settings
+
 
 def register(server, server_feature) -> None:
     @server_feature(types.INITIALIZE)
@@ -46,7 +48,10 @@ def register(server, server_feature) -> None:
         if ls.cap("workspace.configuration"):
             await _pull_configuration(ls)
         if ls.cap("workspace.did_change_watched_files.dynamic_registration"):
-            await _watch_files(ls)
+            # not awaited: nothing below needs the editor's answer, and an editor busy elsewhere may
+            # answer late or never (Emacs in the middle of a go-to-definition did not, and completion,
+            # waiting for the bundles behind it, timed out)
+            ls.registering = asyncio.ensure_future(_watch_files(ls))
         # load the bundles now, not on the first keystroke, and in a thread: a request that arrives
         # meanwhile (Helix asks for completion right after opening a file) is answered at once
         loop = asyncio.get_running_loop()
@@ -82,8 +87,11 @@ def register(server, server_feature) -> None:
 
     async def _pull_configuration(ls: PlxServer) -> None:
         try:
-            got = await ls.workspace_configuration_async(types.ConfigurationParams(
-                items=[types.ConfigurationItem(section=CONFIG_SECTION)]))
+            got = await asyncio.wait_for(ls.workspace_configuration_async(types.ConfigurationParams(
+                items=[types.ConfigurationItem(section=CONFIG_SECTION)])), CONFIGURATION_WAIT)
+        except asyncio.TimeoutError:
+            log.warning("workspace/configuration: no answer in %d s; the settings so far stay", CONFIGURATION_WAIT)
+            return
         except Exception as exc:  # noqa: BLE001 - a client that cannot answer keeps the defaults
             log.info("workspace/configuration failed: %s", exc)
             return
