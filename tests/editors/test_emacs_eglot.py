@@ -103,7 +103,7 @@ def test_the_documented_emacs_setup_gives_diagnostics_hover_definition_completio
     # issue 40.1: first diagnostics within 1.5 s warm / 4 s cold on a quiet machine (Emacs start and
     # eglot's connection included here); asserted loosely, the machine is shared
     print(f"{setup}: open to first diagnostics {results['first-diagnostics-seconds'][0]} s")
-    assert float(results["first-diagnostics-seconds"][0]) < 20, out
+    assert float(results["first-diagnostics-seconds"][0]) < 30, out
     assert results["diagnostic"] == ["4 plx [N002]: 'raduis' is not an attribute of Physics3D.Geometries.Sphere"], out
     assert results["hover"][0].startswith("Physics3D.Bodies.RigidBody is Physics3D.Bodies.Body"), out
     assert results["definition"][0].replace(os.sep, "/").endswith("Physics3D/Bodies/RigidBody.openplx:1"), out
