@@ -368,13 +368,7 @@ def _value_items(st: FileState, line_no: int, line: str, lc: LineContext, head: 
         items += [CompletionItem(v, "value", "Bool", sort_text=RANK_REST + v) for v in ("true", "false")]
     if outer is not None:
         items.append(CompletionItem("this", "value", outer.qname, sort_text=RANK_REST + "this"))
-        for mem in p.all_members(outer).values():
-            ty = p.member_type(mem)
-            fits = _fits(p, ty, expected)
-            if fits == "no" and not _leads_to(p, ty, expected):
-                continue  # a Vec3 or a signal where a connector is wanted: nothing in it fits either
-            it = _attribute_item(st, mem, outer, set(), RANK_BEST if fits == "exact" else RANK_OK)
-            items.append(it)
+        items += _own_member_items(st, outer, expected)
         items += _nested_fits(st, outer, expected)
     # globals and const models in scope, and const-model members that fit (enum-like tables)
     for sym in _local_symbols(st):
@@ -392,6 +386,19 @@ def _value_items(st: FileState, line_no: int, line: str, lc: LineContext, head: 
                                                     sort_text=RANK_OK + label, key=("member", mem, sym)))
     for ns in _visible_roots(st):
         items.append(_ns_item(ns, RANK_REST))
+    return items
+
+
+def _own_member_items(st: FileState, outer: ModelSym, expected: Ty) -> list[CompletionItem]:
+    """The enclosing model's attributes, those that fit first; none that cannot lead to a fit."""
+    p = st.program
+    items = []
+    for mem in p.all_members(outer).values():
+        ty = p.member_type(mem)
+        fits = _fits(p, ty, expected)
+        if fits == "no" and not _leads_to(p, ty, expected):
+            continue  # a Vec3 or a signal where a connector is wanted: nothing in it fits either
+        items.append(_attribute_item(st, mem, outer, set(), RANK_BEST if fits == "exact" else RANK_OK))
     return items
 
 
@@ -522,13 +529,7 @@ def _member_items(st: FileState, base, expected: Ty = UNKNOWN) -> list[Completio
                 items.append(_method_item(meth, RANK_BEST))
         return items
     if isinstance(base, Ty) and base.model is not None and not base.array and not base.alts:
-        narrowed = not expected.unknown and expected.model is not None
-        for mem in p.members_of(base).values():
-            ty = p.member_type(mem)
-            if narrowed and not _leads_to(p, ty, expected):
-                continue
-            fits = narrowed and _fits(p, ty, expected) == "exact"
-            items.append(_attribute_item(st, mem, None, set(), RANK_BEST if fits or not narrowed else RANK_GOOD))
+        items += _value_member_items(st, base, expected)
         const = base.model.const
         for meth in p.methods_of(base).values():
             if meth.stmt.returns is None:
@@ -539,6 +540,20 @@ def _member_items(st: FileState, base, expected: Ty = UNKNOWN) -> list[Completio
         return items
     if isinstance(base, MethodRef):
         return []
+    return items
+
+
+def _value_member_items(st: FileState, base: Ty, expected: Ty) -> list[CompletionItem]:
+    """The attributes of a value after its dot; for a model-typed slot, what fits it first."""
+    p = st.program
+    narrowed = not expected.unknown and expected.model is not None
+    items = []
+    for mem in p.members_of(base).values():
+        ty = p.member_type(mem)
+        if narrowed and not _leads_to(p, ty, expected):
+            continue
+        fits = narrowed and _fits(p, ty, expected) == "exact"
+        items.append(_attribute_item(st, mem, None, set(), RANK_BEST if fits or not narrowed else RANK_GOOD))
     return items
 
 
