@@ -44,10 +44,11 @@ CAPS = {"general": {"positionEncodings": ["utf-16"]},
 
 
 def cpu_of(pid: int) -> float:
-    """User + system CPU seconds of a live process (from /proc)."""
+    """User + system CPU seconds of a live process and of its children it has reaped (from /proc):
+    a cold start's forked bundle loader counts once the server has waited for it."""
     try:
         fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+        return sum(int(f) for f in fields[11:15]) / os.sysconf("SC_CLK_TCK")
     except (OSError, IndexError, ValueError):
         return float("nan")
 
@@ -74,6 +75,7 @@ def one_start(cmd: list[str], cwd: Path, cache: Path, folder: Path) -> dict:
                                   "capabilities": CAPS, "initializationOptions": {}}, timeout=120)
     t_init = time.perf_counter() - t0
     client.notify("initialized", {})
+    cpu_open = cpu_of(client.proc.pid)
     since = client.notify("textDocument/didOpen", {"textDocument": {"uri": uri, "languageId": "openplx",
                                                                     "version": 1, "text": text}})
     dt, msg = client.request("textDocument/completion", {"textDocument": {"uri": uri},
@@ -83,6 +85,7 @@ def one_start(cmd: list[str], cwd: Path, cache: Path, folder: Path) -> dict:
     result = msg.get("result") or {}
     items = result.get("items", []) if isinstance(result, dict) else result
     t_diag, _ = client.wait_diagnostics(uri, since, timeout=120)
+    cpu_diag = cpu_of(client.proc.pid)
     # a second file opened once the server is up, completion asked at once (before its first check)
     other = folder / "other.openplx"
     other.write_text(text, encoding="utf-8")
@@ -96,7 +99,8 @@ def one_start(cmd: list[str], cwd: Path, cache: Path, folder: Path) -> dict:
     client.wait_diagnostics(other.resolve().as_uri(), since2, timeout=120)
     client.close()
     return {"init": t_init, "completion": dt, "items": len(items), "diag": t_diag - since,
-            "first": t_answer <= t_diag, "cpu": cpu, "second": dt2 if items2 else float("inf")}
+            "first": t_answer <= t_diag, "cpu": cpu, "second": dt2 if items2 else float("inf"),
+            "cpu_open_answer": cpu - cpu_open, "cpu_open_diag": cpu_diag - cpu_open}
 
 
 def series(name: str, cmd: list[str], cwd: Path, runs: int) -> list[tuple]:
@@ -135,7 +139,8 @@ def main() -> None:
     finally:
         if tmp_wt is not None:
             subprocess.run(["git", "-C", str(REPO), "worktree", "remove", "--force", str(tmp_wt)], check=False)
-    print(f"First completion after opening (tutorial step 7 with an empty line in BoxTruck; {machine()}; "
+    print(f"First completion after opening (tutorial step 7 with an empty line in BoxTruck; {machine()}, "
+          f"load average {os.getloadavg()[0]:.1f}; "
           f"{args.runs} starts per row; medians, wall ms unless said)")
     out = []
     for name, _ in servers:
@@ -146,10 +151,14 @@ def main() -> None:
             first = sum(1 for r in rs if r["first"] and r["items"] > 0)
             out.append((name, label, f"{med('init'):.0f}", f"{med('completion'):.0f}",
                         f"{real}/{len(rs)} ({statistics.median(r['items'] for r in rs):.0f} items)",
-                        f"{first}/{len(rs)}", f"{med('diag'):.0f}", f"{med('cpu'):.0f}", f"{med('second'):.0f}"))
+                        f"{first}/{len(rs)}", f"{med('diag'):.0f}", f"{med('cpu'):.0f}",
+                        f"{med('cpu_open_answer'):.0f}", f"{med('cpu_open_diag'):.0f}", f"{med('second'):.0f}"))
     print(table(out, ("server", "cache", "spawn->initialize", "open->completion", "real items",
                       "before 1st check", "open->1st diagnostics", "server CPU to answer",
-                      "2nd file: open->completion")))
+                      "CPU open->answer", "CPU open->diagnostics", "2nd file: open->completion")))
+    print("target (issue 40): real items within 300 ms of opening, before the first check; first diagnostics "
+          "within 1.5 s warm, 4 s cold. On a loaded machine read the CPU columns (the server's own time, "
+          "with its reaped children) against the targets: wall time there is mostly waiting for a core.")
     print("(2nd file: opened once the server is up; inf = an empty answer)")
     print("(with the server cwd in each tree: `python -m plxtools` runs that tree's code)")
 

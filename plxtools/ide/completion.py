@@ -358,7 +358,7 @@ def _value_items(st: FileState, line_no: int, line: str, lc: LineContext, head: 
             return []
         outer = ctx.outer
         base = eval_chain(st, outer, chain)
-        return _member_items(st, base)
+        return _member_items(st, base, _expected_type(st, ctx, lc, value_text))
     expected = _expected_type(st, ctx, lc, value_text)
     items: list[CompletionItem] = []
     outer = ctx.outer
@@ -368,11 +368,7 @@ def _value_items(st: FileState, line_no: int, line: str, lc: LineContext, head: 
         items += [CompletionItem(v, "value", "Bool", sort_text=RANK_REST + v) for v in ("true", "false")]
     if outer is not None:
         items.append(CompletionItem("this", "value", outer.qname, sort_text=RANK_REST + "this"))
-        for mem in p.all_members(outer).values():
-            ty = p.member_type(mem)
-            fits = _fits(p, ty, expected)
-            it = _attribute_item(st, mem, outer, set(), RANK_BEST if fits == "exact" else RANK_OK)
-            items.append(it)
+        items += _own_member_items(st, outer, expected)
         items += _nested_fits(st, outer, expected)
     # globals and const models in scope, and const-model members that fit (enum-like tables)
     for sym in _local_symbols(st):
@@ -393,6 +389,19 @@ def _value_items(st: FileState, line_no: int, line: str, lc: LineContext, head: 
     return items
 
 
+def _own_member_items(st: FileState, outer: ModelSym, expected: Ty) -> list[CompletionItem]:
+    """The enclosing model's attributes, those that fit first; none that cannot lead to a fit."""
+    p = st.program
+    items = []
+    for mem in p.all_members(outer).values():
+        ty = p.member_type(mem)
+        fits = _fits(p, ty, expected)
+        if fits == "no" and not _leads_to(p, ty, expected):
+            continue  # a Vec3 or a signal where a connector is wanted: nothing in it fits either
+        items.append(_attribute_item(st, mem, outer, set(), RANK_BEST if fits == "exact" else RANK_OK))
+    return items
+
+
 def _nested_fits(st: FileState, outer: ModelSym, expected: Ty) -> list[CompletionItem]:
     """`chassis.left_hub` for a connector: an attribute's attribute whose type fits a model type that
     is expected (the connectors of a joint sit on the bodies it joins), ranked first."""
@@ -410,6 +419,21 @@ def _nested_fits(st: FileState, outer: ModelSym, expected: Ty) -> list[Completio
                 out.append(CompletionItem(label, "attribute", p.member_type(sub).display(), None,
                                           sort_text=RANK_BEST + label, key=("member", sub, None)))
     return out
+
+
+def _leads_to(p, ty: Ty, expected: Ty, depth: int = 2) -> bool:
+    """Whether something that fits a model-typed `expected` is `ty` or one of its attributes, `depth`
+    levels down (`chassis.hub`); always True for a primitive or unknown expectation (`a.x * 2`
+    reaches a Real from anything), so only model-typed slots are narrowed."""
+    if expected.unknown or expected.model is None or ty.unknown:
+        return True
+    if _fits(p, ty, expected) != "no":
+        return True
+    if expected.array and _leads_to(p, ty, expected.element(), depth):
+        return True  # `connectors: ` before its `[`: what goes inside counts
+    if depth == 0 or ty.model is None or ty.array or ty.alts:
+        return False
+    return any(_leads_to(p, p.member_type(sub), expected, depth - 1) for sub in p.members_of(ty).values())
 
 
 def _near(st: FileState, sym: ModelSym) -> bool:
@@ -483,7 +507,9 @@ def _open_brackets(s: str) -> list[tuple[str, int]]:
     return [(b, c) for b, c in stack]
 
 
-def _member_items(st: FileState, base) -> list[CompletionItem]:
+def _member_items(st: FileState, base, expected: Ty = UNKNOWN) -> list[CompletionItem]:
+    """After `a.b.`: what the chain's value holds; where the slot wants a model type (a joint's
+    `connectors: [a.`), what fits it first and what cannot lead to it left out."""
     p = st.program
     items: list[CompletionItem] = []
     if isinstance(base, NsRef):
@@ -503,8 +529,7 @@ def _member_items(st: FileState, base) -> list[CompletionItem]:
                 items.append(_method_item(meth, RANK_BEST))
         return items
     if isinstance(base, Ty) and base.model is not None and not base.array and not base.alts:
-        for mem in p.members_of(base).values():
-            items.append(_attribute_item(st, mem, None, set(), RANK_BEST))
+        items += _value_member_items(st, base, expected)
         const = base.model.const
         for meth in p.methods_of(base).values():
             if meth.stmt.returns is None:
@@ -515,6 +540,20 @@ def _member_items(st: FileState, base) -> list[CompletionItem]:
         return items
     if isinstance(base, MethodRef):
         return []
+    return items
+
+
+def _value_member_items(st: FileState, base: Ty, expected: Ty) -> list[CompletionItem]:
+    """The attributes of a value after its dot; for a model-typed slot, what fits it first."""
+    p = st.program
+    narrowed = not expected.unknown and expected.model is not None
+    items = []
+    for mem in p.members_of(base).values():
+        ty = p.member_type(mem)
+        if narrowed and not _leads_to(p, ty, expected):
+            continue
+        fits = narrowed and _fits(p, ty, expected) == "exact"
+        items.append(_attribute_item(st, mem, None, set(), RANK_BEST if fits or not narrowed else RANK_GOOD))
     return items
 
 

@@ -83,15 +83,20 @@ class Positions:
         return self.text[self.starts[line]:self.line_end(line)]
 
     # plxtools -> LSP
-    def offset_position(self, offset: int):
-        from lsprotocol import types
-
+    def line_character(self, offset: int) -> tuple[int, int]:
+        """An offset as LSP's (line, character), without lsprotocol (quickstart answers before it loads)."""
         offset = max(0, min(offset, len(self.text)))
         line = bisect_right(self.starts, offset) - 1
         start = self.starts[line]
         offset = min(offset, self.line_end(line))  # never inside a \r\n pair
         piece = self.text[start:offset]
         ch = len(piece) if self.encoding == UTF32 or piece.isascii() else _units(piece, self.encoding)
+        return line, ch
+
+    def offset_position(self, offset: int):
+        from lsprotocol import types
+
+        line, ch = self.line_character(offset)
         return types.Position(line=line, character=ch)
 
     def offsets_range(self, start: int, end: int):

@@ -2,8 +2,9 @@
 
 Importing lsprotocol's types (~250 ms) and pygls is most of the time from start to the
 `initialize` reply. The reply is a function of the request's params and of this server's code,
-so it is kept in plx's cache, keyed by both; an editor sends the same params at every start, so
-from the second start on the reply goes out as soon as the request is read. The request is then
+so it is kept in plx's cache, keyed by both (less the process id and the workspace folder, which it
+does not depend on); an editor sends the same params at every start, so from the second start on,
+in any folder, the reply goes out as soon as the request is read. The request is then
 handled by the real server as usual (its state is the same as without the cache); its own
 reply is dropped, and stored if it differs. A first start, or one with other params, is served
 the usual way and fills the cache.
@@ -39,6 +40,12 @@ def _code_stamp() -> str:
     return "\n".join(parts)
 
 
+# params the reply does not depend on: the process, and the folder (the reply is the server's
+# capabilities: its features and the client's capabilities and initializationOptions, never the
+# folder's files; tests/lsp/test_lsp_quickstart.py starts fresh servers on two folders and compares)
+NOT_IN_KEY = frozenset({"processId", "rootUri", "rootPath", "workspaceFolders"})
+
+
 def cache_key(raw: dict) -> str | None:
     params = raw.get("params")
     if not isinstance(params, dict) or os.environ.get("PLX_LSP_FAULT"):
@@ -46,7 +53,7 @@ def cache_key(raw: dict) -> str | None:
     stamp = _code_stamp()
     if not stamp:
         return None
-    kept = {k: v for k, v in params.items() if k != "processId"}
+    kept = {k: v for k, v in params.items() if k not in NOT_IN_KEY}
     try:
         text = json.dumps(kept, sort_keys=True)
     except (TypeError, ValueError):
@@ -123,6 +130,19 @@ def start(args) -> int:
                 except (OSError, ValueError):
                     pass
             replay = InitReplay(raw["id"], key, result)
+            if result is not None and not os.environ.get("PLX_LSP_NO_EARLY"):
+                # answered: serve completion while the server's modules load (early.py)
+                from plxtools.lsp.early import Early
+
+                early = Early(raw, result, stdin, stdout)
+                early.run()
+                from plxtools.lsp.server import run_server
+
+                return run_server(args, first=body, replay=replay, early=early)
+            if not os.environ.get("PLX_LSP_NO_EARLY"):
+                from plxtools.lsp import prefetch
+
+                prefetch.start(raw)  # the bundles parsed by a child while pygls loads here
     from plxtools.lsp.server import run_server
 
     return run_server(args, first=body, replay=replay)

@@ -42,11 +42,11 @@ MAX_DOCUMENT_SIZE = editor_settings.MAX_DOCUMENT_SIZE
 
 
 class PlxServer(Publishing, LanguageServer):
-    def __init__(self) -> None:
+    def __init__(self, host: AnalysisHost | None = None) -> None:
         super().__init__("plx", __version__, protocol_cls=PlxProtocol,
                          text_document_sync_kind=types.TextDocumentSyncKind.Incremental)
 
-        self.host = AnalysisHost()
+        self.host = host or AnalysisHost()  # early.py hands over the one it loaded the bundles into
         self.documents = Documents()
         self.dispatcher = Dispatcher(self)
         self.loop: asyncio.AbstractEventLoop | None = None
@@ -76,6 +76,7 @@ class PlxServer(Publishing, LanguageServer):
         # and a request that needs the model (hover, go-to) waits for it (the host's lock) rather
         # than loading it twice
         self.warming: asyncio.Future | None = None
+        self.registering: asyncio.Future | None = None  # the file watchers' registration, not waited for
 
     def report_server_error(self, error: Exception, source) -> None:
         """Errors outside a request (a failing notification, a bad message) are logged; the editor is
@@ -206,10 +207,10 @@ def _plain(markdown: str) -> str:
     return markdown.replace("```openplx\n", "").replace("```\n", "").replace("```", "")
 
 
-def create_server() -> PlxServer:
+def create_server(host: AnalysisHost | None = None) -> PlxServer:
     from plxtools.lsp.handlers import register_all
 
-    server = PlxServer()
+    server = PlxServer(host)
     register_all(server)
     return server
 
@@ -229,15 +230,23 @@ def _configure_logging(log_file: str | None) -> None:
     logging.getLogger("pygls").setLevel(logging.WARNING if not log_file else logging.INFO)
 
 
-def run_server(args, first: bytes | None = None, replay=None) -> int:
+def run_server(args, first=None, replay=None, early=None) -> int:
     """Entry point of `plx lsp`: serve over stdin/stdout until the client says exit. `first` and
-    `replay` come from quickstart.py (the first message, already read; its cached answer)."""
+    `replay` come from quickstart.py (the first message, already read; its cached answer); `early`
+    is early.py's hand-over (the loaded host, the messages it kept, its queue of frames)."""
     _configure_logging(getattr(args, "log_file", None))
-    server = create_server()
+    server = create_server(early.host if early is not None else None)
     server.protocol.init_replay = replay
     log.info("plx lsp %s starting (python %s)", __version__, sys.version.split()[0])
 
-    code = serve(server, sys.stdin.buffer, sys.stdout.buffer, first=first)
+    if early is not None:
+        server._completion_keys = early.completion_keys
+        log.info("answered %d request(s) and pushed diagnostics %d time(s) before the server loaded",
+                 early.answered, early.pushed)
+        code = serve(server, sys.stdin.buffer, sys.stdout.buffer, first=[first, *early.kept],
+                     next_body=early.next_body, writer=early.writer)
+    else:
+        code = serve(server, sys.stdin.buffer, sys.stdout.buffer, first=first)
     # stdout is closed when the client says exit; later flushes must not fail on it
     for name in ("stdout", "stderr"):
         stream = getattr(sys, name)

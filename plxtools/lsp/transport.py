@@ -279,16 +279,18 @@ def _short(exc: Exception) -> str:
     return text[:300]
 
 
-def serve(server, stdin, stdout, first: bytes | None = None) -> int:
-    """Run the server until `exit` or the end of input; returns the exit code. `first` is a body
-    read before the server existed (quickstart.py): it is handled before anything else is read."""
+def serve(server, stdin, stdout, first=None, next_body=None, writer: Writer | None = None) -> int:
+    """Run the server until `exit` or the end of input; returns the exit code. `first` is a body, or
+    a list of bodies, read before the server existed (quickstart.py, early.py): handled before
+    anything else is read; `next_body` replaces reading `stdin` (early.py's queue of frames)."""
     import asyncio  # here, not at the top: quickstart.py reads the first frame before this is needed
 
-    writer = Writer(stdout)
+    writer = writer or Writer(stdout)
     server.protocol.set_writer(writer)
     server.writer = writer
     dispatcher = server.dispatcher
-    reader = FrameReader(stdin)
+    next_body = next_body or FrameReader(stdin).next_body
+    pending_bodies = list(first) if isinstance(first, list) else [first] if first is not None else []
 
     async def main() -> None:
         loop = asyncio.get_running_loop()
@@ -296,10 +298,9 @@ def serve(server, stdin, stdout, first: bytes | None = None) -> int:
         done = loop.create_future()
 
         def read_all() -> None:
-            pending = first
             try:
                 while True:
-                    body, pending = (pending, None) if pending is not None else (reader.next_body(), None)
+                    body = pending_bodies.pop(0) if pending_bodies else next_body()
                     if body is None:
                         break
                     try:

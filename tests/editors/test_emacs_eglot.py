@@ -29,6 +29,7 @@ DRIVE = r"""
     (while (and (not (funcall pred)) (< (float-time) end))
       (accept-process-output nil 0.1))
     (funcall pred)))
+(setq plx-opened (float-time))
 (find-file MODEL)
 (plx-say "mode" major-mode)
 ;; eglot-ensure connects after the first command; in batch there is none, so run the hook once
@@ -37,6 +38,7 @@ DRIVE = r"""
 (plx-say "connected" (if (eglot-current-server) "yes" "no"))
 (plx-say "root" (expand-file-name (project-root (project-current))))
 (plx-wait (lambda () (flymake-diagnostics)) 60)
+(plx-say "first-diagnostics-seconds" (format "%.2f" (- (float-time) plx-opened)))
 (dolist (d (flymake-diagnostics))
   (plx-say "diagnostic" (format "%d %s" (line-number-at-pos (flymake-diagnostic-beg d))
                                 (car (split-string (flymake-diagnostic-text d) "\n")))))
@@ -98,6 +100,10 @@ def test_the_documented_emacs_setup_gives_diagnostics_hover_definition_completio
     assert results["mode"] == ["openplx-mode"], out
     assert results["connected"] == ["yes"], out
     assert Path(results["root"][0]).resolve() == project.resolve(), out
+    # issue 40.1: first diagnostics within 1.5 s warm / 4 s cold on a quiet machine (Emacs start and
+    # eglot's connection included here); asserted loosely, the machine is shared
+    print(f"{setup}: open to first diagnostics {results['first-diagnostics-seconds'][0]} s")
+    assert float(results["first-diagnostics-seconds"][0]) < 30, out
     assert results["diagnostic"] == ["4 plx [N002]: 'raduis' is not an attribute of Physics3D.Geometries.Sphere"], out
     assert results["hover"][0].startswith("Physics3D.Bodies.RigidBody is Physics3D.Bodies.Body"), out
     assert results["definition"][0].replace(os.sep, "/").endswith("Physics3D/Bodies/RigidBody.openplx:1"), out

@@ -55,3 +55,24 @@ def test_other_params_are_not_answered_from_the_cache(tmp_path):
     finally:
         srv.proc.kill()
     assert len(list((tmp_path / "plxtools" / "lsp").glob("*"))) == 2
+
+
+def test_the_reply_does_not_depend_on_the_folder_which_is_left_out_of_the_key(tmp_path):
+    """The key leaves out rootUri, rootPath and workspaceFolders (an editor's first start in a new
+    project is then answered from the cache): that holds only if fresh servers started on two
+    folders, one with a plx.toml choosing settings, give the same reply."""
+    a, b = tmp_path / "a", tmp_path / "b"
+    a.mkdir()
+    b.mkdir()
+    (b / "plx.toml").write_text('openplx-version = "0.19.0"\n[lint]\nignore = ["S001"]\n', encoding="utf-8")
+    replies = []
+    for folder in (a, b):
+        params = dict(PARAMS, rootUri=folder.as_uri(), rootPath=str(folder),
+                      workspaceFolders=[{"uri": folder.as_uri(), "name": folder.name}])
+        srv = RawServer(env={"PLX_CACHE_DIR": str(tmp_path / f"cache-{folder.name}")})  # no cached reply
+        try:
+            srv.send({"jsonrpc": "2.0", "id": 1, "method": "initialize", "params": params})
+            replies.append(srv.response(1, timeout=120)["result"])
+        finally:
+            srv.proc.kill()
+    assert replies[0] == replies[1]

@@ -26,6 +26,19 @@ class EditorSettings:
     messages: list[str] = field(default_factory=list)  # for the user: a setting that was not understood
 
 
+CONFIG_SECTION = "openplx"  # the editor settings' section plx asks for
+
+
+def section(obj) -> dict | None:
+    """plx's part of a settings object (`openplx` or `plx`, else the object itself)."""
+    if not isinstance(obj, dict):
+        return None
+    for key in ("openplx", "plx"):
+        if isinstance(obj.get(key), dict):
+            return obj[key]
+    return obj
+
+
 def merge(init_options: dict, raw: dict | None) -> dict:
     """The editor's settings over the initialization options."""
     merged = dict(init_options)

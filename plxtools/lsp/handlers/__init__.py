@@ -15,20 +15,11 @@ import os
 
 from pygls.exceptions import JsonRpcException
 
+from plxtools.ide.runtime.settings import CONFIG_SECTION, section  # noqa: F401 - the handlers' names
+
 log = logging.getLogger("plxtools.lsp")
 
-CONFIG_SECTION = "openplx"
 CONFIG_FILES = ("plx.toml", "pyproject.toml", "config.openplx")  # a change may choose another bundle set
-
-
-def section(obj) -> dict | None:
-    """plx's part of a settings object (`openplx` or `plx`, else the object itself)."""
-    if not isinstance(obj, dict):
-        return None
-    for key in ("openplx", "plx"):
-        if isinstance(obj.get(key), dict):
-            return obj[key]
-    return obj
 
 
 def _guard(method: str, fn):

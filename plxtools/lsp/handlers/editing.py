@@ -13,6 +13,7 @@ from lsprotocol import types
 from plxtools import ide
 from plxtools.ide import migrate_action
 from plxtools.ide.runtime.collector import no_gc
+from plxtools.lsp import completion_items
 from plxtools.lsp.convert import Positions
 from plxtools.lsp.protocol import RequestFailed
 from plxtools.rules import registry
@@ -45,9 +46,9 @@ def register(server, server_feature) -> None:
             res = ide.complete_line(st, view.line, view.text, col, view.start, trigger, view.own_line,
                                     min(view.start + col, view.old_end))
 
-            def at(offset: int) -> types.Position:
-                return types.Position(line=view.line, character=lp.offset_position(offset - view.start).character)
-            rng = types.Range(start=at(res.replace_start), end=at(view.start + col))
+            def at(offset: int) -> dict:
+                return {"line": view.line, "character": lp.line_character(offset - view.start)[1]}
+            rng = {"start": at(res.replace_start), "end": at(view.start + col)}
         else:
             with no_gc():
                 st = ls.state(params.text_document.uri, quick=True)
@@ -56,33 +57,13 @@ def register(server, server_feature) -> None:
             pos = ls.positions(st.path, st)
             offset = pos.offset(params.position)
             res = ide.complete(st, offset, trigger)
-            rng = pos.offsets_range(res.replace_start, offset)
-        lazy_doc = "documentation" in (ls.cap("text_document.completion.completion_item.resolve_support.properties")
-                                       or [])
-        label_details = ls.cap("text_document.completion.completion_item.label_details_support")
-        tag_support = ls.cap("text_document.completion.completion_item.tag_support")
+            rng = completion_items.lsp_range(pos, res.replace_start, offset)
         ls._completion_keys = []
-        items = []
-        for i, it in enumerate(res.items):
-            item = types.CompletionItem(label=it.label, kind=KIND.get(it.kind), detail=it.detail or None,
-                                        sort_text=it.sort_text, filter_text=it.filter_text,
-                                        text_edit=types.TextEdit(range=rng, new_text=it.insert_text or it.label))
-            if label_details and (it.label_detail or it.label_description):
-                item.label_details = types.CompletionItemLabelDetails(detail=it.label_detail,
-                                                                      description=it.label_description)
-            if it.deprecated and tag_support:
-                item.tags = [types.CompletionItemTag.Deprecated]
-            if it.key is not None:
-                ls._completion_keys.append(it.key)
-                item.data = {"k": len(ls._completion_keys) - 1}
-                if not lazy_doc:
-                    doc = ide.completion_documentation(st.program, it.key)
-                    if doc:
-                        item.documentation = ls.doc_markup(doc)
-            items.append(item)
-            del i
+        answer = completion_items.completion_list(
+            res, rng, _item_options(ls), ls._completion_keys,
+            lambda key: ide.completion_documentation(st.program, key))
         ls.stats.record("completion" if st.checked and view is None else "completion-while-typing", t0, c0)
-        return types.CompletionList(is_incomplete=res.is_incomplete, items=items)
+        return answer
 
     @server_feature(types.COMPLETION_ITEM_RESOLVE)
     def completion_resolve(ls: PlxServer, item: types.CompletionItem):
@@ -256,14 +237,10 @@ def _migrate_action(ls: PlxServer, st, only, sent: list[types.Diagnostic]) -> ty
     return types.CodeAction(title=m.title, kind=migrate_action.KIND, edit=edit)
 
 
-KIND = {
-    "model": types.CompletionItemKind.Class,
-    "trait": types.CompletionItemKind.Interface,
-    "constant": types.CompletionItemKind.Constant,
-    "namespace": types.CompletionItemKind.Module,
-    "attribute": types.CompletionItemKind.Field,
-    "method": types.CompletionItemKind.Method,
-    "keyword": types.CompletionItemKind.Keyword,
-    "value": types.CompletionItemKind.Value,
-    "type": types.CompletionItemKind.TypeParameter,
-}
+def _item_options(ls: PlxServer) -> completion_items.ItemOptions:
+    base = "text_document.completion.completion_item."
+    return completion_items.ItemOptions(
+        lazy_documentation="documentation" in (ls.cap(base + "resolve_support.properties") or []),
+        label_details=bool(ls.cap(base + "label_details_support")), tags=ls.cap(base + "tag_support") is not None,
+        markdown=types.MarkupKind.Markdown in (ls.cap(base + "documentation_format") or []))
+

@@ -11,12 +11,15 @@ from typing import TYPE_CHECKING
 from lsprotocol import types
 
 from plxtools.ide.runtime.collector import freeze_loaded
+from plxtools.lsp import prefetch
 from plxtools.lsp.handlers import CONFIG_FILES, CONFIG_SECTION, section
 
 if TYPE_CHECKING:
     from plxtools.lsp.server import PlxServer
 
 log = logging.getLogger("plxtools.lsp")
+
+CONFIGURATION_WAIT = 10  # seconds the bundles' load waits for the editor's settings
 
 
 def register(server, server_feature) -> None:
@@ -45,14 +48,17 @@ def register(server, server_feature) -> None:
         if ls.cap("workspace.configuration"):
             await _pull_configuration(ls)
         if ls.cap("workspace.did_change_watched_files.dynamic_registration"):
-            await _watch_files(ls)
+            # not awaited: nothing below needs the editor's answer, and an editor busy elsewhere may
+            # answer late or never (Emacs in the middle of a go-to-definition did not, and completion,
+            # waiting for the bundles behind it, timed out)
+            ls.registering = asyncio.ensure_future(_watch_files(ls))
         # load the bundles now, not on the first keystroke, and in a thread: a request that arrives
         # meanwhile (Helix asks for completion right after opening a file) is answered at once
         loop = asyncio.get_running_loop()
         if ls.warming is None:
             ls.warming = loop.create_future()
         try:
-            await loop.run_in_executor(None, lambda: ls.host.workspace)
+            await loop.run_in_executor(None, _load, ls)
         except asyncio.CancelledError:
             return  # the editor quit while the bundles were loading
         finally:
@@ -62,6 +68,10 @@ def register(server, server_feature) -> None:
         freeze_loaded()
         ls.notify_messages()
         ls.checks.wake()
+
+    def _load(ls: PlxServer):
+        prefetch.wait()  # a cold start's forked loader (lsp/prefetch.py) fills plx's cache first
+        return ls.host.workspace
 
     async def _watch_files(ls: PlxServer) -> None:
         """Ask the editor to report model and config files changed on disk (a changed config may
@@ -77,8 +87,11 @@ def register(server, server_feature) -> None:
 
     async def _pull_configuration(ls: PlxServer) -> None:
         try:
-            got = await ls.workspace_configuration_async(types.ConfigurationParams(
-                items=[types.ConfigurationItem(section=CONFIG_SECTION)]))
+            got = await asyncio.wait_for(ls.workspace_configuration_async(types.ConfigurationParams(
+                items=[types.ConfigurationItem(section=CONFIG_SECTION)])), CONFIGURATION_WAIT)
+        except asyncio.TimeoutError:
+            log.warning("workspace/configuration: no answer in %d s; the settings so far stay", CONFIGURATION_WAIT)
+            return
         except Exception as exc:  # noqa: BLE001 - a client that cannot answer keeps the defaults
             log.info("workspace/configuration failed: %s", exc)
             return
