@@ -42,6 +42,9 @@ class Part:
     records: list | None = None
     uses: frozenset = frozenset()  # this file's top-level models it names (C003)
     names: frozenset | None = None  # a suggestion was looked for: the file's top-level names then
+    # the statement's first line in the version its `extra` findings were made or last re-used in
+    # (a rule's message may name a line: rules/incremental.py judges a moved statement again)
+    was_line: int | None = None
 
 
 @dataclass(slots=True)
@@ -243,7 +246,7 @@ def _moved_part(p: Part, region: tuple, moves: list, names: frozenset, path) -> 
         if moved is None:
             return None
         extra[rule] = moved
-    return Part(start, end, line, diags, None, p.positional, extra, p.records, p.uses, p.names)
+    return Part(start, end, line, diags, None, p.positional, extra, p.records, p.uses, p.names, p.line)
 
 
 def _moved_diags(diags: list, moves: list, path) -> list | None:

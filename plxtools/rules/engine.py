@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cache
 
+from plxtools.cache import reads
 from plxtools.diagnostics import Diagnostic, Fix, Span
 from plxtools.rules import registry
 from plxtools.syntax import ast
@@ -28,15 +29,34 @@ class FileFacts:
     analysis: object
     tree: ast.File
     root: object = None
+    # the top-level statements to judge and their occurrences (None: the whole file); the language
+    # server judges only the statements whose reads changed (rules/incremental.py)
+    statements: tuple | None = None
+    occs: list | None = None
 
     @property
     def unit(self):
         return self.analysis.unit
 
     @property
+    def judged(self) -> list:
+        """The top-level statements a rule judges. A rule that also reads other statements (a
+        file-wide table) says so with `read` (the value it read): re-use holds only while that
+        value is the same."""
+        return self.tree.statements if self.statements is None else self.statements
+
+    @property
     def occurrences(self) -> list:
-        """The resolved names of the file (built on first read: the server may not need them)."""
-        return self.analysis.occurrences
+        """The resolved names of the judged statements (built on first read: the server may not
+        need them)."""
+        return self.analysis.occurrences if self.occs is None else self.occs
+
+    @staticmethod
+    def read(what: str, value) -> None:
+        """Record a read of the whole file (a table built from every statement) in the open
+        recordings (plxtools.cache.reads): the findings of the judged statements depend on it."""
+        if reads.active():
+            reads.note(["v", what, value])
 
     @property
     def path(self) -> str:

@@ -58,9 +58,10 @@ def check(facts, report) -> None:
     if not isinstance(controller, ModelSym) or not isinstance(mate, ModelSym):
         return
     assigned = _assigned_connectors(unit.tree)
+    facts.read("assigned connectors", sorted(assigned))
     errors = sorted(d.span.start.offset for d in found if d.severity is Severity.ERROR)
     out = report
-    for _owner, body in declaration_blocks(unit.tree):
+    for _owner, body in declaration_blocks(facts.judged):
         _one_block(program, unit, controller, mate, body, assigned, out, errors)
 
 

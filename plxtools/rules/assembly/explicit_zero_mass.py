@@ -54,7 +54,8 @@ def check(facts, report) -> None:
     tree = facts.tree
     target = None
     consts = _const_densities(tree)
-    for owner, body in declaration_blocks(tree):
+    facts.read("const densities", sorted(consts.items()))
+    for owner, body in declaration_blocks(facts.judged):
         if written_static(body):
             continue
         for stmt, value in _mass_values(body):

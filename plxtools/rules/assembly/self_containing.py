@@ -39,7 +39,7 @@ def check(facts, report) -> None:
     if unit.official:
         return
     reported: set[frozenset] = set()
-    for stmt in unit.tree.statements:
+    for stmt in facts.judged:
         if not isinstance(stmt, ast.Declaration) or not stmt.body:
             continue
         model = _top_model(program, unit, stmt)
