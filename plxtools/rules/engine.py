@@ -8,7 +8,7 @@ file, and lint, check and the language server all go through it, so a rule runs 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 
 from plxtools.cache import reads
@@ -33,6 +33,7 @@ class FileFacts:
     # server judges only the statements whose reads changed (rules/incremental.py)
     statements: tuple | None = None
     occs: list | None = None
+    tables: dict = field(default_factory=dict)  # file-wide tables built once per analysis (`table`)
 
     @property
     def unit(self):
@@ -51,12 +52,16 @@ class FileFacts:
         need them)."""
         return self.analysis.occurrences if self.occs is None else self.occs
 
-    @staticmethod
-    def read(what: str, value) -> None:
-        """Record a read of the whole file (a table built from every statement) in the open
-        recordings (plxtools.cache.reads): the findings of the judged statements depend on it."""
-        if reads.active():
-            reads.note(["v", what, value])
+    def table(self, what: str, make):
+        """A table built from the whole file (`make()`, once per analysis, shared by every view of
+        it), its read recorded in the open model recordings (plxtools.cache.reads): the findings of
+        the judged statements depend on it."""
+        got = self.tables.get(what, self.tables)
+        if got is self.tables:
+            got = self.tables[what] = make()
+        if reads.model_active():
+            reads.note_model(("v", what, got))
+        return got
 
     @property
     def path(self) -> str:

@@ -57,8 +57,7 @@ def check(facts, report) -> None:
     mate = program.lookup_outside_visibility(list(MATE))
     if not isinstance(controller, ModelSym) or not isinstance(mate, ModelSym):
         return
-    assigned = _assigned_connectors(unit.tree)
-    facts.read("assigned connectors", sorted(assigned))
+    assigned = facts.table("assigned connectors", lambda: _assigned_connectors(unit.tree))
     errors = sorted(d.span.start.offset for d in found if d.severity is Severity.ERROR)
     out = report
     for _owner, body in declaration_blocks(facts.judged):

@@ -53,8 +53,7 @@ DEFAULT_DENSITY = 1000.0  # Physics.Geometries.Material.density's default in the
 def check(facts, report) -> None:
     tree = facts.tree
     target = None
-    consts = _const_densities(tree)
-    facts.read("const densities", sorted(consts.items()))
+    consts = facts.table("const densities", lambda: _const_densities(tree))
     for owner, body in declaration_blocks(facts.judged):
         if written_static(body):
             continue
