@@ -10,7 +10,8 @@ name looked up and every model whose tables were read, model/program.py and mode
 - the checker's findings and resolved names of the statement itself (its diagnostics and
   occurrences, relative to it), which the rules read as facts;
 - the file-wide tables a rule built (`FileFacts.table`), per rule: a table that changed makes the
-  rule judge the whole file again.
+  rule judge the whole file again (a table keyed by top-level names, `table_by_name`, is read
+  entry by entry instead: reading an entry is reading that name).
 
 A statement whose text, reads and checker facts are the same as a statement of the last version
 gets that statement's findings back, moved to where it is now; a statement with findings that
@@ -28,7 +29,7 @@ from plxtools.cache.reads import model_recording
 from plxtools.diagnostics import Diagnostic
 from plxtools.model.reuse import defined, fresh, moved_diags
 from plxtools.model.symbols import GlobalSym, MemberSym, MethodSym, ModelSym
-from plxtools.rules.engine import FileFacts, Reporter, file_rule_modules, run_file_rules
+from plxtools.rules.engine import MEMO, NEXT_MEMO, TEXTS, FileFacts, Reporter, file_rule_modules, run_file_rules
 
 ANY = "*"  # a read this module cannot name (a statement that defines no name): always changed
 
@@ -48,6 +49,8 @@ def run_file_rules_again(facts: FileFacts, fa, plan, previous) -> list[Diagnosti
     keys = ["rule " + m.__name__ for m, _r in modules]
     texts = [(defined(s), tree.text[p.start:p.end]) for s, p in zip(stmts, parts)]
     snap.extra["rule texts"] = texts
+    facts.tables[TEXTS] = [t for _n, t in texts]
+    facts.tables[MEMO] = previous.extra.get("rule memo") or {} if previous is not None else {}
     based = previous is not None and plan.based and "rule texts" in previous.extra
     judged = _to_judge(facts, fa, plan, previous, texts, keys) if based else set(range(len(parts)))
     alone = len(judged) < len(parts)
@@ -76,6 +79,7 @@ def run_file_rules_again(facts: FileFacts, fa, plan, previous) -> list[Diagnosti
         out.extend(loose)
         for p in parts:
             out.extend(fresh(d) for d in p.extra.get(key, ()))
+    snap.extra["rule memo"] = facts.tables.get(NEXT_MEMO)
     if alone:
         for i in judged:
             _record_reads(facts, parts, i, stmts, modules)
@@ -147,9 +151,19 @@ def _judge(module, rules, facts: FileFacts, parts: list, judged: list | None, st
 def _record_reads(facts: FileFacts, parts: list, i: int, stmts: list, modules) -> None:
     """What judging statement `i` alone reads (every module), kept on its part for the next version."""
     view = replace(facts, statements=(stmts[i],), occs=_occurrences(facts, parts[i]))
+    found = []
     with model_recording() as seen:
         for module, rules in modules:
-            module.check(view, Reporter(rules, facts.path))
+            report = Reporter(rules, facts.path)
+            module.check(view, report)
+            found.extend(report.found)
+    p = parts[i]
+    if any(not p.start <= d.span.start.offset < p.end for d in found):
+        # a finding about another statement (a ring blamed where it closes): such a judgement is
+        # re-done whenever the model's plan checks the statement again, as the statements it reached
+        # by name are then checked again too
+        p.rule_reads = p.rule_sig = None
+        return
     unit = facts.unit
     starts = [p.start for p in parts]
     names = set()

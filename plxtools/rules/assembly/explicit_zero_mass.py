@@ -53,7 +53,7 @@ DEFAULT_DENSITY = 1000.0  # Physics.Geometries.Material.density's default in the
 def check(facts, report) -> None:
     tree = facts.tree
     target = None
-    consts = facts.table("const densities", lambda: _const_densities(tree))
+    consts = facts.table_by_name("const densities", lambda: _const_densities(tree))
     for owner, body in declaration_blocks(facts.judged):
         if written_static(body):
             continue
