@@ -44,7 +44,6 @@ def run_file_rules_again(facts: FileFacts, fa, plan, previous) -> list[Diagnosti
     tree = facts.tree
     parts = snap.parts
     stmts = tree.statements
-    starts = [p.start for p in parts]
     modules = file_rule_modules("lint")
     keys = ["rule " + m.__name__ for m, _r in modules]
     texts = [(defined(s), tree.text[p.start:p.end]) for s, p in zip(stmts, parts)]
@@ -57,28 +56,7 @@ def run_file_rules_again(facts: FileFacts, fa, plan, previous) -> list[Diagnosti
     out: list[Diagnostic] = []
     for (module, rules), key in zip(modules, keys):
         last = previous.extra.get(key) if based else None
-        mine = judged
-        found = tables = None
-        if last is not None and alone:
-            found, tables = _judge(module, rules, facts, parts, sorted(judged), stmts)
-            if tables != last or not _inside(found, starts, judged):
-                found = None
-        if found is None:
-            mine = set(range(len(parts)))
-            found, tables = _judge(module, rules, facts, parts, None, stmts)
-        for i in mine:
-            parts[i].extra[key] = []
-        loose = []
-        for d in found:
-            i = bisect.bisect_right(starts, d.span.start.offset) - 1
-            if i < 0:
-                loose.append(d)  # before the first statement: kept by no part
-            else:
-                parts[i].extra[key].append(fresh(d))
-        snap.extra[key] = tables if not loose else None
-        out.extend(loose)
-        for p in parts:
-            out.extend(fresh(d) for d in p.extra.get(key, ()))
+        out.extend(_module_findings(module, rules, key, facts, snap, judged if alone else None, last))
     snap.extra["rule memo"] = facts.tables.get(NEXT_MEMO)
     if alone:
         for i in judged:
@@ -86,6 +64,35 @@ def run_file_rules_again(facts: FileFacts, fa, plan, previous) -> list[Diagnosti
     else:
         for p in parts:
             p.rule_reads = p.rule_sig = None
+    return out
+
+
+def _module_findings(module, rules, key: str, facts: FileFacts, snap, judged: set | None, last) -> list:
+    """One module's findings on the file: judged on `judged` (None: the whole file) when the
+    file-wide tables it reads are the `last` version's, else on the whole file; kept on the parts."""
+    parts, stmts = snap.parts, facts.tree.statements
+    starts = [p.start for p in parts]
+    found = tables = None
+    if last is not None and judged is not None:
+        found, tables = _judge(module, rules, facts, parts, sorted(judged), stmts)
+        if tables != last or not _inside(found, starts, judged):
+            found = None
+    if found is None:
+        judged = set(range(len(parts)))
+        found, tables = _judge(module, rules, facts, parts, None, stmts)
+    for i in judged:
+        parts[i].extra[key] = []
+    loose = []
+    for d in found:
+        i = bisect.bisect_right(starts, d.span.start.offset) - 1
+        if i < 0:
+            loose.append(d)  # before the first statement: kept by no part
+        else:
+            parts[i].extra[key].append(fresh(d))
+    snap.extra[key] = tables if not loose else None
+    out = list(loose)
+    for p in parts:
+        out.extend(fresh(d) for d in p.extra.get(key, ()))
     return out
 
 
