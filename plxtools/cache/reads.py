@@ -44,6 +44,34 @@ def active() -> bool:
     return bool(_frames)
 
 
+# Reads of the semantic model (names looked up, models resolved, file-wide tables a rule built),
+# recorded by the language server to re-use a statement's findings while nothing it read changed
+# (rules/incremental.py). They are only meaningful inside one process, so they go to recordings of
+# their own: a cached answer's recording (above) holds only what `holds` can check again.
+_model_frames: list[list] = []
+
+
+class model_recording:
+    """`with model_recording() as seen:` collects the model reads made inside."""
+
+    def __enter__(self) -> list:
+        self.seen: list = []
+        _model_frames.append(self.seen)
+        return self.seen
+
+    def __exit__(self, *exc) -> None:
+        _model_frames.remove(self.seen)
+
+
+def model_active() -> bool:
+    return bool(_model_frames)
+
+
+def note_model(dep) -> None:
+    for f in _model_frames:
+        f.append(dep)
+
+
 def note(dep: list) -> None:
     for f in _frames:
         f.append(dep)

@@ -455,6 +455,22 @@ class AnalysisHost:
         self._states[path] = st
         return st
 
+    def reusable(self, path: str, text: str | None = None) -> bool:
+        """Whether an open buffer has an analysis the next check can re-use (model/reuse.py): one
+        whose text differs from `text` in at most a tenth of it (a check that re-uses little is
+        better done in a forked process, which keeps the server answering)."""
+        last = self._analyses.get(path)
+        if last is None or last.snapshot is None:
+            return False
+        if text is None:
+            return True
+        got = changed_lines(last.unit.tree.text, text)
+        return got is None or got[2] - got[0] <= len(text) // 10
+
+    def analysed(self, path: str) -> bool:
+        """Whether an open buffer was analysed in this process since it was opened."""
+        return path in self._analyses
+
     def parse_ahead(self, path: str) -> bool:
         """The first half of a check of an open buffer: parse its current text now, so the server
         can answer the requests that arrived meanwhile before the second half (the analysis,

@@ -88,6 +88,9 @@ class Publishing:
         if not self.pull_diagnostics:
             self._push(bg.uri, bg.version, diags)
         self.notify_messages()
+        if not self.host.analysed(self.path_of(bg.uri)):
+            # the server's own analysis, made once after the first answer: the next edits re-use it
+            self.loop.call_soon(self._check_one, bg.uri, False, False)
 
     def notify_messages(self) -> None:
         while self.host.messages:

@@ -9,6 +9,7 @@ from __future__ import annotations
 import re
 from typing import Iterable
 
+from plxtools.cache import reads
 from plxtools.model import resolve
 from plxtools.model.symbols import (
     NUMERIC,
@@ -281,6 +282,8 @@ class Program:
 
     def lookup(self, parts: list[str], unit: FileUnit, namespace: Namespace | None = None):
         """Resolve a dotted name to a symbol, namespace or primitive name; None if nothing matches."""
+        if reads.model_active():
+            reads.note_model(("n", parts[0]))  # a definition of this name, added or changed, changes the answer
         if len(parts) == 1 and parts[0] in PRIMITIVES:
             return parts[0]
         if parts[0] in unit.locals:  # a loose file's definitions, any file's imports
@@ -368,14 +371,20 @@ class Program:
         return compose_type(alts, [t for t in found if isinstance(t, ModelSym)])
 
     def base_of(self, model: ModelSym) -> Ty | None:
+        if reads.model_active():
+            reads.note_model(("m", model))
         if model.base is None:
             if model.base_ref is None or model.unit is None:
                 model.base = UNKNOWN
             else:
                 model.base = self.resolve_type_expr(model.base_ref, model.unit)
+        if model.base.model is not None and reads.model_active():
+            reads.note_model(("m", model.base.model))
         return model.base if not model.base.unknown else None
 
     def traits_of(self, model: ModelSym) -> list[ModelSym]:
+        if reads.model_active():
+            reads.note_model(("m", model))
         if model.traits is None:
             out = []
             if model.unit is not None:
@@ -390,6 +399,9 @@ class Program:
                     if isinstance(t, ModelSym) and t.is_trait and t not in out:
                         out.append(t)
             model.traits = out
+        if reads.model_active():
+            for t in model.traits:
+                reads.note_model(("m", t))
         return model.traits
 
     # the hierarchy questions are answered by model/resolve.py (one ordering, one override rule)
@@ -422,6 +434,8 @@ class Program:
         return resolve.all_methods(self, model)
 
     def member_type(self, mem: MemberSym) -> Ty:
+        if reads.model_active():
+            reads.note_model(("m", mem.owner))
         if mem.ty is None:
             if mem.anon is not None:
                 mem.ty = Ty(mem.anon, False)
@@ -429,6 +443,8 @@ class Program:
                 mem.ty = UNKNOWN
             else:
                 mem.ty = self.resolve_type_expr(mem.stmt.type, mem.owner.unit)
+        if mem.ty.model is not None and reads.model_active():
+            reads.note_model(("m", mem.ty.model))
         return mem.ty
 
     def members_of(self, ty: Ty) -> dict[str, MemberSym]:

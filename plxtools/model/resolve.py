@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from plxtools.cache import reads
 from plxtools.model.symbols import (
     UNKNOWN,
     FileUnit,
@@ -79,8 +80,14 @@ def ensure(p: "Program", model: ModelSym) -> None:
     Iterative post-order over the parents; a parent still in progress is part of an inheritance
     cycle (reported by the checker) and is left out.
     """
-    if model._lin is not None:
-        return
+    if model._lin is None:
+        _ensure(p, model)
+    if reads.model_active():  # the tables are memos: whoever reads them read every layer
+        for layer in model._lin or ():
+            reads.note_model(("m", layer))
+
+
+def _ensure(p: "Program", model: ModelSym) -> None:
     in_progress: set[int] = set()
     stack = [model]
     while stack:

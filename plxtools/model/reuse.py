@@ -42,6 +42,13 @@ class Part:
     records: list | None = None
     uses: frozenset = frozenset()  # this file's top-level models it names (C003)
     names: frozenset | None = None  # a suggestion was looked for: the file's top-level names then
+    # the statement's first line in the version its `extra` findings were made or last re-used in
+    # (a rule's message may name a line: rules/incremental.py judges a moved statement again)
+    was_line: int | None = None
+    # what the rules' judgement of the statement read (rules/incremental.py): the top-level names
+    # (None: not recorded, judged with the whole file) and the checker's findings it judged
+    rule_reads: frozenset | None = None
+    rule_sig: tuple | None = None
 
 
 @dataclass(slots=True)
@@ -176,6 +183,11 @@ def statement_keys(tree: ast.File, regs: list[tuple[int, int, int]], defined: li
     return keys
 
 
+def defined(s: ast.Stmt) -> str | None:
+    """The top-level name a statement defines (None: none)."""
+    return _defined(s)
+
+
 def _defined(s: ast.Stmt) -> str | None:
     if isinstance(s, ast.TraitDef):
         return s.name.name
@@ -243,7 +255,14 @@ def _moved_part(p: Part, region: tuple, moves: list, names: frozenset, path) -> 
         if moved is None:
             return None
         extra[rule] = moved
-    return Part(start, end, line, diags, None, p.positional, extra, p.records, p.uses, p.names)
+    return Part(start, end, line, diags, None, p.positional, extra, p.records, p.uses, p.names, p.line,
+                p.rule_reads, p.rule_sig)
+
+
+def moved_diags(diags: list, moves: list, path) -> list | None:
+    """Diagnostics moved by `moves` (sorted (old start, old end, offset delta, line delta)); None
+    when one points outside the moved regions."""
+    return _moved_diags(diags, moves, path)
 
 
 def _moved_diags(diags: list, moves: list, path) -> list | None:

@@ -17,6 +17,7 @@ from plxtools.rules import registry
 from plxtools.rules.completeness import Versions, completeness_diagnostics, root_model
 from plxtools.rules.consequences import drop_consequences, drop_owned, report_order
 from plxtools.rules.engine import FileFacts, apply_severity, run_file_rules
+from plxtools.rules.incremental import run_file_rules_again
 from plxtools.rules.literals import literal_diagnostics
 from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements
 from plxtools.rules.suppress import apply
@@ -45,7 +46,8 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
         extra += style_of_file(workspace.program, fa.unit, used, root)
         checked = [o for i in sorted(plan.dirty) for o in parts[i].occs]
         extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, checked, tree.path, plan.dirty))
-    extra += run_file_rules(FileFacts(workspace.program, fa, tree, root))
+    facts = FileFacts(workspace.program, fa, tree, root)
+    extra += run_file_rules(facts) if plan is None else run_file_rules_again(facts, fa, plan, snap)
     for d in extra:
         d.file = tree.path
     return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.lazy_occurrences, fa.snapshot, fa.plan)

@@ -9,9 +9,10 @@ from collections.abc import Iterator
 from plxtools.syntax import ast
 
 
-def declaration_blocks(tree: ast.File) -> Iterator[tuple[ast.Declaration, list]]:
-    """Each declaration with a body, nested ones included, with that body (depth first)."""
-    stack = [s for s in tree.statements if isinstance(s, ast.Declaration) and s.body]
+def declaration_blocks(statements: list) -> Iterator[tuple[ast.Declaration, list]]:
+    """Each declaration with a body among `statements` (a file's, or the ones a rule judges),
+    nested ones included, with that body (depth first)."""
+    stack = [s for s in statements if isinstance(s, ast.Declaration) and s.body]
     while stack:
         owner = stack.pop()
         body = owner.body or []

@@ -8,9 +8,10 @@ file, and lint, check and the language server all go through it, so a rule runs 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 
+from plxtools.cache import reads
 from plxtools.diagnostics import Diagnostic, Fix, Span
 from plxtools.rules import registry
 from plxtools.syntax import ast
@@ -28,19 +29,87 @@ class FileFacts:
     analysis: object
     tree: ast.File
     root: object = None
+    # the top-level statements to judge and their occurrences (None: the whole file); the language
+    # server judges only the statements whose reads changed (rules/incremental.py)
+    statements: tuple | None = None
+    occs: list | None = None
+    tables: dict = field(default_factory=dict)  # file-wide tables built once per analysis (`table`)
 
     @property
     def unit(self):
         return self.analysis.unit
 
     @property
+    def judged(self) -> list:
+        """The top-level statements a rule judges. A rule that also reads other statements (a
+        file-wide table) says so with `read` (the value it read): re-use holds only while that
+        value is the same."""
+        return self.tree.statements if self.statements is None else self.statements
+
+    @property
     def occurrences(self) -> list:
-        """The resolved names of the file (built on first read: the server may not need them)."""
-        return self.analysis.occurrences
+        """The resolved names of the judged statements (built on first read: the server may not
+        need them)."""
+        return self.analysis.occurrences if self.occs is None else self.occs
+
+    def table_by_name(self, what: str, make) -> "ByName":
+        """A table of the whole file keyed by top-level names (`make()`, once per analysis): reading
+        an entry is recorded as reading that name, so only a change of that name's statement
+        matters to the statements that read it."""
+        got = self.tables.get(what)
+        if got is None:
+            got = self.tables[what] = ByName(make())
+        return got
+
+    def table_of_statements(self, what: str, of_statement) -> set:
+        """The union of `of_statement(statement)` over the file's top-level statements, recorded as
+        a file-wide read (`table`); each statement's share is kept by its text from one version to
+        the next (`memo`, given by rules/incremental.py), so an edit computes only its own."""
+        def make() -> set:
+            memo = self.tables.get(MEMO)
+            texts = self.tables.get(TEXTS)
+            out: set = set()
+            if memo is None or texts is None:
+                for s in self.tree.statements:
+                    out |= of_statement(s)
+                return out
+            now = self.tables.setdefault(NEXT_MEMO, {})
+            for s, text in zip(self.tree.statements, texts):
+                got = memo.get((what, text))
+                if got is None:
+                    got = frozenset(of_statement(s))
+                now[(what, text)] = got
+                out |= got
+            return out
+
+        return self.table(what, make)
+
+    def table(self, what: str, make):
+        """A table built from the whole file (`make()`, once per analysis, shared by every view of
+        it), its read recorded in the open model recordings (plxtools.cache.reads): the findings of
+        the judged statements depend on it."""
+        got = self.tables.get(what, self.tables)
+        if got is self.tables:
+            got = self.tables[what] = make()
+        if reads.model_active():
+            reads.note_model(("v", what, got))
+        return got
 
     @property
     def path(self) -> str:
         return self.tree.path
+
+
+MEMO, TEXTS, NEXT_MEMO = "(memo)", "(texts)", "(next memo)"  # keys of FileFacts.tables kept by rules/incremental.py
+
+
+class ByName(dict):
+    """A file-wide table keyed by top-level names (`FileFacts.table_by_name`)."""
+
+    def get(self, name, default=None):
+        if reads.model_active():
+            reads.note_model(("n", name))
+        return super().get(name, default)
 
 
 class Reporter:

@@ -14,6 +14,8 @@ from pathlib import Path
 import pytest
 
 from plxtools.ide import AnalysisHost
+from plxtools.rules import registry
+from tests.conftest import campaign_size
 from plxtools.model.symbols import GlobalSym, MemberSym, MethodSym, ModelSym
 
 REPO = Path(__file__).resolve().parents[2]
@@ -26,7 +28,7 @@ SNIPPETS = ["x", "1", ".", ":", " ", "\n", "\n    ", "is ", " is Wheel0", "denst
 
 def _edit(rng: random.Random, text: str) -> str:
     lines = text.split("\n")
-    op = rng.randrange(9)
+    op = rng.randrange(12)
     n = rng.randrange(len(lines))
     if op == 0 and len(text) > 2:  # delete a few characters
         i = rng.randrange(len(text) - 1)
@@ -61,6 +63,28 @@ def _edit(rng: random.Random, text: str) -> str:
         if words:
             a, b = rng.choice(words)
             return text[:a] + text[a:b] + rng.choice(["X", "_", "s"]) + text[b:]
+    if op == 9:  # give a top-level model another base: a model of the file, or a bundle type
+        tops = [k for k, ln in enumerate(lines) if ln[:1].isalpha() and " is " in ln]
+        names = [lines[k].split(" ", 1)[0] for k in tops]
+        if tops:
+            k = rng.choice(tops)
+            head, _, rest = lines[k].partition(" is ")
+            tail = rest[rest.index(":"):] if ":" in rest else ""
+            lines[k] = f"{head} is {rng.choice(names + ['Physics3D.Bodies.RigidBody', 'Physics3D.System'])}{tail}"
+            return "\n".join(lines)
+    if op == 10:  # delete an attribute declared in a model (and what is below it)
+        decls = [k for k, ln in enumerate(lines) if ln.startswith("    ") and not ln.startswith("     ")
+                 and " is " in ln]
+        if decls:
+            k = rng.choice(decls)
+            end = k + 1
+            while end < len(lines) and lines[end].startswith("        "):
+                end += 1
+            return "\n".join(lines[:k] + lines[end:])
+    if op == 11:  # add or remove an import (re-use is then off: an import reads other files)
+        if lines and lines[0].startswith("import "):
+            return "\n".join(lines[1:])
+        return "\n".join([f'import "{rng.choice(["missing.openplx", "other.openplx"])}"'] + lines)
     # a blank line somewhere
     return "\n".join(lines[:n] + [""] + lines[n:])
 
@@ -120,7 +144,11 @@ def _session(tmp_path, text: str, seed: int, steps: int) -> int:
 
 def _sources() -> list[tuple[str, str]]:
     files = [REPO / "examples" / "boxtruck" / "boxtruck.openplx", *sorted((REPO / "examples" / "broken").glob("*.openplx")),
-             *sorted((REPO / "examples" / "lint_errors").glob("*.openplx"))]
+             *sorted((REPO / "examples" / "lint_errors").glob("*.openplx")),
+             # the case files of the rule modules: each has findings the incremental rules must keep right
+             *(REPO / "tests" / "cases" / "rules" / f"{code}.openplx" for code in registry.RULES
+               if registry.RULES[code].module is not None
+               and (REPO / "tests" / "cases" / "rules" / f"{code}.openplx").exists())]
     out = [("generated", openplx_text(160))]
     out += [(f.name, f.read_text(encoding="utf-8")) for f in files]
     return out
@@ -128,7 +156,8 @@ def _sources() -> list[tuple[str, str]]:
 
 @pytest.mark.parametrize("name,text", _sources(), ids=[n for n, _ in _sources()])
 def test_an_editing_session_reports_what_a_fresh_check_reports(tmp_path, name, text):
-    re_used = sum(_session(tmp_path, text, seed, 12) for seed in range(3))
+    (tmp_path / "other.openplx").write_text("Other is Physics3D.Bodies.RigidBody:\n    inertia.mass: 2\n")
+    re_used = sum(_session(tmp_path, text, seed, 12) for seed in range(campaign_size(9)))
     assert re_used > 0  # the sessions did exercise re-use, not only fresh checks
 
 
@@ -195,3 +224,38 @@ def test_a_suggestion_follows_the_names_defined_elsewhere(tmp_path):
     st = host.state(path)
     assert _findings(st) == _fresh_findings(tmp_path, path, new, 2)
     assert any("'ChassisX'" in (d.help or "") for d in st.diagnostics)
+
+
+def test_the_rules_judge_again_only_what_read_the_edited_statement(tmp_path):
+    """An edit of a material re-judges the material and the wheel that reads it; the truck and the
+    scene name them (the model's plan checks them again) but read nothing that changed."""
+    from plxtools.rules import incremental
+
+    text = openplx_text(400)
+    path = str(tmp_path / "rules.openplx")
+    host = AnalysisHost(root=str(tmp_path))
+    host.open_document(path, text, 1)
+    host.state(path)
+    judged: list = []
+    real = incremental._to_judge
+
+    def spy(*args):
+        got = real(*args)
+        judged.append(got)
+        return got
+
+    incremental._to_judge = spy
+    try:
+        for version, new in enumerate([text.replace("density: 1003", "densty: 1003", 1), text,
+                                       text.replace("density: 1003", "density: 1004", 1)], start=2):
+            host.update_document(path, new, version)
+            st = host.state(path)
+            assert _findings(st) == _fresh_findings(tmp_path, path, new, version)
+    finally:
+        incremental._to_judge = real
+    tree = st.tree
+    scene = next(i for i, s in enumerate(tree.statements) if s.path.parts[0].name == "Scene")
+    assert len(st.analysis.plan.dirty) >= 4 and scene in st.analysis.plan.dirty
+    # the first edit's statements were judged with the whole file (no reads of their own yet);
+    # from the second edit on, only the material and its wheel
+    assert [len(j) for j in judged[1:]] == [2, 2] and all(scene not in j for j in judged[1:])

@@ -3,7 +3,9 @@
 The child inherits the server's model (copy-on-write), runs the check the server gives it, writes
 its result as JSON to a pipe and leaves without any cleanup. A newer version of the document, or
 closing it, kills the child; a child that fails (a short read, bad JSON) is reported to the server,
-which then checks in its own process. A bundle file's symbols are seen by other files, so only
+which then checks in its own process. The child's analysis dies with it, so the server makes its own
+once the child answered; from then on an edit is checked in the server, re-using that analysis for
+what the edit did not touch (model/reuse.py, rules/incremental.py). A bundle file's symbols are seen by other files, so only
 loose documents (in no bundle) are checked apart.
 """
 
@@ -28,8 +30,8 @@ def checked_apart(host, path: str, text: str, min_size: int, loop) -> bool:
     if not hasattr(os, "fork") or len(text) < min_size or loop is None:
         return False
     ws = host._ws
-    if ws is None:
-        return False
+    if ws is None or host.reusable(path, text):
+        return False  # the server holds an analysis of it: re-using it is quicker than a fork's fresh check
     unit = ws.program.units.get(path)
     return unit is None or unit.bundle is None
 

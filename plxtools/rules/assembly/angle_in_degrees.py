@@ -88,10 +88,10 @@ def _targets(occurrences) -> dict:
 
 
 def check(facts, report) -> None:
-    program, tree = facts.program, facts.tree
+    program = facts.program
     target = None
     models: dict = {}
-    for node, block in _walk(tree):
+    for node, block in _walk(facts.judged):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Member):
             big = [(i, a) for i, a in enumerate(node.args) if _too_big(a)]
             if not big:
@@ -135,10 +135,10 @@ def _model_of(decl, program, unit, models: dict):
     return models[id(decl)]
 
 
-def _walk(tree: ast.File):
+def _walk(statements: list):
     """(node, the declaration of the block its statement is in) for every statement and
-    expression node of the file, without recursion."""
-    stack: list = [(s, None) for s in tree.statements]
+    expression node below `statements`, without recursion."""
+    stack: list = [(s, None) for s in statements]
     while stack:
         node, block = stack.pop()
         yield node, block

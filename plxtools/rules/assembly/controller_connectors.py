@@ -57,21 +57,21 @@ def check(facts, report) -> None:
     mate = program.lookup_outside_visibility(list(MATE))
     if not isinstance(controller, ModelSym) or not isinstance(mate, ModelSym):
         return
-    assigned = _assigned_connectors(unit.tree)
+    assigned = facts.table_of_statements("assigned connectors", _assigned_connectors)
     errors = sorted(d.span.start.offset for d in found if d.severity is Severity.ERROR)
     out = report
-    for _owner, body in declaration_blocks(unit.tree):
+    for _owner, body in declaration_blocks(facts.judged):
         _one_block(program, unit, controller, mate, body, assigned, out, errors)
 
 
 CONNECTOR_ATTRS = ("connectors", "charges")  # (`charges` until OpenPLX 0.18)
 
 
-def _assigned_connectors(tree: ast.File) -> set[str]:
-    """The names whose `connectors` some statement of the file assigns from outside
+def _assigned_connectors(top: ast.Stmt) -> set[str]:
+    """The names whose `connectors` a top-level statement assigns from outside
     (`motor.connectors: ...`)."""
     out = set()
-    for s in ast.walk_statements(tree.statements):
+    for s in ast.walk_statements([top]):
         parts = [p.name for p in s.path.parts] if isinstance(s, (ast.Assignment, ast.Declaration)) else []
         if len(parts) >= 2 and parts[-1] in CONNECTOR_ATTRS:
             out.add(parts[-2])

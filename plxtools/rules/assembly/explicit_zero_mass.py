@@ -53,8 +53,8 @@ DEFAULT_DENSITY = 1000.0  # Physics.Geometries.Material.density's default in the
 def check(facts, report) -> None:
     tree = facts.tree
     target = None
-    consts = _const_densities(tree)
-    for owner, body in declaration_blocks(tree):
+    consts = facts.table_by_name("const densities", lambda: _const_densities(tree))
+    for owner, body in declaration_blocks(facts.judged):
         if written_static(body):
             continue
         for stmt, value in _mass_values(body):

@@ -56,7 +56,7 @@ def check(facts, report) -> None:
     base = program.lookup_outside_visibility(list(GEOMETRY))
     if unit.official or not isinstance(base, ModelSym):
         return
-    for owner, body in declaration_blocks(unit.tree):
+    for owner, body in declaration_blocks(facts.judged):
         if written_static(body):
             continue
         for g in body:

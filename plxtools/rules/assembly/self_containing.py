@@ -38,21 +38,31 @@ def check(facts, report) -> None:
     program, unit = facts.program, facts.unit
     if unit.official:
         return
-    reported: set[frozenset] = set()
-    for stmt in unit.tree.statements:
+    for stmt in facts.judged:
         if not isinstance(stmt, ast.Declaration) or not stmt.body:
             continue
         model = _top_model(program, unit, stmt)
         if model is None:
             continue
         ring = _ring_from(program, model)
-        if ring is None:
+        if ring is None or _found_earlier(program, unit, stmt, ring):
             continue
-        key = frozenset(id(m) for m, _mem in ring)
-        if key in reported:
-            continue
-        reported.add(key)
         _report(report, program, unit, model, ring)
+
+
+def _found_earlier(program, unit, stmt, ring) -> bool:
+    """Whether a model of the ring defined by an earlier top-level statement finds the same ring
+    (it reports it: one finding per ring). Asked of the models themselves, not of what an earlier
+    statement reported, so each statement can be judged alone (the language server does)."""
+    key = frozenset(id(m) for m, _mem in ring)
+    for m, _mem in ring:
+        if m.unit is not unit or m.anonymous or m.stmt is None or m.stmt.span.start.offset >= stmt.span.start.offset \
+                or not isinstance(m.stmt, ast.Declaration) or not m.stmt.body or _top_model(program, unit, m.stmt) is not m:
+            continue
+        other = _ring_from(program, m)
+        if other is not None and frozenset(id(x) for x, _mem in other) == key:
+            return True
+    return False
 
 
 def _top_model(program, unit, stmt) -> ModelSym | None:

@@ -61,7 +61,7 @@ def check(facts, report) -> None:
     mate = program.lookup_outside_visibility(list(MATE))
     if not isinstance(mate, ModelSym):
         return
-    for _owner, body in declaration_blocks(unit.tree):
+    for _owner, body in declaration_blocks(facts.judged):
         _one_block(program, unit, mate, body, report)
 
 

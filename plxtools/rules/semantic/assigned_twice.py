@@ -35,7 +35,7 @@ def check(facts, report) -> None:
     # also said to be a second value
     broken = {d.span.start.line for d in list(tree.diagnostics) + list(facts.analysis.diagnostics)
               if d.severity.value == "error"}
-    stack = [s.body for s in tree.statements if ast.body_of(s)]
+    stack = [s.body for s in facts.judged if ast.body_of(s)]
     while stack:
         body = stack.pop()
         seen: dict[tuple[str, ...], ast.Stmt] = {}
