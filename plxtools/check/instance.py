@@ -28,7 +28,8 @@ Nothing here evaluates an expression; :mod:`plxtools.check.evaluate` does that, 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from collections.abc import Mapping
 from typing import Any
 
 from plxtools.model.natives import struct_types
@@ -90,6 +91,25 @@ class Ref:
     const_model: ModelSym | None = None
 
 
+class _NoMembers(Mapping):
+    """The members of an object that has none: empty, and read-only (it is shared)."""
+
+    __slots__ = ()
+    __hash__ = object.__hash__
+
+    def __getitem__(self, key):
+        raise KeyError(key)
+
+    def __iter__(self):
+        return iter(())
+
+    def __len__(self) -> int:
+        return 0
+
+
+_NO_MEMBERS = _NoMembers()
+
+
 @dataclass(slots=True, eq=False)
 class Obj:
     """One model instance.  ``path`` is dotted from the root (the root itself has path "")."""
@@ -101,10 +121,13 @@ class Obj:
     owner: "Obj | None"
     decl: Eff | None  # the winning declaration that created it (None for the root / singletons)
     struct: str | None = None  # the struct_types() name for value types
-    effects: list = field(default_factory=list)  # struct objects only: every effect, in order
-    children: dict = field(default_factory=dict)  # name -> Obj | Ref
-    prims: dict = field(default_factory=dict)  # name -> Prim
-    order: list = field(default_factory=list)  # member names in declaration order
+    # An object has either effects (a struct object) or members (the others): the containers it
+    # does not fill stay shared read-only empties, not four new ones per object (a model of many
+    # bodies has some 14 objects per body)
+    effects: list | tuple = ()  # struct objects only: every effect, in order
+    children: dict = _NO_MEMBERS  # name -> Obj | Ref
+    prims: dict = _NO_MEMBERS  # name -> Prim
+    order: list | tuple = ()  # member names in declaration order
     explicit: bool = False  # an owner routed a value to it (or below it): "declared" by the user
     singleton: bool = False
     cut: bool = False  # a model containing itself starts to repeat here: dropped by its owner (A009)
@@ -279,6 +302,7 @@ class Builder:
             return
         if depth > MAX_DEPTH and self._stops_too_deep(obj, depth):
             return
+        obj.children, obj.prims, obj.order = {}, {}, []
         decls, flags, routed = _merge_received(obj, info, received)
         own_routed = info[3]
         prefix = obj.path + "." if obj.path else ""

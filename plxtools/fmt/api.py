@@ -44,7 +44,7 @@ def syntax_errors(tree: ast.File) -> list[Diagnostic]:
 
 def layout_tree(tree: ast.File) -> Layout:
     """Lay out an error-free tree (raises LayoutError on a shape the printer cannot handle)."""
-    return layout(tree.text, tree, Lexer(tree.text).run(), tree.newline)  # (not kept: see lexer.lex)
+    return layout(tree.text, tree, Lexer(tree.text), tree.newline)  # (tokens not kept: see document.py)
 
 
 def format_tree(tree: ast.File) -> str:

@@ -8,6 +8,7 @@ statement, in the same order, so they are walked side by side.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Iterator
 
 from plxtools.fmt.brackets import LayoutError, Note, Tok, nest
 from plxtools.fmt.directives import directive, is_line_suppression
@@ -15,7 +16,7 @@ from plxtools.fmt.printer import print_line
 from plxtools.fmt.style import COMMENT_GAP, INDENT, blank_cap, token_kinds
 from plxtools.fmt.verbatim import indent_width, rebased_lines
 from plxtools.syntax import ast
-from plxtools.syntax.lexer import LexResult, LogicalLine
+from plxtools.syntax.lexer import Lexer, LogicalLine
 from plxtools.syntax.source import line_start
 
 
@@ -36,6 +37,7 @@ class Piece:
     pinned: bool = False  # covered by a `# plx: ignore`: its line structure must not change
     out: list[str] = field(default_factory=list)  # printed code, without the trailing comment
     blanks: int = 0  # blank lines printed before the piece
+    indent: int = -1  # a statement's source indentation (its tokens are not kept once printed)
 
 
 @dataclass(slots=True)
@@ -44,20 +46,18 @@ class Layout:
     pieces: list[Piece]  # what it was made of, for range formatting
 
 
-def _statements_with_depth(stmts: list[ast.Stmt]) -> list[tuple[ast.Stmt, int]]:
-    out: list[tuple[ast.Stmt, int]] = []
+def _statements_with_depth(stmts: list[ast.Stmt]) -> Iterator[tuple[ast.Stmt, int]]:
     stack = [(iter(stmts), 0)]
     while stack:
         it, depth = stack[-1]
         for s in it:
-            out.append((s, depth))
+            yield s, depth
             body = ast.body_of(s)
             if body:
                 stack.append((iter(body), depth + 1))
             break
         else:
             stack.pop()
-    return out
 
 
 def _comment_depth(column: int, cols: list[int], lowest: int) -> int:
@@ -73,99 +73,101 @@ def _comment_depth(column: int, cols: list[int], lowest: int) -> int:
     return lowest
 
 
-@dataclass(slots=True)
-class _Comments:
-    inner: dict[int, list[Note]] = field(default_factory=dict)  # by logical line: inside its brackets
-    trailing: dict[int, tuple[int, str]] = field(default_factory=dict)  # by logical line: (end, text)
-    standalone: list[tuple[int, int, int, str]] = field(default_factory=list)  # start, line, column, text
+class _Marks:
+    """What a piece's marks depend on in the pieces before it: an open `fmt: off` region and the
+    piece just before (a `# plx: ignore` line)."""
 
+    __slots__ = ("off", "prev")
 
-def _sort_comments(text: str, lexed: LexResult) -> _Comments:
-    """Each comment is inside a logical line, trails one, or stands alone between statements."""
-    out = _Comments()
-    lines = lexed.lines
-    li = -1
-    for start, line, _col, end, ctext, own in lexed.comments:
-        while li + 1 < len(lines) and lines[li + 1].start < start:
-            li += 1
-        cur = lines[li] if li >= 0 else None
-        if cur is not None and start < cur.end:
-            out.inner.setdefault(li, []).append(Note(ctext.rstrip(), own, line, start))
-        elif cur is not None and not own and line == cur.tokens[-1].end_line:
-            out.trailing[li] = (end, ctext.rstrip())
-        else:
-            begin = line_start(text, start)
-            column, _ = indent_width(text[begin:start])
-            out.standalone.append((start, line, column, ctext.rstrip()))
-    return out
+    def __init__(self) -> None:
+        self.off = False
+        self.prev: Piece | None = None
 
-
-def build_pieces(text: str, tree: ast.File, lexed: LexResult) -> list[Piece]:
-    stmts = _statements_with_depth(tree.statements)
-    lines = lexed.lines
-    if len(stmts) != len(lines) or any(s.header.start.offset != ln.start for (s, _), ln in zip(stmts, lines)):
-        raise LayoutError("statements and logical lines do not match")
-    comments = _sort_comments(text, lexed)
-    standalone = comments.standalone
-
-    pieces: list[Piece] = []
-    cols: list[int] = []  # source columns of the statement before and of its enclosing statements
-    ci = 0
-
-    def comments_before(offset: int, next_depth: int) -> None:
-        nonlocal ci
-        while ci < len(standalone) and standalone[ci][0] < offset:
-            _start, line, column, ctext = standalone[ci]
-            pieces.append(Piece(_comment_depth(column, cols, next_depth), line, line, comment_text=ctext))
-            ci += 1
-
-    for i, ((stmt, depth), ln) in enumerate(zip(stmts, lines)):
-        comments_before(ln.start, depth)
-        del cols[depth:]
-        cols.append(ln.indent)
-        piece = Piece(depth, ln.tokens[0].line, ln.tokens[-1].end_line, stmt=stmt, line=ln)
-        piece.trailing = comments.trailing.get(i)
-        piece.inner = comments.inner.get(i, [])
-        piece.opens_block = bool(ast.body_of(stmt))
-        pieces.append(piece)
-    comments_before(len(text) + 1, 0)
-    _mark_verbatim(pieces)
-    _mark_pinned(pieces)
-    return pieces
-
-
-def _mark_verbatim(pieces: list[Piece]) -> None:
-    """`# plx: fmt: off` ... `# plx: fmt: on` regions, and statements ending in `# plx: fmt: skip`."""
-    off = False
-    for p in pieces:
+    def mark(self, p: Piece) -> None:
+        """`# plx: fmt: off` ... `# plx: fmt: on` regions, statements ending in `# plx: fmt: skip`,
+        and statements a `# plx: ignore` comment covers (before, after or inside them): those keep
+        their lines (the suppression covers one line; splitting or joining the statement would move
+        the code it covers off that line, and a clean file would get errors after formatting)."""
         if p.stmt is None:
             d = directive(p.comment_text)
-            if d == "off" and not off:
-                off = True
+            if d == "off" and not self.off:
+                self.off = True
                 p.verbatim = True
-            elif off:
+            elif self.off:
                 p.verbatim = True
                 if d == "on":
-                    off = False
+                    self.off = False
         else:
-            p.verbatim = off or (p.trailing is not None and directive(p.trailing[1]) == "skip")
+            p.verbatim = self.off or (p.trailing is not None and directive(p.trailing[1]) == "skip")
+            p.pinned = _pinned(p, self.prev)
+        self.prev = p
 
 
-def _mark_pinned(pieces: list[Piece]) -> None:
-    """Statements a `# plx: ignore` comment covers (before, after or inside them) keep their lines.
+def _pinned(p: Piece, prev: Piece | None) -> bool:
+    """Is this statement covered by a `# plx: ignore` before, after or inside it?"""
+    return ((prev is not None and prev.stmt is None and is_line_suppression(prev.comment_text))
+            or (p.trailing is not None and is_line_suppression(p.trailing[1]))
+            or any(is_line_suppression(n.text) for n in p.inner))
 
-    The suppression covers one line; splitting or joining the statement would move the code it
-    covers off that line (and a clean file would get errors after formatting).
-    """
-    prev: Piece | None = None
-    for p in pieces:
-        if p.stmt is not None:
-            p.pinned = (
-                (prev is not None and prev.stmt is None and is_line_suppression(prev.comment_text))
-                or (p.trailing is not None and is_line_suppression(p.trailing[1]))
-                or any(is_line_suppression(n.text) for n in p.inner)
-            )
-        prev = p
+
+def rendered_pieces(text: str, tree: ast.File, lexer: Lexer) -> Iterator[Piece]:
+    """Every piece in file order, marked and printed (`out`), as the lexer gives the logical lines:
+    a statement's tokens live only until its piece is printed (the tokens of a whole file take
+    more memory than its tree).
+
+    Each comment is inside a logical line, trails one, or stands alone between statements; the
+    comments up to a line's start are all lexed when the lexer gives that line, so the statement
+    before it is complete (its inner and trailing comments known) and can be printed then."""
+    stmts = _statements_with_depth(tree.statements)
+    cols: list[int] = []  # source columns of the statement before and of its enclosing statements
+    marks = _Marks()
+    ci = 0  # the first comment not yet placed
+    cur: Piece | None = None  # the last statement's piece, not yet printed
+    cur_line: LogicalLine | None = None
+    lines = lexer.iter_lines()
+    while True:
+        ln = next(lines, None)
+        limit = ln.start if ln is not None else len(text) + 1
+        comments = lexer.comments
+        standalone: list[Piece] = []
+        while ci < len(comments) and comments[ci][0] < limit:
+            start, line, _col, end, ctext, own = comments[ci]
+            ci += 1
+            if cur_line is not None and start < cur_line.end:
+                cur.inner.append(Note(ctext.rstrip(), own, line, start))  # type: ignore[union-attr]
+            elif cur_line is not None and not own and line == cur_line.tokens[-1].end_line:
+                cur.trailing = (end, ctext.rstrip())  # type: ignore[union-attr]
+            else:
+                column, _ = indent_width(text[line_start(text, start):start])
+                standalone.append(Piece(0, line, line, comment_text=ctext.rstrip(), indent=column))
+        if cur is not None:
+            marks.mark(cur)
+            _render(text, cur)
+            cur.line = None  # (its tokens are printed)
+            yield cur
+            cur = cur_line = None
+        if ln is None:
+            stmt_depth = None
+        else:
+            stmt_depth = next(stmts, None)
+            if stmt_depth is None or stmt_depth[0].header.start.offset != ln.start:
+                raise LayoutError("statements and logical lines do not match")
+        for c in standalone:
+            c.depth = _comment_depth(c.indent, cols, stmt_depth[1] if stmt_depth is not None else 0)
+            c.indent = -1
+            marks.mark(c)
+            _render(text, c)
+            yield c
+        if ln is None:
+            break
+        stmt, depth = stmt_depth  # type: ignore[misc]
+        del cols[depth:]
+        cols.append(ln.indent)
+        cur = Piece(depth, ln.tokens[0].line, ln.tokens[-1].end_line, stmt=stmt, line=ln, indent=ln.indent)
+        cur.opens_block = bool(ast.body_of(stmt))
+        cur_line = ln
+    if next(stmts, None) is not None:
+        raise LayoutError("statements and logical lines do not match")
 
 
 def _render(text: str, p: Piece) -> None:
@@ -234,10 +236,9 @@ def _attach_trailing(pieces: list[Piece]) -> None:
         i = j
 
 
-def layout(text: str, tree: ast.File, lexed: LexResult, newline: str) -> Layout:
-    pieces = build_pieces(text, tree, lexed)
-    for p in pieces:
-        _render(text, p)
+def layout(text: str, tree: ast.File, lexer: Lexer, newline: str) -> Layout:
+    """The formatted text of an error-free tree; `lexer` is a fresh Lexer of the same text."""
+    pieces = list(rendered_pieces(text, tree, lexer))
     _blank_lines(pieces)
     _attach_trailing(pieces)
     out: list[str] = []

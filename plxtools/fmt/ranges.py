@@ -82,8 +82,8 @@ def _rebase_delta(pieces: list[Piece], lo: int, hi: int) -> int:
     order = list(range(lo, hi + 1)) + list(range(hi + 1, len(pieces))) + list(range(lo - 1, -1, -1))
     for k in order:
         p = pieces[k]
-        if p.line is not None:
-            return p.line.indent - p.depth * INDENT
+        if p.stmt is not None:
+            return p.indent - p.depth * INDENT
     return 0
 
 

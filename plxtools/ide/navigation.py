@@ -11,7 +11,7 @@ from plxtools.ide.types import FileSpan, NavTarget, RenameError, TextEdit
 from plxtools.model import resolve
 from plxtools.model.symbols import GlobalSym, MemberSym, MethodSym, ModelSym, Namespace
 from plxtools.syntax import ast
-from plxtools.diagnostics import EMPTY_SPAN
+from plxtools.diagnostics import EMPTY_SPAN, Span
 from plxtools.syntax.lexer import KEYWORDS
 
 IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -247,7 +247,7 @@ def _name_span(st: FileState, span, name: str):
         if text.endswith(cand):
             idx = st.tree.index
             a = span.end.offset - len(cand)
-            return type(span)(idx.pos(a), span.end)
+            return Span(idx.pos(a), span.end)
     return span
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 
+from plxtools.diagnostics import Span
 from plxtools.ide.host import AnalysisHost
 from plxtools.ide.types import DocumentLink, FoldingRange, SymbolInfo, WorkspaceSymbolInfo
 from plxtools.model.symbols import GlobalSym, ModelSym
@@ -223,8 +224,8 @@ def document_links(tree: ast.File, path: str) -> list[DocumentLink]:
                 tip = target if exists else f"{target} (does not exist)"
                 # the link covers the text between the quotes
                 start = e.span.start
-                inner = type(e.span)(type(start)(start.offset + 2, start.line, start.column + 2),
-                                     type(start)(start.offset + 2 + len(e.value), start.line,
-                                                 start.column + 2 + len(e.value)))
+                inner = Span(type(start)(start.offset + 2, start.line, start.column + 2),
+                             type(start)(start.offset + 2 + len(e.value), start.line,
+                                         start.column + 2 + len(e.value)))
                 out.append(DocumentLink(inner, target, tip))
     return out

@@ -23,7 +23,7 @@ from plxtools.diagnostics import Diagnostic, Edit, Fix, Pos, Span
 from plxtools.syntax import ast
 from plxtools.syntax.lexer import UNBALANCED_BRACKET, UNTERMINATED_STRING
 from plxtools.syntax.parser import parse_text
-from plxtools.syntax.source import BOM, LineIndex, detect_newline
+from plxtools.syntax.source import BOM, LineIndex, ShiftedLines, TextSpan, detect_newline
 
 # codes that mean a chunk may not be self-contained: re-parse the whole file instead
 _CROSSING = {UNBALANCED_BRACKET, UNTERMINATED_STRING}
@@ -203,12 +203,11 @@ def _copier(cls: type):
     if fn is None:
         spans, others = _fields_of(cls)
         plain = {f.name for f in fields(cls) if isinstance(f.type, str) and f.type in _PLAIN}
-        lines = ["def copy(n, m, Node=Node, new=new, tnew=tnew, Span=Span, Pos=Pos, cls=cls, get=get, make=make):",
-                 "    c = new(cls)", "    d, dl = m.d_off, m.d_line"]
+        lines = ["def copy(n, m, Node=Node, new=new, TS=TS, cls=cls, get=get, make=make):",
+                 "    c = new(cls)", "    d = m.d_off"]
         for name in spans:
-            lines.append(f"    a, b = n.{name}")
-            lines.append(f"    c.{name} = tnew(Span, (tnew(Pos, (a[0] + d, a[1] + dl, a[2])), "
-                         "tnew(Pos, (b[0] + d, b[1] + dl, b[2]))))")
+            lines.append(f"    a = n.{name}")
+            lines.append(f"    c.{name} = TS(a.s + d, a.e + d, m.lines_of(a.lines)) if a.__class__ is TS else m.span(a)")
         for name in others:
             if name in plain:
                 lines.append(f"    c.{name} = n.{name}")
@@ -219,7 +218,7 @@ def _copier(cls: type):
                          "if isinstance(x, Node) else x for x in v]")
             lines.append(f"    c.{name} = v")
         lines.append("    return c")
-        env = {"Node": ast.Node, "new": object.__new__, "tnew": _tuple_new, "Span": Span, "Pos": Pos, "cls": cls,
+        env = {"Node": ast.Node, "new": object.__new__, "TS": TextSpan, "cls": cls,
                "get": _COPIERS.get, "make": _copier}
         exec("\n".join(lines), env)  # noqa: S102 - generated from the dataclass's own field names
         fn = _COPIERS[cls] = env["copy"]
@@ -229,12 +228,21 @@ def _copier(cls: type):
 class _Mover:
     """Copies nodes with every position shifted by an offset and a line delta (columns stay)."""
 
-    __slots__ = ("d_off", "d_line")
+    __slots__ = ("d_off", "d_line", "_from", "_to")
 
     def __init__(self, d_off: int, d_line: int):
         self.d_off, self.d_line = d_off, d_line
+        self._from = self._to = None
+
+    def lines_of(self, lines) -> ShiftedLines:
+        """The line table of a moved span (one per chunk's table, not one per node)."""
+        if lines is not self._from:
+            self._from, self._to = lines, ShiftedLines(lines, self.d_off, self.d_line)
+        return self._to
 
     def span(self, s: Span) -> Span:
+        if type(s) is TextSpan:
+            return TextSpan(s.s + self.d_off, s.e + self.d_off, self.lines_of(s.lines))
         a, b = s
         d_off, d_line, new = self.d_off, self.d_line, _tuple_new
         return new(Span, (new(Pos, (a[0] + d_off, a[1] + d_line, a[2])), new(Pos, (b[0] + d_off, b[1] + d_line, b[2]))))

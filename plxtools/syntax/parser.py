@@ -17,19 +17,24 @@ from plxtools.syntax.lexer import too_deep as nesting_too_deep
 if TYPE_CHECKING:  # lark is imported when the LALR fallback is first needed (_get_parser)
     from lark import Lark
     from lark.exceptions import UnexpectedInput
-from plxtools.syntax.source import LineIndex, decode, decode_text, line_start
+from plxtools.syntax.source import LineIndex, TextSpan, decode, decode_text, line_start
 
 INDENTATION_BETWEEN_LEVELS = "S015"  # raised here; style and the consequence filter recognise it by this name
 
 # ------------------------------------------------------------------ building nodes
 
 
-_new = tuple.__new__  # Pos and Span built without their (Python-level) NamedTuple constructors
+_TS = TextSpan
+# The line table of the text being parsed: every span built refers to it (lines and columns are
+# computed from it when asked). Set for one parse at a time under _parsing (the language server
+# parses in two threads).
+_L: LineIndex | None = None
+_parsing = threading.RLock()
 
 
-def _sp(x) -> Span:
+def _sp(x) -> TextSpan:
     if type(x) is Token:
-        return _new(Span, (_new(Pos, (x.start_pos, x.line, x.column)), _new(Pos, (x.end_pos, x.end_line, x.end_column))))
+        return _TS(x.start_pos, x.end_pos, _L)
     return x.span
 
 
@@ -43,9 +48,8 @@ def _cover(children) -> Span:
             break
     if first is last and type(first) is not Token:
         return first.span  # one child: its span, shared (spans are immutable; a big file has millions)
-    start = _new(Pos, (first.start_pos, first.line, first.column)) if type(first) is Token else first.span.start
-    end = _new(Pos, (last.end_pos, last.end_line, last.end_column)) if type(last) is Token else last.span.end
-    return _new(Span, (start, end))
+    return _TS(first.start_pos if type(first) is Token else first.span.s,
+               last.end_pos if type(last) is Token else last.span.e, _L)
 
 
 class _Seq(list):
@@ -447,8 +451,7 @@ _PREC = {"PLUS": 1, "MINUS": 1, "STAR": 2, "SLASH": 2}
 
 def _ident(t: Token) -> ast.Ident:
     """What the grammar's `name` builds for a NAME or TICKNAME token."""
-    return _Ident(_new(Span, (_new(Pos, (t.start_pos, t.line, t.column)), _new(Pos, (t.end_pos, t.end_line, t.end_column)))),
-                  t.value, t.type == "TICKNAME")
+    return _Ident(_TS(t.start_pos, t.end_pos, _L), t.value, t.type == "TICKNAME")
 
 
 def _qname(tokens: list[Token], i: int) -> tuple[ast.QName | None, int]:
@@ -463,7 +466,7 @@ def _qname(tokens: list[Token], i: int) -> tuple[ast.QName | None, int]:
         i += 2
     if len(parts) == 1:
         return _QName(parts[0].span, parts), i
-    return _QName(_new(Span, (parts[0].span.start, parts[-1].span.end)), parts), i
+    return _QName(_TS(parts[0].span.s, parts[-1].span.e, _L), parts), i
 
 
 class _ExprParser:
@@ -489,7 +492,7 @@ class _ExprParser:
             if prec is None or prec < min_prec:
                 break
             right, i = self.expr(i + 1, prec + 1)
-            left = _Binary(_new(Span, (left.span.start, right.span.end)), op.value, left, right)
+            left = _Binary(_TS(left.span.s, right.span.e, _L), op.value, left, right)
         return left, i
 
     def operand(self, i: int):  # noqa: C901 - `unary`, `postfix` and `primary` in one loop
@@ -535,15 +538,14 @@ class _ExprParser:
             if kind == "DOT":
                 if k + 1 < n and tokens[k + 1].type in _NAMEISH:
                     name = _ident(tokens[k + 1])
-                    node = _Member(_new(Span, (node.span.start, name.span.end)), node, name)
+                    node = _Member(_TS(node.span.s, name.span.e, _L), node, name)
                     k += 2
                     continue
                 raise _NotFast
             if kind == "LPAR":
                 args, k = self.args(k + 1, "RPAR")
                 r = tokens[k]
-                node = _Call(_new(Span, (node.span.start, _new(Pos, (r.end_pos, r.end_line, r.end_column)))), node,
-                             args or [])
+                node = _Call(_TS(node.span.s, r.end_pos, _L), node, args or [])
                 k += 1
                 continue
             if kind == "LSQB":
@@ -878,8 +880,8 @@ def _unexpected_input():
     return UnexpectedInput
 
 
-def _line_span(line: LogicalLine) -> Span:
-    return Span(_sp(line.tokens[0]).start, _sp(line.tokens[-1]).end)
+def _line_span(line: LogicalLine) -> TextSpan:
+    return _TS(line.tokens[0].start_pos, line.tokens[-1].end_pos, _L)
 
 
 def _error_stmt(line: LogicalLine, text: str) -> ast.ErrorStmt:
@@ -953,7 +955,7 @@ def _close_spans(stmts: list[ast.Stmt]) -> None:
             stack.extend(body)
     for s in reversed(order):
         last = s.body[-1]  # type: ignore[attr-defined]
-        s.span = Span(s.header.start, last.span.end)
+        s.span = _TS(s.header.s, last.span.e, _L)
 
 
 def parse_lines(text: str, lines: Iterable[LogicalLine], diags: list[Diagnostic]) -> list[ast.Stmt]:
@@ -1134,15 +1136,19 @@ def _parse_decoded(text: str, path: str, diags: list[Diagnostic], had_bom: bool,
 
 
 def _parse_decoded_inner(text: str, path: str, diags: list[Diagnostic], had_bom: bool, newline: str) -> ast.File:
-    # the lines are parsed as the lexer finishes them: only one line's tokens live at a time
-    lexer = Lexer(text)
-    parsed: list[Diagnostic] = []
-    statements = parse_lines(text, lexer.iter_lines(), parsed)
+    global _L
+    index = LineIndex(text)
+    with _parsing:
+        outer, _L = _L, index
+        try:
+            # the lines are parsed as the lexer finishes them: only one line's tokens live at a time
+            lexer = Lexer(text)
+            parsed: list[Diagnostic] = []
+            statements = parse_lines(text, lexer.iter_lines(), parsed)
+        finally:
+            _L = outer
     diags = [*diags, *lexer.diagnostics, *parsed]  # (the order the stable sort below keeps for ties)
-    comments = [
-        ast.Comment(Span(Pos(s, ln, col), Pos(e, ln, col + (e - s))), body, own)
-        for (s, ln, col, e, body, own) in lexer.comments
-    ]
+    comments = [ast.Comment(_TS(s, e, index), body, own) for (s, _ln, _col, e, body, own) in lexer.comments]
     ambiguous_tabs = {d.span.start.line for d in diags if d.code == TAB_INDENTATION and d.severity is Severity.ERROR}
     if ambiguous_tabs:  # the error replaces the lexer's warning on the same line
         diags = [d for d in diags if not (d.code == TAB_INDENTATION and d.severity is Severity.WARNING
@@ -1150,4 +1156,4 @@ def _parse_decoded_inner(text: str, path: str, diags: list[Diagnostic], had_bom:
     for d in diags:
         d.file = path
     diags.sort(key=lambda d: d.span.start.offset)
-    return ast.File(path, text, statements, comments, diags, LineIndex(text), had_bom, newline)
+    return ast.File(path, text, statements, comments, diags, index, had_bom, newline)

@@ -13,6 +13,7 @@ BINARY_FILE = "S001"  # the bytes are not text: nothing else is checked
 UNREADABLE_FILE = "E001"
 
 BOM = "\ufeff"
+_tuple_new = tuple.__new__  # Pos and Span built without their (Python-level) NamedTuple constructors
 
 
 @dataclass(slots=True)
@@ -47,8 +48,9 @@ class LineIndex:
 
     def pos(self, offset: int) -> Pos:
         offset = max(0, min(offset, len(self.text)))
-        line = bisect_right(self.starts, offset) - 1
-        return Pos(offset, line, offset - self.starts[line])
+        starts = self.starts
+        line = bisect_right(starts, offset) - 1
+        return _tuple_new(Pos, (offset, line, offset - starts[line]))
 
     def offset(self, line: int, column: int) -> int:
         if line >= len(self.starts):
@@ -74,6 +76,100 @@ class LineIndex:
 
     def span(self, start: int, end: int) -> Span:
         return Span(self.pos(start), self.pos(end))
+
+
+class ShiftedLines:
+    """The line table of a chunk parsed alone, seen at another place of a bigger text (incremental
+    parsing moves chunks): positions are the chunk's, shifted by an offset and a line delta."""
+
+    __slots__ = ("inner", "d_off", "d_line")
+
+    def __init__(self, inner, d_off: int, d_line: int):
+        if type(inner) is ShiftedLines:  # a moved copy moved again: one shift over the chunk's own table
+            inner, d_off, d_line = inner.inner, inner.d_off + d_off, inner.d_line + d_line
+        self.inner, self.d_off, self.d_line = inner, d_off, d_line
+
+    def pos(self, offset: int) -> Pos:
+        p = self.inner.pos(offset - self.d_off)
+        return _tuple_new(Pos, (offset, p[1] + self.d_line, p[2]))
+
+
+class TextSpan:
+    """A node's span: two offsets and its file's line table. Lines and columns are computed when
+    asked (`start`, `end`), so a tree keeps two ints per node, not two position tuples of three:
+    it reads, compares, hashes and pickles as the `Span` of the same positions.
+
+    Spans are immutable; nodes with one child share their child's span."""
+
+    __slots__ = ("s", "e", "lines")
+
+    def __init__(self, s: int, e: int, lines):
+        self.s, self.e, self.lines = s, e, lines
+
+    @property
+    def start(self) -> Pos:
+        return self.lines.pos(self.s)
+
+    @property
+    def end(self) -> Pos:
+        return self.lines.pos(self.e)
+
+    def contains(self, offset: int) -> bool:
+        return self.s <= offset <= self.e
+
+    def cover(self, other) -> "TextSpan | Span":
+        if type(other) is TextSpan and other.lines is self.lines:
+            return TextSpan(min(self.s, other.s), max(self.e, other.e), self.lines)
+        return Span(*self).cover(other)
+
+    def concrete(self) -> Span:
+        """The same span as a `Span` of positions (what is pickled)."""
+        return _tuple_new(Span, (self.lines.pos(self.s), self.lines.pos(self.e)))
+
+    def __iter__(self):
+        return iter(self.concrete())
+
+    def __len__(self) -> int:
+        return 2
+
+    def __getitem__(self, i):
+        return self.concrete()[i]
+
+    def __eq__(self, other):
+        if type(other) is TextSpan:
+            if other.lines is self.lines:
+                return self.s == other.s and self.e == other.e
+            return self.concrete() == other.concrete()
+        if isinstance(other, tuple):
+            return self.concrete() == other
+        return NotImplemented
+
+    def __ne__(self, other):
+        eq = self.__eq__(other)
+        return eq if eq is NotImplemented else not eq
+
+    def __lt__(self, other):
+        return self.concrete() < tuple(other)
+
+    def __le__(self, other):
+        return self.concrete() <= tuple(other)
+
+    def __gt__(self, other):
+        return self.concrete() > tuple(other)
+
+    def __ge__(self, other):
+        return self.concrete() >= tuple(other)
+
+    def __hash__(self) -> int:
+        return hash(self.concrete())
+
+    def __repr__(self) -> str:
+        return repr(self.concrete())
+
+    def __reduce__(self):
+        # pickled (and copied) as the Span it reads as: a cached tree or a diagnostic sent from a
+        # worker must not carry the file's whole line table with it
+        return (_tuple_new, (Span, tuple(self.concrete())))
 
 
 _BREAK_RE = re.compile(r"\r\n?|\n")

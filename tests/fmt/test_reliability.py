@@ -46,7 +46,7 @@ def test_a_trailing_suppression_keeps_its_statement_as_written(tmp_path):
 def test_the_safety_check_refuses_output_that_moves_suppressed_code(monkeypatch):
     # without the pinning, the formatter spreads the bracket over lines and `foo` leaves the
     # suppressed line: the lint comparison must catch it and refuse
-    monkeypatch.setattr(document, "_mark_pinned", lambda pieces: None)
+    monkeypatch.setattr(document, "_pinned", lambda piece, prev: False)
     result = format_text(HEAD + "    # plx: ignore[N003]\n    v is Real[]: [foo,\n        1]\n")
     assert not result.ok
     assert "would change what a `# plx: ignore` comment covers" in result.internal_error
