@@ -16,6 +16,7 @@ from pathlib import Path
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix, Severity
 from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
 from plxtools.model.checker import UNKNOWN_ATTRIBUTE, UNRESOLVED_NAME, UNRESOLVED_TYPE, Checker, Occurrence
+from plxtools.model.facts import Fact
 from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
@@ -50,15 +51,17 @@ class WorkspaceError(BundleSetError):
 
 
 class FileAnalysis:
-    """What the model says about one file: its unit, diagnostics and occurrences (names and what
-    they refer to). `occurrences` may be given as a reuse.Occurrences, built when first read."""
+    """What the model says about one file: its unit, diagnostics, facts (model/facts.py: the
+    findings the rules layer reports) and occurrences (names and what they refer to).
+    `occurrences` may be given as a reuse.Occurrences, built when first read."""
 
-    __slots__ = ("unit", "diagnostics", "_occurrences", "snapshot", "plan")
+    __slots__ = ("unit", "diagnostics", "_occurrences", "snapshot", "plan", "facts")
 
     def __init__(self, unit: FileUnit, diagnostics: list[Diagnostic], occurrences,
-                 snapshot: "reuse.Snapshot | None" = None, plan: "reuse.Plan | None" = None):
+                 snapshot: "reuse.Snapshot | None" = None, plan: "reuse.Plan | None" = None, facts: list = ()):
         self.unit = unit
         self.diagnostics = diagnostics
+        self.facts = facts
         self._occurrences = occurrences
         self.snapshot = snapshot  # for re-using this analysis in the next version's
         self.plan = plan  # how this analysis re-used the previous one (None: it did not)
@@ -441,12 +444,15 @@ class Workspace:
         else:
             diags, occurrences, snap = reuse.assemble(checker, plan, unit, self.program, self.known_annotations,
                                                       Occurrence)
+        found = [d for d in diags if isinstance(d, Fact)]
+        if found:
+            diags = [d for d in diags if not isinstance(d, Fact)]
         diags += self._bundle_config_diagnostics(tree)
         for d in diags:
             d.file = tree.path
         self._help_for_unloaded_bundles(tree, diags)
         self._help_for_other_versions(tree, diags, occurrences)
-        return FileAnalysis(unit, diags, occurrences, snap, plan)
+        return FileAnalysis(unit, diags, occurrences, snap, plan, found)
 
     def _help_for_unloaded_bundles(self, tree: ast.File, diags: list[Diagnostic]) -> None:
         """`Name.X` unknown and a bundle called Name sits nearby but is not loaded: say how to load it."""
