@@ -329,3 +329,43 @@ class IndexNotInt(Fact):
 @dataclass(frozen=True, slots=True)
 class NotIndexable(Fact):
     type: str
+
+
+# ---------------------------------------------------------------- bundle configs (config.openplx)
+
+
+@dataclass(frozen=True, slots=True)
+class ConfigWithoutName(Fact):
+    """A bundle config without `config is BundleConfig:` (`declared` False) or without a name."""
+
+    declared: bool
+
+
+@dataclass(frozen=True, slots=True)
+class BadDependency(Fact):
+    """`dependencies` that is no array ("not-array"), an item that is no string ("not-string") or a
+    string of no form OpenPLX reads ("malformed", `value`)."""
+
+    kind: str
+    value: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class UnreadDependencyForm(Fact):
+    """A dependency like `Physics>=0.19`: read as its bare `name`, selecting no version."""
+
+    written: str
+    name: str
+
+
+@dataclass(frozen=True, slots=True)
+class UnknownDependency(Fact):
+    """A dependency no loaded bundle is named; or (`loaded_from`) a second bundle of one name."""
+
+    name: str
+    loaded_from: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class DependencyCycle(Fact):
+    bundles: tuple[str, ...]

@@ -13,9 +13,10 @@ import os
 import pickle
 from pathlib import Path
 
-from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix, Severity
+from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix
 from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
 from plxtools.model.checker import UNKNOWN_ATTRIBUTE, UNRESOLVED_NAME, UNRESOLVED_TYPE, Checker, Occurrence
+from plxtools.model import facts
 from plxtools.model.facts import Fact
 from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
@@ -341,9 +342,7 @@ class Workspace:
         b = Bundle(root.name, root, official=False)
         read_config(b, _parse_path(root / "config.openplx"))
         if b.name in self.bundles and self.bundles[b.name].root.resolve() != root:
-            b.diagnostics.append(Diagnostic("B003", f"a bundle named '{b.name}' is already loaded from "
-                                            f"{self.bundles[b.name].root}", EMPTY_SPAN, Severity.ERROR,
-                                            file=str(root / "config.openplx")))
+            b.diagnostics.append(facts.UnknownDependency(EMPTY_SPAN, b.name, str(self.bundles[b.name].root)))
             return b
         self.bundles[b.name] = b
         for f in b.files():
@@ -444,10 +443,10 @@ class Workspace:
         else:
             diags, occurrences, snap = reuse.assemble(checker, plan, unit, self.program, self.known_annotations,
                                                       Occurrence)
+        diags += self._bundle_config_diagnostics(tree)
         found = [d for d in diags if isinstance(d, Fact)]
         if found:
             diags = [d for d in diags if not isinstance(d, Fact)]
-        diags += self._bundle_config_diagnostics(tree)
         for d in diags:
             d.file = tree.path
         self._help_for_unloaded_bundles(tree, diags)
@@ -615,7 +614,8 @@ class Workspace:
         self._nearby[folder] = out
         return out
 
-    def _bundle_config_diagnostics(self, tree: ast.File) -> list[Diagnostic]:
+    def _bundle_config_diagnostics(self, tree: ast.File) -> list:
+        """The facts about a bundle's config.openplx (model/facts.py), when `tree` is one."""
         if not tree.path or Path(tree.path).name != "config.openplx":
             return []
         folder = Path(tree.path).resolve().parent
@@ -625,14 +625,11 @@ class Workspace:
         out = list(b.diagnostics)
         for dep in b.dependencies:
             if dep not in self.bundles:
-                out.append(Diagnostic("B003", f"unknown dependency '{dep}': no bundle with that name is loaded",
-                                      b.dep_spans.get(dep, EMPTY_SPAN), Severity.ERROR,
-                                      help="add its folder with --bundle-path or bundle-path in the config"))
+                out.append(facts.UnknownDependency(b.dep_spans.get(dep, EMPTY_SPAN), dep))
         _closure, cycle = dependency_closure(self.bundles, b.name)
         if cycle:
-            out.append(Diagnostic("B004", "dependency cycle: " + " -> ".join(cycle),
-                                  b.dep_spans.get(cycle[1], EMPTY_SPAN) if len(cycle) > 1 else EMPTY_SPAN,
-                                  Severity.ERROR))
+            out.append(facts.DependencyCycle(b.dep_spans.get(cycle[1], EMPTY_SPAN) if len(cycle) > 1 else EMPTY_SPAN,
+                                             tuple(cycle)))
         return out
 
 

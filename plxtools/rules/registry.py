@@ -117,11 +117,6 @@ DEFAULT_CYCLE = entry("M006", "default-cycle", E, owns=("A006",))
 MISSING_ASSIGNMENT = entry("M007", "missing-assignment", E, owns=("A004",))
 UNBOUND_REFERENCE = entry("M008", "unbound-reference", E, owns=("A005",))
 BUNDLES_UNAVAILABLE = entry("B000", "bundles-unavailable", W)
-BUNDLE_CONFIG_NAME = entry("B001", "bundle-config-name", E)
-BAD_DEPENDENCY_STRING = entry("B002", "bad-dependency-string", E)
-UNREAD_DEPENDENCY_FORM = entry("B006", "unread-dependency-form", W)
-UNKNOWN_DEPENDENCY = entry("B003", "unknown-dependency", E)
-DEPENDENCY_CYCLE = entry("B004", "dependency-cycle", E)
 NAMING_CONVENTION = entry("C001", "naming-convention", I)
 UNUSED_MODEL = entry("C003", "unused-model", W)
 MISALIGNED_INDENTATION = entry("C006", "misaligned-indentation", I)
@@ -227,7 +222,12 @@ MODULE_RULES = (
     ("A046", "controller-on-other-mate", W, "assembly.controller_connectors", dict()),
     ("A047", "explicit-zero-mass", W, "assembly.explicit_zero_mass", dict()),
     ("A048", "length-in-millimetres", W, "assembly.length_in_millimetres", dict()),
+    ("B001", "bundle-config-name", E, "bundles.bundle_config_name", dict()),
+    ("B002", "bad-dependency-string", E, "bundles.bad_dependency_string", dict()),
+    ("B003", "unknown-dependency", E, "bundles.unknown_dependency", dict()),
+    ("B004", "dependency-cycle", E, "bundles.dependency_cycle", dict()),
     ("B005", "outside-dependencies", E, "bundles.outside_dependencies", dict()),
+    ("B006", "unread-dependency-form", W, "bundles.unread_dependency_form", dict()),
     ("C004", "deprecated-attribute", W, "conventions.deprecated_attribute", dict(tags=("deprecated",))),
     ("C005", "unknown-annotation", I, "conventions.unknown_annotation", dict()),
     ("M001", "redeclared-attribute", E, "structure.redeclared_attribute", dict()),

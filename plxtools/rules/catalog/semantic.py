@@ -51,30 +51,6 @@ doc("BUNDLES_UNAVAILABLE",
     "Without the bundles no name can be resolved, so the editor shows only syntax errors until the "
     "setup is fixed: install `openplx-bundles`, or point `bundlePath` / `bundle-path` at a folder "
     "of bundles. The message says what failed.")
-doc("BUNDLE_CONFIG_NAME",
-    "A bundle's config.openplx has no `config is BundleConfig:` or no name.",
-    "The name is how other bundles depend on this one.",
-    example='config is BundleConfig:\n    version: "0.1.0"',
-    use_instead='config is BundleConfig:\n    name: "MyBundle"\n    version: "0.1.0"')
-doc("BAD_DEPENDENCY_STRING",
-    "A dependency is not a string that starts with a bundle name.",
-    "A dependency names the bundle it needs; plx cannot tell which bundle is meant.",
-    example='dependencies: ["0.19.0"]',
-    use_instead='dependencies: ["Physics==0.19.0"]')
-doc("UNREAD_DEPENDENCY_FORM",
-    "A dependency names a bundle but is not written as `Name`, `Name==1.2.3` or `Name@1.2.3`.",
-    "These are the forms OpenPLX reads: `==` is what every official bundle's own config uses, `@` is "
-    "the form in openplx.org's documentation, and a bare name takes whatever version is loaded. plx "
-    "reads the string as the bare name, so it selects no official bundle version (see Bundle versions).",
-    example='dependencies: ["Physics>=0.19"]',
-    use_instead='dependencies: ["Physics==0.19.0"]')
-doc("UNKNOWN_DEPENDENCY",
-    "A bundle depends on a bundle that is not loaded, or two bundles share a name.",
-    "Names from a missing dependency cannot resolve. Add its folder with `--bundle-path` or the "
-    "`bundle-path` config key.")
-doc("DEPENDENCY_CYCLE",
-    "Bundles depend on each other in a cycle.",
-    "A bundle must be loadable after its dependencies.")
 # ---------------------------------------------------------------- conventions and hygiene
 doc("NAMING_CONVENTION",
     "A definition does not follow the naming conventions: models and traits PascalCase, attributes "
