@@ -33,11 +33,7 @@ from plxtools.syntax import ast
 
 E = Severity.ERROR
 
-# The codes other modules recognise (lint's result cache, the workspace's help, completeness and
-# check's de-duplication): this module raises them, the others import these names.
-UNRESOLVED_TYPE = "N001"
-UNKNOWN_ATTRIBUTE = "N002"
-UNRESOLVED_NAME = "N003"
+# raised here (`_default_cycles`) until value cycles are found once for lint and check (issue 38)
 DEFAULT_CYCLE = "M006"
 
 
@@ -114,14 +110,14 @@ class Checker:
         self._broken_cache[key] = out
         return out
 
-    def _unknown(self, code: str, msg: str, span: Span, name: str, options) -> None:
-        """An unknown name or attribute, with a suggestion unless it is a broken declaration's name."""
+    def _near(self, name: str, options) -> tuple[str | None, int | None]:
+        """(suggestion, line) for an unknown name or attribute: the closest of `options`, unless it
+        is the name a line that did not parse declares (that line, 0-based)."""
         line = self._broken().get(name)
         if line is not None:
             self._positional = True
-            self.report(code, msg, span, help=f"its declaration at line {line + 1} has a syntax error; fix that first")
-            return
-        self.report(code, msg, span, suggest=self._closest(name, options))
+            return None, line
+        return self._closest(name, options), None
 
     # ------------------------------------------------------------------ entry
 
@@ -237,21 +233,22 @@ class Checker:
                 defined = [n for n, sym in self.unit.locals.items() if not isinstance(sym, ImportSym)]
                 close = self._closest(parts[0], defined + list(self.unit.namespace.symbols))
                 if close:
-                    self.report(UNRESOLVED_TYPE, f"unknown type '{ref.name.text}'", ref.name.span, suggest=close)
+                    self.found(facts.UnknownType(ref.name.span, ref.name.text, suggestion=close))
                     return UNKNOWN
                 self.occ(ref.name.span, archived, "type")
                 self.found(facts.OpaqueImportName(ref.name.span, ref.name.text, archived.written))
                 return Ty(archived, ref.array)
-            help_, word = self._type_suggestion(parts)
-            self.report(UNRESOLVED_TYPE, f"unknown type '{ref.name.text}'", ref.name.span, help=help_, suggest=word)
+            listing, word = self._type_suggestion(parts)
+            self.found(facts.UnknownType(ref.name.span, ref.name.text, suggestion=word,
+                                         listing=listing if word is None else None))
             return UNKNOWN
         if isinstance(found, Namespace):
             self.occ(ref.name.span, found, "type")
-            self.report(UNRESOLVED_TYPE, f"'{ref.name.text}' is a namespace, not a type", ref.name.span,
-                        help=self._type_suggestion(parts + [""])[0])
+            self.found(facts.UnknownType(ref.name.span, ref.name.text, "namespace",
+                                         listing=self._type_suggestion(parts + [""])[0]))
             return UNKNOWN
         if isinstance(found, GlobalSym):
-            self.report(UNRESOLVED_TYPE, f"'{ref.name.text}' is a global value, not a type", ref.name.span)
+            self.found(facts.UnknownType(ref.name.span, ref.name.text, "global"))
             return UNKNOWN
         if isinstance(found, ModelSym):
             self.occ(ref.name.span, found, "type")
@@ -262,8 +259,9 @@ class Checker:
             return Ty(found, ref.array)
         return Ty(found, ref.array)
 
-    def _type_suggestion(self, parts: list[str]) -> tuple[str | None, str | None]:
-        """(help, replacement): the closest name in the namespace the prefix names, else what it has."""
+    def _type_suggestion(self, parts: list[str]) -> tuple[tuple | None, str | None]:
+        """(listing, replacement): the closest name in the namespace the prefix names, else what it
+        has (its name, up to 8 of its names, whether there are more)."""
         self._suggests = True
         if len(parts) >= 2:
             ns = self.p.lookup(parts[:-1], self.unit)
@@ -277,7 +275,7 @@ class Checker:
                     return None, ".".join(parts[:-1]) + "." + close
                 names = sorted(ns.symbols)[:8]
                 if names:
-                    return f"{ns.dotted} has: " + ", ".join(names) + (" ..." if len(ns.symbols) > 8 else ""), None
+                    return (ns.dotted, tuple(names), len(ns.symbols) > 8), None
         return None, None
 
     def _corrected_path(self, parts: list[str]) -> str | None:
@@ -434,7 +432,7 @@ class Checker:
             if cur.unknown or self._opaque(cur):
                 return UNKNOWN, None
             if cur.array or cur.alts or cur.primitive is not None:
-                self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' cannot be set on a value of type {cur.display()}", part.span)
+                self.found(facts.UnknownAttribute(part.span, part.name, cur.display(), on_value=True))
                 return UNKNOWN, None
             mems = resolve.attributes(self.p, cur, self.outer, path)
             found = mems.get(part.name)
@@ -443,8 +441,7 @@ class Checker:
                     return UNKNOWN, None  # a host attribute the trait does not declare
                 where = self.p.concrete(cur.model).qname if cur.model is not None else cur.display()
                 if i == 0 and not prefix:
-                    self._unknown(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span, part.name,
-                                  list(mems))
+                    self.found(facts.UnknownAttribute(part.span, part.name, where, *self._near(part.name, list(mems))))
                 else:
                     meant = self._becomes_blocks.get((id(self.outer), path))
                     if meant is not None and part.name in self.p.all_members(meant):
@@ -452,13 +449,11 @@ class Checker:
                     kind = self._subtype_with(cur.model, part.name) if cur.model is not None else None
                     if kind is not None:
                         self._becomes_blocks[(id(self.outer), path)] = kind
-                        self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}, but of "
-                                    f"{kind.name}, a kind of it", part.span,
-                                    help=f"use becomes to make '{'.'.join(path)}' a {kind.name}: write "
-                                         f"'{path[-1] if path else 'it'} becomes {kind.qname}:' above")
+                        self.found(facts.UnknownAttribute(part.span, part.name, where, kind_of=(
+                            kind.name, kind.qname, ".".join(path), path[-1] if path else "it")))
                     else:
-                        self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span,
-                                    suggest=self._closest(part.name, list(mems)))
+                        self.found(facts.UnknownAttribute(part.span, part.name, where,
+                                                          self._closest(part.name, list(mems))))
                 return UNKNOWN, None
             mem = found
             self.occ(part.span, mem, "attribute")
@@ -700,9 +695,9 @@ class Checker:
         options = list(self.p.members_of(Ty(self.outer))) if self.outer is not None else []
         options += list(self.unit.locals) + list(self.unit.namespace.symbols)
         if name in ("True", "False", "TRUE", "FALSE"):
-            self.report(UNRESOLVED_NAME, f"unknown name '{name}'", ident.span, suggest=name.lower())
+            self.found(facts.UnknownName(ident.span, name, name.lower()))
             return UNKNOWN
-        self._unknown(UNRESOLVED_NAME, f"unknown name '{name}'", ident.span, name, options)
+        self.found(facts.UnknownName(ident.span, name, *self._near(name, options)))
         return UNKNOWN
 
     def _global_value(self, found, ident: ast.Ident):
@@ -727,8 +722,9 @@ class Checker:
         if isinstance(base, NsRef):
             v = self._global_value(found, e.name)
             if v is None:
-                self.report(UNRESOLVED_NAME, f"'{name}' is not in namespace {base.ns.dotted}", e.name.span,
-                            suggest=self._closest(name, list(base.ns.symbols) + list(base.ns.children)))
+                self.found(facts.UnknownName(e.name.span, name, self._closest(name, list(base.ns.symbols) +
+                                                                              list(base.ns.children)),
+                                             namespace=base.ns.dotted))
                 return UNKNOWN
             return v
         if isinstance(found, MethodRef):

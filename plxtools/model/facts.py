@@ -369,3 +369,71 @@ class UnknownDependency(Fact):
 @dataclass(frozen=True, slots=True)
 class DependencyCycle(Fact):
     bundles: tuple[str, ...]
+
+
+# ---------------------------------------------------------------- unknown names (and older versions' names)
+
+
+@dataclass(frozen=True, slots=True)
+class UnknownType(Fact):
+    """A type name that does not resolve ("unknown"), names a namespace or a global value. The
+    workspace adds what it knows of the bundles: one that is not loaded (`bundle`), newer bundles
+    (`newer`), the official versions that have the name (`versions`)."""
+
+    written: str
+    kind: str = "unknown"  # "unknown" | "namespace" | "global"
+    suggestion: str | None = None  # the name most likely meant
+    listing: tuple | None = None  # (namespace, some of its names, whether it has more)
+    bundle: tuple | None = None  # see UnknownName
+    newer: tuple | None = None  # ("agx", written, using, AGX version, its OpenPLX version, its bundles)
+    # or ("release", written, newest release)
+    versions: tuple | None = None  # (written, the versions that have it as text, the last of them, using)
+
+
+@dataclass(frozen=True, slots=True)
+class UnknownAttribute(Fact):
+    """An attribute path step that the object (`owner`) does not have."""
+
+    name: str
+    owner: str
+    suggestion: str | None = None
+    broken_line: int | None = None  # a line declaring the name did not parse (0-based)
+    on_value: bool = False  # the object is an array, alternatives or a primitive (`owner`: its type)
+    kind_of: tuple | None = None  # a kind of the owner has it: (its name, qualified, the path, its last part)
+
+
+@dataclass(frozen=True, slots=True)
+class UnknownName(Fact):
+    """A name in an expression that does not resolve (or not in `namespace`)."""
+
+    name: str
+    suggestion: str | None = None
+    broken_line: int | None = None
+    namespace: str | None = None
+    # a bundle of that name is not loaded: ("nearby", name, its folder), ("dependency", name, the
+    # config naming it), ("agx", what AGX installation was found or None, its bundle folder or None)
+    bundle: tuple | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class OlderName(Fact):
+    """An unknown type that an older official version had, renamed one to one since."""
+
+    written: str
+    new: str
+    older: str  # the newest version that had it
+    using: str
+    declared: bool  # a rename OpenPLX's own migration list declares
+    command: str  # the `plx migrate` command that works as printed for this file
+
+
+@dataclass(frozen=True, slots=True)
+class RenamedAttribute(Fact):
+    """An unknown attribute that an older official version renamed."""
+
+    written: str
+    new: str
+    since: str
+    owners: str  # some of the models that renamed it
+    older_version: str | None
+    command: str = ""

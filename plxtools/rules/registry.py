@@ -123,9 +123,6 @@ MISALIGNED_INDENTATION = entry("C006", "misaligned-indentation", I)
 ROOT_NOT_SYSTEM = entry("C007", "root-not-system", W)
 # ---------------------------------------------------------------- hygiene (docs: catalog/hygiene.py)
 UNUSED_SUPPRESSION = entry("C002", "unused-suppression", W, fix="safe", tags=("unnecessary",))
-# ---------------------------------------------------------------- migration (docs: catalog/migration.py)
-OLDER_NAME = entry("U001", "renamed-model", E, fix="safe", tags=("version",))
-RENAMED_ATTRIBUTE = entry("U002", "renamed-attribute", E, fix="unsafe", tags=("version",))
 # ---------------------------------------------------------------- assembly (docs: catalog/assembly.py)
 ROOT_MODEL_NOT_FOUND = entry("A001", "root-model-not-found", E, stage="check")
 ROOT_IS_TRAIT = entry("A002", "root-is-trait", E, stage="check")
@@ -237,6 +234,9 @@ MODULE_RULES = (
     ("M005", "inheritance-cycle", E, "structure.inheritance_cycle", dict()),
     ("M009", "reference-with-block", E, "structure.reference_with_block", dict()),
     ("M010", "assigned-twice", E, "semantic.assigned_twice", dict()),
+    ("N001", "unresolved-type", E, "names.unresolved_type", dict(fix="unsafe", owns=("A003",))),
+    ("N002", "unknown-attribute", E, "names.unknown_attribute", dict(fix="unsafe", owns=("A003", "A004",))),
+    ("N003", "unresolved-name", E, "names.unresolved_name", dict(fix="unsafe", owns=("A003",))),
     ("N004", "unknown-member", E, "names.unknown_member", dict(fix="unsafe", owns=("A003",))),
     ("N005", "wrong-kind-of-type", E, "names.wrong_kind_of_type", dict(owns=("A003",))),
     ("N006", "import-file-not-found", E, "names.import_file_not_found", dict(owns=("A003",))),
@@ -251,6 +251,8 @@ MODULE_RULES = (
     ("T007", "void-in-expression", E, "types.void_in_expression", dict(owns=("A003",))),
     ("T008", "bad-call", E, "types.bad_call", dict(owns=("A003",))),
     ("T009", "bad-index", E, "types.bad_index", dict(owns=("A003",))),
+    ("U001", "renamed-model", E, "names.older_name", dict(fix="safe", tags=("version",))),
+    ("U002", "renamed-attribute", E, "names.renamed_attribute", dict(fix="unsafe", tags=("version",))),
 )
 
 _loaded = False

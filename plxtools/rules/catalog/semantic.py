@@ -8,25 +8,6 @@ doc("UNREADABLE_FILE",
     "Permissions or a broken link stop plxtools from reading it; nothing in it is checked.")
 
 # ---------------------------------------------------------------- names
-doc("UNRESOLVED_TYPE",
-    "A type name after `is`, `becomes`, `with`, in a parameter or a return type does not resolve.",
-    "Names are looked up from the current namespace outwards and then from the bundles (spec C.2). "
-    "A misspelt or missing type leaves the attribute untyped, so nothing about it can be checked.",
-    example="geometry is Physics3D.Geometries.Bx",
-    use_instead="geometry is Physics3D.Geometries.Box")
-doc("UNKNOWN_ATTRIBUTE",
-    "An assignment or a dotted path names an attribute that the object being configured does not have.",
-    "A misspelt attribute would otherwise be silently ignored or rejected at load time; the message "
-    "names the model that was searched and suggests the closest attribute.",
-    example="Wheel is Physics3D.Bodies.RigidBody:\n    inertia.mas: 10",
-    use_instead="Wheel is Physics3D.Bodies.RigidBody:\n    inertia.mass: 10")
-doc("UNRESOLVED_NAME",
-    "A name in an expression is neither an attribute of the model being defined nor a global name "
-    "(const model, global attribute, type or namespace).",
-    "In OpenPLX the scope of a right-hand side is the outermost model where it is written, then the "
-    "global names; a name outside both cannot be evaluated.",
-    example="Chassis is Physics3D.Bodies.RigidBody:\n    inertia.mass: chassis_mass",
-    use_instead="Chassis is Physics3D.Bodies.RigidBody:\n    chassis_mass is Real: 1000\n    inertia.mass: chassis_mass")
 # ---------------------------------------------------------------- types
 # ---------------------------------------------------------------- model structure
 doc("DEFAULT_CYCLE",
