@@ -23,11 +23,18 @@ LITERAL = re.compile(r"""["']([A-Z]\d{3})["']""")
 # ---------------------------------------------------------------- one place for every code
 # A code is written as a string only in plxtools/rules/registry.py (issue 38). Layers above `rules`
 # name a code by its registry constant (`registry.MISSING_VALUE`); a rule module never names its
-# code (the engine stamps it). The layers below `rules` cannot import the registry: their findings
-# are still made with their codes until they are facts (the next step of issue 38), so they are the
-# one exception, by layer, and each of their codes must be a registered one with its constant.
+# code (the engine stamps it). The layers below `rules` cannot import the registry: they record
+# facts (plxtools/model/facts.py) that rule modules report. The findings below still make their
+# diagnostics where they are found, with their code: this list may only shrink (a pair that is
+# gone must leave it), and any other code string anywhere in plxtools fails.
 REGISTRY = PACKAGE / "rules" / "registry.py"
-BELOW_RULES = (PACKAGE / "syntax", PACKAGE / "model")
+NOT_MOVED_YET: dict[str, set[str]] = {
+    # M006 goes with the value findings lint and check share (issue 38, step 3)
+    "plxtools/model/checker.py": {"M006"},
+    "plxtools/syntax/lexer.py": {"S003", "S004", "S005", "S006", "S007", "S008", "S009"},
+    "plxtools/syntax/parser.py": {"S010", "S011", "S012", "S013", "S014", "S015", "S016"},
+    "plxtools/syntax/source.py": {"E001", "S001", "S002"},
+}
 
 
 def code_constants() -> dict[str, str]:
@@ -47,15 +54,21 @@ def test_a_code_is_written_only_in_the_registry():
     constants = code_constants()
     without = sorted(r.code for r in all_rules() if r.module is None and r.code not in constants)
     assert not without, f"codes of the older form without their constant in the registry: {without}"
-    offenders = []
+    offenders, still = [], defaultdict(set)
     for path in sorted(PACKAGE.rglob("*.py")):
-        if path == REGISTRY or any(top in path.parents for top in BELOW_RULES):
+        if path == REGISTRY:
             continue
+        where = path.relative_to(ROOT).as_posix()
         for line, code in written_codes(path):
+            if code in NOT_MOVED_YET.get(where, ()):
+                still[where].add(code)
+                continue
             hint = f"registry.{constants[code]}" if code in constants else "register it in rules/registry.py"
-            offenders.append(f"{path.relative_to(ROOT).as_posix()}:{line}: '{code}' -> use {hint}")
+            offenders.append(f"{where}:{line}: '{code}' -> use {hint} (below rules: record a fact)")
     assert not offenders, ("rule codes written outside plxtools/rules/registry.py (name each through the "
                            "registry):\n  " + "\n  ".join(offenders))
+    moved = {where: sorted(codes - still[where]) for where, codes in NOT_MOVED_YET.items() if codes - still[where]}
+    assert not moved, f"no longer written there; take them off NOT_MOVED_YET: {moved}"
 
 
 def test_every_registered_code_is_raised_somewhere():
@@ -68,7 +81,7 @@ def test_every_registered_code_is_raised_somewhere():
             continue
         text = path.read_text(encoding="utf-8")
         used.update(n for n in re.findall(r"\b([A-Z][A-Z0-9_]+)\b", text) if n in constants.values())
-        if any(top in path.parents for top in BELOW_RULES):
+        if path.relative_to(ROOT).as_posix() in NOT_MOVED_YET:
             used.update(constants[c] for _line, c in written_codes(path) if c in constants)
     missing = sorted(r.code for r in all_rules() if r.module is None and constants.get(r.code) not in used)
     assert not missing, f"registered codes that nothing raises (no use of their registry constant): {missing}"

@@ -75,6 +75,28 @@ def test_lint_and_server_print_the_registry_severity(monkeypatch, tmp_path, code
     assert server_severities(path, text, code) == {after}
 
 
+@pytest.mark.parametrize("code, text", [
+    ("T002", REAL_FOR_INT),  # a fact of the model (model/facts.py) reported by rules/types/real_for_int.py
+    ("M001", "A is Physics3D.Bodies.RigidBody:\n    is_dynamic is Bool: true\n"),  # rules/structure/
+    ("N004", "A is Physics3D.Bodies.RigidBody:\n    m is Real: inertia.mass.x\n"),  # rules/names/
+], ids=["T002", "M001", "N004"])
+def test_a_moved_rule_prints_the_registry_severity_in_lint_check_and_the_server(monkeypatch, tmp_path, code, text):
+    """The model records a fact and a rule module reports it: the severity is the registry's
+    alone, in `plx lint`, `plx check` and the server alike."""
+    path = tmp_path / "m.openplx"
+    path.write_text(text, encoding="utf-8")
+    before = registry.get(code).severity
+    assert registry.get(code).module is not None
+    assert reported(plx_here("lint", "--no-cache", str(path)).stdout, code) == {before.value}
+    assert reported(plx_here("check", str(path)).stdout, code) == {before.value}
+    assert server_severities(path, text, code) == {before}
+    after = Severity.INFO if before is not Severity.INFO else Severity.ERROR
+    set_severity(monkeypatch, code, after)
+    assert reported(plx_here("lint", "--no-cache", str(path)).stdout, code) == {after.value}
+    assert reported(plx_here("check", str(path)).stdout, code) == {after.value}
+    assert server_severities(path, text, code) == {after}
+
+
 def test_check_prints_the_registry_severity(monkeypatch, tmp_path):
     path = tmp_path / "m.openplx"
     path.write_text(NO_VALUE, encoding="utf-8")

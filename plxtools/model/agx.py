@@ -246,20 +246,18 @@ def defines(bundles: Path, qname: str) -> bool:
     return False
 
 
-def newer_bundles_help(written: str, bundle_set, newest_release: str, typo: bool = False) -> str | None:
-    """The help for an unknown official-looking name that no `openplx-bundles` release has: where
-    newer bundles are (an AGX installation found but not in use, whose bundles define it), or that
-    they may be needed (not said when `typo`: a near miss of an existing name has its suggestion)."""
+def newer_bundles(written: str, bundle_set, newest_release: str, typo: bool = False) -> tuple | None:
+    """For an unknown official-looking name that no `openplx-bundles` release has: where newer
+    bundles are (an AGX installation found but not in use, whose bundles define it: ("agx", the
+    name, the version in use, AGX's version, its OpenPLX version, its bundles folder)), or that
+    they may be needed (("release", the name, the newest release); not when `typo`: a near miss of
+    an existing name has its suggestion). The rules layer words it (rules/names/unresolved_type.py)."""
     agx = getattr(bundle_set, "agx", None)
     using = getattr(bundle_set, "official_version", None) or "?"
     if agx is not None and not getattr(bundle_set, "agx_used", False):
         if defines(agx.bundles, written):
-            return (f"'{written}' is not in OpenPLX {using} (in use); AGX {agx.agx_version or ''}'s bundles "
-                    f"(OpenPLX {agx.openplx_version or '?'}, {agx.bundles}) have it: set bundle-path to that "
-                    f"folder, or AGX_DIR, instead of what chooses {using} now").replace("AGX 's", "AGX's")
+            return ("agx", written, using, agx.agx_version or "", agx.openplx_version or "?", str(agx.bundles))
         return None
     if agx is None and not typo:
-        return (f"'{written}' is in no openplx-bundles release up to {newest_release}: it may need a newer "
-                f"OpenPLX; AGX ships newer bundles: set AGX_DIR to an AGX installation or bundle-path to its "
-                f"bundles folder")
+        return ("release", written, newest_release)
     return None

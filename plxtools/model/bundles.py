@@ -13,7 +13,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from plxtools.cache import reads
-from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity, Span
+from plxtools.diagnostics import EMPTY_SPAN
+from plxtools.model import facts
 from plxtools.syntax import ast
 
 # the dependency forms OpenPLX accepts: a bare name, `Name==1.2.3` (every official bundle's own
@@ -31,7 +32,7 @@ class Bundle:
     version: str | None = None
     dependencies: list[str] = field(default_factory=list)
     config_tree: ast.File | None = None
-    diagnostics: list[Diagnostic] = field(default_factory=list)
+    diagnostics: list = field(default_factory=list)  # facts about its config.openplx (model/facts.py)
     dep_spans: dict[str, Span] = field(default_factory=dict)
     origin: str = ""  # why this bundle is loaded (shown by --show-settings)
 
@@ -88,16 +89,14 @@ def _walk(root: str, folder: str, out: list[str]) -> None:
 
 
 def read_config(bundle: Bundle, tree: ast.File) -> None:
-    """Fill name/version/dependencies from a parsed config.openplx, reporting B-rule problems."""
+    """Fill name/version/dependencies from a parsed config.openplx, recording its problems as facts
+    (model/facts.py, reported when the config file is analysed)."""
     bundle.config_tree = tree
     cfg = next((s for s in tree.statements if isinstance(s, ast.Declaration) and s.path.text == "config"), None)
-
-    def diag(code: str, msg: str, span: Span, help_: str | None = None, sev: Severity = Severity.ERROR) -> None:
-        bundle.diagnostics.append(Diagnostic(code, msg, span, sev, file=tree.path, help=help_))
+    diag = bundle.diagnostics.append
 
     if cfg is None or cfg.body is None:
-        diag("B001", "config.openplx must declare 'config is BundleConfig:' with a name",
-             tree.statements[0].header if tree.statements else EMPTY_SPAN)
+        diag(facts.ConfigWithoutName(tree.statements[0].header if tree.statements else EMPTY_SPAN, False))
         return
     name_set = False
     for s in cfg.body:
@@ -111,30 +110,26 @@ def read_config(bundle: Bundle, tree: ast.File) -> None:
             bundle.version = s.value.value
         elif key == "dependencies":
             if not isinstance(s.value, ast.Array):
-                diag("B002", "'dependencies' must be an array of strings", s.value.span)
+                diag(facts.BadDependency(s.value.span, "not-array"))
                 continue
             for item in s.value.items:
                 if not isinstance(item, ast.String):
-                    diag("B002", "a dependency must be a string like \"Physics==0.19.0\"", item.span)
+                    diag(facts.BadDependency(item.span, "not-string"))
                     continue
                 m = DEP_RE.match(item.value)
                 other = None if m else DEP_OTHER_RE.match(item.value)
                 if other:
-                    diag("B006", f"OpenPLX does not read the dependency form '{item.value}'; plx reads it as "
-                         f"'{other.group(1)}' and selects no bundle version from it", item.span,
-                         f"write '{other.group(1)}' or an exact version: '{other.group(1)}==0.19.0'",
-                         Severity.WARNING)
+                    diag(facts.UnreadDependencyForm(item.span, item.value, other.group(1)))
                     bundle.dependencies.append(other.group(1))
                     bundle.dep_spans[other.group(1)] = item.span
                     continue
                 if not m:
-                    diag("B002", f"malformed dependency '{item.value}'", item.span,
-                         "write 'Name', 'Name==1.2.3' or 'Name@1.2.3'")
+                    diag(facts.BadDependency(item.span, "malformed", item.value))
                     continue
                 bundle.dependencies.append(m.group(1))
                 bundle.dep_spans[m.group(1)] = item.span
     if not name_set:
-        diag("B001", "the bundle config has no 'name'", cfg.header, 'add name: "MyBundle"')
+        diag(facts.ConfigWithoutName(cfg.header, True))
 
 
 def find_user_bundle_root(path: Path, stop_at: set[Path]) -> Path | None:

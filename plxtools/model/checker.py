@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 from plxtools.cache import reads
 from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity, Span
-from plxtools.model import resolve
+from plxtools.model import facts, resolve
 from plxtools.model.program import Program, compose_type
 from plxtools.model import suggest
 from plxtools.model.symbols import (
@@ -31,18 +31,10 @@ from plxtools.model.symbols import (
 from plxtools.model.values import MethodRef, NsRef, TypeObj
 from plxtools.syntax import ast
 
-# raised here (`_deprecated_check`); the language server marks it with LSP's Deprecated tag
-DEPRECATED_MEMBER = "C004"
+E = Severity.ERROR
 
-E, W, I = Severity.ERROR, Severity.WARNING, Severity.INFO
-
-# The codes other modules recognise (lint's result cache, the workspace's help, completeness and
-# check's de-duplication): this module raises them, the others import these names.
-UNRESOLVED_TYPE = "N001"
-UNKNOWN_ATTRIBUTE = "N002"
-UNRESOLVED_NAME = "N003"
+# raised here (`_default_cycles`) until value cycles are found once for lint and check (issue 38)
 DEFAULT_CYCLE = "M006"
-TYPE_MISMATCH = "T001"
 
 
 @dataclass(slots=True)
@@ -82,16 +74,16 @@ class Checker:
             fix = Fix(f"replace with '{suggest}'", (Edit(span.start.offset, span.end.offset, suggest),), safe=False)
         self.diags.append(Diagnostic(code, msg, span, sev, file=self.unit.path, help=help, fix=fix))
 
+    def found(self, fact: facts.Fact) -> None:
+        """Record a fact (plxtools/model/facts.py): the rules layer reports it."""
+        self.diags.append(fact)
+
     def occ(self, span: Span, target, kind: str) -> None:
         self.occurrences.append(Occurrence(span, target, kind))
 
     def _closest(self, name: str, options) -> str | None:
         self._suggests = True  # the answer depends on every name in scope (model/reuse.py)
         return suggest.best(name, options)
-
-    def _suggest(self, name: str, options) -> str | None:
-        close = self._closest(name, options)
-        return f"did you mean '{close}'?" if close else None
 
     def _broken(self) -> dict[str, int]:
         """Names that a line which did not parse was declaring (`front_left_wheel Wheel`, missing
@@ -118,14 +110,14 @@ class Checker:
         self._broken_cache[key] = out
         return out
 
-    def _unknown(self, code: str, msg: str, span: Span, name: str, options) -> None:
-        """An unknown name or attribute, with a suggestion unless it is a broken declaration's name."""
+    def _near(self, name: str, options) -> tuple[str | None, int | None]:
+        """(suggestion, line) for an unknown name or attribute: the closest of `options`, unless it
+        is the name a line that did not parse declares (that line, 0-based)."""
         line = self._broken().get(name)
         if line is not None:
             self._positional = True
-            self.report(code, msg, span, help=f"its declaration at line {line + 1} has a syntax error; fix that first")
-            return
-        self.report(code, msg, span, suggest=self._closest(name, options))
+            return None, line
+        return self._closest(name, options), None
 
     # ------------------------------------------------------------------ entry
 
@@ -143,7 +135,7 @@ class Checker:
             try:
                 self._top(stmt)
             except RecursionError:
-                self.report("M005", "this definition nests or refers to itself too deeply to check", stmt.header)
+                self.found(facts.TooDeepToCheck(stmt.header))
             self.slices[i] = (d0, len(self.diags), o0, len(self.occurrences), self._positional, self._suggests)
 
     def _duplicates(self) -> None:
@@ -151,17 +143,15 @@ class Checker:
             if unit is not self.unit:
                 continue
             if isinstance(stmt, ast.Declaration) and len(stmt.path.parts) == 1 and isinstance(first, MemberSym):
-                self.report("M004", f"'{first.name}' is declared twice in {first.owner.qname}", stmt.path.span,
-                            help=f"the first declaration is at line {first.stmt.header.start.line + 1}")
+                self.found(facts.DeclaredTwice(stmt.path.span, first.name, first.owner.qname,
+                                               first.stmt.header.start.line))
             else:
                 where = getattr(first, "unit", None)
-                loc = ""
-                if where is not None:
-                    line = first.stmt.header.start.line + 1
-                    loc = f" (first defined in {where.path}:{line})" if where is not self.unit else f" (first defined at line {line})"
+                line = first.stmt.header.start.line if where is not None else None
+                other = where.path if where is not None and where is not self.unit else None
                 name = stmt.name.name if isinstance(stmt, ast.TraitDef) else stmt.path.text
-                self.report("M004", f"'{name}' is already defined in this namespace{loc}",
-                            stmt.name.span if isinstance(stmt, ast.TraitDef) else stmt.path.span)
+                self.found(facts.DefinedTwice(stmt.name.span if isinstance(stmt, ast.TraitDef) else stmt.path.span,
+                                              name, other, line))
 
     def _symbol_for(self, stmt: ast.Stmt) -> ModelSym | GlobalSym | None:
         return resolve.symbol_of_top(self.unit, stmt)
@@ -187,8 +177,7 @@ class Checker:
                 self._type_ref(stmt.returns)
             n = len(stmt.params)
             if stmt.op == "-" and n not in (1, 2) or stmt.op != "-" and n != 2:
-                self.report("T004", f"operator {stmt.op} takes {'1 or 2' if stmt.op == '-' else '2'} parameters, "
-                            f"not {n}", stmt.header)
+                self.found(facts.OperatorArity(stmt.header, stmt.op, n))
         elif isinstance(stmt, ast.ErrorStmt) and stmt.body:
             self.outer = None
             self._block(stmt.body, UNKNOWN, (), None)
@@ -201,24 +190,19 @@ class Checker:
 
         parts, span = imports.bound_name(stmt)
         if not all(imports.valid_name(p) for p in parts):
-            self.report("N007", f"the file name {parts[-1]!r} is not a valid OpenPLX name, so the import binds "
-                        f"no name", stmt.source.span, help=f"name it with 'as': import {stmt.source.raw} as "
-                        f"{imports.name_hint(parts[-1])}")
+            self.found(facts.ImportBindsNoName(stmt.source.span, parts[-1], stmt.source.raw,
+                                               imports.name_hint(parts[-1])))
         else:
             sym = self.p.lookup(parts, self.unit)
             if isinstance(sym, imports.ImportSym) and sym.import_stmt is stmt:
                 self.occ(span, sym, "definition")
         full, unset = imports.resolve_file(stmt, self.unit.path)
         if full is None and not unset:
-            self.report("N006", "the import names no file (an empty path)", stmt.source.span,
-                        help="write the file's path between the quotes: import @\"mesh.obj\" as Mesh")
+            self.found(facts.ImportNamesNoFile(stmt.source.span))
         elif full is not None and not unset and (found := reads.kind(full)) != "file":
             # a $"..." path is named as written: its expansion would print environment values (secrets)
             shown = repr(stmt.source.value) if stmt.source.kind != "interp" else stmt.source.raw
-            what = "is a folder, not a file" if found == "dir" else "does not exist"
-            self.report("N006", f"imported file {shown} {what}", stmt.source.span,
-                        help="an @\"...\" path is relative to the folder of the .openplx file that imports it"
-                        if stmt.source.kind != "interp" else "a $\"...\" path takes each {VAR} from the environment")
+            self.found(facts.ImportFileMissing(stmt.source.span, shown, found == "dir", stmt.source.kind == "interp"))
 
     # ------------------------------------------------------------------ types
 
@@ -238,9 +222,8 @@ class Checker:
         if found is None:
             outside = self.p.lookup_outside_visibility(parts) if self.unit.bundle else None
             if isinstance(outside, ModelSym) and outside.namespace is not None:
-                self.report("B005", f"'{ref.name.text}' is in bundle '{outside.namespace.qname[0]}', which "
-                            f"bundle '{self.unit.bundle}' does not depend on", ref.name.span,
-                            help=f"add \"{outside.namespace.qname[0]}\" to the dependencies in config.openplx")
+                self.found(facts.OutsideDependencies(ref.name.span, ref.name.text, outside.namespace.qname[0],
+                                                     self.unit.bundle))
                 return UNKNOWN
             archived = self.p.archive_name(parts, self.unit)
             if archived is not None:
@@ -250,38 +233,35 @@ class Checker:
                 defined = [n for n, sym in self.unit.locals.items() if not isinstance(sym, ImportSym)]
                 close = self._closest(parts[0], defined + list(self.unit.namespace.symbols))
                 if close:
-                    self.report(UNRESOLVED_TYPE, f"unknown type '{ref.name.text}'", ref.name.span, suggest=close)
+                    self.found(facts.UnknownType(ref.name.span, ref.name.text, suggestion=close))
                     return UNKNOWN
                 self.occ(ref.name.span, archived, "type")
-                self.report("N008", f"'{ref.name.text}' is defined in no file plx reads; it can only come from "
-                            f"{archived.written}, which plx cannot read, so it is taken as an opaque model",
-                            ref.name.span, Severity.INFO,
-                            help="its attributes are not checked; `plx check` does not analyse what is built on it")
+                self.found(facts.OpaqueImportName(ref.name.span, ref.name.text, archived.written))
                 return Ty(archived, ref.array)
-            help_, word = self._type_suggestion(parts)
-            self.report(UNRESOLVED_TYPE, f"unknown type '{ref.name.text}'", ref.name.span, help=help_, suggest=word)
+            listing, word = self._type_suggestion(parts)
+            self.found(facts.UnknownType(ref.name.span, ref.name.text, suggestion=word,
+                                         listing=listing if word is None else None))
             return UNKNOWN
         if isinstance(found, Namespace):
             self.occ(ref.name.span, found, "type")
-            self.report(UNRESOLVED_TYPE, f"'{ref.name.text}' is a namespace, not a type", ref.name.span,
-                        help=self._type_suggestion(parts + [""])[0])
+            self.found(facts.UnknownType(ref.name.span, ref.name.text, "namespace",
+                                         listing=self._type_suggestion(parts + [""])[0]))
             return UNKNOWN
         if isinstance(found, GlobalSym):
-            self.report(UNRESOLVED_TYPE, f"'{ref.name.text}' is a global value, not a type", ref.name.span)
+            self.found(facts.UnknownType(ref.name.span, ref.name.text, "global"))
             return UNKNOWN
         if isinstance(found, ModelSym):
             self.occ(ref.name.span, found, "type")
             if want == "trait" and not found.is_trait:
-                self.report("N005", f"'{found.qname}' is a model, not a trait", ref.name.span,
-                            help="only traits can be applied with 'with'")
+                self.found(facts.WrongKindOfType(ref.name.span, found.qname, "trait", ref.name.text))
             elif want == "model" and found.is_trait:
-                self.report("N005", f"'{found.qname}' is a trait; a model cannot inherit from it with 'is'",
-                            ref.name.span, help=f"inherit from a model and apply the trait with 'with {ref.name.text}'")
+                self.found(facts.WrongKindOfType(ref.name.span, found.qname, "model", ref.name.text))
             return Ty(found, ref.array)
         return Ty(found, ref.array)
 
-    def _type_suggestion(self, parts: list[str]) -> tuple[str | None, str | None]:
-        """(help, replacement): the closest name in the namespace the prefix names, else what it has."""
+    def _type_suggestion(self, parts: list[str]) -> tuple[tuple | None, str | None]:
+        """(listing, replacement): the closest name in the namespace the prefix names, else what it
+        has (its name, up to 8 of its names, whether there are more)."""
         self._suggests = True
         if len(parts) >= 2:
             ns = self.p.lookup(parts[:-1], self.unit)
@@ -295,7 +275,7 @@ class Checker:
                     return None, ".".join(parts[:-1]) + "." + close
                 names = sorted(ns.symbols)[:8]
                 if names:
-                    return f"{ns.dotted} has: " + ", ".join(names) + (" ..." if len(ns.symbols) > 8 else ""), None
+                    return (ns.dotted, tuple(names), len(ns.symbols) > 8), None
         return None, None
 
     def _corrected_path(self, parts: list[str]) -> str | None:
@@ -336,8 +316,7 @@ class Checker:
             self._type_expr(m.base_ref, "trait" if m.is_trait else "model")
             cycle = self.p.has_cycle(m)
             if cycle:
-                names = " -> ".join(c.qname for c in cycle)
-                self.report("M005", f"inheritance cycle: {names}", m.base_ref.span)
+                self.found(facts.InheritanceCycle(m.base_ref.span, tuple(c.qname for c in cycle)))
         body = getattr(stmt, "body", None)
         if body:
             self._block(body, Ty(m), (), m)
@@ -407,12 +386,10 @@ class Checker:
             old = inherited.get(name)
             # a trait may `becomes` an attribute its host declares (spec C.3/C.4): not a redeclaration
             if old is not None and old.stmt is not s and not (old.keyword == "becomes" and old.owner.is_trait):
-                self.report("M001", f"'{name}' is already declared in {old.owner.qname}; use 'becomes' to "
-                            f"specialise it or ':' to give it a value", ident.span,
-                            help=f"'{name} becomes {s.type.alternatives[0].name.text}'" if s.type else None)
+                self.found(facts.Redeclared(ident.span, name, old.owner.qname, True,
+                                            s.type.alternatives[0].name.text if s.type else None))
         elif not target.unknown and name in self.p.members_of(target):
-            self.report("M001", f"'{name}' already exists in {target.display()}; use ':' to give it "
-                        f"a value or 'becomes' to specialise it", ident.span)
+            self.found(facts.Redeclared(ident.span, name, target.display(), False))
 
     def _becomes(self, s: ast.Declaration, ty: Ty, owner_ty: Ty, model_def: ModelSym | None) -> None:
         """`path becomes T`: the attribute must be inherited (M002) and T fit its declared type (M003)."""
@@ -428,22 +405,17 @@ class Checker:
         if old is None:
             if candidates is not None and not self.in_trait and not self._opaque(owner_ty):
                 where = model_def.qname if model_def is not None else owner_ty.display()
-                self.report("M002", f"'{name}' is not inherited by {where}, so it cannot 'become' "
-                            f"another type", ident.span,
-                            help=self._suggest(name, candidates) or f"declare it with '{name} is ...'")
+                self.found(facts.BecomesNotInherited(ident.span, name, where, self._closest(name, candidates)))
             return
         self.occ(ident.span, old, "attribute")
         old_ty = self.p.member_type(old)
         if not ty.unknown and not old_ty.unknown and self.p.assignable(ty, old_ty) != "ok":
-            self.report("M003", f"'{name}' cannot become {ty.display()}: it is declared as "
-                        f"{old_ty.display()} in {old.owner.qname}", s.type.span,
-                        help="the new type must be a subtype of the declared type or one of its alternatives")
+            self.found(facts.BecomesIncompatible(s.type.span, name, ty.display(), old_ty.display(), old.owner.qname))
 
     def _declaration_block(self, s: ast.Declaration, ty: Ty, mem: MemberSym | None, prefix: tuple[str, ...]) -> None:
         parts = s.path.parts
         if s.reference:
-            self.report("M009", f"'{parts[-1].name}' is a reference; a block would create a new object",
-                        s.header, help="give it an existing object with ':' instead")
+            self.found(facts.ReferenceWithBlock(s.header, parts[-1].name))
         block_ty = Ty(mem.anon) if mem is not None and mem.anon is not None else ty
         self._block(s.body, block_ty, prefix + tuple(p.name for p in parts), mem.anon if mem is not None else None)
 
@@ -460,7 +432,7 @@ class Checker:
             if cur.unknown or self._opaque(cur):
                 return UNKNOWN, None
             if cur.array or cur.alts or cur.primitive is not None:
-                self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' cannot be set on a value of type {cur.display()}", part.span)
+                self.found(facts.UnknownAttribute(part.span, part.name, cur.display(), on_value=True))
                 return UNKNOWN, None
             mems = resolve.attributes(self.p, cur, self.outer, path)
             found = mems.get(part.name)
@@ -469,8 +441,7 @@ class Checker:
                     return UNKNOWN, None  # a host attribute the trait does not declare
                 where = self.p.concrete(cur.model).qname if cur.model is not None else cur.display()
                 if i == 0 and not prefix:
-                    self._unknown(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span, part.name,
-                                  list(mems))
+                    self.found(facts.UnknownAttribute(part.span, part.name, where, *self._near(part.name, list(mems))))
                 else:
                     meant = self._becomes_blocks.get((id(self.outer), path))
                     if meant is not None and part.name in self.p.all_members(meant):
@@ -478,13 +449,11 @@ class Checker:
                     kind = self._subtype_with(cur.model, part.name) if cur.model is not None else None
                     if kind is not None:
                         self._becomes_blocks[(id(self.outer), path)] = kind
-                        self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}, but of "
-                                    f"{kind.name}, a kind of it", part.span,
-                                    help=f"use becomes to make '{'.'.join(path)}' a {kind.name}: write "
-                                         f"'{path[-1] if path else 'it'} becomes {kind.qname}:' above")
+                        self.found(facts.UnknownAttribute(part.span, part.name, where, kind_of=(
+                            kind.name, kind.qname, ".".join(path), path[-1] if path else "it")))
                     else:
-                        self.report(UNKNOWN_ATTRIBUTE, f"'{part.name}' is not an attribute of {where}", part.span,
-                                    suggest=self._closest(part.name, list(mems)))
+                        self.found(facts.UnknownAttribute(part.span, part.name, where,
+                                                          self._closest(part.name, list(mems))))
                 return UNKNOWN, None
             mem = found
             self.occ(part.span, mem, "attribute")
@@ -506,7 +475,7 @@ class Checker:
         for owner in (mem.owner,):
             note = owner.deprecated.get(mem.name)
             if note and owner.unit is not self.unit:
-                self.report(DEPRECATED_MEMBER, f"'{mem.name}' is deprecated: {note}", span, W)
+                self.found(facts.DeprecatedMember(span, mem.name, note))
 
     # ------------------------------------------------------------------ annotations
 
@@ -514,8 +483,7 @@ class Checker:
         name = s.name.name
         if self.known_annotations is None or name in self.known_annotations or name.startswith("agx_"):
             return
-        self.report("C005", f"unknown annotation '.{name}'", s.name.span, I,
-                    help="annotations are free-form metadata; this one is not used by the official bundles")
+        self.found(facts.UnknownAnnotation(s.name.span, name))
 
     # ------------------------------------------------------------------ expressions
 
@@ -525,27 +493,28 @@ class Checker:
         got = self._expr(expr, expected)
         if not isinstance(got, Ty):
             if not self._becomes_meant(got, expected, expr.span):
-                self._not_a_value(TYPE_MISMATCH, got, expr.span)
+                self._not_a_value(got, expr.span)
             return
         verdict = self.p.assignable(got, expected)
         if verdict == "no":
-            help_, fix = self._literal_help(expr, expected)
-            if help_ is None and isinstance(expr, ast.String):
-                help_, fix = _unquoted(expr, expected)
-            if help_ is None and isinstance(expr, ast.String):
-                help_, fix = self._const_named(expr, expected)
-            self.report(TYPE_MISMATCH, f"expected {expected.display()}, found {got.display()}", expr.span,
-                        help=help_ or self._mismatch_help(got, expected), fix=fix)
+            braces = self._literal_help(expr, expected)
+            unquoted = const = None
+            if braces is None and isinstance(expr, ast.String):
+                unquoted = _unquoted(expr, expected)
+                if unquoted is None:
+                    const = self._const_named(expr, expected)
+            self.found(facts.TypeMismatch(expr.span, expected.display(), got.display(), expected.primitive,
+                                          got.primitive, braces, unquoted, const))
         elif verdict == "warn":
-            self.report("T002", "a Real is given where an Int is expected", expr.span, W,
-                        help="write a whole number, or use Math.Functions.round/floor/ceil")
+            self.found(facts.RealForInt(expr.span))
 
-    def _const_named(self, expr: ast.String, expected: Ty) -> tuple[str | None, Fix | None]:
+    def _const_named(self, expr: ast.String, expected: Ty) -> tuple[str, str, str] | None:
         """A material's `unique_name` string where the material is expected: the const model whose
-        attribute holds that string, by name (`material: "Tutorial_WheelMaterial"` -> WheelMaterial)."""
+        attribute holds that string, by name (`material: "Tutorial_WheelMaterial"` -> WheelMaterial):
+        (its name, the string, the attribute)."""
         want = expected.model if not expected.array and not expected.alts else None
         if want is None:
-            return None, None
+            return None
         self._suggests = True  # the answer depends on every const model in the program (model/reuse.py)
         for m in self.p.all_models():
             if not m.const or m.is_trait or not self.p.is_subtype(m, want):
@@ -553,49 +522,39 @@ class Checker:
             for a in m.assignments:
                 if isinstance(a.value, ast.String) and a.value.value == expr.value:
                     name = m.name if m.unit is self.unit else m.qname
-                    attr = ".".join(p.name for p in a.path.parts)
-                    return (f"did you mean {name}? (\"{expr.value}\" is its {attr}; give the const itself, without "
-                            "quotes)", Fix(f"replace with '{name}'", (Edit(expr.span.start.offset, expr.span.end.offset,
-                                                                             name),), safe=False))
-        return None, None
+                    return name, expr.value, ".".join(p.name for p in a.path.parts)
+        return None
 
-    def _literal_help(self, expr: ast.Expr, expected: Ty) -> tuple[str | None, Fix | None]:
+    def _literal_help(self, expr: ast.Expr, expected: Ty) -> tuple | None:
         """How a value of a positional model (a vector, a quaternion) is written, when an array
         literal stands for it: `[0, -1, 0]` for a Math.Vec3 is the usual slip from other languages.
-        The fix swaps the brackets when the array has as many items as the model has fields."""
+        (its kind, its field names, the items' text when the array has as many as the model has
+        fields: the fix swaps the brackets)."""
         model = expected.model if not expected.array and not expected.alts else None
         fields = self.p.positional_fields(model) if model is not None else None
         if not fields or not isinstance(expr, ast.Array):
-            return None, None
+            return None
         kind = next((m.qname for m in self.p.ancestors(model) if not m.anonymous and "." in m.qname
                      and m.qname.rsplit(".", 1)[1][:1].isupper()), model.qname)
-        names = ", ".join(f.name for f in fields)
-        help_ = (f"a {kind} is written in braces, {{ {names} }}, or as a block with one line per field; "
-                 "[ ] makes an array")
-        fix = None
+        inner = None
         if len(expr.items) == len(fields):
             text = self.unit.tree.text if self.unit.tree is not None else None
             if text is not None:
-                inner = text[expr.span.start.offset + 1 : expr.span.end.offset - 1]
-                fix = Fix("write it in braces", (Edit(expr.span.start.offset, expr.span.end.offset,
-                                                      "{ " + inner.strip() + " }"),), safe=True)
-        return help_, fix
+                inner = text[expr.span.start.offset + 1 : expr.span.end.offset - 1].strip()
+        return kind, tuple(f.name for f in fields), inner
 
-    def _mismatch_help(self, got: Ty, expected: Ty) -> str | None:
-        if expected.primitive == "Bool" and got.primitive in NUMERIC:
-            return "use true or false"
-        if expected.primitive in NUMERIC and got.primitive == "String":
-            return "remove the quotes"
-        return None
-
-    def _describe_nonvalue(self, v) -> str:
+    def _named(self, v) -> facts.Named:
+        """What a type, namespace or method named where a value is needed is (facts.Named)."""
         if isinstance(v, TypeObj):
-            return f"'{getattr(v.sym, 'qname', v.sym)}' is a type and"
+            sym = v.sym
+            if isinstance(sym, ModelSym) and not sym.is_trait and not sym.anonymous:
+                return facts.Named("model", sym.qname, sym.name)
+            return facts.Named("type", str(getattr(sym, "qname", sym)))
         if isinstance(v, NsRef):
-            return f"'{v.ns.dotted}' is a namespace and"
+            return facts.Named("namespace", v.ns.dotted)
         if isinstance(v, MethodRef):
-            return f"method '{v.method.name}' must be called: it"
-        return "this"
+            return facts.Named("method", name=v.method.name)
+        return facts.Named("other")
 
     def _becomes_meant(self, v, expected: Ty, span: Span) -> bool:
         """`friction: Physics...DryConstantNormalForceFriction`: a model that is a kind of the
@@ -605,33 +564,24 @@ class Checker:
         if not isinstance(sym, ModelSym) or sym.is_trait or sym.const or want is None or sym is want \
                 or sym.unit is self.unit or not self.p.is_subtype(sym, want):
             return False  # (a model of this file given as a value most often lacks `const`: _not_a_value)
-        self.report(TYPE_MISMATCH, f"'{sym.qname}' is a model, not a value; it is a kind of "
-                    f"{self.p.concrete(want).qname}, the attribute's type", span,
-                    help=f"use becomes to make the attribute a {sym.name}: write '<attribute> becomes {sym.qname}' "
-                         "(its settings in an indented block below)")
+        self.found(facts.ModelForValue(span, sym.qname, sym.name, self.p.concrete(want).qname))
         return True
 
-    def _not_a_value(self, code: str, v, span: Span) -> None:
+    def _not_a_value(self, v, span: Span, argument: bool = False) -> None:
         """A type, namespace or method where a value is needed. A model named as a value most often
-        lacks `const`: say so, and offer to add it when the model is defined in this file."""
-        sym = v.sym if isinstance(v, TypeObj) else None
-        if isinstance(sym, ModelSym) and not sym.is_trait and not sym.anonymous:
-            fix = None
-            stmt = sym.stmt
-            if sym.unit is self.unit and isinstance(stmt, ast.Declaration):
-                at = stmt.header.start.offset
-                fix = Fix(f"declare {sym.name} 'const'", (Edit(at, at, "const "),), safe=False)
-            self.report(code, f"'{sym.qname}' is a model, not a value: a model used as a value must be declared "
-                        f"'const' (or instantiated)", span, fix=fix,
-                        help=f"write 'const {sym.name} ...' where it is defined, or declare an attribute "
-                             f"'name is {sym.qname}' to create one")
-            return
-        self.report(code, f"{self._describe_nonvalue(v)} is not a value", span)
+        lacks `const`: the fact says where it is declared when that is in this file."""
+        what = self._named(v)
+        at = None
+        if what.kind == "model":
+            stmt = v.sym.stmt
+            if v.sym.unit is self.unit and isinstance(stmt, ast.Declaration):
+                at = stmt.header
+        self.found(facts.NotAValue(span, what, argument, at))
 
     def _as_ty(self, v, span: Span) -> Ty:
         if isinstance(v, Ty):
             return v
-        self._not_a_value(TYPE_MISMATCH, v, span)
+        self._not_a_value(v, span)
         return UNKNOWN
 
     def _expr(self, e, expected: Ty = UNKNOWN):
@@ -669,11 +619,11 @@ class Checker:
         obj = self._as_ty(self._expr(e.obj), e.obj.span)
         idx = self._as_ty(self._expr(e.index), e.index.span)
         if idx.primitive is not None and idx.primitive != "Int":
-            self.report("T009", f"an index must be an Int, not {idx.display()}", e.index.span)
+            self.found(facts.IndexNotInt(e.index.span, idx.display()))
         if obj.unknown:
             return UNKNOWN
         if not obj.array:
-            self.report("T009", f"a value of type {obj.display()} cannot be indexed", e.span)
+            self.found(facts.NotIndexable(e.span, obj.display()))
             return UNKNOWN
         return obj.element()
 
@@ -717,7 +667,7 @@ class Checker:
                 return target
             for item in e.items:
                 self._expr(item)
-            self.report(TYPE_MISMATCH, f"a {{...}} literal cannot be a {target.primitive}", e.span)
+            self.found(facts.BraceForPrimitive(e.span, target.primitive))
             return UNKNOWN
         fields = self.p.positional_fields(target.model)
         if fields is None:
@@ -725,9 +675,8 @@ class Checker:
                 self._expr(item)
             return target
         if len(e.items) != len(fields):
-            names = ", ".join(f.name for f in fields)
-            self.report("T003", f"{self.p.concrete(target.model).qname} takes {len(fields)} values ({names}), "
-                        f"this literal has {len(e.items)}", e.span)
+            self.found(facts.BraceLength(e.span, self.p.concrete(target.model).qname, tuple(f.name for f in fields),
+                                         len(e.items)))
         for item, f in zip(e.items, fields):
             self._value(item, self.p.member_type(f))
         return target
@@ -746,9 +695,9 @@ class Checker:
         options = list(self.p.members_of(Ty(self.outer))) if self.outer is not None else []
         options += list(self.unit.locals) + list(self.unit.namespace.symbols)
         if name in ("True", "False", "TRUE", "FALSE"):
-            self.report(UNRESOLVED_NAME, f"unknown name '{name}'", ident.span, suggest=name.lower())
+            self.found(facts.UnknownName(ident.span, name, name.lower()))
             return UNKNOWN
-        self._unknown(UNRESOLVED_NAME, f"unknown name '{name}'", ident.span, name, options)
+        self.found(facts.UnknownName(ident.span, name, *self._near(name, options)))
         return UNKNOWN
 
     def _global_value(self, found, ident: ast.Ident):
@@ -761,20 +710,21 @@ class Checker:
         base = self._expr(e.obj)
         name = e.name.name
         if isinstance(base, MethodRef):
-            self.report("T008", f"method '{base.method.name}' must be called before '.{name}'", e.span)
+            self.found(facts.MethodNotCalled(e.span, base.method.name, name))
             return UNKNOWN
         if isinstance(base, Ty):
             if base.unknown or self._opaque(base):
                 return UNKNOWN
             if base.array or base.alts or base.primitive is not None:
-                self.report("N004", f"a value of type {base.display()} has no member '{name}'", e.name.span)
+                self.found(facts.NoMemberOnValue(e.name.span, base.display(), name))
                 return UNKNOWN
         found = resolve.member_target(self.p, base, name)
         if isinstance(base, NsRef):
             v = self._global_value(found, e.name)
             if v is None:
-                self.report(UNRESOLVED_NAME, f"'{name}' is not in namespace {base.ns.dotted}", e.name.span,
-                            suggest=self._closest(name, list(base.ns.symbols) + list(base.ns.children)))
+                self.found(facts.UnknownName(e.name.span, name, self._closest(name, list(base.ns.symbols) +
+                                                                              list(base.ns.children)),
+                                             namespace=base.ns.dotted))
                 return UNKNOWN
             return v
         if isinstance(found, MethodRef):
@@ -786,11 +736,11 @@ class Checker:
             return self.p.member_type(found)
         if isinstance(base, TypeObj):
             if isinstance(base.sym, ModelSym):
-                self.report("N004", f"{base.sym.qname} has no static function '{name}'", e.name.span,
-                            suggest=self._closest(name, self.p.all_methods(base.sym)))
+                self.found(facts.NoStaticFunction(e.name.span, base.sym.qname, name,
+                                                  self._closest(name, self.p.all_methods(base.sym))))
             return UNKNOWN
-        self.report("N004", f"{self.p.concrete(base.model).qname} has no attribute or method '{name}'", e.name.span,
-                    suggest=self._closest(name, list(self.p.members_of(base)) + list(self.p.methods_of(base))))
+        self.found(facts.NoAttributeOrMethod(e.name.span, self.p.concrete(base.model).qname, name,
+                                             self._closest(name, list(self.p.members_of(base)) + list(self.p.methods_of(base)))))
         return UNKNOWN
 
     def _method_types(self, meth: MethodSym) -> tuple[list[Ty], Ty | None]:
@@ -809,34 +759,28 @@ class Checker:
         if isinstance(f, Ty) and f.unknown:
             return UNKNOWN
         if not isinstance(f, MethodRef):
-            what = self._describe_nonvalue(f) if not isinstance(f, Ty) else f"a value of type {f.display()}"
-            self.report("T008", f"{what} cannot be called", e.func.span)
+            self.found(facts.NotCallable(e.func.span, self._named(f) if not isinstance(f, Ty) else None,
+                                         f.display() if isinstance(f, Ty) else ""))
             return UNKNOWN
         meth = f.method
         if f.on_type and not meth.static:
-            self.report("T008", f"'{meth.name}' is an instance method of {meth.owner.qname}; call it on an "
-                        f"instance, not on the type", e.func.span)
+            self.found(facts.InstanceMethodOnType(e.func.span, meth.name, meth.owner.qname))
         elif not f.on_type and meth.static:
-            self.report("T008", f"'{meth.name}' is a static function; call it on the type, "
-                        f"{meth.owner.qname}.{meth.name}(...)", e.func.span, W)
+            self.found(facts.StaticOnInstance(e.func.span, meth.name, meth.owner.qname))
         params, ret = self._method_types(meth)
         if len(params) != len(e.args):
-            self.report("T004", f"{meth.owner.qname}.{meth.name} takes {len(params)} argument"
-                        f"{'s' if len(params) != 1 else ''}, {len(e.args)} given", e.span,
-                        help="signature: " + _signature(meth))
+            self.found(facts.CallArity(e.span, meth.owner.qname, meth.name, len(params), len(e.args), _signature(meth)))
         else:
             for arg, got, want in zip(e.args, arg_types, params):
                 if not isinstance(got, Ty):
-                    self._not_a_value("T005", got, arg.span)
+                    self._not_a_value(got, arg.span, argument=True)
                     continue
                 if isinstance(arg, ast.Brace):
                     got = self._brace(arg, want)
                 if self.p.assignable(got, want) == "no":
-                    self.report("T005", f"argument of {meth.name}: expected {want.display()}, found {got.display()}",
-                                arg.span, help="signature: " + _signature(meth))
+                    self.found(facts.ArgumentType(arg.span, meth.name, want.display(), got.display(), _signature(meth)))
         if ret is None:
-            self.report("T007", f"{meth.owner.qname}.{meth.name} returns nothing and cannot be used in an expression",
-                        e.span)
+            self.found(facts.ReturnsNothing(e.span, meth.owner.qname, meth.name))
             return UNKNOWN
         return ret
 
@@ -855,12 +799,8 @@ class Checker:
                 if cand.stmt.returns is None:
                     return UNKNOWN
                 return self.p.resolve_type_ref(cand.stmt.returns, cand.unit)
-        shown = f"{op}{operands[0].display()}" if len(operands) == 1 else \
-            f"{operands[0].display()} {op} {operands[1].display()}"
-        help_ = None
-        if op == "*" and len(operands) == 2 and operands[0].model and operands[0].model.name == "Quat":
-            help_ = "rotate a vector with q.rotate(v)"
-        self.report("T006", f"no operator for {shown}", e.span, help=help_)
+        quat = op == "*" and len(operands) == 2 and bool(operands[0].model) and operands[0].model.name == "Quat"
+        self.found(facts.NoOperator(e.span, op, tuple(o.display() for o in operands), quat))
         return UNKNOWN
 
     # ------------------------------------------------------------------ default cycles
@@ -1009,10 +949,9 @@ def _default_edges(body, prefix: str, edges: dict, spans: dict) -> None:
                 _default_edges(s.body, key + ".", edges, spans)
 
 
-def _unquoted(expr: ast.String, expected: Ty) -> tuple[str | None, Fix | None]:
-    """`is_dynamic: "false"`: a Bool written in quotes (a number in quotes has _mismatch_help's)."""
+def _unquoted(expr: ast.String, expected: Ty) -> str | None:
+    """`is_dynamic: "false"`: a Bool written in quotes, the word (a number in quotes has its own help)."""
     text = expr.value.strip()
     if expected.primitive != "Bool" or expected.array or text not in ("true", "false"):
-        return None, None
-    return (f"write {text} without quotes: a {expected.primitive} is not a string",
-            Fix(f"write {text}", (Edit(expr.span.start.offset, expr.span.end.offset, text),), safe=False))
+        return None
+    return text

@@ -422,6 +422,8 @@ def _move_span(moves: list, span: Span) -> Span | None:
 
 
 def _move_diag(moves: list, d: Diagnostic, path: str) -> Diagnostic | None:
+    if type(d) is not Diagnostic:  # a fact (model/facts.py): every place in it moves
+        return d.moved(lambda span: _move_span(moves, span))
     span = _move_span(moves, d.span)
     if span is None:
         return None
@@ -446,8 +448,9 @@ def _move_diag(moves: list, d: Diagnostic, path: str) -> Diagnostic | None:
 
 
 def fresh(d: Diagnostic) -> Diagnostic:
-    """A copy later steps may change without changing what is kept for the next version."""
-    return replace(d, related=list(d.related))
+    """A copy later steps may change without changing what is kept for the next version (a fact
+    cannot change: itself)."""
+    return replace(d, related=list(d.related)) if type(d) is Diagnostic else d
 
 
 def assemble(checker, plan: Plan, unit: FileUnit, program, known, occurrence):

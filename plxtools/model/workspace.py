@@ -11,11 +11,14 @@ from __future__ import annotations
 import functools
 import os
 import pickle
+from dataclasses import replace
 from pathlib import Path
 
-from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Edit, Fix, Severity
+from plxtools.diagnostics import EMPTY_SPAN, Diagnostic
 from plxtools.model.bundles import Bundle, dependency_closure, find_user_bundle_root, read_config
-from plxtools.model.checker import UNKNOWN_ATTRIBUTE, UNRESOLVED_NAME, UNRESOLVED_TYPE, Checker, Occurrence
+from plxtools.model.checker import Checker, Occurrence
+from plxtools.model import facts
+from plxtools.model.facts import Fact
 from plxtools.model.imports import is_editor_buffer
 from plxtools.model.program import Program
 from plxtools.model.symbols import FileUnit, Namespace
@@ -23,11 +26,6 @@ from plxtools.model.versions import BundleSet, BundleSetError, bundle_roots_in, 
 from plxtools.runmode import is_one_shot
 from plxtools.syntax import ast, parse_bytes
 
-# raised here (`_help_for_other_versions`, `_renamed_attributes`): a name of an older OpenPLX version; the editor's
-# "migrate this file" action is offered where they are
-OLDER_NAME = "U001"
-RENAMED_ATTRIBUTE = "U002"
-VERSION_CODES = (OLDER_NAME, RENAMED_ATTRIBUTE)
 
 
 
@@ -50,15 +48,17 @@ class WorkspaceError(BundleSetError):
 
 
 class FileAnalysis:
-    """What the model says about one file: its unit, diagnostics and occurrences (names and what
-    they refer to). `occurrences` may be given as a reuse.Occurrences, built when first read."""
+    """What the model says about one file: its unit, diagnostics, facts (model/facts.py: the
+    findings the rules layer reports) and occurrences (names and what they refer to).
+    `occurrences` may be given as a reuse.Occurrences, built when first read."""
 
-    __slots__ = ("unit", "diagnostics", "_occurrences", "snapshot", "plan")
+    __slots__ = ("unit", "diagnostics", "_occurrences", "snapshot", "plan", "facts")
 
     def __init__(self, unit: FileUnit, diagnostics: list[Diagnostic], occurrences,
-                 snapshot: "reuse.Snapshot | None" = None, plan: "reuse.Plan | None" = None):
+                 snapshot: "reuse.Snapshot | None" = None, plan: "reuse.Plan | None" = None, facts: list = ()):
         self.unit = unit
         self.diagnostics = diagnostics
+        self.facts = facts
         self._occurrences = occurrences
         self.snapshot = snapshot  # for re-using this analysis in the next version's
         self.plan = plan  # how this analysis re-used the previous one (None: it did not)
@@ -338,9 +338,7 @@ class Workspace:
         b = Bundle(root.name, root, official=False)
         read_config(b, _parse_path(root / "config.openplx"))
         if b.name in self.bundles and self.bundles[b.name].root.resolve() != root:
-            b.diagnostics.append(Diagnostic("B003", f"a bundle named '{b.name}' is already loaded from "
-                                            f"{self.bundles[b.name].root}", EMPTY_SPAN, Severity.ERROR,
-                                            file=str(root / "config.openplx")))
+            b.diagnostics.append(facts.UnknownDependency(EMPTY_SPAN, b.name, str(self.bundles[b.name].root)))
             return b
         self.bundles[b.name] = b
         for f in b.files():
@@ -442,50 +440,42 @@ class Workspace:
             diags, occurrences, snap = reuse.assemble(checker, plan, unit, self.program, self.known_annotations,
                                                       Occurrence)
         diags += self._bundle_config_diagnostics(tree)
+        found = [d for d in diags if isinstance(d, Fact)]
+        if found:
+            diags = [d for d in diags if not isinstance(d, Fact)]
         for d in diags:
             d.file = tree.path
-        self._help_for_unloaded_bundles(tree, diags)
-        self._help_for_other_versions(tree, diags, occurrences)
-        return FileAnalysis(unit, diags, occurrences, snap, plan)
+        self._help_for_unloaded_bundles(tree, found)
+        self._help_for_other_versions(tree, found, occurrences)
+        return FileAnalysis(unit, diags, occurrences, snap, plan, found)
 
-    def _help_for_unloaded_bundles(self, tree: ast.File, diags: list[Diagnostic]) -> None:
-        """`Name.X` unknown and a bundle called Name sits nearby but is not loaded: say how to load it."""
-        unknown = [d for d in diags if d.code in (UNRESOLVED_TYPE, UNRESOLVED_NAME) and not d.help]
+    def _help_for_unloaded_bundles(self, tree: ast.File, found: list) -> None:
+        """`Name.X` unknown, without a better hint, and a bundle called Name sits nearby but is not
+        loaded (or is a dependency, or is AGX's own): the fact says which bundle and where."""
+        unknown = [i for i, f in enumerate(found) if _without_hint(f)]
         if not unknown or not tree.path or is_editor_buffer(tree.path):
             return
         nearby = self.nearby_bundles(Path(tree.path).resolve().parent)
         home = self.bundle_of(Path(tree.path))
         wanted = set(home.dependencies) if home is not None else set()
-        for d in unknown:
-            # the first name of what was written where the diagnostic points (`Name` of `Name.X`)
-            name = tree.text[d.span.start.offset:d.span.end.offset].split(".", 1)[0].strip().strip("`")
+        for i in unknown:
+            f = found[i]
+            # the first name of what was written where the fact points (`Name` of `Name.X`)
+            name = tree.text[f.span.start.offset:f.span.end.offset].split(".", 1)[0].strip().strip("`")
             if not name.isidentifier() or name in self.bundles:
                 continue
             if name in nearby:
-                d.help = (f"a bundle named '{name}' is in {nearby[name]} but is not loaded: pass "
-                          f"--bundle-path {nearby[name]} or add it to bundle-path in plx.toml / [tool.plx]")
+                found[i] = replace(f, bundle=("nearby", name, str(nearby[name])))
             elif name in wanted:
-                d.help = (f"'{name}' is a dependency in {home.root / 'config.openplx'} but no bundle of that "
-                          f"name is loaded: add its folder with --bundle-path or bundle-path in plx.toml")
+                found[i] = replace(f, bundle=("dependency", name, str(home.root / "config.openplx")))
             elif name == "AGX":
-                d.help = self._agx_bundle_help()
+                agx = getattr(getattr(self, "bundle_set", None), "agx", None)
+                if agx is not None and agx.agx_bundle is not None:
+                    found[i] = replace(f, bundle=("agx", agx.describe(), str(agx.agx_bundle)))
+                else:
+                    found[i] = replace(f, bundle=("agx", None, None))
 
-    def _agx_bundle_help(self) -> str:
-        """Where `AGX.*` names come from: AGX's own bundle, which no openplx-bundles release has."""
-        from plxtools.model.agx import AGX_BUNDLE, ENV_VARS
-
-        agx = getattr(getattr(self, "bundle_set", None), "agx", None)
-        folder = "/".join(AGX_BUNDLE)
-        if agx is not None and agx.agx_bundle is not None:
-            return (f"'AGX' is AGX Dynamics' own bundle; the installation plx found ({agx.describe()}) has it at "
-                    f"{agx.agx_bundle}, loaded only when its bundles are in use: drop openplx-version or pass "
-                    f"--bundle-path {agx.agx_bundle}")
-        return (f"'AGX' is AGX Dynamics' own bundle: it ships with an AGX installation (<AGX_DIR>/{folder}), not "
-                f"with openplx-bundles; plx loads it with that installation's bundles when it finds one ("
-                f"agx-dir in plx.toml, {', '.join(ENV_VARS)}, the agx Python package, the usual install "
-                f"folders), or pass its folder with --bundle-path")
-
-    def _help_for_other_versions(self, tree: ast.File, diags: list[Diagnostic], occurrences=None) -> None:
+    def _help_for_other_versions(self, tree: ast.File, found: list, occurrences=None) -> None:
         """An unknown type that another official OpenPLX version has. When the API index says it
         moved or was renamed one to one by the version in use, it is U001 with a safe fix to the new
         name; otherwise the help says which versions have it, so the user migrates (or chooses that
@@ -493,19 +483,19 @@ class Workspace:
         command that works as printed for this file (model/written_for.py)."""
         bs = getattr(self, "bundle_set", None)
         using = getattr(bs, "official_version", None)
-        attrs = [d for d in diags if d.code == UNKNOWN_ATTRIBUTE]
-        unknown = [d for d in diags if d.code == UNRESOLVED_TYPE]
+        attrs = [i for i, f in enumerate(found) if isinstance(f, facts.UnknownAttribute)]
+        unknown = [i for i, f in enumerate(found) if isinstance(f, facts.UnknownType)]
         if not using or not (attrs or unknown):
             return
         from plxtools.model.written_for import MigrateHint
 
         path = tree.path if tree.path and not is_editor_buffer(tree.path) else None
-        hint = MigrateHint(path, tree.text, diags, occurrences, using, getattr(bs, "pinned", True))
-        self._renamed_attributes(tree, attrs, using, hint)
-        for d in unknown:
-            self._older_type(tree, d, using, hint)
+        hint = MigrateHint(path, tree.text, found, occurrences, using, getattr(bs, "pinned", True))
+        self._renamed_attributes(tree, found, attrs, using, hint)
+        for i in unknown:
+            found[i] = self._older_type(tree, found[i], using, hint)
 
-    def _older_type(self, tree: ast.File, d: Diagnostic, using: str, hint) -> None:
+    def _older_type(self, tree: ast.File, d: facts.UnknownType, using: str, hint) -> facts.Fact:
         """One unknown type: U001 when a release before `using` had it and it was renamed one to one,
         else a note of the versions that have it (or of newer bundles that might)."""
         from plxtools.model.apiindex import UnknownVersion, spans, version_key, where_defined
@@ -513,17 +503,17 @@ class Workspace:
         bs = getattr(self, "bundle_set", None)
         written = tree.text[d.span.start.offset:d.span.end.offset]
         if "." not in written or not written.replace(".", "").replace("_", "").isalnum():
-            return
+            return d
         found = [v for v in where_defined(written) if v != using]
         if not found:
             if not where_defined(written) and written.split(".", 1)[0] in self.bundles:
-                from plxtools.model.agx import newer_bundles_help
+                from plxtools.model.agx import newer_bundles
                 from plxtools.model.apiindex import versions
 
-                newer = newer_bundles_help(written, bs, versions()[-1], typo=d.fix is not None)
+                newer = newer_bundles(written, bs, versions()[-1], typo=d.suggestion is not None)
                 if newer:
-                    d.help = f"{newer}; {d.help}" if d.help else newer
-            return
+                    return replace(d, newer=newer)
+            return d
         older = [v for v in found if version_key(v) < version_key(using)]
         try:
             moved = _moved_to(written, older[-1], using) if older else None
@@ -531,19 +521,11 @@ class Workspace:
             moved = None
         new = moved.new if moved is not None else None
         if new is not None and self._resolves(new, tree):
-            d.code = OLDER_NAME
-            d.message = f"'{written}' was renamed '{new}' (OpenPLX {older[-1]} -> {using})"
-            d.older_version = older[-1]
-            declared = " (a rename OpenPLX's own migration list declares)" if moved.handling == "declared" else ""
-            d.help = f"write '{new}'{declared}; {hint.command(older[-1])} updates whole files"
-            d.fix = Fix(f"replace with '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=True)
-            return
-        note = (f"'{written}' exists in OpenPLX {spans(found)}, not in {using} (the version in use): "
-                f"`plx migrate --explain {found[-1]} {using}` lists what changed; `openplx-version` in "
-                f"plx.toml chooses another version")
-        d.help = f"{note}; {d.help}" if d.help else note
+            return facts.OlderName(d.span, written, new, older[-1], using, moved.handling == "declared",
+                                   hint.command(older[-1]))
+        return replace(d, versions=(written, spans(found), found[-1], using))
 
-    def _renamed_attributes(self, tree: ast.File, unknown: list[Diagnostic], using: str, hint) -> None:
+    def _renamed_attributes(self, tree: ast.File, found: list, unknown: list[int], using: str, hint) -> None:
         """An unknown attribute that official versions before `using` renamed (`charges` ->
         `connectors`): U002 with the new name. The fix is unsafe: the index knows which models
         renamed it, and the user confirms that this is one of them."""
@@ -551,35 +533,32 @@ class Workspace:
             return
         renamed = _renamed_attributes_before(using, self.use_cache)
         converted = []
-        for d in unknown:
+        for i in unknown:
+            d = found[i]
             written = tree.text[d.span.start.offset:d.span.end.offset]
             targets = [t for t in renamed.get(written, ()) if self._may_own(tree, d, t[3] if len(t) > 3 else None)]
             if not targets or len({t[0] for t in targets}) != 1:
                 continue
             new, model, since = targets[0][:3]
             owners = ", ".join(sorted({t[1] for t in targets})[:3])
-            d.code = RENAMED_ATTRIBUTE
-            d.message = f"'{written}' was renamed '{new}' in OpenPLX {since} (in {owners})"
-            d.older_version = _version_before(since)
-            d.fix = Fix(f"rename to '{new}'", (Edit(d.span.start.offset, d.span.end.offset, new),), safe=False)
-            converted.append((d, new))
-        for d, new in converted:  # (after all: the command may infer the version from every U002)
-            d.help = (f"write '{new}' if this is one of those models; "
-                      f"{hint.command(d.older_version)} updates whole files")
+            found[i] = facts.RenamedAttribute(d.span, written, new, since, owners, _version_before(since))
+            converted.append(i)
+        for i in converted:  # (after all: the command may infer the version from every U002)
+            found[i] = replace(found[i], command=hint.command(found[i].older_version))
 
-    def _may_own(self, tree: ast.File, d: Diagnostic, model: str | None) -> bool:
-        """Whether the object the unknown attribute is set on (named by N002's message) may be one of
-        the models that renamed it (`model`, by its name in the version in use): itself or a subtype,
-        so that `body:` on an unrelated model keeps its did-you-mean. Unsure (no name): yes."""
+    def _may_own(self, tree: ast.File, d: facts.UnknownAttribute, model: str | None) -> bool:
+        """Whether the object the unknown attribute is set on (the fact's owner) may be one of the
+        models that renamed it (`model`, by its name in the version in use): itself or a subtype,
+        so that `body:` on an unrelated model keeps its did-you-mean. Unsure (no name, a value of a
+        type that is no model, a kind of the owner that has it): yes."""
         from plxtools.model.symbols import ModelSym
 
-        owner = d.message.rsplit(" is not an attribute of ", 1)
-        if model is None or len(owner) != 2:
+        if model is None or d.on_value or d.kind_of is not None:
             return True
         unit = self.program.units.get(tree.path) if tree.path else None
         try:
-            sym = (self.program.lookup(owner[1].split("."), unit) if unit is not None else None) \
-                or self.program.lookup_outside_visibility(owner[1].split("."))
+            sym = (self.program.lookup(d.owner.split("."), unit) if unit is not None else None) \
+                or self.program.lookup_outside_visibility(d.owner.split("."))
             want = self.program.lookup_outside_visibility(model.split("."))
         except Exception:  # noqa: BLE001 - a lookup for a hint must never break the analysis
             return True
@@ -609,7 +588,8 @@ class Workspace:
         self._nearby[folder] = out
         return out
 
-    def _bundle_config_diagnostics(self, tree: ast.File) -> list[Diagnostic]:
+    def _bundle_config_diagnostics(self, tree: ast.File) -> list:
+        """The facts about a bundle's config.openplx (model/facts.py), when `tree` is one."""
         if not tree.path or Path(tree.path).name != "config.openplx":
             return []
         folder = Path(tree.path).resolve().parent
@@ -619,15 +599,19 @@ class Workspace:
         out = list(b.diagnostics)
         for dep in b.dependencies:
             if dep not in self.bundles:
-                out.append(Diagnostic("B003", f"unknown dependency '{dep}': no bundle with that name is loaded",
-                                      b.dep_spans.get(dep, EMPTY_SPAN), Severity.ERROR,
-                                      help="add its folder with --bundle-path or bundle-path in the config"))
+                out.append(facts.UnknownDependency(b.dep_spans.get(dep, EMPTY_SPAN), dep))
         _closure, cycle = dependency_closure(self.bundles, b.name)
         if cycle:
-            out.append(Diagnostic("B004", "dependency cycle: " + " -> ".join(cycle),
-                                  b.dep_spans.get(cycle[1], EMPTY_SPAN) if len(cycle) > 1 else EMPTY_SPAN,
-                                  Severity.ERROR))
+            out.append(facts.DependencyCycle(b.dep_spans.get(cycle[1], EMPTY_SPAN) if len(cycle) > 1 else EMPTY_SPAN,
+                                             tuple(cycle)))
         return out
+
+
+def _without_hint(f) -> bool:
+    """An unknown type or name for which the model has no better hint than a bundle to load."""
+    if isinstance(f, facts.UnknownType):
+        return f.suggestion is None and f.listing is None
+    return isinstance(f, facts.UnknownName) and f.suggestion is None and f.broken_line is None
 
 
 _CLI_WORKSPACES: dict[tuple, Workspace] = {}

@@ -13,13 +13,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 
-def version_sensitive() -> tuple[str, ...]:
-    """The codes a version change explains: an unknown type or attribute, a name of an older version
-    (their homes: model/checker.py and model/workspace.py)."""
-    from plxtools.model.checker import UNKNOWN_ATTRIBUTE, UNRESOLVED_TYPE
-    from plxtools.model.workspace import OLDER_NAME, RENAMED_ATTRIBUTE
+def version_sensitive() -> tuple[type, ...]:
+    """The facts a version change explains (model/facts.py): an unknown type or attribute, a name
+    of an older version (the last: an attribute renamed since)."""
+    from plxtools.model import facts
 
-    return (UNRESOLVED_TYPE, UNKNOWN_ATTRIBUTE, OLDER_NAME, RENAMED_ATTRIBUTE)
+    return (facts.UnknownType, facts.UnknownAttribute, facts.OlderName, facts.RenamedAttribute)
 
 
 @dataclass(frozen=True)
@@ -97,18 +96,18 @@ def _missing(allv, names: dict[str, list[str]], renamed_since: list[str]) -> dic
     return missing
 
 
-def infer(text: str, diagnostics, occurrences, using: str | None) -> Inference | None:
+def infer(text: str, found, occurrences, using: str | None) -> Inference | None:
     """The release the text was written for when it is not `using` (None: no version-sensitive
-    error, nothing official in the text, or `using` fits it at least as well)."""
+    fact among the model's `found`, nothing official in the text, or `using` fits it at least as well)."""
     sensitive = version_sensitive()
-    if not any(d.code in sensitive for d in diagnostics):
+    if not any(isinstance(d, sensitive) for d in found):
         return None
     from plxtools.model.apiindex import version_key, versions
 
     allv = versions()
     names = _official_names(text, occurrences)
     # an attribute an older version renamed (U002): absent from the version of the rename on
-    renamed_since = [d.older_version for d in diagnostics if d.code == sensitive[3] and d.older_version]
+    renamed_since = [d.older_version for d in found if isinstance(d, sensitive[3]) and d.older_version]
     if not names and not renamed_since:
         return None
     missing = _missing(allv, names, renamed_since)
@@ -137,7 +136,7 @@ def infer_file(ws, path) -> Inference | None:
         return None
     fa = ws.analyse(tree)
     using = getattr(getattr(ws, "bundle_set", None), "official_version", None)
-    return infer(text, fa.diagnostics, fa.occurrences, using)
+    return infer(text, fa.facts, fa.occurrences, using)
 
 
 class MigrateHint:
@@ -148,14 +147,14 @@ class MigrateHint:
     version, or the content cannot tell) the command names `--from`: the inferred version, else the
     older version the diagnostic itself knows."""
 
-    def __init__(self, path: str | None, text: str, diagnostics, occurrences, using: str, pinned: bool):
-        self.path, self.text, self.diagnostics, self.occurrences = path, text, diagnostics, occurrences
+    def __init__(self, path: str | None, text: str, found, occurrences, using: str, pinned: bool):
+        self.path, self.text, self.found, self.occurrences = path, text, found, occurrences
         self.using, self.pinned = using, pinned
         self._inferred: list = []
 
     def inferred(self) -> Inference | None:
         if not self._inferred:
-            self._inferred.append(infer(self.text, self.diagnostics, self.occurrences, self.using))
+            self._inferred.append(infer(self.text, self.found, self.occurrences, self.using))
         return self._inferred[0]
 
     def command(self, older: str | None) -> str:

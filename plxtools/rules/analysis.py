@@ -16,7 +16,7 @@ from plxtools.model.workspace import FileAnalysis, workspace_for_cli
 from plxtools.rules import registry
 from plxtools.rules.completeness import Versions, completeness_diagnostics, root_model
 from plxtools.rules.consequences import drop_consequences, drop_owned, report_order
-from plxtools.rules.engine import FileFacts, apply_severity, run_file_rules
+from plxtools.rules.engine import FileFacts, apply_severity, run_fact_rules, run_file_rules
 from plxtools.rules.incremental import run_file_rules_again
 from plxtools.rules.literals import literal_diagnostics
 from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements
@@ -33,6 +33,9 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
     snap = previous.snapshot if previous is not None else None
     fa = workspace.analyse(tree, snap, keep or previous is not None)
     root = _named_model(workspace.program, fa.unit, root_name) if root_name else None
+    if fa.facts:  # the model's facts reported by their rule modules, before the rules that read them
+        reported = run_fact_rules(FileFacts(workspace.program, fa, tree, root, found=fa.facts))
+        fa = FileAnalysis(fa.unit, fa.diagnostics + reported, fa.lazy_occurrences, fa.snapshot, fa.plan)
     plan = fa.plan if fa.snapshot is not None and root_name is None else None
     if plan is None:
         extra = completeness_diagnostics(workspace.program, fa.unit, list(tree.diagnostics) + fa.diagnostics, root)

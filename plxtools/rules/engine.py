@@ -34,6 +34,11 @@ class FileFacts:
     statements: tuple | None = None
     occs: list | None = None
     tables: dict = field(default_factory=dict)  # file-wide tables built once per analysis (`table`)
+    found: tuple | list = ()  # the model's facts about the file (plxtools/model/facts.py)
+
+    def of(self, *kinds: type) -> list:
+        """The model's facts of these kinds, in the order it found them."""
+        return [f for f in self.found if isinstance(f, kinds)]
 
     @property
     def unit(self):
@@ -144,10 +149,31 @@ def file_rule_modules(stage: str = "lint") -> tuple[tuple[object, tuple[registry
     return tuple((registry.module_of(rules[0]), tuple(rules)) for rules in by_module.values())
 
 
+def run_fact_rules(facts: FileFacts) -> list[Diagnostic]:
+    """The diagnostics of the model's facts: each rule module that reports a kind of fact (it
+    names them in `FACTS`) turns those into its findings. They run before the rules that judge the
+    file, which read the model's findings (a line with an error is that error's)."""
+    if not facts.found:
+        return []
+    out: list[Diagnostic] = []
+    kinds = {type(f) for f in facts.found}
+    for module, rules in file_rule_modules("lint"):
+        wanted = getattr(module, "FACTS", None)
+        if wanted is None or kinds.isdisjoint(wanted):
+            continue
+        report = Reporter(rules, facts.path)
+        module.check(facts, report)
+        out.extend(report.found)
+    return out
+
+
 def run_file_rules(facts: FileFacts) -> list[Diagnostic]:
-    """Every lint-stage rule module's findings on one file."""
+    """Every lint-stage rule module's findings on one file (the modules that report facts run
+    before, in `run_fact_rules`)."""
     out: list[Diagnostic] = []
     for module, rules in file_rule_modules("lint"):
+        if getattr(module, "FACTS", None) is not None:
+            continue
         report = Reporter(rules, facts.path)
         module.check(facts, report)
         out.extend(report.found)

@@ -113,47 +113,16 @@ UNREADABLE_FILE = entry("E001", "unreadable-file", E)
 UNRESOLVED_TYPE = entry("N001", "unresolved-type", E, fix="unsafe", owns=("A003",))
 UNKNOWN_ATTRIBUTE = entry("N002", "unknown-attribute", E, fix="unsafe", owns=("A003", "A004",))
 UNRESOLVED_NAME = entry("N003", "unresolved-name", E, fix="unsafe", owns=("A003",))
-UNKNOWN_MEMBER = entry("N004", "unknown-member", E, fix="unsafe", owns=("A003",))
-WRONG_KIND_OF_TYPE = entry("N005", "wrong-kind-of-type", E, owns=("A003",))
-IMPORT_FILE_NOT_FOUND = entry("N006", "import-file-not-found", E, owns=("A003",))
-IMPORT_NEEDS_ALIAS = entry("N007", "import-needs-alias", E, owns=("A003",))
-NAME_FROM_OPAQUE_IMPORT = entry("N008", "name-from-opaque-import", I, owns=("A003",))
-TYPE_MISMATCH = entry("T001", "type-mismatch", E, owns=("A003", "A005",))
-REAL_FOR_INT = entry("T002", "real-for-int", W, owns=("A003",))
-BRACE_LITERAL_LENGTH = entry("T003", "brace-literal-length", E, owns=("A003",))
-WRONG_ARITY = entry("T004", "wrong-arity", E, owns=("A003",))
-ARGUMENT_TYPE = entry("T005", "argument-type", E, owns=("A003",))
-NO_OPERATOR = entry("T006", "no-operator", E, owns=("A003",))
-VOID_IN_EXPRESSION = entry("T007", "void-in-expression", E, owns=("A003",))
-BAD_CALL = entry("T008", "bad-call", E, owns=("A003",))
-BAD_INDEX = entry("T009", "bad-index", E, owns=("A003",))
-REDECLARED_ATTRIBUTE = entry("M001", "redeclared-attribute", E)
-BECOMES_NOT_INHERITED = entry("M002", "becomes-not-inherited", E)
-BECOMES_INCOMPATIBLE = entry("M003", "becomes-incompatible", E)
-DUPLICATE_DEFINITION = entry("M004", "duplicate-definition", E)
-INHERITANCE_CYCLE = entry("M005", "inheritance-cycle", E)
 DEFAULT_CYCLE = entry("M006", "default-cycle", E, owns=("A006",))
 MISSING_ASSIGNMENT = entry("M007", "missing-assignment", E, owns=("A004",))
 UNBOUND_REFERENCE = entry("M008", "unbound-reference", E, owns=("A005",))
-REFERENCE_WITH_BLOCK = entry("M009", "reference-with-block", E)
 BUNDLES_UNAVAILABLE = entry("B000", "bundles-unavailable", W)
-BUNDLE_CONFIG_NAME = entry("B001", "bundle-config-name", E)
-BAD_DEPENDENCY_STRING = entry("B002", "bad-dependency-string", E)
-UNREAD_DEPENDENCY_FORM = entry("B006", "unread-dependency-form", W)
-UNKNOWN_DEPENDENCY = entry("B003", "unknown-dependency", E)
-DEPENDENCY_CYCLE = entry("B004", "dependency-cycle", E)
-OUTSIDE_DEPENDENCIES = entry("B005", "outside-dependencies", E)
 NAMING_CONVENTION = entry("C001", "naming-convention", I)
 UNUSED_MODEL = entry("C003", "unused-model", W)
-DEPRECATED_MEMBER = entry("C004", "deprecated-attribute", W, tags=("deprecated",))
-UNKNOWN_ANNOTATION = entry("C005", "unknown-annotation", I)
 MISALIGNED_INDENTATION = entry("C006", "misaligned-indentation", I)
 ROOT_NOT_SYSTEM = entry("C007", "root-not-system", W)
 # ---------------------------------------------------------------- hygiene (docs: catalog/hygiene.py)
 UNUSED_SUPPRESSION = entry("C002", "unused-suppression", W, fix="safe", tags=("unnecessary",))
-# ---------------------------------------------------------------- migration (docs: catalog/migration.py)
-OLDER_NAME = entry("U001", "renamed-model", E, fix="safe", tags=("version",))
-RENAMED_ATTRIBUTE = entry("U002", "renamed-attribute", E, fix="unsafe", tags=("version",))
 # ---------------------------------------------------------------- assembly (docs: catalog/assembly.py)
 ROOT_MODEL_NOT_FOUND = entry("A001", "root-model-not-found", E, stage="check")
 ROOT_IS_TRAIT = entry("A002", "root-is-trait", E, stage="check")
@@ -250,7 +219,40 @@ MODULE_RULES = (
     ("A046", "controller-on-other-mate", W, "assembly.controller_connectors", dict()),
     ("A047", "explicit-zero-mass", W, "assembly.explicit_zero_mass", dict()),
     ("A048", "length-in-millimetres", W, "assembly.length_in_millimetres", dict()),
+    ("B001", "bundle-config-name", E, "bundles.bundle_config_name", dict()),
+    ("B002", "bad-dependency-string", E, "bundles.bad_dependency_string", dict()),
+    ("B003", "unknown-dependency", E, "bundles.unknown_dependency", dict()),
+    ("B004", "dependency-cycle", E, "bundles.dependency_cycle", dict()),
+    ("B005", "outside-dependencies", E, "bundles.outside_dependencies", dict()),
+    ("B006", "unread-dependency-form", W, "bundles.unread_dependency_form", dict()),
+    ("C004", "deprecated-attribute", W, "conventions.deprecated_attribute", dict(tags=("deprecated",))),
+    ("C005", "unknown-annotation", I, "conventions.unknown_annotation", dict()),
+    ("M001", "redeclared-attribute", E, "structure.redeclared_attribute", dict()),
+    ("M002", "becomes-not-inherited", E, "structure.becomes_not_inherited", dict()),
+    ("M003", "becomes-incompatible", E, "structure.becomes_incompatible", dict()),
+    ("M004", "duplicate-definition", E, "structure.duplicate_definition", dict()),
+    ("M005", "inheritance-cycle", E, "structure.inheritance_cycle", dict()),
+    ("M009", "reference-with-block", E, "structure.reference_with_block", dict()),
     ("M010", "assigned-twice", E, "semantic.assigned_twice", dict()),
+    ("N001", "unresolved-type", E, "names.unresolved_type", dict(fix="unsafe", owns=("A003",))),
+    ("N002", "unknown-attribute", E, "names.unknown_attribute", dict(fix="unsafe", owns=("A003", "A004",))),
+    ("N003", "unresolved-name", E, "names.unresolved_name", dict(fix="unsafe", owns=("A003",))),
+    ("N004", "unknown-member", E, "names.unknown_member", dict(fix="unsafe", owns=("A003",))),
+    ("N005", "wrong-kind-of-type", E, "names.wrong_kind_of_type", dict(owns=("A003",))),
+    ("N006", "import-file-not-found", E, "names.import_file_not_found", dict(owns=("A003",))),
+    ("N007", "import-needs-alias", E, "names.import_needs_alias", dict(owns=("A003",))),
+    ("N008", "name-from-opaque-import", I, "names.name_from_opaque_import", dict(owns=("A003",))),
+    ("T001", "type-mismatch", E, "types.type_mismatch", dict(owns=("A003", "A005",))),
+    ("T002", "real-for-int", W, "types.real_for_int", dict(owns=("A003",))),
+    ("T003", "brace-literal-length", E, "types.brace_literal_length", dict(owns=("A003",))),
+    ("T004", "wrong-arity", E, "types.wrong_arity", dict(owns=("A003",))),
+    ("T005", "argument-type", E, "types.argument_type", dict(owns=("A003",))),
+    ("T006", "no-operator", E, "types.no_operator", dict(owns=("A003",))),
+    ("T007", "void-in-expression", E, "types.void_in_expression", dict(owns=("A003",))),
+    ("T008", "bad-call", E, "types.bad_call", dict(owns=("A003",))),
+    ("T009", "bad-index", E, "types.bad_index", dict(owns=("A003",))),
+    ("U001", "renamed-model", E, "names.older_name", dict(fix="safe", tags=("version",))),
+    ("U002", "renamed-attribute", E, "names.renamed_attribute", dict(fix="unsafe", tags=("version",))),
 )
 
 _loaded = False

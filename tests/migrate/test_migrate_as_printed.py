@@ -127,12 +127,14 @@ def test_a_clean_tree_migrates_to_its_own_version_with_exit_0(tmp_path):
 
 
 def test_the_inference_reads_nothing_for_a_file_without_version_sensitive_errors():
-    from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Severity
+    from plxtools.diagnostics import EMPTY_SPAN
+    from plxtools.model import facts
     from plxtools.model.written_for import infer
 
-    other = [Diagnostic("T001", "a type mismatch", EMPTY_SPAN, Severity.ERROR)]
+    # (the model's facts: a type mismatch, then an unknown type)
+    other = [facts.TypeMismatch(EMPTY_SPAN, "Real", "String")]
     assert infer("x is Physics3D.Charges.Box\n", other, [], "0.19.0") is None
-    unknown = [Diagnostic("N001", "unknown type", EMPTY_SPAN, Severity.ERROR)]
+    unknown = [facts.UnknownType(EMPTY_SPAN, "Physics3D.Charges.Box")]
     got = infer("x is Physics3D.Charges.Box\n", unknown, [], "0.19.0")
     assert got is not None and got.version == "0.18.10" and got.missing == 0 and got.missing_in_use == 1
     # migrating to 0.18.5, the file is taken as written for 0.18.5 (it fits it as well): nothing to do

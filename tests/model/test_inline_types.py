@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import re
 
+from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import parse_text
 
 EXPECT = re.compile(r"(?:#|\|)\s*(type|lint|layers):\s*([^#|]+?)\s*(?=$|\|)")
@@ -17,7 +18,7 @@ DECL = re.compile(r"^(\s*)([\w.]+)[\s:]")
 
 
 def analyse(workspace, text: str, name: str):
-    return workspace.analyse(parse_text(text, f"/tmp/plx-inline-type-tests/{name}.openplx"))
+    return analyse_file(workspace, parse_text(text, f"/tmp/plx-inline-type-tests/{name}.openplx"))
 
 
 def expectations(text: str):

@@ -13,6 +13,7 @@ from importlib import metadata
 import pytest
 
 from plxtools.model.apiindex import ApiIndex, load, versions
+from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import parse_text
 
 WITH_A_MODEL = """\
@@ -37,7 +38,7 @@ EXPECT = re.compile(r"^\s+(\w+) is .*# lint: (\S+) \| members: (.*)$")
 
 def analyse(workspace, text: str, name: str):
     tree = parse_text(text, f"/tmp/plx-one-answer-tests/{name}.openplx")
-    return workspace.analyse(tree)
+    return analyse_file(workspace, tree)
 
 
 def expectations(text: str):

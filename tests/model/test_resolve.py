@@ -1,12 +1,13 @@
 """The one resolver (plxtools/model/resolve.py): class ordering, override rule, deep chains."""
 
 from plxtools.model import resolve
+from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import parse_text
 
 
 def analyse(workspace, text: str, name: str):
     tree = parse_text(text, f"/tmp/plx-resolver-tests/{name}.openplx")
-    result = workspace.analyse(tree)
+    result = analyse_file(workspace, tree)
     return result, result.unit
 
 

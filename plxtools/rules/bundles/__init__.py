@@ -1,0 +1,1 @@
+"""Rule modules about bundles and their dependencies (the `B` codes)."""

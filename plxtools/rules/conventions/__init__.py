@@ -1,0 +1,1 @@
+"""Rule modules about conventions: deprecated attributes, annotations (the `C` codes the checker finds)."""

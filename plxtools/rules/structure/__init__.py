@@ -1,0 +1,1 @@
+"""Rule modules about model structure: declarations, `becomes`, inheritance (the `M` codes the checker finds)."""

@@ -1,0 +1,1 @@
+"""Rule modules about values and their types: mismatches, calls, operators, indexing (the `T` codes)."""
