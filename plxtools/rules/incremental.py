@@ -23,10 +23,12 @@ random edits (tests/ide/test_reuse.py)."""
 from __future__ import annotations
 
 import bisect
+from dataclasses import fields as dataclass_fields
 from dataclasses import replace
 
 from plxtools.cache.reads import model_recording
 from plxtools.diagnostics import Diagnostic
+from plxtools.model.facts import Fact
 from plxtools.model.reuse import defined, fresh, moved_diags
 from plxtools.model.symbols import GlobalSym, MemberSym, MethodSym, ModelSym
 from plxtools.rules.engine import MEMO, NEXT_MEMO, TEXTS, FileFacts, Reporter, file_rule_modules, run_file_rules
@@ -209,8 +211,7 @@ def _signature(facts: FileFacts, parts: list, i: int) -> tuple:
     p = parts[i]
     unit, stmts = facts.unit, facts.tree.statements
     starts = [q.start for q in parts]
-    diags = tuple((d.code, d.message, d.severity, d.span.start.offset - p.start, d.span.end.offset - p.start)
-                  for d in p.diags)
+    diags = tuple(_finding_signature(d, p.start) for d in p.diags)
     occs = []
     for o in _occurrences(facts, p):
         target = o.target
@@ -223,6 +224,15 @@ def _signature(facts: FileFacts, parts: list, i: int) -> tuple:
             where = id(target)
         occs.append((o.span.start.offset - p.start, o.span.end.offset - p.start, o.kind, where))
     return diags, tuple(occs)
+
+
+def _finding_signature(d, base: int) -> tuple:
+    """A diagnostic or a model fact (model/facts.py) as a rule reads it, places relative to `base`."""
+    if isinstance(d, Fact):
+        return (type(d).__name__,) + tuple(
+            (v.start.offset - base, v.end.offset - base) if hasattr(v, "end") else v
+            for v in (getattr(d, f.name) for f in dataclass_fields(d)))
+    return d.code, d.message, d.severity, d.span.start.offset - base, d.span.end.offset - base
 
 
 def _occurrences(facts: FileFacts, part) -> list:
