@@ -132,9 +132,6 @@ BECOMES_NOT_INHERITED = entry("M002", "becomes-not-inherited", E)
 BECOMES_INCOMPATIBLE = entry("M003", "becomes-incompatible", E)
 DUPLICATE_DEFINITION = entry("M004", "duplicate-definition", E)
 INHERITANCE_CYCLE = entry("M005", "inheritance-cycle", E)
-DEFAULT_CYCLE = entry("M006", "default-cycle", E, owns=("A006",))
-MISSING_ASSIGNMENT = entry("M007", "missing-assignment", E, owns=("A004",))
-UNBOUND_REFERENCE = entry("M008", "unbound-reference", E, owns=("A005",))
 REFERENCE_WITH_BLOCK = entry("M009", "reference-with-block", E)
 BUNDLES_UNAVAILABLE = entry("B000", "bundles-unavailable", W)
 BUNDLE_CONFIG_NAME = entry("B001", "bundle-config-name", E)
@@ -250,6 +247,9 @@ MODULE_RULES = (
     ("A046", "controller-on-other-mate", W, "assembly.controller_connectors", dict()),
     ("A047", "explicit-zero-mass", W, "assembly.explicit_zero_mass", dict()),
     ("A048", "length-in-millimetres", W, "assembly.length_in_millimetres", dict()),
+    ("M006", "default-cycle", E, "semantic.default_cycle", dict(owns=("A006",))),
+    ("M007", "missing-assignment", E, "semantic.missing_assignment", dict(owns=("A004",))),
+    ("M008", "unbound-reference", E, "semantic.unbound_reference", dict(owns=("A005",))),
     ("M010", "assigned-twice", E, "semantic.assigned_twice", dict()),
 )
 

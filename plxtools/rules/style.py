@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 
 from plxtools.diagnostics import Diagnostic, Severity
-from plxtools.rules.completeness import root_model
+from plxtools.model.completeness import root_model
 from plxtools.model.program import Program
 from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast

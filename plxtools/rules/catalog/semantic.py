@@ -139,21 +139,6 @@ doc("INHERITANCE_CYCLE",
     "A model or trait inherits from itself, directly or through others.",
     "The model would have no base to stop at; nothing about it can be resolved.",
     example="A is B\nB is A")
-doc("DEFAULT_CYCLE",
-    "Values of a model depend on each other in a ring (`a: b` and `b: a`).",
-    "Defaults are evaluated late on the final object; a ring can never be evaluated.",
-    example="Box is Physics3D.System:\n    a is Real: b\n    b is Real: a",
-    use_instead="Box is Physics3D.System:\n    a is Real: 1\n    b is Real: a")
-doc("MISSING_ASSIGNMENT",
-    "An object that the file's root model creates has a non-optional Real, Int, Bool or String "
-    "attribute with no value anywhere (base, model, trait or instance block).",
-    "OpenPLX refuses to load an incomplete model (\"Missing assignment ..., owning model is not "
-    "complete\"). Library models may stay incomplete; only what the root model instantiates is checked.",
-    example="Scene is Physics3D.System:\n    ball is Physics3D.Bodies.RigidBody:\n        geometry is Physics3D.Geometries.Sphere",
-    use_instead="Scene is Physics3D.System:\n    ball is Physics3D.Bodies.RigidBody:\n        geometry is Physics3D.Geometries.Sphere:\n            radius: 0.1")
-doc("UNBOUND_REFERENCE",
-    "A non-optional `reference` attribute of an instantiated object is never given an object.",
-    "A reference never creates its own object; unbound, it points at nothing.")
 doc("REFERENCE_WITH_BLOCK",
     "A `reference` attribute is given a block.",
     "A block creates and configures a new object, which contradicts `reference`.")
