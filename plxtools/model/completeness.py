@@ -90,6 +90,19 @@ def _assigned(program: Program, model: ModelSym) -> set[tuple[str, ...]]:
     return out
 
 
+def assigned_paths(program: Program, model: ModelSym, block=None, below: ModelSym | None = None) -> set[tuple[str, ...]]:
+    """The attribute paths a model's chain gives a value (`("inertia", "mass")`), with those an
+    instance's own `block` gives; `below`: only the models of the chain that derive from it (not
+    it nor its bases: their defaults are not a decision of the file's author)."""
+    out: set[tuple[str, ...]] = set()
+    for m in program.ancestors(model):
+        if below is None or (m is not below and not program.is_subtype(below, m)):
+            out |= _own_assigned(m)
+    if block:
+        _walk_assigned(block, (), out)
+    return out
+
+
 def _shared(model: ModelSym, traits: tuple) -> bool:
     """A walk below a bundle model (with bundle traits) is the same for every file that meets it:
     it is kept on the model until the bundles change (Program.invalidate clears it)."""

@@ -247,6 +247,7 @@ MODULE_RULES = (
     ("A046", "controller-on-other-mate", W, "assembly.controller_connectors", dict()),
     ("A047", "explicit-zero-mass", W, "assembly.explicit_zero_mass", dict()),
     ("A048", "length-in-millimetres", W, "assembly.length_in_millimetres", dict()),
+    ("A049", "dynamic-ground", W, "assembly.dynamic_ground", dict()),
     ("M006", "default-cycle", E, "semantic.default_cycle", dict(owns=("A006",))),
     ("M007", "missing-assignment", E, "semantic.missing_assignment", dict(owns=("A004",))),
     ("M008", "unbound-reference", E, "semantic.unbound_reference", dict(owns=("A005",))),
