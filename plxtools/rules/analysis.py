@@ -19,7 +19,7 @@ from plxtools.rules import registry
 from plxtools.rules.consequences import Explained, drop_consequences, drop_owned, report_order
 from plxtools.rules.engine import FileFacts, apply_severity, run_file_rules
 from plxtools.rules.literals import literal_diagnostics
-from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements
+from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements, used_names
 from plxtools.rules.suppress import apply
 from plxtools.syntax import ast
 
@@ -36,17 +36,18 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
     plan = fa.plan if fa.snapshot is not None and root_name is None else None
     if plan is None:
         unset = unset_values(workspace.program, fa.unit, root, explained=_explained(tree, fa))
-        extra = style_diagnostics(workspace.program, fa.unit, fa.occurrences, root)
+        used = used_names(fa.unit, fa.occurrences)
+        extra = style_diagnostics(fa.unit)
         extra += literal_diagnostics(tree, fa.occurrences, tree.path)
     else:
         unset = _unset_again(workspace.program, fa, tree, snap, plan)
         extra = _per_statement(fa, plan, "style", style_of_statements(fa.unit, plan.dirty))
         parts = fa.snapshot.parts
         used = set().union(*(p.uses for p in parts)) if fa.unit.bundle is None else set()
-        extra += style_of_file(workspace.program, fa.unit, used, root)
+        extra += style_of_file(fa.unit)
         checked = [o for i in sorted(plan.dirty) for o in parts[i].occs]
         extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, checked, tree.path, plan.dirty))
-    extra += run_file_rules(FileFacts(workspace.program, fa, tree, root, tuple(unset)))
+    extra += run_file_rules(FileFacts(workspace.program, fa, tree, root, tuple(unset), frozenset(used)))
     for d in extra:
         d.file = tree.path
     return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.lazy_occurrences, fa.snapshot, fa.plan)

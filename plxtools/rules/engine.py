@@ -23,13 +23,15 @@ class FileFacts:
     `program` answers lookups and types (plxtools/model/program.py); `analysis` is the model's
     FileAnalysis of the file (its unit and its facts: diagnostics, occurrences); `root` the model a
     run instantiates (None: the file's last model, or no run); `unset` the values and references
-    what that model creates needs and nothing gives (model/completeness.py)."""
+    what that model creates needs and nothing gives (model/completeness.py); `used_names` the
+    file's top-level names that something in it names."""
 
     program: object
     analysis: object
     tree: ast.File
     root: object = None
     unset: tuple = ()
+    used_names: frozenset = frozenset()
 
     @property
     def unit(self):

@@ -141,11 +141,9 @@ UNKNOWN_DEPENDENCY = entry("B003", "unknown-dependency", E)
 DEPENDENCY_CYCLE = entry("B004", "dependency-cycle", E)
 OUTSIDE_DEPENDENCIES = entry("B005", "outside-dependencies", E)
 NAMING_CONVENTION = entry("C001", "naming-convention", I)
-UNUSED_MODEL = entry("C003", "unused-model", W)
 DEPRECATED_MEMBER = entry("C004", "deprecated-attribute", W, tags=("deprecated",))
 UNKNOWN_ANNOTATION = entry("C005", "unknown-annotation", I)
 MISALIGNED_INDENTATION = entry("C006", "misaligned-indentation", I)
-ROOT_NOT_SYSTEM = entry("C007", "root-not-system", W)
 # ---------------------------------------------------------------- hygiene (docs: catalog/hygiene.py)
 UNUSED_SUPPRESSION = entry("C002", "unused-suppression", W, fix="safe", tags=("unnecessary",))
 # ---------------------------------------------------------------- migration (docs: catalog/migration.py)
@@ -248,6 +246,8 @@ MODULE_RULES = (
     ("A047", "explicit-zero-mass", W, "assembly.explicit_zero_mass", dict()),
     ("A048", "length-in-millimetres", W, "assembly.length_in_millimetres", dict()),
     ("A049", "dynamic-ground", W, "assembly.dynamic_ground", dict()),
+    ("C003", "unused-model", W, "semantic.unused_model", dict()),
+    ("C007", "root-not-system", W, "semantic.root_not_system", dict()),
     ("M006", "default-cycle", E, "semantic.default_cycle", dict(owns=("A006",))),
     ("M007", "missing-assignment", E, "semantic.missing_assignment", dict(owns=("A004",))),
     ("M008", "unbound-reference", E, "semantic.unbound_reference", dict(owns=("A005",))),

@@ -185,10 +185,6 @@ doc("NAMING_CONVENTION",
     "Consistent names make models easier to read and match the official bundles.",
     example="Scene is Physics3D.System:\n    boxTruck is BoxTruck",
     use_instead="Scene is Physics3D.System:\n    box_truck is BoxTruck")
-doc("UNUSED_MODEL",
-    "A model or trait defined in a file outside any bundle is never used in that file and is not its "
-    "root model.",
-    "Dead definitions are often leftovers of a rename.")
 doc("DEPRECATED_MEMBER",
     "An attribute that its bundle marks as deprecated (in its model's documentation or a comment) is used.",
     "Deprecated attributes are removed in later bundle versions.",
@@ -203,10 +199,3 @@ doc("MISALIGNED_INDENTATION",
     "Lines of one block are indented differently.",
     "OpenPLX accepts it (some official files do it), but it is easy to misread, and it is also what a "
     "missing `:` on the line above looks like. `plx fmt` aligns siblings.")
-doc("ROOT_NOT_SYSTEM",
-    "The last model of a file outside any bundle (the model a runtime loads) is not a Physics3D.System, "
-    "a rigid body or a material.",
-    "agxViewer and other runtimes load the last model of a file: a System as a scene, a rigid body or a "
-    "material (of the official bundles) as a library item. Reported when the last model is none of "
-    "these, and when it is a body or material while a System above it is used by nothing (the scene "
-    "was meant to be last).")
