@@ -23,6 +23,31 @@ class ValueCycle:
     span: Span
 
 
+# path -> {id(statement): (statement, its rings)} of the last version of each file analysed: a tree
+# is never changed once handed out (syntax/incremental.py), so a statement object the next version
+# re-uses has the same text at the same place and the same rings; the entry holds the statement, so
+# its id is not re-used while it is kept. Only the last version's statements are kept per file.
+_KEPT: dict[str, dict[int, tuple[object, tuple[ValueCycle, ...]]]] = {}
+MAX_FILES = 64
+
+
+def cycles_of_models(path: str, stmts: list) -> list[tuple[ValueCycle, ...]]:
+    """`value_cycles` of each model statement of one file (in order), re-using the answers for the
+    statements the last version of `path` had too."""
+    last = _KEPT.get(path, {})
+    now: dict[int, tuple[object, tuple[ValueCycle, ...]]] = {}
+    out = []
+    for stmt in stmts:
+        hit = last.get(id(stmt))
+        got = hit[1] if hit is not None and hit[0] is stmt else tuple(value_cycles(stmt))
+        now[id(stmt)] = (stmt, got)
+        out.append(got)
+    if path not in _KEPT and len(_KEPT) >= MAX_FILES:
+        _KEPT.clear()  # (bounded: a long session meets many files)
+    _KEPT[path] = now
+    return out
+
+
 def value_cycles(stmt) -> list[ValueCycle]:
     """The rings among the default values written in a model's statement (one per ring)."""
     out: list[ValueCycle] = []

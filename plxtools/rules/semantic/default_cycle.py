@@ -22,22 +22,21 @@ Box is Physics3D.System:
 """
 
 # The ring is the model's fact (model/value_cycles.py), found in each top-level model's own
-# statement; check's evaluator meets it again while computing the values and leaves it to this
+# statement (re-used for the statements the file's last version had too); check's evaluator meets it again while computing the values and leaves it to this
 # finding (M006 owns A006).
 
 from __future__ import annotations
 
 from plxtools.model.resolve import symbol_of_top
 from plxtools.model.symbols import ModelSym
-from plxtools.model.value_cycles import value_cycles
+from plxtools.model.value_cycles import cycles_of_models
 
 
 def check(facts, report) -> None:
     unit = facts.unit
-    for stmt in unit.tree.statements:
-        model = symbol_of_top(unit, stmt)
-        if not isinstance(model, ModelSym) or model.is_trait:
-            continue
-        for cycle in value_cycles(model.stmt):
+    models = [symbol_of_top(unit, s) for s in unit.tree.statements]
+    stmts = [m.stmt for m in models if isinstance(m, ModelSym) and not m.is_trait]
+    for cycles in cycles_of_models(facts.path, stmts):
+        for cycle in cycles:
             report("these values depend on each other in a cycle: " + " -> ".join(cycle.ring), cycle.span,
                    help="give one of them a value that does not depend on the others")
