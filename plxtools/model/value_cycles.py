@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from plxtools.diagnostics import Span
+from plxtools.diagnostics import Pos, Span
 from plxtools.syntax import ast
 
 
@@ -23,29 +23,42 @@ class ValueCycle:
     span: Span
 
 
-# path -> {id(statement): (statement, its rings)} of the last version of each file analysed: a tree
-# is never changed once handed out (syntax/incremental.py), so a statement object the next version
-# re-uses has the same text at the same place and the same rings; the entry holds the statement, so
-# its id is not re-used while it is kept. Only the last version's statements are kept per file.
-_KEPT: dict[str, dict[int, tuple[object, tuple[ValueCycle, ...]]]] = {}
+# path -> {a model statement's text: (its offset, its line, its rings)} of the last version of each
+# file analysed. The rings are a function of the statement's text alone, so a statement written the
+# same way in the next version has the same rings, moved by as many characters and lines as the
+# statement moved (columns stay: a top-level statement moves as whole lines).
+_KEPT: dict[str, dict[str, tuple[int, int, tuple[ValueCycle, ...]]]] = {}
 MAX_FILES = 64
 
 
-def cycles_of_models(path: str, stmts: list) -> list[tuple[ValueCycle, ...]]:
-    """`value_cycles` of each model statement of one file (in order), re-using the answers for the
-    statements the last version of `path` had too."""
+def cycles_of_models(path: str, text: str, stmts: list) -> list[tuple[ValueCycle, ...]]:
+    """`value_cycles` of each model statement of one file (in order; `text` the file's text),
+    re-using the answers for the statements the last version of `path` wrote the same way."""
     last = _KEPT.get(path, {})
-    now: dict[int, tuple[object, tuple[ValueCycle, ...]]] = {}
+    now: dict[str, tuple[int, int, tuple[ValueCycle, ...]]] = {}
     out = []
     for stmt in stmts:
-        hit = last.get(id(stmt))
-        got = hit[1] if hit is not None and hit[0] is stmt else tuple(value_cycles(stmt))
-        now[id(stmt)] = (stmt, got)
+        start = stmt.span.start
+        written = text[start.offset:stmt.span.end.offset]
+        hit = last.get(written)
+        if hit is None:
+            got = tuple(value_cycles(stmt))
+        elif hit[0] == start.offset and hit[1] == start.line:
+            got = hit[2]
+        else:
+            d, dl = start.offset - hit[0], start.line - hit[1]
+            got = tuple(ValueCycle(c.ring, _moved(c.span, d, dl)) for c in hit[2])
+        now[written] = (start.offset, start.line, got)
         out.append(got)
     if path not in _KEPT and len(_KEPT) >= MAX_FILES:
         _KEPT.clear()  # (bounded: a long session meets many files)
     _KEPT[path] = now
     return out
+
+
+def _moved(span: Span, d: int, dl: int) -> Span:
+    a, b = span.start, span.end
+    return Span(Pos(a.offset + d, a.line + dl, a.column), Pos(b.offset + d, b.line + dl, b.column))
 
 
 def value_cycles(stmt) -> list[ValueCycle]:

@@ -36,7 +36,7 @@ def check(facts, report) -> None:
     unit = facts.unit
     models = [symbol_of_top(unit, s) for s in unit.tree.statements]
     stmts = [m.stmt for m in models if isinstance(m, ModelSym) and not m.is_trait]
-    for cycles in cycles_of_models(facts.path, stmts):
+    for cycles in cycles_of_models(facts.path, facts.tree.text, stmts):
         for cycle in cycles:
             report("these values depend on each other in a cycle: " + " -> ".join(cycle.ring), cycle.span,
                    help="give one of them a value that does not depend on the others")
