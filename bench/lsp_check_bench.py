@@ -91,7 +91,7 @@ def _time_phases(phases: dict[str, list[float]]) -> None:
     import plxtools.ide.host as host
     import plxtools.model.checker as checker
     import plxtools.model.workspace as workspace
-    import plxtools.rules.completeness as completeness
+    import plxtools.rules.analysis as analysis
     import plxtools.rules.literals as literals
     import plxtools.rules.style as style
 
@@ -110,7 +110,7 @@ def _time_phases(phases: dict[str, list[float]]) -> None:
     wrap(workspace.Workspace, "unit_for", "symbols (unit_for)")
     wrap(checker.Checker, "run", "checker")
     wrap(workspace.Workspace, "_help_for_other_versions", "help for other versions")
-    wrap(completeness, "completeness_diagnostics", "completeness (M007/M008)")
+    wrap(analysis, "unset_values", "unset values (M007/M008's facts)")
     wrap(style, "style_diagnostics", "style")
     wrap(literals, "literal_diagnostics", "literals")
     wrap(host.AnalysisHost, "_lint", "final (config, suppress)")

@@ -24,7 +24,7 @@ import import_graph as g  # noqa: E402
 HEAVY = ("mujoco", "numpy", "pygls", "lsprotocol", "scipy", "PIL", "matplotlib", "pyglet", "moderngl", "glfw")
 PATCHED = {"steps", "_mark_pinned", "layout_tree", "_owned_by_lint", "RACY_NS", "holds", "read_bytes", "write", "Workspace"}
 SKIP_SOURCES = ("plxtools.model", "plxtools.syntax", "plxtools.config", "plxtools.envpath",
-                "plxtools.rules.registry", "plxtools.rules.completeness", "plxtools.cli", "plxtools.__main__", "plxtools.fmt", "plxtools.docgen", "plxtools.lint.cli",
+                "plxtools.rules.registry", "plxtools.model.completeness", "plxtools.cli", "plxtools.__main__", "plxtools.fmt", "plxtools.docgen", "plxtools.lint.cli",
                 "plxtools.bundles_cli", "plxtools.check.cli", "plxtools.runmode", "plxtools.runmemo", "plxtools.view")
 REASON = re.compile(r"lazy|start|import time|not at the top|circular|cycle|cost|only when|only if|heavy|slow|mujoco|numpy|pygls", re.I)
 

@@ -29,8 +29,6 @@ LITERAL = re.compile(r"""["']([A-Z]\d{3})["']""")
 # gone must leave it), and any other code string anywhere in plxtools fails.
 REGISTRY = PACKAGE / "rules" / "registry.py"
 NOT_MOVED_YET: dict[str, set[str]] = {
-    # M006 goes with the value findings lint and check share (issue 38, step 3)
-    "plxtools/model/checker.py": {"M006"},
     "plxtools/syntax/lexer.py": {"S003", "S004", "S005", "S006", "S007", "S008", "S009"},
     "plxtools/syntax/parser.py": {"S010", "S011", "S012", "S013", "S014", "S015", "S016"},
     "plxtools/syntax/source.py": {"E001", "S001", "S002"},

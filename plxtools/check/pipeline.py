@@ -22,7 +22,6 @@ from plxtools.check.instance import Builder
 from plxtools.check.report import Reporter
 from plxtools.diagnostics import EMPTY_SPAN, Diagnostic, Pos, Severity, Span
 from plxtools.model.symbols import ModelSym
-from plxtools.rules import completeness
 from plxtools.rules.analysis import analyse_file
 from plxtools.syntax import ast, parse_bytes
 from plxtools.syntax.source import unreadable
@@ -30,7 +29,7 @@ from plxtools.rules import registry
 from plxtools.check import aftersim
 from plxtools.check.mujoco import backend as mjb  # (imports MuJoCo only when it compiles)
 from plxtools.rules.analysis import finalize
-from plxtools.rules.completeness import root_model
+from plxtools.model.completeness import root_model
 
 
 class Skip(enum.Enum):

@@ -33,9 +33,6 @@ from plxtools.syntax import ast
 
 E = Severity.ERROR
 
-# raised here (`_default_cycles`) until value cycles are found once for lint and check (issue 38)
-DEFAULT_CYCLE = "M006"
-
 
 @dataclass(slots=True)
 class Occurrence:
@@ -64,15 +61,6 @@ class Checker:
         self._becomes_blocks: dict[tuple[int, tuple[str, ...]], ModelSym] = {}
 
     # ------------------------------------------------------------------ reporting
-
-    def report(self, code: str, msg: str, span: Span, sev: Severity = E, help: str | None = None,
-               fix: Fix | None = None, suggest: str | None = None) -> None:
-        """Record a diagnostic; `suggest` is a replacement for the text at `span` ("did you mean"),
-        given as a help line and an (unsafe) fix that makes the edit."""
-        if suggest is not None:
-            help = f"did you mean '{suggest}'?"
-            fix = Fix(f"replace with '{suggest}'", (Edit(span.start.offset, span.end.offset, suggest),), safe=False)
-        self.diags.append(Diagnostic(code, msg, span, sev, file=self.unit.path, help=help, fix=fix))
 
     def found(self, fact: facts.Fact) -> None:
         """Record a fact (plxtools/model/facts.py): the rules layer reports it."""
@@ -320,8 +308,6 @@ class Checker:
         body = getattr(stmt, "body", None)
         if body:
             self._block(body, Ty(m), (), m)
-        if not m.is_trait:
-            self._default_cycles(m)
         self.in_trait = False
 
     def _inherited(self, model: ModelSym) -> dict[str, MemberSym]:
@@ -803,67 +789,6 @@ class Checker:
         self.found(facts.NoOperator(e.span, op, tuple(o.display() for o in operands), quat))
         return UNKNOWN
 
-    # ------------------------------------------------------------------ default cycles
-
-    def _default_cycles(self, m: ModelSym) -> None:
-        """Defaults that depend on each other in a ring can never be evaluated (M006)."""
-        edges: dict[str, list[tuple[str, Span]]] = {}
-        spans: dict[str, Span] = {}
-
-        body = getattr(m.stmt, "body", None)
-        if not body:
-            return
-        _default_edges(body, "", edges, spans)
-        if not edges or not any(edges.values()):
-            return  # no default reads another value: no ring
-        # a value depends on a key that is its reference or a dotted prefix of it, so on nothing when
-        # no reference starts with the first name of a key (`size: Math.Vec3.from_xyz(...)`)
-        firsts = {k.split(".", 1)[0] for k in edges}
-        if not any(r.split(".", 1)[0] in firsts for refs in edges.values() for r, _ in refs):
-            return
-        keys = list(edges)
-        order = {k: i for i, k in enumerate(keys)}
-
-        def deps(key: str) -> list[str]:
-            # every key that is the reference or a dotted prefix of it (a reference to a whole
-            # object, 'source: logic', is not a value dependency), in the keys' order: a lookup per
-            # prefix, not a scan of all keys per reference
-            out = []
-            for r, _ in edges.get(key, []):
-                parts = r.split(".")
-                found = [order[p] for p in (".".join(parts[:n]) for n in range(1, len(parts) + 1)) if p in order]
-                out.extend(keys[i] for i in sorted(found))
-            return out
-
-        color: dict[str, int] = {}
-        reported: set[str] = set()
-        for start in keys:
-            if color.get(start):
-                continue
-            stack = [(start, iter(deps(start)))]
-            trail = [start]
-            color[start] = 1
-            while stack:
-                node, it = stack[-1]
-                nxt = next(it, None)
-                if nxt is None:
-                    color[node] = 2
-                    stack.pop()
-                    trail.pop()
-                    continue
-                if color.get(nxt) == 1:
-                    ring = trail[trail.index(nxt):] + [nxt]
-                    if nxt not in reported:
-                        reported.update(ring)
-                        self.report(DEFAULT_CYCLE, "these values depend on each other in a cycle: " + " -> ".join(ring),
-                                    spans.get(nxt, m.stmt.header),
-                                    help="give one of them a value that does not depend on the others")
-                elif not color.get(nxt):
-                    color[nxt] = 1
-                    trail.append(nxt)
-                    stack.append((nxt, iter(deps(nxt))))
-
-
 _EXPR_KINDS = {
     ast.Number: Checker._number, ast.String: Checker._string, ast.Bool: Checker._bool, ast.This: Checker._this,
     ast.Paren: Checker._paren, ast.Name: Checker._name_expr, ast.Member: Checker._member_expr,
@@ -888,65 +813,6 @@ def _declared_name(text: str) -> str | None:
             continue
         return str(tok) if tok.type == "NAME" else None
     return None
-
-
-_LEAVES = (ast.Number, ast.String, ast.Bool, ast.This)
-
-
-def _value_refs(expr) -> list[tuple[str, Span]]:
-    """The dotted names an expression reads, with their spans (for M006)."""
-    if expr.__class__ in _LEAVES:
-        return []
-    out = []
-    stack = [expr]
-    push, extend = stack.append, stack.extend
-    while stack:
-        x = stack.pop()
-        cls = x.__class__  # (the expression classes have no subclasses)
-        if cls is _Member or cls is _Name:
-            chain = []
-            cur = x
-            while cur.__class__ is _Member:
-                chain.append(cur.name.name)
-                cur = cur.obj
-            if cur.__class__ is _Name:
-                chain.append(cur.ident.name)
-                out.append((".".join(reversed(chain)), x.span))
-                continue
-            push(cur)
-        elif cls is _Call:
-            push(x.func)
-            extend(x.args)
-        elif cls is _Binary:
-            push(x.left)
-            push(x.right)
-        elif cls is _Unary:
-            push(x.operand)
-        elif cls is _Paren:
-            push(x.inner)
-        elif cls is _Brace or cls is _Array:
-            extend(x.items)
-        elif cls is _Index:
-            push(x.obj)
-            push(x.index)
-    return out
-
-
-_Member, _Name, _Call, _Binary, _Unary, _Paren, _Brace, _Array, _Index = (
-    ast.Member, ast.Name, ast.Call, ast.Binary, ast.Unary, ast.Paren, ast.Brace, ast.Array, ast.Index)
-
-
-def _default_edges(body, prefix: str, edges: dict, spans: dict) -> None:
-    """What each default value reads, by dotted attribute path. Module-level (not a closure that
-    calls itself) so a check leaves no reference cycles behind for the collector."""
-    for s in body:
-        if isinstance(s, (ast.Declaration, ast.Assignment)):
-            key = prefix + s.path.text
-            if getattr(s, "value", None) is not None:
-                edges.setdefault(key, []).extend(_value_refs(s.value))
-                spans.setdefault(key, s.path.span)
-            if getattr(s, "body", None):
-                _default_edges(s.body, key + ".", edges, spans)
 
 
 def _unquoted(expr: ast.String, expected: Ty) -> str | None:

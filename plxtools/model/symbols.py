@@ -78,7 +78,7 @@ class ModelSym:
     _all: "dict[str, MemberSym] | None" = None
     _methods: "dict[str, MethodSym] | None" = None
     _open: "bool | None" = None
-    # filled by rules/completeness.py: paths its own body gives a value (a function of `stmt`, never
+    # filled by model/completeness.py: paths its own body gives a value (a function of `stmt`, never
     # reset), and the completeness walks below this model (cleared with the member tables)
     _assigned: "frozenset | None" = None
     _walks: "dict | None" = None

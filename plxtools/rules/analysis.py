@@ -7,19 +7,20 @@ diagnostics everywhere."""
 from __future__ import annotations
 
 import bisect
+from dataclasses import replace
 
 from plxtools.config import Config
 from plxtools.diagnostics import Diagnostic, Severity
+from plxtools.model.completeness import Versions, root_model, unset_values
 from plxtools.model.reuse import fresh
 from plxtools.model.symbols import ModelSym
 from plxtools.model.workspace import FileAnalysis, workspace_for_cli
 from plxtools.rules import registry
-from plxtools.rules.completeness import Versions, completeness_diagnostics, root_model
-from plxtools.rules.consequences import drop_consequences, drop_owned, report_order
+from plxtools.rules.consequences import Explained, drop_consequences, drop_owned, report_order
 from plxtools.rules.engine import FileFacts, apply_severity, run_fact_rules, run_file_rules
 from plxtools.rules.incremental import run_file_rules_again
 from plxtools.rules.literals import literal_diagnostics
-from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements
+from plxtools.rules.style import style_diagnostics, style_of_file, style_of_statements, used_names
 from plxtools.rules.suppress import apply
 from plxtools.syntax import ast
 
@@ -38,28 +39,33 @@ def analyse_file(workspace, tree: ast.File, root_name: str | None = None, previo
         fa = FileAnalysis(fa.unit, fa.diagnostics + reported, fa.lazy_occurrences, fa.snapshot, fa.plan)
     plan = fa.plan if fa.snapshot is not None and root_name is None else None
     if plan is None:
-        extra = completeness_diagnostics(workspace.program, fa.unit, list(tree.diagnostics) + fa.diagnostics, root)
-        extra += style_diagnostics(workspace.program, fa.unit, fa.occurrences, root)
+        unset = unset_values(workspace.program, fa.unit, root, explained=_explained(tree, fa))
+        used = used_names(fa.unit, fa.occurrences)
+        extra = style_diagnostics(fa.unit)
         extra += literal_diagnostics(tree, fa.occurrences, tree.path)
     else:
-        extra = _completeness_again(workspace.program, fa, tree, snap, plan)
-        extra += _per_statement(fa, plan, "style", style_of_statements(fa.unit, plan.dirty))
+        unset = _unset_again(workspace.program, fa, tree, snap, plan)
+        extra = _per_statement(fa, plan, "style", style_of_statements(fa.unit, plan.dirty))
         parts = fa.snapshot.parts
         used = set().union(*(p.uses for p in parts)) if fa.unit.bundle is None else set()
-        extra += style_of_file(workspace.program, fa.unit, used, root)
+        extra += style_of_file(fa.unit)
         checked = [o for i in sorted(plan.dirty) for o in parts[i].occs]
         extra += _per_statement(fa, plan, "literals", literal_diagnostics(tree, checked, tree.path, plan.dirty))
-    facts = FileFacts(workspace.program, fa, tree, root)
+    facts = FileFacts(workspace.program, fa, tree, root, unset=tuple(unset), used_names=frozenset(used))
     extra += run_file_rules(facts) if plan is None else run_file_rules_again(facts, fa, plan, snap)
     for d in extra:
         d.file = tree.path
     return FileAnalysis(fa.unit, fa.diagnostics + extra, fa.lazy_occurrences, fa.snapshot, fa.plan)
 
 
-def _completeness_again(program, fa, tree: ast.File, previous, plan) -> list[Diagnostic]:
-    """M007/M008 of the last version, moved, while the root's statements and the bundles are the
-    same and neither version has a syntax error (a block that did not parse explains missing
-    values by its position); otherwise the rule runs."""
+def _explained(tree: ast.File, fa) -> Explained:
+    return Explained(tree, list(tree.diagnostics) + fa.diagnostics)
+
+
+def _unset_again(program, fa, tree: ast.File, previous, plan) -> list:
+    """The unset values of the last version (M007/M008's facts), moved, while the root's statements
+    and the bundles are the same and neither version has a syntax error (a block that did not parse
+    explains missing values by its position); otherwise they are found again."""
     root = root_model(program, fa.unit)
     key = None
     if root is not None:
@@ -71,21 +77,25 @@ def _completeness_again(program, fa, tree: ast.File, previous, plan) -> list[Dia
     found = None
     last = previous.extra.get("completeness") if previous is not None and plan.based else None
     if last is not None and key is not None and clean and last[0] == key:
-        found = [plan.move_diag(d, tree.path) for d in last[1]]
-        if any(d is None for d in found):
+        found = [_moved(u, plan) for u in last[1]]
+        if any(u is None for u in found):
             found = None
     walks = previous.extra.get("walks") if previous is not None and plan.based else None
     versions = Versions(fa.unit, plan.regions, plan.serials, walks, plan.move_span)
     if found is None:
-        found = completeness_diagnostics(program, fa.unit, list(tree.diagnostics) + fa.diagnostics,
-                                         versions=versions)
-        found = [fresh(d) for d in found]
+        found = unset_values(program, fa.unit, versions=versions, explained=_explained(tree, fa))
         fa.snapshot.extra["walks"] = versions.walked
     else:
         fa.snapshot.extra["walks"] = versions.carry_all()
     if key is not None and clean:
         fa.snapshot.extra["completeness"] = (key, found)
-    return [fresh(d) for d in found]
+    return found
+
+
+def _moved(u, plan):
+    """An unset value of the last version with its anchor where its line now is (None: gone)."""
+    anchor = plan.move_span(u.anchor)
+    return None if anchor is None else replace(u, anchor=anchor)
 
 
 def _per_statement(fa, plan, rule: str, new: list[Diagnostic]) -> list[Diagnostic]:

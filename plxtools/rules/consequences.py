@@ -12,8 +12,11 @@ nothing below them can be trusted until they are fixed, and the first line print
 
 from __future__ import annotations
 
-from plxtools.diagnostics import Diagnostic, Severity
+import difflib
+
+from plxtools.diagnostics import Diagnostic, Severity, Span
 from plxtools.rules import registry
+from plxtools.syntax import ast
 
 # layout errors that decide which block a line is read into (tagged so in the registry)
 _LAYOUT = registry.tagged("layout")
@@ -43,6 +46,39 @@ def drop_owned(diags: list[Diagnostic]) -> list[Diagnostic]:
     if not owners:
         return diags
     return [d for d in diags if owners.get((d.file, d.span.start.line, d.code), -1) < d.severity.rank]
+
+
+class Explained:
+    """`explained(anchor, name)`: whether an error already reported in the declaration at `anchor`
+    explains that its value `name` is missing (model/completeness.py asks): the block did not
+    parse, or holds a misspelt attribute close to `name` (`raduis:` meant `radius:`)."""
+
+    def __init__(self, tree: ast.File, causes: list[Diagnostic]):
+        self.text = tree.text
+        self.errors = [d for d in causes if d.severity is Severity.ERROR
+                       and (d.code[0] == "S" or d.code == registry.UNKNOWN_ATTRIBUTE)]
+        self.extent: dict[int, tuple[int, int]] = {}
+        if self.errors:
+            for st in ast.walk_statements(tree.statements):
+                path = getattr(st, "path", None)
+                if path is not None:
+                    self.extent[path.span.start.offset] = (st.span.start.offset, st.span.end.offset)
+
+    def __call__(self, anchor: Span, name: str) -> bool:
+        if not self.errors:
+            return False
+        ext = self.extent.get(anchor.start.offset)
+        if ext is None:
+            return False
+        for d in self.errors:
+            if not ext[0] <= d.span.start.offset <= ext[1]:
+                continue
+            if d.code[0] == "S":
+                return True  # the block did not parse: what it lacks follows from that
+            written = self.text[d.span.start.offset:d.span.end.offset].split(".")[-1]
+            if difflib.SequenceMatcher(None, written.lower(), name.lower()).ratio() >= 0.75:
+                return True  # `raduis:` was meant to be `radius:`
+        return False
 
 
 def report_order(d: Diagnostic) -> tuple:

@@ -23,7 +23,9 @@ class FileFacts:
 
     `program` answers lookups and types (plxtools/model/program.py); `analysis` is the model's
     FileAnalysis of the file (its unit and its facts: diagnostics, occurrences); `root` the model a
-    run instantiates (None: the file's last model, or no run)."""
+    run instantiates (None: the file's last model, or no run); `unset` the values and references
+    what that model creates needs and nothing gives (model/completeness.py); `used_names` the
+    file's top-level names that something in it names."""
 
     program: object
     analysis: object
@@ -34,6 +36,8 @@ class FileFacts:
     statements: tuple | None = None
     occs: list | None = None
     tables: dict = field(default_factory=dict)  # file-wide tables built once per analysis (`table`)
+    unset: tuple = ()
+    used_names: frozenset = frozenset()
     found: tuple | list = ()  # the model's facts about the file (plxtools/model/facts.py)
 
     def of(self, *kinds: type) -> list:

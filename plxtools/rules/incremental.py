@@ -18,7 +18,10 @@ gets that statement's findings back, moved to where it is now; a statement with 
 moved lines is judged again (a message may name a line). A statement judged with the whole file
 (the first analysis) has no reads of its own yet, so it is judged again whenever the model's
 re-use plan checks it again (model/reuse.py). Tests compare the result with a fresh analysis on
-random edits (tests/ide/test_reuse.py)."""
+random edits (tests/ide/test_reuse.py).
+
+A module that judges the file as a whole (the root's unset values, the names used anywhere, the
+scene a run builds) says `WHOLE_FILE = True` and is judged on the whole file every time."""
 
 from __future__ import annotations
 
@@ -75,6 +78,8 @@ def _module_findings(module, rules, key: str, facts: FileFacts, snap, judged: se
     parts, stmts = snap.parts, facts.tree.statements
     starts = [p.start for p in parts]
     found = tables = None
+    if getattr(module, "WHOLE_FILE", False):
+        judged = None  # it reads whole-file facts (unset values, used names, the root): never alone
     if last is not None and judged is not None:
         found, tables = _judge(module, rules, facts, parts, sorted(judged), stmts)
         if tables != last or not _inside(found, starts, judged):

@@ -113,14 +113,9 @@ UNREADABLE_FILE = entry("E001", "unreadable-file", E)
 UNRESOLVED_TYPE = entry("N001", "unresolved-type", E, fix="unsafe", owns=("A003",))
 UNKNOWN_ATTRIBUTE = entry("N002", "unknown-attribute", E, fix="unsafe", owns=("A003", "A004",))
 UNRESOLVED_NAME = entry("N003", "unresolved-name", E, fix="unsafe", owns=("A003",))
-DEFAULT_CYCLE = entry("M006", "default-cycle", E, owns=("A006",))
-MISSING_ASSIGNMENT = entry("M007", "missing-assignment", E, owns=("A004",))
-UNBOUND_REFERENCE = entry("M008", "unbound-reference", E, owns=("A005",))
 BUNDLES_UNAVAILABLE = entry("B000", "bundles-unavailable", W)
 NAMING_CONVENTION = entry("C001", "naming-convention", I)
-UNUSED_MODEL = entry("C003", "unused-model", W)
 MISALIGNED_INDENTATION = entry("C006", "misaligned-indentation", I)
-ROOT_NOT_SYSTEM = entry("C007", "root-not-system", W)
 # ---------------------------------------------------------------- hygiene (docs: catalog/hygiene.py)
 UNUSED_SUPPRESSION = entry("C002", "unused-suppression", W, fix="safe", tags=("unnecessary",))
 # ---------------------------------------------------------------- assembly (docs: catalog/assembly.py)
@@ -150,7 +145,7 @@ INVERTED_LIMITS = entry("A024", "inverted-limits", E, stage="check")
 NON_POSITIVE_SIZE = entry("A030", "non-positive-size", E, stage="check")
 MISSING_FILE = entry("A031", "missing-file", E, stage="check", milder=W)
 NEGATIVE_MASS = entry("A032", "negative-mass", E, stage="check")
-ZERO_MASS_DYNAMIC_BODY = entry("A033", "zero-mass-dynamic-body", E, stage="check")
+ZERO_MASS_DYNAMIC_BODY = entry("A033", "zero-mass-dynamic-body", E, stage="check", owns=("A047",))
 INVALID_INERTIA = entry("A034", "invalid-inertia", E, stage="check")
 DUPLICATE_CONTACT_MODEL = entry("A035", "duplicate-contact-model", E, stage="check")
 INVALID_CONTACT_PARAMETER = entry("A036", "invalid-contact-parameter", E, stage="check")
@@ -219,19 +214,25 @@ MODULE_RULES = (
     ("A046", "controller-on-other-mate", W, "assembly.controller_connectors", dict()),
     ("A047", "explicit-zero-mass", W, "assembly.explicit_zero_mass", dict()),
     ("A048", "length-in-millimetres", W, "assembly.length_in_millimetres", dict()),
+    ("A049", "dynamic-ground", W, "assembly.dynamic_ground", dict()),
     ("B001", "bundle-config-name", E, "bundles.bundle_config_name", dict()),
     ("B002", "bad-dependency-string", E, "bundles.bad_dependency_string", dict()),
     ("B003", "unknown-dependency", E, "bundles.unknown_dependency", dict()),
     ("B004", "dependency-cycle", E, "bundles.dependency_cycle", dict()),
     ("B005", "outside-dependencies", E, "bundles.outside_dependencies", dict()),
     ("B006", "unread-dependency-form", W, "bundles.unread_dependency_form", dict()),
+    ("C003", "unused-model", W, "semantic.unused_model", dict()),
     ("C004", "deprecated-attribute", W, "conventions.deprecated_attribute", dict(tags=("deprecated",))),
     ("C005", "unknown-annotation", I, "conventions.unknown_annotation", dict()),
+    ("C007", "root-not-system", W, "semantic.root_not_system", dict()),
     ("M001", "redeclared-attribute", E, "structure.redeclared_attribute", dict()),
     ("M002", "becomes-not-inherited", E, "structure.becomes_not_inherited", dict()),
     ("M003", "becomes-incompatible", E, "structure.becomes_incompatible", dict()),
     ("M004", "duplicate-definition", E, "structure.duplicate_definition", dict()),
     ("M005", "inheritance-cycle", E, "structure.inheritance_cycle", dict()),
+    ("M006", "default-cycle", E, "semantic.default_cycle", dict(owns=("A006",))),
+    ("M007", "missing-assignment", E, "semantic.missing_assignment", dict(owns=("A004",))),
+    ("M008", "unbound-reference", E, "semantic.unbound_reference", dict(owns=("A005",))),
     ("M009", "reference-with-block", E, "structure.reference_with_block", dict()),
     ("M010", "assigned-twice", E, "semantic.assigned_twice", dict()),
     ("N001", "unresolved-type", E, "names.unresolved_type", dict(fix="unsafe", owns=("A003",))),

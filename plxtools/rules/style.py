@@ -1,13 +1,13 @@
-"""Style and hygiene rules over the tree and the resolved names (C001, C003, C006, C007)."""
+"""Style rules over the tree (C001, C006), kept per statement by the language server.
+
+C003 and C007, which judge the whole file, are rule modules (semantic/unused_model.py,
+semantic/root_not_system.py)."""
 
 from __future__ import annotations
 
 import re
 
 from plxtools.diagnostics import Diagnostic, Severity
-from plxtools.rules.completeness import root_model
-from plxtools.model.program import Program
-from plxtools.model.symbols import ModelSym
 from plxtools.syntax import ast
 from plxtools.rules import registry
 
@@ -33,10 +33,10 @@ def _block_column(body: list, parent_col: int) -> int:
     return body[0].header.start.column
 
 
-def style_diagnostics(program: Program, unit, occurrences, root: ModelSym | None = None) -> list[Diagnostic]:
+def style_diagnostics(unit) -> list[Diagnostic]:
     """Every style rule on a freshly analysed file (the language server re-runs the two halves
     separately: `style_of_statements` on the statements that changed, `style_of_file` always)."""
-    return style_of_statements(unit) + style_of_file(program, unit, used_names(unit, occurrences), root)
+    return style_of_statements(unit) + style_of_file(unit)
 
 
 def used_names(unit, occurrences) -> set[str]:
@@ -134,78 +134,11 @@ def _misaligned(body: list, parent_col: int, caused: set[int], add) -> None:
                 "(`plx fmt` aligns siblings)")
 
 
-def style_of_file(program: Program, unit, used_names: set[str], root: ModelSym | None = None) -> list[Diagnostic]:
-    """C006 among the top-level statements, C003 and C007: what depends on the whole file.
-    `used_names`: the file's top-level names that something names (`used_names()`)."""
+def style_of_file(unit) -> list[Diagnostic]:
+    """C006 among the top-level statements: what depends on the whole file."""
     out: list[Diagnostic] = []
     add = _adder(out, unit)
     tree = unit.tree
     _misaligned(tree.statements, 0, _caused(tree), add)
-    if unit.bundle is not None:
-        return out
-    # C003: models defined in a loose file that nothing uses; C007: root that is not a System
-    chosen = root is not None  # --model NAME: that model is the root, wherever it is in the file
-    default_root = root_model(program, unit)
-    root = root or default_root
-    used = {id(sym) for name, sym in unit.locals.items() if name in used_names}
-    stray = None
-    if root is not None and not chosen:  # a root chosen by name is not "the last model"
-        stray = _root_kind(program, unit, root, used, add)
-    for name, sym in unit.locals.items():
-        # unused or not, whichever root `--model` chose: the file's findings (and the suppressions
-        # written for them) stay those of a plain check (issue 40.7); the scene C007 says was meant
-        # to be last is that finding's, not also an unused model
-        if isinstance(sym, ModelSym) and sym is not default_root and id(sym) not in used and sym is not stray:
-            _unused(name, sym, unit, add)
     out.sort(key=lambda d: d.span.start.offset)
     return out
-
-
-def _unused(name: str, sym: ModelSym, unit, add) -> None:
-    """C003 for one top-level model, trait or imported name that nothing in the file names."""
-    span = sym.stmt.name.span if isinstance(sym.stmt, ast.TraitDef) else sym.stmt.path.span
-    if sym.kind != "import":
-        add(registry.UNUSED_MODEL, f"{'trait' if sym.is_trait else 'model'} '{name}' is defined but never used in this file",
-            span, Severity.WARNING, "use it, move it into a bundle, or remove it")
-        return
-    if getattr(sym, "opaque", False) and any(getattr(a, "import_stmt", None) is sym.import_stmt
-                                             for a in (getattr(unit, "archive", None) or {}).values()):
-        return  # names from the archive are used (model/program.py archive_name)
-    add(registry.UNUSED_MODEL, f"imported name '{name}' is never used in this file", span, Severity.WARNING,
-        "use it or remove the import")
-
-
-def _root_kind(program: Program, unit, root: ModelSym, used: set[int], add) -> ModelSym | None:
-    """C007: the file's last model is not what importers load (a System, a body, a material).
-    Returns the unused System above the root that it names, if any."""
-    system = program.lookup(["Physics3D", "System"], unit)
-    is_system = isinstance(system, ModelSym) and program.is_subtype(root, system)
-    # a scene above the root that nothing uses: the scene was meant to be last
-    stray = [sym for sym in unit.locals.values() if isinstance(sym, ModelSym) and sym is not root
-             and id(sym) not in used and isinstance(system, ModelSym) and program.is_subtype(sym, system)]
-    if not is_system and stray:
-        add(registry.ROOT_NOT_SYSTEM, f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
-            f"and the System '{stray[0].name}' above it is used by nothing",
-            root.stmt.path.span, Severity.WARNING,
-            f"a scene is loaded from the last model; move '{stray[0].name}' to the end of the file")
-        return stray[0]
-    if not _loadable_root(program, unit, root):
-        add(registry.ROOT_NOT_SYSTEM, f"the root model '{root.name}' (the last model in the file) is not a Physics3D.System, "
-            f"a rigid body or a material",
-            root.stmt.path.span, Severity.WARNING,
-            "a scene is loaded from the last model; make it a Physics3D.System or move the scene last")
-
-
-def _loadable_root(program: Program, unit, root: ModelSym) -> bool:
-    """What importers load from a file's last model: a System (a scene), a rigid body, or a
-    material of an official bundle (a material library). Judged on the bundles in use, so it fits
-    every version (materials moved from Physics.Charges to Physics.Geometries)."""
-    kinds = [program.lookup(["Physics3D", "System"], unit), program.lookup(["Physics3D", "Bodies", "RigidBody"], unit)]
-    if not any(isinstance(k, ModelSym) for k in kinds):
-        return True  # the bundles in use do not say: do not guess
-    if program.is_open(root):
-        return True  # built on an imported file plx cannot read (or an unknown base, reported): unknown
-    if any(isinstance(k, ModelSym) and program.is_subtype(root, k) for k in kinds):
-        return True
-    return any(m.name.endswith("Material") and m.unit is not None and m.unit.official
-               for m in program.ancestors(root))

@@ -158,7 +158,10 @@ def _sources() -> list[tuple[str, str]]:
 def test_an_editing_session_reports_what_a_fresh_check_reports(tmp_path, name, text):
     (tmp_path / "other.openplx").write_text("Other is Physics3D.Bodies.RigidBody:\n    inertia.mass: 2\n")
     re_used = sum(_session(tmp_path, text, seed, 12) for seed in range(campaign_size(9)))
-    assert re_used > 0  # the sessions did exercise re-use, not only fresh checks
+    if not any(line.startswith("import ") for line in text.splitlines()):
+        # the sessions did exercise re-use, not only fresh checks (a file with imports is checked
+        # afresh on every edit, model/reuse.py: the comparison above is what it tests)
+        assert re_used > 0
 
 
 def test_statements_far_from_an_edit_are_not_checked_again(tmp_path):

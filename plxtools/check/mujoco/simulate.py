@@ -630,7 +630,7 @@ class BodyMotion(Monitor):
 
 def fell_out_of_world(path: str, message: str, source: Any) -> BackendNote:
     """The A102 note for a body that left the world without crossing static geometry (which
-    :class:`FallThrough` would have seen): ``checks.bodies_out_of_world`` decides that after the
+    :class:`FallThrough` would have seen): ``check.aftersim.bodies_out_of_world`` decides that after the
     run from where the bodies started and ended."""
     return BackendNote(ERROR, registry.FELL_THROUGH, message, source, path)
 

@@ -1,18 +1,37 @@
-"""Missing assignments and unbound references in what a file's root model instantiates (M007, M008).
+"""The values and references that what a file's root model instantiates needs and nothing gives.
 
 Library models may be incomplete; only objects that the root model (the last model in a file
-outside any bundle) actually creates must have every non-optional value.
+outside any bundle) actually creates must have every non-optional value. The result is facts
+(`Unset`), without codes or message text: the rule module `rules/semantic/unset_values.py` turns
+them into lint's findings (M007, M008), and check's evaluator, which meets the same faults while it
+computes values, leaves them to those findings (the registry's `owns`).
 """
 
 from __future__ import annotations
 
-from plxtools.diagnostics import Diagnostic, Severity, Span
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from plxtools.diagnostics import Span
 from plxtools.model.program import Program
 from plxtools.model.symbols import ModelSym, Ty
 from plxtools.syntax import ast
-from plxtools.rules import registry
 
-# raised here; check/pipeline.py imports these names to recognise them
+
+@dataclass(frozen=True, slots=True)
+class Unset:
+    """A non-optional value (or reference) of an instantiated object that nothing gives.
+
+    One per source location: objects of one model that all lack the same value are one fact, whose
+    `path` is what they share (`geometry.radius`) and `instances` the objects (`a`, `b`, ...)."""
+
+    reference: bool  # an unbound reference; else a missing Real, Int, Bool or String
+    path: str  # dotted, from the root model (from each instance when there are several)
+    type: str  # the attribute's type as written for people
+    name: str  # the attribute
+    owner: str  # the model that declares it
+    anchor: Span  # where it is shown: its declaration in this file, else the nearest line above
+    instances: tuple[str, ...] = ()
 
 REQUIRED_PRIMITIVES = {"Real", "Int", "Bool", "String"}
 MAX_DEPTH = 40
@@ -68,6 +87,19 @@ def _assigned(program: Program, model: ModelSym) -> set[tuple[str, ...]]:
     out: set[tuple[str, ...]] = set()
     for m in program.ancestors(model):
         out |= _own_assigned(m)
+    return out
+
+
+def assigned_paths(program: Program, model: ModelSym, block=None, below: ModelSym | None = None) -> set[tuple[str, ...]]:
+    """The attribute paths a model's chain gives a value (`("inertia", "mass")`), with those an
+    instance's own `block` gives; `below`: only the models of the chain that derive from it (not
+    it nor its bases: their defaults are not a decision of the file's author)."""
+    out: set[tuple[str, ...]] = set()
+    for m in program.ancestors(model):
+        if below is None or (m is not below and not program.is_subtype(below, m)):
+            out |= _own_assigned(m)
+    if block:
+        _walk_assigned(block, (), out)
     return out
 
 
@@ -134,20 +166,20 @@ def _moved(got: tuple, move_span) -> tuple | None:
     return finds, got[1], got[2]
 
 
-def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = (),
-                             root: ModelSym | None = None, versions: Versions | None = None) -> list[Diagnostic]:
-    """M007/M008 for what the root model creates, one per source location and attribute.
+def unset_values(program: Program, unit, root: ModelSym | None = None, versions: Versions | None = None,
+                 explained: Callable[[Span, str], bool] | None = None) -> list[Unset]:
+    """What the root model creates and nothing gives a value, one fact per source location and
+    attribute.
 
-    `causes` are the file's other diagnostics: a declaration whose block failed to parse, or that
-    holds a misspelt attribute close to the missing one, already has its error; the missing values
-    that only follow from it are not reported again (one mistake, one message)."""
+    `explained(anchor, name)`: whether another finding at that declaration already explains the
+    missing `name` (a block that failed to parse, a misspelt attribute): such a value is left out
+    (one mistake, one message)."""
     if unit.bundle is not None:
         return []
     root = root or root_model(program, unit)
     if root is None:
         return []
-    found: list[tuple[Diagnostic, str, str, str]] = []  # (diagnostic, member name, dotted path, type)
-    caused = _Causes(unit.tree, causes)
+    found: list[tuple[str, str, str, str, str, Span]] = []  # (kind, path, type, name, owner, anchor)
     seen: set[tuple[str, str]] = set()
     memo: dict[int, set[tuple[str, ...]]] = {}
 
@@ -267,16 +299,10 @@ def completeness_diagnostics(program: Program, unit, causes: list[Diagnostic] = 
     for kind, rel, shown, name, owner, a in finds:
         local_anchor = a if a is not None else anchor
         full = ".".join(rel)
-        if (full, kind) in seen or caused(local_anchor, name):
+        if (full, kind) in seen or (explained is not None and explained(local_anchor, name)):
             continue
         seen.add((full, kind))
-        if kind == "ref":
-            d = Diagnostic(registry.UNBOUND_REFERENCE, _message(registry.UNBOUND_REFERENCE, full, shown), local_anchor, Severity.ERROR, file=unit.path,
-                           help=f"give it an existing object: '{name}: ...' (declared in {owner})")
-        else:
-            d = Diagnostic(registry.MISSING_ASSIGNMENT, _message(registry.MISSING_ASSIGNMENT, full, shown), local_anchor, Severity.ERROR, file=unit.path,
-                           help=f"give it a value, e.g. '{name}: ...' (declared without a default in {owner})")
-        found.append((d, name, full, shown))
+        found.append((kind, full, shown, name, owner, local_anchor))
     return _one_per_location(found)
 
 
@@ -314,63 +340,23 @@ def _prefixed(finds: list, name: str, below: list, local) -> None:
         finds.append((kind, (name,) + rel, shown, n, owner, a if a is not None else local))
 
 
-def _message(code: str, path: str, ty: str, instances: str = "") -> str:
-    where = f" in {instances}" if instances else ""
-    if code == registry.UNBOUND_REFERENCE:
-        return f"reference '{path}' ({ty}){where} is never bound"
-    return f"missing assignment {path} ({ty}){where}: the model is not complete"
-
-
-def _one_per_location(found: list[tuple[Diagnostic, str, str, str]]) -> list[Diagnostic]:
-    """A model used by four wheels misses its value once, at one place: report it once and name the
+def _one_per_location(found: list[tuple[str, str, str, str, str, Span]]) -> list[Unset]:
+    """A model used by four wheels misses its value once, at one place: one fact naming the
     instances (`a.geometry.radius` ... `d.geometry.radius` -> `geometry.radius` in a, b, c, d)."""
-    groups: dict[tuple, list[tuple[Diagnostic, str, str, str]]] = {}
+    groups: dict[tuple, list[tuple[str, str, str, str, str, Span]]] = {}
     for item in found:
-        d, name = item[0], item[1]
-        groups.setdefault((d.code, d.span.start.offset, d.span.end.offset, name, d.help), []).append(item)
+        kind, _full, _shown, name, owner, a = item
+        groups.setdefault((kind, a.start.offset, a.end.offset, name, owner), []).append(item)
     out = []
     for items in groups.values():
-        d = items[0][0]
+        kind, full, shown, name, owner, a = items[0]
+        instances: tuple[str, ...] = ()
         if len(items) > 1:
-            paths = [full.split(".") for _, _, full, _ in items]
+            paths = [it[1].split(".") for it in items]
             n = 0  # length of the common suffix, leaving each instance at least one part
             while all(len(p) > n + 1 for p in paths) and len({tuple(p[len(p) - n - 1:]) for p in paths}) == 1:
                 n += 1
-            suffix = ".".join(paths[0][len(paths[0]) - n:])
-            owners = [".".join(p[:len(p) - n]) for p in paths]
-            shown = ", ".join(owners[:6]) + (f" and {len(owners) - 6} more" if len(owners) > 6 else "")
-            d.message = _message(d.code, suffix, items[0][3], f"{len(owners)} instances ({shown})")
-        out.append(d)
+            full = ".".join(paths[0][len(paths[0]) - n:])
+            instances = tuple(".".join(p[:len(p) - n]) for p in paths)
+        out.append(Unset(kind == "ref", full, shown, name, owner, a, instances))
     return out
-
-
-class _Causes:
-    """Which declarations already carry the error that explains a missing value."""
-
-    def __init__(self, tree: ast.File, causes: list[Diagnostic]):
-        self.text = tree.text
-        self.errors = [d for d in causes if d.severity is Severity.ERROR and (d.code[0] == "S" or d.code == registry.UNKNOWN_ATTRIBUTE)]
-        self.extent: dict[int, tuple[int, int]] = {}
-        if self.errors:
-            for st in ast.walk_statements(tree.statements):
-                path = getattr(st, "path", None)
-                if path is not None:
-                    self.extent[path.span.start.offset] = (st.span.start.offset, st.span.end.offset)
-
-    def __call__(self, anchor: Span, name: str) -> bool:
-        if not self.errors:
-            return False
-        ext = self.extent.get(anchor.start.offset)
-        if ext is None:
-            return False
-        import difflib
-
-        for d in self.errors:
-            if not ext[0] <= d.span.start.offset <= ext[1]:
-                continue
-            if d.code[0] == "S":
-                return True  # the block did not parse: what it lacks follows from that
-            written = self.text[d.span.start.offset:d.span.end.offset].split(".")[-1]
-            if difflib.SequenceMatcher(None, written.lower(), name.lower()).ratio() >= 0.75:
-                return True  # `raduis:` was meant to be `radius:`
-        return False
