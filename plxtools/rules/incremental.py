@@ -108,6 +108,8 @@ def _to_judge(facts: FileFacts, fa, plan, previous, texts: list, keys: list) -> 
     findings back (moved) on their parts."""
     parts = fa.snapshot.parts
     changed = _changed_names(previous.extra["rule texts"], texts)
+    if ANY in changed:  # a statement that defines no name (an import, a broken line) changed: it may
+        return set(range(len(parts)))  # change what any name means, so everything is judged again
     old_texts = previous.extra["rule texts"]
     by_text: dict[str, list] = {}
     for (_name, text), p in zip(old_texts, previous.parts):
