@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from plxtools.cache import reads
-from plxtools.diagnostics import EMPTY_SPAN
+from plxtools.diagnostics import EMPTY_SPAN, Span
 from plxtools.model import facts
 from plxtools.syntax import ast
 

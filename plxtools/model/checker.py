@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from plxtools.cache import reads
-from plxtools.diagnostics import Diagnostic, Edit, Fix, Severity, Span
+from plxtools.diagnostics import Diagnostic, Severity, Span
 from plxtools.model import facts, resolve
 from plxtools.model.program import Program, compose_type
 from plxtools.model import suggest

@@ -8,20 +8,10 @@ import shutil
 import time
 from pathlib import Path
 
-from plxtools.cache import folder, reads, stamp
+from plxtools.cache import reads, stamp
+from tests.cache.stamps import tree_digest as _digest
 
 PKG = Path(stamp.__file__).resolve().parents[1]
-
-
-def _digest(tree: Path, cache: Path) -> str:
-    saved = os.environ.get("PLX_CACHE_DIR")
-    os.environ["PLX_CACHE_DIR"] = str(cache)
-    folder.forget()
-    try:
-        return stamp.tree_digest(str(tree))
-    finally:
-        os.environ["PLX_CACHE_DIR"] = saved
-        folder.forget()
 
 
 def test_an_edit_keeping_size_and_mtime_changes_the_stamp(tmp_path, monkeypatch):

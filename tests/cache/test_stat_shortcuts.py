@@ -9,7 +9,8 @@ import shutil
 import time
 from pathlib import Path
 
-from plxtools.cache import folder, reads, stamp
+from plxtools.cache import reads, stamp
+from tests.cache.stamps import tree_digest as _digest
 
 PKG = Path(stamp.__file__).resolve().parents[1]
 
@@ -53,17 +54,6 @@ def test_the_listing_digest_is_by_names_not_stats(tmp_path):
     (tmp_path / "b").write_text("")
     (tmp_path / "b").unlink()
     assert reads.content_digest(_recorded(tmp_path)) == first
-
-
-def _digest(tree: Path, cache: Path) -> str:
-    saved = os.environ.get("PLX_CACHE_DIR")
-    os.environ["PLX_CACHE_DIR"] = str(cache)
-    folder.forget()
-    try:
-        return stamp.tree_digest(str(tree))
-    finally:
-        os.environ["PLX_CACHE_DIR"] = saved
-        folder.forget()
 
 
 def test_the_code_stamp_sees_a_new_file_in_a_folder_whose_listing_it_skipped(tmp_path, monkeypatch):
