@@ -89,6 +89,10 @@ def ensure(p: "Program", model: ModelSym) -> None:
 
 def _ensure(p: "Program", model: ModelSym) -> None:
     in_progress: set[int] = set()
+    # the models of an inheritance cycle leave out each other, whichever the walk met first: an
+    # answer that depended on where it started would differ between a fresh check and the server's
+    # re-use of the last version (tests/ide/test_reuse.py)
+    cycle_of: dict[int, set[int]] = {}
     stack = [model]
     while stack:
         m = stack[-1]
@@ -98,13 +102,27 @@ def _ensure(p: "Program", model: ModelSym) -> None:
         parents = direct_parents(p, m)
         if id(m) not in in_progress:
             in_progress.add(id(m))
+            for x in parents:
+                if x._lin is None and id(x) in in_progress:
+                    _note_cycle(stack, x, in_progress, cycle_of)
             pending = [x for x in parents if x._lin is None and id(x) not in in_progress]
             if pending:
                 stack.extend(reversed(pending))
                 continue
-        _compute(m, [x for x in parents if x._lin is not None])
+        ring = cycle_of.get(id(m), ())
+        _compute(m, [x for x in parents if x._lin is not None and id(x) not in ring])
         in_progress.discard(id(m))
         stack.pop()
+
+
+def _note_cycle(stack: list, start: ModelSym, in_progress: set[int], cycle_of: dict[int, set[int]]) -> None:
+    """The models on the walk's path from `start` to its top form a cycle: each notes the others."""
+    at = max(i for i, s in enumerate(stack) if s is start)
+    ring = {id(s) for s in stack[at:] if id(s) in in_progress}
+    for k in list(ring):
+        ring |= cycle_of.get(k, set())
+    for k in ring:
+        cycle_of[k] = ring
 
 
 def _compute(m: ModelSym, parents: list[ModelSym]) -> None:
