@@ -307,7 +307,7 @@ def set_restitution(ctx: BuildContext) -> None:
         err = 100.0 * speed_ratio_error(e, h, g, MIN_CHECKED_IMPACT)
         ctx.note(WARNING, registry.RESTITUTION_APPROXIMATED, f"{said}; but the impact is resolved at the depth the {h:g} s step finds it "
                  f"(up to v h), so an impact slower than {slow:.2g} m/s may rebound more than 3 % short of "
-                 f"{e:g} in speed (at 1 m/s by about {err:.0f} %): a shorter time step (--timestep) lowers that", cm)
+                 f"{e:g} in speed (at 1 m/s by up to {err:.0f} %): a shorter time step (--timestep) lowers that", cm)
 
 
 # -- mass properties -------------------------------------------------------------------------
