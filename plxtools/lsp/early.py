@@ -27,8 +27,6 @@ from plxtools.lsp.transport import FrameReader, Writer
 log = logging.getLogger("plxtools.lsp")
 
 CONFIG_ID = "plx-early-configuration"
-SEVERITY = {"error": 1, "warning": 2, "info": 3}  # LSP DiagnosticSeverity by plx's Severity value
-TAGS = {"unnecessary": 1, "deprecated": 2}  # LSP DiagnosticTag by the registry's tag
 ANSWERED = ("textDocument/completion", "textDocument/diagnostic")  # the requests this phase may answer
 EARLY_SIZE = 200_000  # characters: a larger document waits for the server (which checks it in a forked process)
 
@@ -308,8 +306,8 @@ class Early:
     def _diagnostics(self, uri: str, path: str) -> list[dict]:
         """The document's check as LSP JSON, field for field what `Publishing.lsp_diagnostic` gives."""
         from plxtools.ide.runtime.collector import no_gc
+        from plxtools.lsp import diagnostic_fields as fields
         from plxtools.lsp.convert import Positions
-        from plxtools.rules import registry
 
         with no_gc():
             st = self.host.state(path)
@@ -319,12 +317,12 @@ class Early:
         published = self.caps.get("textDocument", {}).get("publishDiagnostics") or {}
         out = []
         for d in st.diagnostics:
-            item = {"range": _span_range(pos, d.span), "message": d.message + (f"\nhelp: {d.help}" if d.help else ""),
-                    "severity": SEVERITY[d.severity.value], "code": d.code, "source": "plx"}
-            if self.settings.rule_docs_url and published.get("codeDescriptionSupport"):
-                item["codeDescription"] = {"href": self.settings.rule_docs_url.replace("{code}", d.code)}
-            rule = registry.RULES.get(d.code)
-            tags = [TAGS[t] for t in (rule.tags if rule is not None else ()) if t in TAGS]
+            item = {"range": _span_range(pos, d.span), "message": fields.message(d),
+                    "severity": fields.SEVERITY[d.severity.value], "code": d.code, "source": "plx"}
+            href = fields.docs_href(d, self.settings.rule_docs_url)
+            if href and published.get("codeDescriptionSupport"):
+                item["codeDescription"] = {"href": href}
+            tags = fields.tags(d)
             if tags and published.get("tagSupport"):
                 item["tags"] = tags
             if d.related and published.get("relatedInformation"):
@@ -332,9 +330,9 @@ class Early:
                     {"location": {"uri": self._uri_of(file or "", uri, path),
                                   "range": _span_range(self._positions_of(file or "", path, pos), span)},
                      "message": msg} for file, span, msg in d.related]
-            if d.fix is not None:
-                item["data"] = {"fix": {"message": d.fix.message, "safe": d.fix.safe,
-                                        "edits": [[e.start, e.end, e.text] for e in d.fix.edits]}}
+            data = fields.fix_data(d)
+            if data is not None:
+                item["data"] = data
             out.append(item)
         return out
 

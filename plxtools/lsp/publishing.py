@@ -16,16 +16,14 @@ from lsprotocol import types
 from plxtools.diagnostics import Diagnostic, Severity
 from plxtools.ide.runtime.background import BackgroundCheck, checked_apart
 from plxtools.ide.runtime.collector import no_gc
+from plxtools.lsp import diagnostic_fields as fields
 from plxtools.lsp import watching
 from plxtools.lsp.convert import Positions
-from plxtools.rules import registry
 
 log = logging.getLogger("plxtools.lsp")
 
 SEVERITY = {Severity.ERROR: types.DiagnosticSeverity.Error, Severity.WARNING: types.DiagnosticSeverity.Warning,
             Severity.INFO: types.DiagnosticSeverity.Information}
-# the registry's tags that an editor draws (struck through, faded)
-TAGS = {"deprecated": types.DiagnosticTag.Deprecated, "unnecessary": types.DiagnosticTag.Unnecessary}
 
 
 class Publishing:
@@ -104,13 +102,12 @@ class Publishing:
     # -------------------------------------------------------------- diagnostics
 
     def lsp_diagnostic(self, d: Diagnostic, pos: Positions) -> types.Diagnostic:
-        message = d.message + (f"\nhelp: {d.help}" if d.help else "")
-        out = types.Diagnostic(range=pos.range(d.span), message=message, severity=SEVERITY[d.severity], code=d.code,
-                               source="plx")
-        if self.rule_docs_url and self.cap("text_document.publish_diagnostics.code_description_support"):
-            out.code_description = types.CodeDescription(href=self.rule_docs_url.replace("{code}", d.code))
-        rule = registry.RULES.get(d.code)
-        tags = [TAGS[t] for t in (rule.tags if rule is not None else ()) if t in TAGS]
+        out = types.Diagnostic(range=pos.range(d.span), message=fields.message(d), severity=SEVERITY[d.severity],
+                               code=d.code, source="plx")
+        href = fields.docs_href(d, self.rule_docs_url)
+        if href and self.cap("text_document.publish_diagnostics.code_description_support"):
+            out.code_description = types.CodeDescription(href=href)
+        tags = [types.DiagnosticTag(t) for t in fields.tags(d)]
         if tags and self.cap("text_document.publish_diagnostics.tag_support"):
             out.tags = tags
         if d.related and self.cap("text_document.publish_diagnostics.related_information"):
@@ -120,9 +117,7 @@ class Publishing:
                 rel.append(types.DiagnosticRelatedInformation(
                     location=types.Location(uri=self.uri_of(p), range=self.positions(p).range(span)), message=msg))
             out.related_information = rel
-        if d.fix is not None:
-            out.data = {"fix": {"message": d.fix.message, "safe": d.fix.safe,
-                                "edits": [[e.start, e.end, e.text] for e in d.fix.edits]}}
+        out.data = fields.fix_data(d)
         return out
 
     def diagnostics_of(self, uri: str, background: bool = False):
